@@ -1,0 +1,25 @@
+#pragma once
+// Which backends this build contains and what each honours.
+#include <string>
+#include <vector>
+
+#include "anyphys/capabilities.hpp"
+#include "anyphys/effects.hpp"
+
+namespace anyphys {
+
+struct BackendInfo {
+    std::string name;
+    std::string description;
+    Capabilities capabilities;
+};
+
+/// Every built backend, in registration order (native first).
+std::vector<BackendInfo> availableBackends();
+/// The named backend's info; throws anyphys::Error listing the known names if unknown.
+BackendInfo backendInfo(const std::string& name);
+/// Names of what `settings` (plus content needing `effects`) asks for that the backend lacks,
+/// e.g. {"integrator rk4", "effect contacts"}. Empty when everything is honoured.
+std::vector<std::string> missingCapabilities(const Capabilities& caps, const struct WorldSettings& settings, Effects effects);
+
+}  // namespace anyphys

@@ -1,0 +1,64 @@
+#pragma once
+// Definitions ("defs") from which bodies are created. Every field has a documented unit and
+// default; a def is a plain value, validated when it is used (see validation.hpp).
+#include <optional>
+#include <string>
+
+#include "anyphys/enums.hpp"
+#include "anyphys/math.hpp"
+
+namespace anyphys {
+
+/// A collision shape in the body frame. Which fields matter depends on `type`.
+struct ShapeDef {
+    ShapeType type = ShapeType::Sphere;
+    double radius = 0.5;                        ///< m, sphere and capsule; default 0.5
+    Vec3 halfExtents = Vec3(0.5, 0.5, 0.5);     ///< m, box half sizes along body x, y, z; default 0.5 each
+    double halfHeight = 0.5;                    ///< m, capsule: half length of the core segment along body Y; default 0.5
+    Vec3 normal = Vec3(0, 1, 0);                ///< plane: unit normal (world frame); default +Y
+    double offset = 0.0;                        ///< m, plane: points p with normal.dot(p) == offset; default 0
+
+    static ShapeDef sphere(double r) { ShapeDef s; s.type = ShapeType::Sphere; s.radius = r; return s; }
+    static ShapeDef box(const Vec3& half) { ShapeDef s; s.type = ShapeType::Box; s.halfExtents = half; return s; }
+    static ShapeDef capsule(double r, double halfHeight) {
+        ShapeDef s; s.type = ShapeType::Capsule; s.radius = r; s.halfHeight = halfHeight; return s;
+    }
+    static ShapeDef plane(const Vec3& n, double offset) {
+        ShapeDef s; s.type = ShapeType::Plane; s.normal = n; s.offset = offset; return s;
+    }
+};
+
+/// Everything needed to create a body.
+struct BodyDef {
+    std::string name;                          ///< optional label (scene files, CSV output); default ""
+    BodyType type = BodyType::Dynamic;         ///< default dynamic
+    Vec3 position = Vec3::Zero();              ///< m, world frame, centre of mass; default origin
+    Quat orientation = Quat::Identity();       ///< unit quaternion body -> world; default identity
+    Vec3 linearVelocity = Vec3::Zero();        ///< m/s, world frame; default 0
+    Vec3 angularVelocity = Vec3::Zero();       ///< rad/s, world frame; default 0
+    ShapeDef shape;                            ///< default: sphere of radius 0.5 m
+    std::optional<double> mass;                ///< kg; default: density x shape volume
+    std::optional<double> density;             ///< kg/m^3; default: the material's density, else 1000
+    std::optional<Vec3> inertia;               ///< kg m^2, principal moments in the body frame; default: from shape and mass
+    std::string material;                      ///< name in the world's MaterialLibrary; default "" (the library default)
+    double linearDamping = 0.0;                ///< 1/s, dv/dt = -c v; default 0
+    double angularDamping = 0.0;               ///< 1/s, dw/dt = -c w; default 0
+    double gravityScale = 1.0;                 ///< multiplies world gravity for this body; default 1
+    GyroscopicMode gyroscopic = GyroscopicMode::Implicit;  ///< default implicit (stable, conserves |L| closely)
+};
+
+/// The solved mass properties of a body (what the backend receives).
+struct MassProperties {
+    double mass = 0.0;                 ///< kg; 0 for static and kinematic bodies
+    Vec3 inertia = Vec3::Zero();       ///< kg m^2, principal moments in the body frame
+};
+
+/// A body's kinematic state, world frame.
+struct BodyState {
+    Vec3 position = Vec3::Zero();
+    Quat orientation = Quat::Identity();
+    Vec3 linearVelocity = Vec3::Zero();
+    Vec3 angularVelocity = Vec3::Zero();
+};
+
+}  // namespace anyphys

@@ -1,0 +1,113 @@
+#pragma once
+// The world: the one object game code talks to. Every input is validated here; a rejected call
+// throws anyphys::Error and changes nothing.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "anyphys/body.hpp"
+#include "anyphys/containers/material_library.hpp"
+#include "anyphys/defs.hpp"
+#include "anyphys/effects.hpp"
+#include "anyphys/error.hpp"
+#include "anyphys/ids.hpp"
+#include "anyphys/listeners/contact_listener.hpp"
+#include "anyphys/world_settings.hpp"
+
+namespace anyphys {
+
+class World;
+
+/// What a force callback sees: the time and body states of the current force evaluation, and
+/// where to put forces. On backends that evaluate per stage (native) the callback runs at each
+/// integrator stage with intermediate states, so state-dependent forces keep the integrator's
+/// order; elsewhere it runs once per step.
+class ForceContext {
+public:
+    virtual ~ForceContext() = default;
+    virtual double time() const = 0;
+    virtual BodyState state(Body body) const = 0;
+    virtual void addForce(Body body, const Vec3& force) = 0;
+    virtual void addTorque(Body body, const Vec3& torque) = 0;
+};
+
+using ForceCallback = std::function<void(ForceContext&)>;
+using WarningHandler = std::function<void(const std::string&)>;
+
+class World {
+public:
+    /// Creates a world on settings.backend. Throws anyphys::Error for invalid settings, an
+    /// unknown backend (listing the known ones) or, under the strict policy, settings the
+    /// backend does not honour.
+    explicit World(const WorldSettings& settings = {}, MaterialLibrary materials = {});
+    ~World();
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    // ---- bodies -------------------------------------------------------------------------
+    Body createBody(const BodyDef& def);
+    void destroyBody(Body body);
+    bool isValid(BodyId id) const;
+    /// The handle of a live body id; throws if stale.
+    Body body(BodyId id);
+    /// Live bodies in creation-slot order.
+    std::vector<Body> bodies() const;
+    std::size_t bodyCount() const;
+    /// The first live body with that name; throws anyphys::Error if there is none.
+    Body findBody(const std::string& name);
+
+    // ---- stepping -----------------------------------------------------------------------
+    /// One step of settings().timeStep.
+    void step();
+    /// One step of dt seconds (> 0, finite).
+    void step(double dt);
+    /// Fixed-step accumulator for frame loops: adds `elapsed` seconds and takes as many fixed
+    /// steps as fit (at most settings().maxStepsPerUpdate; the rest is dropped so a slow frame
+    /// cannot snowball). Returns the number of steps taken.
+    int update(double elapsed);
+    /// Fraction of a fixed step left in the accumulator, in [0, 1): for rendering interpolation.
+    double interpolationAlpha() const;
+    double time() const { return time_; }
+    std::uint64_t stepCount() const { return stepCount_; }
+
+    // ---- forces -------------------------------------------------------------------------
+    /// Runs inside every step (see ForceContext). Replaces any previous callback; empty clears.
+    void setForceCallback(ForceCallback callback);
+
+    // ---- events -------------------------------------------------------------------------
+    void addListener(ContactListener* listener);
+    void removeListener(ContactListener* listener);
+
+    // ---- configuration ------------------------------------------------------------------
+    const WorldSettings& settings() const { return settings_; }
+    const std::string& backendName() const { return settings_.backend; }
+    /// The effects being simulated now (declared, or derived from content).
+    Effects activeEffects() const { return activeEffects_; }
+    const MaterialLibrary& materials() const { return materials_; }
+    /// Receives lenient-policy warnings; default: one line on stderr.
+    void setWarningHandler(WarningHandler handler);
+
+private:
+    friend class Body;
+    struct Impl;
+    struct Slot;
+
+    Slot& slot(BodyId id, const char* operation);
+    const Slot& slot(BodyId id, const char* operation) const;
+    void refreshEffects();
+    void noteForcesUsed();  // first force or torque: derive the userForces effect
+    void warn(const std::string& message);
+
+    WorldSettings settings_;
+    MaterialLibrary materials_;
+    Effects activeEffects_;
+    double time_ = 0.0;
+    double timeCompensation_ = 0.0;  // Kahan summation term of time_
+    double accumulator_ = 0.0;
+    std::uint64_t stepCount_ = 0;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace anyphys

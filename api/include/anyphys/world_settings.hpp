@@ -1,0 +1,37 @@
+#pragma once
+// World-wide settings. Every field documents its unit and default.
+#include <map>
+#include <optional>
+#include <string>
+
+#include "anyphys/effects.hpp"
+#include "anyphys/enums.hpp"
+#include "anyphys/math.hpp"
+
+namespace anyphys {
+
+/// What happens when a scene asks for something its backend does not honour.
+enum class CapabilityPolicy {
+    Strict,   ///< throw anyphys::Error listing what is missing (default)
+    Lenient,  ///< proceed, and report each missing feature once through the warning handler
+};
+
+struct WorldSettings {
+    std::string backend = "native";                 ///< registered backend name; default "native"
+    Vec3 gravity = Vec3(0, -9.81, 0);               ///< m/s^2, world frame; default (0, -9.81, 0)
+    double timeStep = 1.0 / 60.0;                   ///< s, the fixed step of step() and update(); default 1/60
+    Integrator integrator = Integrator::SemiImplicitEuler;  ///< default semi-implicit Euler
+    Solver solver = Solver::SoftStep;               ///< constraint solver; default soft step
+    int iterations = 10;                            ///< solver iterations per (sub)step, >= 1; default 10
+    int substeps = 1;                               ///< substeps per step, >= 1; default 1
+    /// Effects to simulate. Unset (default): derived from the world's content, e.g. damping only
+    /// when some body has non-zero damping. Set: exactly these effects, nothing else.
+    std::optional<Effects> effects;
+    int maxStepsPerUpdate = 8;                      ///< cap on fixed steps one update() may take, >= 1; default 8
+    CapabilityPolicy capabilityPolicy = CapabilityPolicy::Strict;  ///< default strict
+    /// Backend-specific numeric options by name (e.g. "erp", "cfm" on ODE); each backend lists
+    /// the ones it honours in its capabilities. Default: none.
+    std::map<std::string, double> backendOptions;
+};
+
+}  // namespace anyphys

@@ -1,0 +1,40 @@
+#include "anyphys/backends.hpp"
+
+#include "anyphys/peers/backend.hpp"
+#include "anyphys/world_settings.hpp"
+
+namespace anyphys {
+
+std::vector<BackendInfo> availableBackends() {
+    std::vector<BackendInfo> out;
+    for (const Backend& b : registeredBackends()) out.push_back({b.name, b.description, b.capabilities});
+    return out;
+}
+
+BackendInfo backendInfo(const std::string& name) {
+    const Backend& b = findBackend(name);
+    return {b.name, b.description, b.capabilities};
+}
+
+std::vector<std::string> missingCapabilities(const Capabilities& caps, const WorldSettings& settings, Effects effects) {
+    std::vector<std::string> missing;
+    if (!caps.integrators.count(settings.integrator))
+        missing.push_back("integrator " + std::string(toString(settings.integrator)));
+    for (const auto& name : (effects & ~caps.effects).names()) missing.push_back("effect " + name);
+    const bool constrained = effects.has(Effect::Contacts) || effects.has(Effect::Joints);
+    if (constrained && !caps.solvers.count(settings.solver))
+        missing.push_back("solver " + std::string(toString(settings.solver)));
+    const WorldSettings defaults;
+    if (settings.substeps != defaults.substeps && !caps.parameters.count("settings.substeps"))
+        missing.push_back("settings.substeps");
+    if (constrained && settings.iterations != defaults.iterations && !caps.parameters.count("settings.iterations"))
+        missing.push_back("settings.iterations");
+    for (const auto& [name, value] : settings.backendOptions) {
+        bool known = false;
+        for (const auto& option : caps.options) known = known || option.first == name;
+        if (!known) missing.push_back("backend option " + name);
+    }
+    return missing;
+}
+
+}  // namespace anyphys

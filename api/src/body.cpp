@@ -1,0 +1,105 @@
+// Body handle methods: validate, then forward to the body's peer.
+#include "anyphys/body.hpp"
+
+#include "anyphys/validation.hpp"
+#include "world_impl.hpp"
+
+namespace anyphys {
+namespace {
+
+World& worldOf(World* world, const char* operation) {
+    if (!world) throw Error(std::string(operation) + ": null body handle");
+    return *world;
+}
+
+}  // namespace
+
+// Resolves the handle to its live slot or throws a stale-handle error naming the operation.
+#define ANYPHYS_SLOT(op) worldOf(world_, op).slot(id_, op)
+
+bool Body::isValid() const { return world_ && world_->isValid(id_); }
+
+const std::string& Body::name() const { return ANYPHYS_SLOT("Body.name").def.name; }
+BodyType Body::type() const { return ANYPHYS_SLOT("Body.type").def.type; }
+BodyState Body::state() const { return ANYPHYS_SLOT("Body.state").peer->state(); }
+Vec3 Body::position() const { return ANYPHYS_SLOT("Body.position").peer->state().position; }
+Quat Body::orientation() const { return ANYPHYS_SLOT("Body.orientation").peer->state().orientation; }
+Vec3 Body::linearVelocity() const { return ANYPHYS_SLOT("Body.linearVelocity").peer->state().linearVelocity; }
+Vec3 Body::angularVelocity() const { return ANYPHYS_SLOT("Body.angularVelocity").peer->state().angularVelocity; }
+MassProperties Body::massProperties() const { return ANYPHYS_SLOT("Body.massProperties").mass; }
+const std::string& Body::material() const { return ANYPHYS_SLOT("Body.material").def.material; }
+
+Vec3 Body::angularVelocityLocal() const {
+    const BodyState s = ANYPHYS_SLOT("Body.angularVelocityLocal").peer->state();
+    return s.orientation.conjugate() * s.angularVelocity;
+}
+
+Vec3 Body::angularMomentum() const {
+    const auto& slot = ANYPHYS_SLOT("Body.angularMomentum");
+    const BodyState s = slot.peer->state();
+    const Vec3 local = s.orientation.conjugate() * s.angularVelocity;
+    return s.orientation * slot.mass.inertia.cwiseProduct(local);
+}
+
+void Body::setTransform(const Vec3& position, const Quat& orientation) {
+    auto& slot = ANYPHYS_SLOT("Body.setTransform");
+    detail::requireFinite("Body.setTransform.position", position);
+    if (!orientation.coeffs().allFinite() || std::abs(orientation.norm() - 1.0) > kUnitQuaternionTolerance)
+        throw Error::invalid("Body.setTransform.orientation", formatQuat(orientation), "must be a unit quaternion");
+    slot.peer->setTransform(position, orientation.normalized());
+}
+
+void Body::setLinearVelocity(const Vec3& v) {
+    auto& slot = ANYPHYS_SLOT("Body.setLinearVelocity");
+    detail::requireFinite("Body.setLinearVelocity.velocity", v);
+    if (slot.def.type == BodyType::Static && !v.isZero(0))
+        throw Error::invalid("Body.setLinearVelocity.velocity", formatVec3(v), "must be zero for a static body");
+    slot.peer->setLinearVelocity(v);
+}
+
+void Body::setAngularVelocity(const Vec3& w) {
+    auto& slot = ANYPHYS_SLOT("Body.setAngularVelocity");
+    detail::requireFinite("Body.setAngularVelocity.velocity", w);
+    if (slot.def.type == BodyType::Static && !w.isZero(0))
+        throw Error::invalid("Body.setAngularVelocity.velocity", formatVec3(w), "must be zero for a static body");
+    slot.peer->setAngularVelocity(w);
+}
+
+void Body::applyForce(const Vec3& force) {
+    auto& slot = ANYPHYS_SLOT("Body.applyForce");
+    detail::requireFinite("Body.applyForce.force", force);
+    world_->noteForcesUsed();
+    slot.peer->addForce(force);
+}
+
+void Body::applyForceAtPoint(const Vec3& force, const Vec3& worldPoint) {
+    auto& slot = ANYPHYS_SLOT("Body.applyForceAtPoint");
+    detail::requireFinite("Body.applyForceAtPoint.force", force);
+    detail::requireFinite("Body.applyForceAtPoint.point", worldPoint);
+    world_->noteForcesUsed();
+    slot.peer->addForce(force);
+    slot.peer->addTorque((worldPoint - slot.peer->state().position).cross(force));
+}
+
+void Body::applyTorque(const Vec3& torque) {
+    auto& slot = ANYPHYS_SLOT("Body.applyTorque");
+    detail::requireFinite("Body.applyTorque.torque", torque);
+    world_->noteForcesUsed();
+    slot.peer->addTorque(torque);
+}
+
+void Body::applyLinearImpulse(const Vec3& impulse) {
+    auto& slot = ANYPHYS_SLOT("Body.applyLinearImpulse");
+    detail::requireFinite("Body.applyLinearImpulse.impulse", impulse);
+    slot.peer->applyLinearImpulse(impulse);
+}
+
+void Body::applyAngularImpulse(const Vec3& impulse) {
+    auto& slot = ANYPHYS_SLOT("Body.applyAngularImpulse");
+    detail::requireFinite("Body.applyAngularImpulse.impulse", impulse);
+    slot.peer->applyAngularImpulse(impulse);
+}
+
+#undef ANYPHYS_SLOT
+
+}  // namespace anyphys

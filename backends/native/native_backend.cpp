@@ -1,0 +1,33 @@
+// Registration record of the native backend: its name, capabilities and world factory.
+#include <memory>
+
+#include "anyphys/peers/backend.hpp"
+#include "native_world.hpp"
+
+namespace anyphys {
+
+Backend makeNativeBackend() {
+    Backend backend;
+    backend.name = "native";
+    backend.description = "anyphys in-house rigid-body engine (free-body dynamics; contacts arrive next)";
+    Capabilities& caps = backend.capabilities;
+    caps.dimensions = 3;
+    caps.planar = false;
+    caps.shapes = {ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Plane};
+    caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
+    caps.effects = Effect::Gravity | Effect::Damping | Effect::Gyroscopic | Effect::UserForces;
+    caps.integrators = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Verlet,
+                        Integrator::Midpoint, Integrator::RK4};
+    caps.gyroscopicModes = {GyroscopicMode::None, GyroscopicMode::Explicit, GyroscopicMode::Implicit};
+    caps.forceEvaluation = ForceEvaluation::PerStage;
+    caps.parameters = {"settings.gravity", "settings.timeStep", "settings.integrator", "settings.substeps",
+                       "settings.effects", "body.type", "body.position", "body.orientation", "body.linearVelocity",
+                       "body.angularVelocity", "body.shape", "body.mass", "body.density", "body.inertia",
+                       "body.linearDamping", "body.angularDamping", "body.gravityScale", "body.gyroscopic"};
+    backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
+        return std::make_unique<native::NativeWorld>(settings);
+    };
+    return backend;
+}
+
+}  // namespace anyphys

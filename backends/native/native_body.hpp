@@ -1,0 +1,56 @@
+#pragma once
+// Body storage of the native backend: one dense array of bodies, and the peer objects the layer
+// holds, which find their body by index (kept up to date when the array is compacted).
+#include <cstdint>
+
+#include "anyphys/defs.hpp"
+#include "anyphys/peers/body_peer.hpp"
+
+namespace anyphys::native {
+
+class NativeWorld;
+class NativeBodyPeer;
+
+struct NativeBody {
+    BodyType type = BodyType::Dynamic;
+    BodyState state;
+    double invMass = 0.0;
+    Vec3 inertia = Vec3::Zero();     // principal moments, body frame
+    Vec3 invInertia = Vec3::Zero();  // zero for static and kinematic bodies
+    double linearDamping = 0.0;
+    double angularDamping = 0.0;
+    double gravityScale = 1.0;
+    GyroscopicMode gyroscopic = GyroscopicMode::Implicit;
+    Vec3 force = Vec3::Zero();   // user force for the current step, world frame
+    Vec3 torque = Vec3::Zero();  // user torque for the current step, world frame
+    NativeBodyPeer* peer = nullptr;
+
+    bool isDynamic() const { return type == BodyType::Dynamic; }
+    bool moves() const { return type != BodyType::Static; }
+};
+
+class NativeBodyPeer final : public BodyPeer {
+public:
+    NativeBodyPeer(NativeWorld& world, std::uint32_t index) : world_(world), index_(index) {}
+
+    std::uint32_t index() const { return index_; }
+    void setIndex(std::uint32_t index) { index_ = index; }
+
+    BodyState state() const override;
+    void setTransform(const Vec3& position, const Quat& orientation) override;
+    void setLinearVelocity(const Vec3& v) override;
+    void setAngularVelocity(const Vec3& w) override;
+    void addForce(const Vec3& force) override;
+    void addTorque(const Vec3& torque) override;
+    void applyLinearImpulse(const Vec3& impulse) override;
+    void applyAngularImpulse(const Vec3& impulse) override;
+    MassProperties massProperties() const override;
+
+private:
+    NativeBody& body() const;
+
+    NativeWorld& world_;
+    std::uint32_t index_;
+};
+
+}  // namespace anyphys::native

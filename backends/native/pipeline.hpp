@@ -1,0 +1,29 @@
+#pragma once
+// The native step as a pipeline of stages. Each stage says whether the world needs it; the
+// world runs only the stages that are needed, so an effect that is off costs nothing but the
+// one check made when the world's content or effects change.
+//
+// Order today: per substep {implicit gyroscopic -> integrate}, then once: clear forces. Collision detection, contact
+// and joint solving plug in between as further stages.
+#include <string_view>
+
+namespace anyphys::native {
+
+class NativeWorld;
+
+struct StepInfo {
+    double time = 0.0;  // s, start of the step
+    double dt = 0.0;    // s
+};
+
+class Stage {
+public:
+    virtual ~Stage() = default;
+    virtual std::string_view name() const = 0;
+    virtual bool needed(const NativeWorld& world) const = 0;
+    virtual void run(NativeWorld& world, const StepInfo& step) = 0;
+    /// Per-substep stages run `substeps` times with dt / substeps; the others once per step.
+    virtual bool perSubstep() const { return true; }
+};
+
+}  // namespace anyphys::native

@@ -1,0 +1,191 @@
+#include "stages.hpp"
+
+#include <algorithm>
+
+#include "gyroscopic.hpp"
+#include "integrators.hpp"
+#include "native_world.hpp"
+
+namespace anyphys::native {
+namespace {
+
+bool isAnisotropic(const Vec3& inertia) {
+    // The gyroscopic term w x (I w) vanishes identically when all moments are equal.
+    return inertia.maxCoeff() - inertia.minCoeff() > 1e-12 * inertia.maxCoeff();
+}
+
+bool hasGyroscopicBody(const NativeWorld& world, GyroscopicMode mode) {
+    if (!world.effects().has(Effect::Gyroscopic)) return false;
+    return std::any_of(world.bodies().begin(), world.bodies().end(), [&](const NativeBody& b) {
+        return b.isDynamic() && b.gyroscopic == mode && isAnisotropic(b.inertia);
+    });
+}
+
+class ImplicitGyroscopicStage final : public Stage {
+public:
+    std::string_view name() const override { return "gyroscopic_implicit"; }
+    bool needed(const NativeWorld& world) const override { return hasGyroscopicBody(world, GyroscopicMode::Implicit); }
+    void run(NativeWorld& world, const StepInfo& step) override {
+        for (NativeBody& b : world.bodies()) {
+            if (!b.isDynamic() || b.gyroscopic != GyroscopicMode::Implicit) continue;
+            b.state.angularVelocity =
+                solveImplicitGyroscopic(b.state.angularVelocity, b.state.orientation, b.inertia, step.dt);
+        }
+    }
+};
+
+// Gives the user's force callback the integrator's intermediate states, and collects the forces
+// it adds for this one evaluation.
+// Kinematic bodies move at constant velocity: their motion is exact, whatever the integrator.
+BodyState advanceKinematic(const BodyState& s, double h) {
+    BodyState out = s;
+    out.position += h * s.linearVelocity;
+    out.orientation = rotateBy(s.orientation, s.angularVelocity, h);
+    return out;
+}
+
+class StageForces final : public ForceStage {
+public:
+    StageForces(NativeWorld& world, const std::vector<int>& slotOfBody, double stepStart, double time,
+                std::span<const BodyState> states, std::vector<Vec3>& forces, std::vector<Vec3>& torques)
+        : world_(world), slotOfBody_(slotOfBody), stepStart_(stepStart), time_(time), states_(states),
+          forces_(forces), torques_(torques) {}
+
+    double time() const override { return time_; }
+    BodyState state(const BodyPeer& peer) const override {
+        const auto index = static_cast<const NativeBodyPeer&>(peer).index();
+        const int slot = slotOfBody_[index];
+        if (slot >= 0) return states_[slot];
+        const NativeBody& b = world_.bodies()[index];
+        return b.moves() ? advanceKinematic(b.state, time_ - stepStart_) : b.state;
+    }
+    void addForce(BodyPeer& peer, const Vec3& force) override {
+        const int slot = slotOfBody_[static_cast<NativeBodyPeer&>(peer).index()];
+        if (slot >= 0) forces_[slot] += force;
+    }
+    void addTorque(BodyPeer& peer, const Vec3& torque) override {
+        const int slot = slotOfBody_[static_cast<NativeBodyPeer&>(peer).index()];
+        if (slot >= 0) torques_[slot] += torque;
+    }
+
+private:
+    NativeWorld& world_;
+    const std::vector<int>& slotOfBody_;
+    double stepStart_;
+    double time_;
+    std::span<const BodyState> states_;
+    std::vector<Vec3>& forces_;
+    std::vector<Vec3>& torques_;
+};
+
+class IntegrateStage final : public Stage {
+public:
+    std::string_view name() const override { return "integrate"; }
+    bool needed(const NativeWorld& world) const override {
+        return std::any_of(world.bodies().begin(), world.bodies().end(), [](const NativeBody& b) { return b.moves(); });
+    }
+
+    void run(NativeWorld& world, const StepInfo& step) override {
+        gather(world);
+        const Effects effects = world.effects();
+        const bool gravity = effects.has(Effect::Gravity);
+        const bool damping = effects.has(Effect::Damping);
+        const bool explicitGyro = hasGyroscopicBody(world, GyroscopicMode::Explicit);
+        const bool userForces = effects.has(Effect::UserForces);
+        const bool hook = userForces && static_cast<bool>(world.forceHook());
+        const Vec3 g = world.settings().gravity;
+        auto& bodies = world.bodies();
+
+        const AccelerationFn accelerations = [&](double t, std::span<const BodyState> states, std::span<Acceleration> out) {
+            if (hook) {
+                std::fill(hookForces_.begin(), hookForces_.end(), Vec3::Zero());
+                std::fill(hookTorques_.begin(), hookTorques_.end(), Vec3::Zero());
+                StageForces stage(world, slotOfBody_, step.time, t, states, hookForces_, hookTorques_);
+                world.forceHook()(stage);
+            }
+            for (std::size_t i = 0; i < states.size(); ++i) {
+                const NativeBody& b = bodies[dynamic_[i]];
+                Acceleration& a = out[i];
+                a = Acceleration{};
+                const BodyState& s = states[i];
+                if (gravity) a.linear += b.gravityScale * g;
+                Vec3 torque = Vec3::Zero();
+                if (userForces) {
+                    a.linear += b.invMass * b.force;
+                    torque += b.torque;
+                }
+                if (hook) {
+                    a.linear += b.invMass * hookForces_[i];
+                    torque += hookTorques_[i];
+                }
+                if (userForces) {
+                    const Quat& q = s.orientation;
+                    a.angular += q * b.invInertia.cwiseProduct(q.conjugate() * torque);
+                }
+                if (explicitGyro && b.gyroscopic == GyroscopicMode::Explicit)
+                    a.angular += gyroscopicAcceleration(s.angularVelocity, s.orientation, b.inertia);
+                if (damping) {
+                    a.linear -= b.linearDamping * s.linearVelocity;
+                    a.angular -= b.angularDamping * s.angularVelocity;
+                }
+            }
+        };
+
+        integrate(world.settings().integrator, step.time, step.dt, states_, accelerations, world.integratorScratch());
+        for (std::size_t i = 0; i < dynamic_.size(); ++i) bodies[dynamic_[i]].state = states_[i];
+        for (NativeBody& b : bodies)
+            if (b.type == BodyType::Kinematic) b.state = advanceKinematic(b.state, step.dt);
+    }
+
+private:
+    // Copies the dynamic bodies' states into one contiguous array the integrator works on.
+    void gather(NativeWorld& world) {
+        const auto& bodies = world.bodies();
+        dynamic_.clear();
+        slotOfBody_.assign(bodies.size(), -1);
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+            if (!bodies[i].isDynamic()) continue;
+            slotOfBody_[i] = static_cast<int>(dynamic_.size());
+            dynamic_.push_back(i);
+        }
+        states_.resize(dynamic_.size());
+        for (std::size_t i = 0; i < dynamic_.size(); ++i) states_[i] = bodies[dynamic_[i]].state;
+        hookForces_.resize(dynamic_.size());
+        hookTorques_.resize(dynamic_.size());
+    }
+
+    std::vector<std::size_t> dynamic_;
+    std::vector<int> slotOfBody_;
+    std::vector<BodyState> states_;
+    std::vector<Vec3> hookForces_;
+    std::vector<Vec3> hookTorques_;
+};
+
+class ClearForcesStage final : public Stage {
+public:
+    std::string_view name() const override { return "clear_forces"; }
+    bool perSubstep() const override { return false; }
+    bool needed(const NativeWorld& world) const override { return world.effects().has(Effect::UserForces); }
+    void run(NativeWorld& world, const StepInfo&) override {
+        for (NativeBody& b : world.bodies()) {
+            b.force.setZero();
+            b.torque.setZero();
+        }
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> makeImplicitGyroscopicStage() { return std::make_unique<ImplicitGyroscopicStage>(); }
+std::unique_ptr<Stage> makeIntegrateStage() { return std::make_unique<IntegrateStage>(); }
+std::unique_ptr<Stage> makeClearForcesStage() { return std::make_unique<ClearForcesStage>(); }
+
+std::vector<std::unique_ptr<Stage>> makeFreeBodyPipeline() {
+    std::vector<std::unique_ptr<Stage>> stages;
+    stages.push_back(makeImplicitGyroscopicStage());
+    stages.push_back(makeIntegrateStage());
+    stages.push_back(makeClearForcesStage());
+    return stages;
+}
+
+}  // namespace anyphys::native

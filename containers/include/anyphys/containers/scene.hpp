@@ -1,0 +1,28 @@
+#pragma once
+// A scene: settings, materials and bodies, as loaded from or saved to a JSON file.
+#include <string>
+#include <vector>
+
+#include "anyphys/containers/material_library.hpp"
+#include "anyphys/defs.hpp"
+#include "anyphys/world_settings.hpp"
+
+namespace anyphys {
+
+struct Scene {
+    WorldSettings settings;
+    MaterialLibrary materials;
+    std::vector<BodyDef> bodies;  ///< each with a unique, non-empty name
+};
+
+/// Parses scene JSON text. Throws anyphys::Error whose message names the JSON path, the value
+/// and the rule, e.g. "bodies[3].shape.radius: must be > 0, got -1".
+Scene parseScene(const std::string& jsonText);
+/// Reads and parses a scene file; the message of an error starts with the file name.
+Scene loadScene(const std::string& path);
+/// Serialises a scene; parseScene(sceneToJson(s)) reproduces s exactly (doubles round-trip).
+std::string sceneToJson(const Scene& scene);
+/// Writes sceneToJson(scene) to a file; throws anyphys::Error if it cannot.
+void saveScene(const Scene& scene, const std::string& path);
+
+}  // namespace anyphys

@@ -1,0 +1,41 @@
+#pragma once
+// Collision and trigger events: the same meaning on every backend.
+#include <vector>
+
+#include "anyphys/ids.hpp"
+#include "anyphys/math.hpp"
+
+namespace anyphys {
+
+enum class ContactPhase { Enter, Stay, Exit };
+
+struct ContactPoint {
+    Vec3 position = Vec3::Zero();  ///< m, world frame
+    double depth = 0.0;            ///< m, penetration (> 0 when overlapping)
+    double normalImpulse = 0.0;    ///< N s; meaningful only where the backend reports impulses
+};
+
+/// One pair's event. Pair order is fixed: bodyA < bodyB (lower id first); `normal` points from
+/// A to B.
+struct ContactEvent {
+    BodyId bodyA;
+    BodyId bodyB;
+    ContactPhase phase = ContactPhase::Enter;
+    bool trigger = false;       ///< a sensor overlap rather than a collision
+    bool removal = false;       ///< exit caused by destroying one of the bodies
+    bool hasImpulses = false;   ///< normalImpulse values are real (backend capability)
+    Vec3 normal = Vec3::Zero();
+    std::vector<ContactPoint> points;  ///< empty for exits and triggers
+};
+
+/// What a backend reports for one touching pair after a step (ids already mapped by the layer).
+struct TouchingPair {
+    BodyId bodyA;
+    BodyId bodyB;
+    bool trigger = false;
+    bool hasImpulses = false;
+    Vec3 normal = Vec3::Zero();
+    std::vector<ContactPoint> points;
+};
+
+}  // namespace anyphys

@@ -1,0 +1,27 @@
+#pragma once
+// The backend side of one body. Inputs arrive validated and resolved by the layer (mass
+// properties, materials); a peer only applies them.
+#include "anyphys/defs.hpp"
+
+namespace anyphys {
+
+class BodyPeer {
+public:
+    virtual ~BodyPeer() = default;
+
+    virtual BodyState state() const = 0;
+    virtual void setTransform(const Vec3& position, const Quat& orientation) = 0;
+    virtual void setLinearVelocity(const Vec3& v) = 0;
+    virtual void setAngularVelocity(const Vec3& w) = 0;
+
+    /// Accumulated for the next step only (cleared after it), world frame.
+    virtual void addForce(const Vec3& force) = 0;
+    virtual void addTorque(const Vec3& torque) = 0;
+    /// Immediate velocity changes, world frame.
+    virtual void applyLinearImpulse(const Vec3& impulse) = 0;
+    virtual void applyAngularImpulse(const Vec3& impulse) = 0;
+
+    virtual MassProperties massProperties() const = 0;
+};
+
+}  // namespace anyphys

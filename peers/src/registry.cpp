@@ -1,0 +1,31 @@
+// The registration list: the one place below api/ that knows the concrete backends.
+#include "anyphys/error.hpp"
+#include "anyphys/peers/backend.hpp"
+
+namespace anyphys {
+
+#if ANYPHYS_HAS_NATIVE
+Backend makeNativeBackend();
+#endif
+
+const std::vector<Backend>& registeredBackends() {
+    static const std::vector<Backend> backends = [] {
+        std::vector<Backend> list;
+#if ANYPHYS_HAS_NATIVE
+        list.push_back(makeNativeBackend());
+#endif
+        return list;
+    }();
+    return backends;
+}
+
+const Backend& findBackend(const std::string& name) {
+    std::string known;
+    for (const Backend& backend : registeredBackends()) {
+        if (backend.name == name) return backend;
+        known += (known.empty() ? "" : ", ") + backend.name;
+    }
+    throw Error::invalid("backend", "\"" + name + "\"", "must be one of the built backends (" + known + ")");
+}
+
+}  // namespace anyphys

@@ -1,0 +1,43 @@
+#pragma once
+// The contract suite runs every test once per built backend. A backend that lacks a capability
+// a test needs is skipped by capability, with the reason printed (never by backend name).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "anyphys/anyphys.hpp"
+
+namespace anyphys::test {
+
+inline std::vector<std::string> builtBackendNames() {
+    std::vector<std::string> names;
+    for (const auto& info : availableBackends()) names.push_back(info.name);
+    return names;
+}
+
+class ContractTest : public ::testing::TestWithParam<std::string> {
+protected:
+    const std::string& backend() const { return GetParam(); }
+    Capabilities caps() const { return backendInfo(backend()).capabilities; }
+
+    WorldSettings settings() const {
+        WorldSettings s;
+        s.backend = backend();
+        return s;
+    }
+};
+
+inline std::string backendTestName(const ::testing::TestParamInfo<std::string>& info) { return info.param; }
+
+/// Skips the current test, visibly, when the backend lacks what it needs.
+#define ANYPHYS_REQUIRE(condition, what)                                                   \
+    do {                                                                                   \
+        if (!(condition)) GTEST_SKIP() << "backend " << backend() << " lacks " << (what); \
+    } while (0)
+
+#define ANYPHYS_CONTRACT_SUITE(Suite) \
+    INSTANTIATE_TEST_SUITE_P(AllBackends, Suite, ::testing::ValuesIn(::anyphys::test::builtBackendNames()), \
+                             ::anyphys::test::backendTestName)
+
+}  // namespace anyphys::test

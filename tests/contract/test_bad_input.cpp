@@ -1,0 +1,137 @@
+// Bad input is refused with an anyphys::Error naming the field, the value and the rule, and
+// the world is left exactly as it was.
+#include <gmock/gmock.h>
+
+#include <limits>
+
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+class BadInputTest : public ContractTest {};
+
+// Runs `call`, expects an Error whose message contains every fragment.
+template <class F>
+void expectError(F&& call, std::initializer_list<const char*> fragments) {
+    try {
+        call();
+        ADD_FAILURE() << "expected anyphys::Error";
+    } catch (const Error& e) {
+        for (const char* f : fragments) EXPECT_THAT(e.what(), HasSubstr(f));
+    }
+}
+
+TEST_P(BadInputTest, RejectedBodyLeavesWorldUnchanged) {
+    World world(settings());
+    World reference(settings());
+    BodyDef good;
+    good.position = Vec3(0, 5, 0);
+    Body a = world.createBody(good);
+    Body r = reference.createBody(good);
+
+    BodyDef bad = good;
+    bad.shape = ShapeDef::sphere(-1);
+    expectError([&] { world.createBody(bad); }, {"BodyDef.shape.radius", "must be > 0", "got -1"});
+    bad = good;
+    bad.position.y() = std::numeric_limits<double>::quiet_NaN();
+    expectError([&] { world.createBody(bad); }, {"BodyDef.position", "must be finite", "nan"});
+    bad = good;
+    bad.mass = 0.0;
+    expectError([&] { world.createBody(bad); }, {"BodyDef.mass", "must be > 0", "got 0"});
+    bad = good;
+    bad.orientation = Quat(2, 0, 0, 0);
+    expectError([&] { world.createBody(bad); }, {"BodyDef.orientation", "unit quaternion", "[2, 0, 0, 0]"});
+    bad = good;
+    bad.type = BodyType::Dynamic;
+    bad.shape = ShapeDef::plane(Vec3(0, 1, 0), 0);
+    expectError([&] { world.createBody(bad); }, {"BodyDef.shape.type", "static"});
+    bad = good;
+    bad.material = "unobtainium";
+    expectError([&] { world.createBody(bad); }, {"BodyDef.material", "unobtainium"});
+    bad = good;
+    bad.linearDamping = -0.5;
+    expectError([&] { world.createBody(bad); }, {"BodyDef.linearDamping", "must be >= 0", "-0.5"});
+    expectError([&] { a.applyForce(Vec3(std::numeric_limits<double>::infinity(), 0, 0)); },
+                {"Body.applyForce.force", "must be finite"});
+    expectError([&] { world.step(0.0); }, {"World.step.dt", "must be > 0"});
+    expectError([&] { world.step(-1.0 / 60); }, {"World.step.dt", "must be > 0"});
+
+    // Nothing changed: same body count, and the world steps exactly like one that never saw
+    // the bad calls.
+    EXPECT_EQ(world.bodyCount(), 1u);
+    for (int i = 0; i < 30; ++i) {
+        world.step();
+        reference.step();
+    }
+    EXPECT_EQ(a.position(), r.position());
+    EXPECT_EQ(a.linearVelocity(), r.linearVelocity());
+    EXPECT_EQ(world.time(), reference.time());
+}
+
+TEST_P(BadInputTest, InvalidSettingsAreRefused) {
+    WorldSettings s = settings();
+    s.timeStep = 0;
+    expectError([&] { World w(s); }, {"WorldSettings.timeStep", "must be > 0", "got 0"});
+    s = settings();
+    s.substeps = 0;
+    expectError([&] { World w(s); }, {"WorldSettings.substeps", "must be >= 1", "got 0"});
+    s = settings();
+    s.gravity = Vec3(0, std::numeric_limits<double>::infinity(), 0);
+    expectError([&] { World w(s); }, {"WorldSettings.gravity", "must be finite"});
+}
+
+TEST_P(BadInputTest, UnknownBackendListsKnownOnes) {
+    WorldSettings s = settings();
+    s.backend = "havok";
+    expectError([&] { World w(s); }, {"backend", "\"havok\"", backend().c_str()});
+}
+
+TEST_P(BadInputTest, StaleHandlesThrowEvenAfterSlotReuse) {
+    World world(settings());
+    Body first = world.createBody(BodyDef{});
+    world.destroyBody(first);
+    Body second = world.createBody(BodyDef{});  // may reuse the slot
+    EXPECT_FALSE(first.isValid());
+    EXPECT_TRUE(second.isValid());
+    expectError([&] { first.position(); }, {"Body.position", "stale body handle"});
+    expectError([&] { world.destroyBody(first); }, {"World.destroyBody", "stale"});
+    expectError([&] { Body().position(); }, {"null body handle"});
+    EXPECT_EQ(world.bodyCount(), 1u);
+}
+
+TEST_P(BadInputTest, StructuralChangesInsideForceCallbackAreRefused) {
+    World world(settings());
+    Body b = world.createBody(BodyDef{});
+    bool refused = false;
+    world.setForceCallback([&](ForceContext&) {
+        try {
+            world.createBody(BodyDef{});
+        } catch (const Error&) {
+            refused = true;
+        }
+    });
+    world.step();
+    EXPECT_TRUE(refused);
+    EXPECT_EQ(world.bodyCount(), 1u);
+    EXPECT_TRUE(b.isValid());
+}
+
+TEST_P(BadInputTest, StrictPolicyRefusesWhatTheBackendLacks) {
+    // A setting no backend honours: an unknown backend option.
+    WorldSettings s = settings();
+    s.backendOptions["no_such_option"] = 1.0;
+    expectError([&] { World w(s); }, {"does not support", "backend option no_such_option"});
+    // The lenient policy runs anyway and warns once.
+    s.capabilityPolicy = CapabilityPolicy::Lenient;
+    World w(s);
+    EXPECT_NO_THROW(w.step());
+}
+
+ANYPHYS_CONTRACT_SUITE(BadInputTest);
+
+}  // namespace
+}  // namespace anyphys::test

@@ -1,0 +1,169 @@
+// Free-body dynamics every backend must get right: forces, impulses, damping, gravity scale,
+// kinematic bodies, the fixed-step accumulator and effect selection.
+#include <cmath>
+
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+class DynamicsTest : public ContractTest {
+protected:
+    WorldSettings weightless() const {
+        WorldSettings s = settings();
+        s.gravity = Vec3::Zero();
+        return s;
+    }
+};
+
+// Newton's second law over one step: dv = F dt / m, and the force lasts one step only.
+TEST_P(DynamicsTest, ForceActsForOneStep) {
+    World world(weightless());
+    BodyDef def;
+    def.mass = 2.0;
+    Body b = world.createBody(def);
+    b.applyForce(Vec3(4, 0, 0));
+    world.step();
+    const double dt = world.settings().timeStep;
+    EXPECT_NEAR(b.linearVelocity().x(), 4.0 / 2.0 * dt, 1e-12);  // exact up to rounding
+    world.step();
+    EXPECT_NEAR(b.linearVelocity().x(), 4.0 / 2.0 * dt, 1e-12);  // no force any more
+}
+
+// Impulses change velocity at once: dv = J / m, dw = I^-1 J (principal axes aligned with world).
+TEST_P(DynamicsTest, ImpulsesChangeVelocityImmediately) {
+    World world(weightless());
+    BodyDef def;
+    def.shape = ShapeDef::box(Vec3(0.5, 0.25, 0.125));
+    def.mass = 3.0;
+    def.inertia = Vec3(1, 2, 4);
+    Body b = world.createBody(def);
+    b.applyLinearImpulse(Vec3(0, 6, 0));
+    b.applyAngularImpulse(Vec3(2, 2, 2));
+    EXPECT_NEAR((b.linearVelocity() - Vec3(0, 2, 0)).norm(), 0, 1e-14);
+    EXPECT_NEAR((b.angularVelocity() - Vec3(2, 1, 0.5)).norm(), 0, 1e-14);
+}
+
+// A torque about a principal axis spins the body at w = tau t / I.
+TEST_P(DynamicsTest, TorqueAboutPrincipalAxis) {
+    World world(weightless());
+    BodyDef def;
+    def.mass = 1.0;
+    def.inertia = Vec3(0.5, 0.5, 0.25);
+    Body b = world.createBody(def);
+    for (int i = 0; i < 60; ++i) {
+        b.applyTorque(Vec3(0, 0, 1));
+        world.step();
+    }
+    EXPECT_NEAR(b.angularVelocity().z(), 1.0 / 0.25 * 1.0, 1e-9);  // 1 s of torque
+}
+
+// Mass from shape and density when not given: a 1 m box of density 500 weighs 500 kg and has
+// I = m (1 + 1) / 12 about each axis.
+TEST_P(DynamicsTest, MassPropertiesFromShapeAndDensity) {
+    World world(settings());
+    BodyDef def;
+    def.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
+    def.density = 500.0;
+    const MassProperties m = world.createBody(def).massProperties();
+    EXPECT_NEAR(m.mass, 500.0, 1e-9);
+    EXPECT_NEAR(m.inertia.x(), 500.0 * 2.0 / 12.0, 1e-9);
+    // Sphere of radius 0.5 with the default density 1000: m = 4/3 pi r^3 rho, I = 2/5 m r^2.
+    const MassProperties s = world.createBody(BodyDef{}).massProperties();
+    EXPECT_NEAR(s.mass, 4.0 / 3.0 * M_PI * 0.125 * 1000.0, 1e-9);
+    EXPECT_NEAR(s.inertia.y(), 0.4 * s.mass * 0.25, 1e-9);
+}
+
+// Linear damping dv/dt = -c v: v(t) = v0 e^{-ct}. RK4 at 60 Hz is accurate to ~1e-9.
+TEST_P(DynamicsTest, DampingDecaysExponentially) {
+    ANYPHYS_REQUIRE(caps().parameters.count("body.linearDamping"), "parameter body.linearDamping");
+    ANYPHYS_REQUIRE(caps().integrators.count(Integrator::RK4), "integrator rk4");
+    WorldSettings s = weightless();
+    s.integrator = Integrator::RK4;
+    World world(s);
+    BodyDef def;
+    def.linearVelocity = Vec3(5, 0, 0);
+    def.linearDamping = 0.8;
+    Body b = world.createBody(def);
+    EXPECT_TRUE(world.activeEffects().has(Effect::Damping));
+    for (int i = 0; i < 120; ++i) world.step();
+    EXPECT_NEAR(b.linearVelocity().x(), 5.0 * std::exp(-0.8 * 2.0), 1e-8);
+}
+
+// Gravity scale 0.5 halves the fall: y = y0 - (g/2) t^2 / 2 (Verlet: exact for constant a).
+TEST_P(DynamicsTest, GravityScale) {
+    ANYPHYS_REQUIRE(caps().parameters.count("body.gravityScale"), "parameter body.gravityScale");
+    ANYPHYS_REQUIRE(caps().integrators.count(Integrator::Verlet), "integrator verlet");
+    WorldSettings s = settings();
+    s.integrator = Integrator::Verlet;
+    World world(s);
+    BodyDef def;
+    def.position = Vec3(0, 10, 0);
+    def.gravityScale = 0.5;
+    Body b = world.createBody(def);
+    for (int i = 0; i < 60; ++i) world.step();
+    EXPECT_NEAR(b.position().y(), 10.0 - 0.5 * 9.81 * 0.5 * 1.0, 1e-9);
+}
+
+// Kinematic bodies move at their set velocity, untouched by gravity and forces.
+TEST_P(DynamicsTest, KinematicBodyIgnoresGravityAndForces) {
+    ANYPHYS_REQUIRE(caps().bodyTypes.count(BodyType::Kinematic), "kinematic bodies");
+    World world(settings());
+    BodyDef def;
+    def.type = BodyType::Kinematic;
+    def.linearVelocity = Vec3(1, 0, 0);
+    def.angularVelocity = Vec3(0, 0.5, 0);
+    Body k = world.createBody(def);
+    k.applyForce(Vec3(0, 100, 0));
+    for (int i = 0; i < 60; ++i) world.step();
+    EXPECT_NEAR((k.position() - Vec3(1, 0, 0)).norm(), 0, 1e-9);
+    EXPECT_NEAR((k.linearVelocity() - Vec3(1, 0, 0)).norm(), 0, 1e-12);
+    EXPECT_NEAR(k.orientation().angularDistance(Quat(Eigen::AngleAxisd(0.5, Vec3::UnitY()))), 0, 1e-9);
+}
+
+// Static bodies never move.
+TEST_P(DynamicsTest, StaticBodyStaysPut) {
+    World world(settings());
+    BodyDef def;
+    def.type = BodyType::Static;
+    def.shape = ShapeDef::plane(Vec3(0, 1, 0), 0);
+    Body ground = world.createBody(def);
+    for (int i = 0; i < 10; ++i) world.step();
+    EXPECT_EQ(ground.position(), Vec3::Zero());
+}
+
+// The accumulator takes as many fixed steps as fit and keeps the remainder.
+TEST_P(DynamicsTest, FixedStepAccumulator) {
+    WorldSettings s = settings();
+    s.timeStep = 0.01;
+    s.maxStepsPerUpdate = 5;
+    World world(s);
+    EXPECT_EQ(world.update(0.035), 3);
+    EXPECT_NEAR(world.interpolationAlpha(), 0.5, 1e-9);
+    EXPECT_EQ(world.update(0.005), 1);
+    EXPECT_EQ(world.update(1.0), 5);  // capped: a slow frame cannot snowball
+    EXPECT_LT(world.interpolationAlpha(), 1.0);
+    EXPECT_EQ(world.stepCount(), 9u);
+}
+
+// Effects are derived from content unless declared; a declared set is obeyed exactly.
+TEST_P(DynamicsTest, EffectsDerivedOrDeclared) {
+    World derived(settings());
+    EXPECT_FALSE(derived.activeEffects().has(Effect::Gravity));  // no bodies yet
+    derived.createBody(BodyDef{});
+    EXPECT_TRUE(derived.activeEffects().has(Effect::Gravity));
+    EXPECT_FALSE(derived.activeEffects().has(Effect::Damping));
+
+    WorldSettings s = settings();
+    s.effects = Effects::none();  // gravity declared off
+    World declared(s);
+    Body b = declared.createBody(BodyDef{});
+    for (int i = 0; i < 10; ++i) declared.step();
+    EXPECT_EQ(b.position(), Vec3::Zero());
+    EXPECT_THROW(b.applyForce(Vec3(1, 0, 0)), Error);  // userForces not declared
+}
+
+ANYPHYS_CONTRACT_SUITE(DynamicsTest);
+
+}  // namespace
+}  // namespace anyphys::test
