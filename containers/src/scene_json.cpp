@@ -1,0 +1,523 @@
+// Scene files: JSON <-> Scene. Every error names the JSON path, the offending value and the rule
+// ("bodies[3].shape.radius: must be > 0, got -1"); unknown and duplicate keys are errors too, so
+// a typo never silently falls back to a default.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "anyphys/containers/scene.hpp"
+#include "anyphys/effects.hpp"
+#include "anyphys/enums.hpp"
+#include "anyphys/error.hpp"
+#include "anyphys/validation.hpp"
+
+namespace anyphys {
+
+namespace {
+
+using json = nlohmann::json;
+using ojson = nlohmann::ordered_json;  // keeps the written key order readable
+
+// The name of the document itself in error messages (loadScene replaces it with the file path).
+constexpr std::string_view kRoot = "scene";
+
+constexpr std::pair<CapabilityPolicy, std::string_view> kPolicyNames[] = {
+    {CapabilityPolicy::Strict, "strict"}, {CapabilityPolicy::Lenient, "lenient"}};
+
+std::string join(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+std::string at(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
+std::string label(const std::string& path) { return path.empty() ? std::string(kRoot) : path; }
+
+// A value as the user wrote it, shortened so one error stays one line.
+std::string show(const json& v) {
+    std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (s.size() > 60) s = s.substr(0, 57) + "...";
+    return s;
+}
+
+[[noreturn]] void fail(const std::string& path, const json& value, const std::string& rule) {
+    throw Error::invalid(label(path), show(value), rule);
+}
+
+std::string list(std::initializer_list<std::string_view> names) {
+    std::string out;
+    for (auto n : names) out += (out.empty() ? "" : ", ") + std::string(n);
+    return out;
+}
+
+std::string effectNames() {
+    std::string out;
+    for (const auto& e : kEffectNames) out += (out.empty() ? "" : ", ") + std::string(e.name);
+    return out;
+}
+
+void requireObject(const json& v, const std::string& path, const std::string& what = "a JSON object") {
+    if (!v.is_object()) fail(path, v, "must be " + what);
+}
+
+void checkKeys(const json& obj, const std::string& path, std::initializer_list<std::string_view> allowed,
+               const std::string& context = "") {
+    for (const auto& [key, value] : obj.items()) {
+        bool known = false;
+        for (auto a : allowed) known = known || key == a;
+        if (!known) throw Error(join(path, key) + ": unknown key" + context + "; allowed keys are " + list(allowed));
+    }
+}
+
+[[noreturn]] void missing(const std::string& path, const std::string& why) {
+    throw Error(path + ": required key is missing; " + why);
+}
+
+// Every optional key is read the same way: absent leaves the def's default in place.
+const json* find(const json& obj, std::string_view key) {
+    const auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+}
+
+double readNumber(const json& v, const std::string& path) {
+    if (!v.is_number()) fail(path, v, "must be a number");
+    return v.get<double>();
+}
+
+int readCount(const json& v, const std::string& path) {
+    // Accepts 3 and 3.0 alike; anything fractional, negative or beyond int is refused.
+    const bool integral = v.is_number() && std::floor(v.get<double>()) == v.get<double>();
+    if (!integral || v.get<double>() < 1 || v.get<double>() > std::numeric_limits<int>::max())
+        fail(path, v, "must be an integer >= 1");
+    return static_cast<int>(v.get<double>());
+}
+
+std::string readString(const json& v, const std::string& path) {
+    if (!v.is_string()) fail(path, v, "must be a string");
+    return v.get<std::string>();
+}
+
+Vec3 readVec3(const json& v, const std::string& path) {
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+        fail(path, v, "must be an array of 3 numbers");
+    return Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+}
+
+Quat readQuat(const json& v, const std::string& path) {
+    bool ok = v.is_array() && v.size() == 4;
+    for (std::size_t i = 0; ok && i < 4; ++i) ok = v[i].is_number();
+    if (!ok) fail(path, v, "must be an array of 4 numbers [w, x, y, z]");
+    // Kept as written (not normalised here) so that save/load reproduces the exact bits.
+    return Quat(v[0].get<double>(), v[1].get<double>(), v[2].get<double>(), v[3].get<double>());
+}
+
+template <class E>
+E readEnum(const json& v, const std::string& path) {
+    const auto e = v.is_string() ? fromString<E>(v.get<std::string>()) : std::nullopt;
+    if (!e) fail(path, v, "must be one of " + allowedNames<E>());
+    return *e;
+}
+
+CombineRule readRule(const json& v, const std::string& path) {
+    const auto r = v.is_string() ? combineRuleFromString(v.get<std::string>()) : std::nullopt;
+    if (!r) fail(path, v, "must be one of " + combineRuleNames());
+    return *r;
+}
+
+CapabilityPolicy readPolicy(const json& v, const std::string& path) {
+    for (const auto& [p, name] : kPolicyNames)
+        if (v.is_string() && v.get<std::string>() == name) return p;
+    fail(path, v, "must be one of strict, lenient");
+}
+
+WorldSettings readSettings(const json& v, const std::string& path) {
+    requireObject(v, path);
+    checkKeys(v, path, {"backend", "gravity", "timeStep", "integrator", "solver", "substeps", "iterations", "effects",
+                        "maxStepsPerUpdate", "capabilityPolicy", "backendOptions"});
+    WorldSettings s;
+    if (auto* x = find(v, "backend")) s.backend = readString(*x, join(path, "backend"));
+    if (auto* x = find(v, "gravity")) s.gravity = readVec3(*x, join(path, "gravity"));
+    if (auto* x = find(v, "timeStep")) s.timeStep = readNumber(*x, join(path, "timeStep"));
+    if (auto* x = find(v, "integrator")) s.integrator = readEnum<Integrator>(*x, join(path, "integrator"));
+    if (auto* x = find(v, "solver")) s.solver = readEnum<Solver>(*x, join(path, "solver"));
+    if (auto* x = find(v, "substeps")) s.substeps = readCount(*x, join(path, "substeps"));
+    if (auto* x = find(v, "iterations")) s.iterations = readCount(*x, join(path, "iterations"));
+    if (auto* x = find(v, "maxStepsPerUpdate")) s.maxStepsPerUpdate = readCount(*x, join(path, "maxStepsPerUpdate"));
+    if (auto* x = find(v, "capabilityPolicy")) s.capabilityPolicy = readPolicy(*x, join(path, "capabilityPolicy"));
+    if (auto* x = find(v, "effects")) {
+        const std::string p = join(path, "effects");
+        if (!x->is_array()) fail(p, *x, "must be an array of effect names (" + effectNames() + ")");
+        Effects effects;  // an empty array is meaningful: simulate nothing
+        for (std::size_t i = 0; i < x->size(); ++i) {
+            const auto& e = (*x)[i];
+            const auto effect = e.is_string() ? effectFromString(e.get<std::string>()) : std::nullopt;
+            if (!effect) fail(at(p, i), e, "must be one of " + effectNames());
+            effects.add(*effect);
+        }
+        s.effects = effects;
+    }
+    if (auto* x = find(v, "backendOptions")) {
+        const std::string p = join(path, "backendOptions");
+        requireObject(*x, p, "an object of option names to numbers");
+        for (const auto& [name, value] : x->items()) s.backendOptions[name] = readNumber(value, join(p, name));
+    }
+    validate(s, path);
+    return s;
+}
+
+Material readMaterial(const json& v, const std::string& path) {
+    requireObject(v, path);
+    checkKeys(v, path, {"friction", "restitution", "density"});
+    Material m;
+    if (auto* x = find(v, "friction")) m.friction = readNumber(*x, join(path, "friction"));
+    if (auto* x = find(v, "restitution")) m.restitution = readNumber(*x, join(path, "restitution"));
+    if (auto* x = find(v, "density")) m.density = readNumber(*x, join(path, "density"));
+    return m;
+}
+
+std::string readMaterialName(const json& v, const std::string& path, const MaterialLibrary& lib) {
+    const std::string name = readString(v, path);
+    if (!lib.contains(name)) fail(path, v, "must name a material defined in \"materials\" (known: " + lib.knownNames() + ")");
+    return name;
+}
+
+void readMaterials(const json& doc, MaterialLibrary& lib) {
+    if (auto* v = find(doc, "materials")) {
+        requireObject(*v, "materials", "an object of material names to {friction, restitution, density}");
+        for (const auto& [name, value] : v->items()) {
+            // The key "" redefines the default material; the path shows it as materials."".
+            const std::string path = "materials." + (name.empty() ? std::string("\"\"") : name);
+            lib.add(name, readMaterial(value, path));  // add() checks ranges under this same path
+        }
+    }
+    if (auto* v = find(doc, "materialRules")) {
+        requireObject(*v, "materialRules");
+        checkKeys(*v, "materialRules", {"friction", "restitution"});
+        if (auto* x = find(*v, "friction")) lib.setFrictionRule(readRule(*x, "materialRules.friction"));
+        if (auto* x = find(*v, "restitution")) lib.setRestitutionRule(readRule(*x, "materialRules.restitution"));
+    }
+    if (auto* v = find(doc, "materialPairs")) {
+        if (!v->is_array()) fail("materialPairs", *v, "must be an array of {a, b, friction, restitution} objects");
+        std::map<std::pair<std::string, std::string>, std::size_t> seen;
+        for (std::size_t i = 0; i < v->size(); ++i) {
+            const json& pair = (*v)[i];
+            const std::string path = at("materialPairs", i);
+            requireObject(pair, path);
+            checkKeys(pair, path, {"a", "b", "friction", "restitution"});
+            for (const char* key : {"a", "b"})
+                if (!find(pair, key)) missing(join(path, key), "a pair names two materials \"a\" and \"b\"");
+            const std::string a = readMaterialName(pair["a"], join(path, "a"), lib);
+            const std::string b = readMaterialName(pair["b"], join(path, "b"), lib);
+            const auto key = a < b ? std::pair(a, b) : std::pair(b, a);
+            if (const auto it = seen.find(key); it != seen.end())
+                throw Error(path + ": duplicate pair (" + a + ", " + b + "); already given at " +
+                            at("materialPairs", it->second));
+            seen.emplace(key, i);
+            PairOverride o;
+            if (auto* x = find(pair, "friction")) o.friction = readNumber(*x, join(path, "friction"));
+            if (auto* x = find(pair, "restitution")) o.restitution = readNumber(*x, join(path, "restitution"));
+            validate(o, path);
+            lib.setPairOverride(a, b, o);
+        }
+    }
+}
+
+ShapeDef readShape(const json& v, const std::string& path) {
+    requireObject(v, path);
+    const auto* typeValue = find(v, "type");
+    if (!typeValue) missing(join(path, "type"), "allowed types are " + allowedNames<ShapeType>());
+    ShapeDef s;
+    s.type = readEnum<ShapeType>(*typeValue, join(path, "type"));
+    // Each shape type has its own keys; a key of another type is a mistake worth reporting.
+    const std::string context = " for a " + std::string(toString(s.type)) + " shape";
+    switch (s.type) {
+        case ShapeType::Sphere: checkKeys(v, path, {"type", "radius"}, context); break;
+        case ShapeType::Box: checkKeys(v, path, {"type", "halfExtents"}, context); break;
+        case ShapeType::Capsule: checkKeys(v, path, {"type", "radius", "halfHeight"}, context); break;
+        case ShapeType::Plane: checkKeys(v, path, {"type", "normal", "offset"}, context); break;
+    }
+    if (auto* x = find(v, "radius")) s.radius = readNumber(*x, join(path, "radius"));
+    if (auto* x = find(v, "halfExtents")) s.halfExtents = readVec3(*x, join(path, "halfExtents"));
+    if (auto* x = find(v, "halfHeight")) s.halfHeight = readNumber(*x, join(path, "halfHeight"));
+    if (auto* x = find(v, "normal")) s.normal = readVec3(*x, join(path, "normal"));
+    if (auto* x = find(v, "offset")) s.offset = readNumber(*x, join(path, "offset"));
+    return s;
+}
+
+BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& lib) {
+    requireObject(v, path);
+    checkKeys(v, path, {"name", "type", "position", "orientation", "linearVelocity", "angularVelocity", "shape", "mass",
+                        "density", "inertia", "material", "linearDamping", "angularDamping", "gravityScale",
+                        "gyroscopic"});
+    BodyDef b;
+    const auto* name = find(v, "name");
+    if (!name) missing(join(path, "name"), "every body needs a non-empty, unique name");
+    b.name = readString(*name, join(path, "name"));
+    if (b.name.empty()) fail(join(path, "name"), *name, "must be a non-empty string");
+    if (auto* x = find(v, "type")) b.type = readEnum<BodyType>(*x, join(path, "type"));
+    if (auto* x = find(v, "position")) b.position = readVec3(*x, join(path, "position"));
+    if (auto* x = find(v, "orientation")) b.orientation = readQuat(*x, join(path, "orientation"));
+    if (auto* x = find(v, "linearVelocity")) b.linearVelocity = readVec3(*x, join(path, "linearVelocity"));
+    if (auto* x = find(v, "angularVelocity")) b.angularVelocity = readVec3(*x, join(path, "angularVelocity"));
+    const auto* shape = find(v, "shape");
+    if (!shape) missing(join(path, "shape"), "every body needs a shape, e.g. {\"type\": \"sphere\", \"radius\": 0.5}");
+    b.shape = readShape(*shape, join(path, "shape"));
+    if (auto* x = find(v, "mass")) b.mass = readNumber(*x, join(path, "mass"));
+    if (auto* x = find(v, "density")) b.density = readNumber(*x, join(path, "density"));
+    if (auto* x = find(v, "inertia")) b.inertia = readVec3(*x, join(path, "inertia"));
+    if (auto* x = find(v, "material")) b.material = readMaterialName(*x, join(path, "material"), lib);
+    if (auto* x = find(v, "linearDamping")) b.linearDamping = readNumber(*x, join(path, "linearDamping"));
+    if (auto* x = find(v, "angularDamping")) b.angularDamping = readNumber(*x, join(path, "angularDamping"));
+    if (auto* x = find(v, "gravityScale")) b.gravityScale = readNumber(*x, join(path, "gravityScale"));
+    if (auto* x = find(v, "gyroscopic")) b.gyroscopic = readEnum<GyroscopicMode>(*x, join(path, "gyroscopic"));
+    validate(b, path);  // the same range rules, in the same words, as World::createBody
+    return b;
+}
+
+// nlohmann keeps the last of two equal keys silently; this callback refuses them instead,
+// naming the JSON path of the repeated key.
+class DuplicateKeyCheck {
+public:
+    bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start: push(true); break;
+            case json::parse_event_t::array_start: push(false); break;
+            case json::parse_event_t::key: {
+                Frame& f = stack_.back();
+                f.key = parsed.get<std::string>();
+                if (!f.keys.insert(f.key).second)
+                    throw Error(join(f.path, f.key) + ": duplicate key; each key may appear once in an object");
+                break;
+            }
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end:
+                stack_.pop_back();
+                advance();
+                break;
+            case json::parse_event_t::value: advance(); break;
+        }
+        return true;
+    }
+
+private:
+    struct Frame {
+        bool object = true;
+        std::string path;
+        std::set<std::string> keys;
+        std::string key;     // objects: the key of the value being read
+        std::size_t index = 0;  // arrays: the index of the value being read
+    };
+    void push(bool object) {
+        std::string path;
+        if (!stack_.empty()) {
+            const Frame& parent = stack_.back();
+            // Elements of a top-level array are named "scene[0]", never a bare "[0]".
+            path = parent.object ? join(parent.path, parent.key) : at(label(parent.path), parent.index);
+        }
+        stack_.push_back(Frame{object, path, {}, {}, 0});
+    }
+    void advance() {
+        if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+    }
+    std::vector<Frame> stack_;
+};
+
+json parseJson(const std::string& text) {
+    try {
+        return json::parse(text, DuplicateKeyCheck());
+    } catch (const json::exception& e) {
+        // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; keep
+        // the position and the reason, drop nlohmann's prefixes.
+        std::string what = e.what();
+        if (const auto pos = what.find("at line "); pos != std::string::npos)
+            throw Error(std::string(kRoot) + ": invalid JSON " + what.substr(pos));
+        if (const auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);
+        throw Error(std::string(kRoot) + ": invalid JSON: " + what);
+    }
+}
+
+// ---- writing ---------------------------------------------------------------------------------
+
+ojson vec(const Vec3& v) { return ojson::array({v.x(), v.y(), v.z()}); }
+
+ojson shapeJson(const ShapeDef& s) {
+    ojson j;
+    j["type"] = std::string(toString(s.type));
+    switch (s.type) {
+        case ShapeType::Sphere: j["radius"] = s.radius; break;
+        case ShapeType::Box: j["halfExtents"] = vec(s.halfExtents); break;
+        case ShapeType::Capsule: j["radius"] = s.radius; j["halfHeight"] = s.halfHeight; break;
+        case ShapeType::Plane: j["normal"] = vec(s.normal); j["offset"] = s.offset; break;
+    }
+    return j;
+}
+
+ojson bodyJson(const BodyDef& b) {
+    ojson j;
+    j["name"] = b.name;
+    j["type"] = std::string(toString(b.type));
+    j["position"] = vec(b.position);
+    j["orientation"] = ojson::array({b.orientation.w(), b.orientation.x(), b.orientation.y(), b.orientation.z()});
+    j["linearVelocity"] = vec(b.linearVelocity);
+    j["angularVelocity"] = vec(b.angularVelocity);
+    j["shape"] = shapeJson(b.shape);
+    if (b.mass) j["mass"] = *b.mass;
+    if (b.density) j["density"] = *b.density;
+    if (b.inertia) j["inertia"] = vec(*b.inertia);
+    j["material"] = b.material;
+    j["linearDamping"] = b.linearDamping;
+    j["angularDamping"] = b.angularDamping;
+    j["gravityScale"] = b.gravityScale;
+    j["gyroscopic"] = std::string(toString(b.gyroscopic));
+    return j;
+}
+
+ojson settingsJson(const WorldSettings& s) {
+    ojson j;
+    j["backend"] = s.backend;
+    j["gravity"] = vec(s.gravity);
+    j["timeStep"] = s.timeStep;
+    j["integrator"] = std::string(toString(s.integrator));
+    j["solver"] = std::string(toString(s.solver));
+    j["substeps"] = s.substeps;
+    j["iterations"] = s.iterations;
+    if (s.effects) j["effects"] = s.effects->names();
+    j["maxStepsPerUpdate"] = s.maxStepsPerUpdate;
+    for (const auto& [p, name] : kPolicyNames)
+        if (p == s.capabilityPolicy) j["capabilityPolicy"] = std::string(name);
+    j["backendOptions"] = ojson::object();
+    for (const auto& [name, value] : s.backendOptions) j["backendOptions"][name] = value;
+    return j;
+}
+
+ojson materialJson(const Material& m) {
+    return ojson{{"friction", m.friction}, {"restitution", m.restitution}, {"density", m.density}};
+}
+
+bool sameMaterial(const Material& a, const Material& b) {
+    return a.friction == b.friction && a.restitution == b.restitution && a.density == b.density;
+}
+
+// Like dump(2), but arrays of plain values stay on one line: "position": [0, 10, 0].
+void write(std::string& out, const ojson& v, int indent) {
+    const std::string pad(indent + 2, ' ');
+    const bool flat = v.is_array() && std::all_of(v.begin(), v.end(), [](const ojson& e) { return e.is_primitive(); });
+    if (v.is_primitive() || v.empty()) {
+        out += v.dump();
+    } else if (flat) {
+        out += '[';
+        for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + v[i].dump();
+        out += ']';
+    } else if (v.is_object()) {
+        out += "{\n";
+        bool first = true;
+        for (const auto& [key, value] : v.items()) {
+            out += (first ? "" : ",\n") + pad + ojson(key).dump() + ": ";
+            write(out, value, indent + 2);
+            first = false;
+        }
+        out += "\n" + std::string(indent, ' ') + "}";
+    } else {
+        out += "[\n";
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            out += (i ? ",\n" : "") + pad;
+            write(out, v[i], indent + 2);
+        }
+        out += "\n" + std::string(indent, ' ') + "]";
+    }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& jsonText) {
+    const json doc = parseJson(jsonText);
+    requireObject(doc, "", "a JSON object with \"settings\", \"materials\", \"bodies\", ...");
+    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "joints"}, " at the top level");
+
+    Scene scene;
+    if (auto* v = find(doc, "settings")) scene.settings = readSettings(*v, "settings");
+    readMaterials(doc, scene.materials);
+    if (auto* v = find(doc, "bodies")) {
+        if (!v->is_array()) fail("bodies", *v, "must be an array of body objects");
+        std::map<std::string, std::size_t> names;
+        for (std::size_t i = 0; i < v->size(); ++i) {
+            BodyDef b = readBody((*v)[i], at("bodies", i), scene.materials);
+            if (const auto it = names.find(b.name); it != names.end())
+                fail(at("bodies", i) + ".name", (*v)[i]["name"],
+                     "must be unique (already used by " + at("bodies", it->second) + ")");
+            names.emplace(b.name, i);
+            scene.bodies.push_back(std::move(b));
+        }
+    }
+    if (auto* v = find(doc, "joints")) {
+        if (!v->is_array()) fail("joints", *v, "must be an array (empty for now: joints are not supported yet)");
+        if (!v->empty())
+            throw Error::invalid("joints", std::to_string(v->size()) + (v->size() == 1 ? " entry" : " entries"),
+                                 "joints are not supported yet (they arrive in a later issue); must be empty");
+    }
+    return scene;
+}
+
+Scene loadScene(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error(path + ": cannot read scene file (it is a directory)");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot read scene file (" + std::strerror(errno) + ")");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw Error(path + ": cannot read scene file (read error)");
+    try {
+        return parseScene(text.str());
+    } catch (const Error& e) {
+        // Name the file instead of the generic "scene" root: "scene.json: bodies[0].name: ...".
+        std::string what = e.what();
+        const std::string root = std::string(kRoot) + ": ";
+        if (what.starts_with(root)) what.erase(0, root.size());
+        throw Error(path + ": " + what);
+    }
+}
+
+std::string sceneToJson(const Scene& scene) {
+    ojson doc;
+    doc["settings"] = settingsJson(scene.settings);
+    doc["materials"] = ojson::object();
+    // The default material is written only when changed, under the key "".
+    const Material& fallback = scene.materials.get(MaterialLibrary::kDefaultName);
+    if (!sameMaterial(fallback, Material{})) doc["materials"][""] = materialJson(fallback);
+    for (const auto& name : scene.materials.names()) doc["materials"][name] = materialJson(scene.materials.get(name));
+    doc["materialRules"] = ojson{{"friction", std::string(toString(scene.materials.frictionRule()))},
+                                 {"restitution", std::string(toString(scene.materials.restitutionRule()))}};
+    doc["materialPairs"] = ojson::array();
+    for (const auto& [key, o] : scene.materials.pairOverrides()) {
+        ojson pair{{"a", key.first}, {"b", key.second}};
+        if (o.friction) pair["friction"] = *o.friction;
+        if (o.restitution) pair["restitution"] = *o.restitution;
+        doc["materialPairs"].push_back(pair);
+    }
+    doc["bodies"] = ojson::array();
+    for (const auto& b : scene.bodies) doc["bodies"].push_back(bodyJson(b));
+    doc["joints"] = ojson::array();
+
+    std::string out;
+    write(out, doc, 0);
+    return out + "\n";
+}
+
+void saveScene(const Scene& scene, const std::string& path) {
+    const std::string text = sceneToJson(scene);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path + ": cannot write scene file (" + std::strerror(errno) + ")");
+    out << text;
+    out.flush();
+    if (!out) throw Error(path + ": cannot write scene file (write error)");
+}
+
+}  // namespace anyphys
