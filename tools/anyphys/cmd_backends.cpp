@@ -1,0 +1,83 @@
+// `anyphys backends [--json]`: every built backend and what it honours.
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+
+namespace anyphys::cli {
+namespace {
+
+std::string_view forceEvaluationName(ForceEvaluation f) {
+    return f == ForceEvaluation::PerStage ? "per_stage" : "per_step";
+}
+
+/// Capabilities with scene-file names, so the output can be matched against scene files.
+nlohmann::json capabilitiesJson(const Capabilities& caps) {
+    nlohmann::json options = nlohmann::json::object();
+    for (const auto& [name, meaning] : caps.options) options[name] = meaning;
+    return {
+        {"dimensions", caps.dimensions},
+        {"planar", caps.planar},
+        {"shapes", enumNames(caps.shapes)},
+        {"bodyTypes", enumNames(caps.bodyTypes)},
+        {"jointTypes", std::vector<std::string>(caps.jointTypes.begin(), caps.jointTypes.end())},
+        {"effects", caps.effects.names()},
+        {"integrators", enumNames(caps.integrators)},
+        {"solvers", enumNames(caps.solvers)},
+        {"gyroscopicModes", enumNames(caps.gyroscopicModes)},
+        {"forceEvaluation", forceEvaluationName(caps.forceEvaluation)},
+        {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
+        {"options", options},
+    };
+}
+
+std::string orNone(const std::vector<std::string>& items) { return items.empty() ? "-" : join(items); }
+
+void printText(const std::vector<BackendInfo>& backends) {
+    for (const BackendInfo& b : backends) {
+        const Capabilities& c = b.capabilities;
+        std::cout << b.name << "  (" << c.dimensions << "D" << (c.planar ? ", planar" : "") << ")  "
+                  << b.description << '\n';
+        const auto row = [](std::string_view label, const std::string& value) {
+            std::cout << "  " << label << std::string(18 - label.size(), ' ') << value << '\n';
+        };
+        row("shapes", orNone(enumNames(c.shapes)));
+        row("body types", orNone(enumNames(c.bodyTypes)));
+        row("joint types", orNone({c.jointTypes.begin(), c.jointTypes.end()}));
+        row("effects", orNone(c.effects.names()));
+        row("integrators", orNone(enumNames(c.integrators)));
+        row("solvers", orNone(enumNames(c.solvers)));
+        row("gyroscopic modes", orNone(enumNames(c.gyroscopicModes)));
+        row("force evaluation", std::string(forceEvaluationName(c.forceEvaluation)));
+        row("parameters", orNone({c.parameters.begin(), c.parameters.end()}));
+        std::vector<std::string> options;
+        for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
+        row("options", orNone(options));
+    }
+}
+
+}  // namespace
+
+Command addBackendsCommand(CLI::App& parent) {
+    auto json = std::make_shared<bool>(false);
+    CLI::App* app = parent.add_subcommand("backends", "List the built backends and their capabilities");
+    app->add_flag("--json", *json, "Print JSON with every capability field (scene-file names)");
+    return {app, [json] {
+                const std::vector<BackendInfo> backends = availableBackends();
+                if (*json) {
+                    nlohmann::json list = nlohmann::json::array();
+                    for (const BackendInfo& b : backends)
+                        list.push_back({{"name", b.name},
+                                        {"description", b.description},
+                                        {"capabilities", capabilitiesJson(b.capabilities)}});
+                    std::cout << nlohmann::json{{"backends", list}}.dump(2) << '\n';
+                } else {
+                    printText(backends);
+                }
+                return 0;
+            }};
+}
+
+}  // namespace anyphys::cli

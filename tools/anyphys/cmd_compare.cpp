@@ -1,0 +1,159 @@
+// `anyphys compare`: every catalogue scene on every built backend with every integrator, side
+// by side: wall time, error against the analytic answer, drift of conserved quantities.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "compare.hpp"
+
+namespace anyphys::cli {
+namespace {
+
+struct CompareOptions {
+    std::vector<std::string> scenes;
+    std::vector<std::string> backends;
+    std::vector<std::string> integrators;
+    bool json = false;
+};
+
+/// The combinations to run, with names checked up front (an unknown name is a usage error).
+struct Selection {
+    std::vector<const CatalogueScene*> scenes;
+    std::vector<BackendInfo> backends;
+    std::vector<Integrator> integrators;
+};
+
+Selection select(const CompareOptions& o) {
+    Selection s;
+    if (o.scenes.empty())
+        for (const CatalogueScene& c : sceneCatalogue()) s.scenes.push_back(&c);
+    for (const std::string& name : o.scenes) s.scenes.push_back(&catalogueScene(name));
+
+    if (o.backends.empty()) s.backends = availableBackends();
+    for (const std::string& name : o.backends) s.backends.push_back(backendInfo(name));
+
+    // Default: every integrator any selected backend offers, so a backend lacking one shows an
+    // "unsupported" row rather than silently having fewer rows than its neighbours.
+    std::set<Integrator> chosen;
+    for (const std::string& name : o.integrators) chosen.insert(parseIntegrator("--integrators", name));
+    if (o.integrators.empty())
+        for (const BackendInfo& b : s.backends) chosen.insert(b.capabilities.integrators.begin(), b.capabilities.integrators.end());
+    s.integrators.assign(chosen.begin(), chosen.end());
+    return s;
+}
+
+std::string format(const char* pattern, double value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, pattern, value);
+    return buffer;
+}
+
+std::string orDash(const std::optional<double>& value, const char* pattern) {
+    return value ? format(pattern, *value) : "-";
+}
+
+std::string statusWord(ComboResult::Status status) {
+    return status == ComboResult::Status::Unsupported ? "unsupported" : "failed";
+}
+
+void printTable(const std::vector<ComboResult>& results) {
+    using Row = std::vector<std::string>;
+    std::vector<Row> rows{{"scene", "backend", "integrator", "steps", "wall ms", "pos error m", "|L| drift", "energy drift"}};
+    for (const ComboResult& r : results) {
+        if (r.status != ComboResult::Status::Ok) {
+            rows.push_back({r.scene, r.backend, r.integrator, statusWord(r.status) + ": " + r.reason});
+            continue;
+        }
+        rows.push_back({r.scene, r.backend, r.integrator, std::to_string(r.steps), format("%.2f", r.wallMs),
+                        orDash(r.positionError, "%.3e"), orDash(r.angularMomentumDrift, "%+.3e"),
+                        orDash(r.energyDrift, "%+.3e")});
+    }
+    std::vector<std::size_t> widths(rows.front().size(), 0);
+    for (const Row& row : rows)
+        if (row.size() == widths.size())  // refusal rows span the measured columns; they don't set widths
+            for (std::size_t i = 0; i < row.size(); ++i) widths[i] = std::max(widths[i], row[i].size());
+    for (const Row& row : rows) {
+        std::string line;
+        for (std::size_t i = 0; i < row.size(); ++i) {
+            const bool last = i + 1 == row.size();
+            const std::size_t pad = widths[i] > row[i].size() ? widths[i] - row[i].size() : 0;
+            if (i < 3 || last) line += row[i] + (last ? "" : std::string(pad, ' '));  // text: left-aligned
+            else line += std::string(pad, ' ') + row[i];                             // numbers: right-aligned
+            if (!last) line += "  ";
+        }
+        std::cout << line << '\n';
+    }
+    std::cout << "pos error: max over bodies of |p - p_exact| at the end (\"-\": no analytic answer); "
+                 "drifts: (end - start) / |start| (\"-\": not conserved by the scene)\n";
+}
+
+nlohmann::json toJson(const std::vector<ComboResult>& results) {
+    const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+    nlohmann::json list = nlohmann::json::array();
+    for (const ComboResult& r : results) {
+        nlohmann::json row = {{"scene", r.scene}, {"backend", r.backend}, {"integrator", r.integrator}};
+        if (r.status != ComboResult::Status::Ok) {
+            row["status"] = statusWord(r.status);
+            row["reason"] = r.reason;
+        } else {
+            row["status"] = "ok";
+            row["steps"] = r.steps;
+            row["wallMs"] = r.wallMs;
+            row["positionError"] = optional(r.positionError);
+            row["angularMomentumDrift"] = optional(r.angularMomentumDrift);
+            row["energyDrift"] = optional(r.energyDrift);
+        }
+        list.push_back(row);
+    }
+    return {{"results", list}};
+}
+
+int compare(const CompareOptions& o) {
+    const Selection s = select(o);
+    std::vector<ComboResult> results;
+    for (const CatalogueScene* scene : s.scenes)
+        for (const BackendInfo& backend : s.backends)
+            for (Integrator integrator : s.integrators) {
+                if (!backend.capabilities.integrators.contains(integrator)) {
+                    // Reported, not dropped: the table shows what each backend cannot do.
+                    ComboResult r;
+                    r.scene = scene->name;
+                    r.backend = backend.name;
+                    r.integrator = std::string(toString(integrator));
+                    r.status = ComboResult::Status::Unsupported;
+                    r.reason = "integrator " + r.integrator + " not offered by this backend";
+                    results.push_back(r);
+                    continue;
+                }
+                results.push_back(runCombo(*scene, backend, integrator));
+            }
+
+    if (o.json) std::cout << toJson(results).dump(2) << '\n';
+    else printTable(results);
+
+    const auto failed = std::count_if(results.begin(), results.end(),
+                                      [](const ComboResult& r) { return r.status == ComboResult::Status::Failed; });
+    if (failed > 0) throw Error(std::to_string(failed) + " combination(s) failed while stepping (see the table)");
+    return 0;
+}
+
+}  // namespace
+
+Command addCompareCommand(CLI::App& parent) {
+    auto o = std::make_shared<CompareOptions>();
+    CLI::App* app = parent.add_subcommand(
+        "compare", "Run catalogue scenes on every backend and integrator and compare accuracy, conservation and speed");
+    app->add_option("--scenes", o->scenes, "Comma-separated catalogue scenes (default: all; see `anyphys scenes`)")
+        ->delimiter(',');
+    app->add_option("--backends", o->backends, "Comma-separated backends (default: every built one)")->delimiter(',');
+    app->add_option("--integrators", o->integrators,
+                    "Comma-separated integrators (default: all the backends offer): " + allowedNames<Integrator>())
+        ->delimiter(',');
+    app->add_flag("--json", o->json, "Print JSON instead of a table");
+    return {app, [o] { return compare(*o); }};
+}
+
+}  // namespace anyphys::cli
