@@ -21,20 +21,26 @@ bool Body::isValid() const { return world_ && world_->isValid(id_); }
 
 const std::string& Body::name() const { return ANYPHYS_SLOT("Body.name").def.name; }
 BodyType Body::type() const { return ANYPHYS_SLOT("Body.type").def.type; }
-BodyState Body::state() const { return ANYPHYS_SLOT("Body.state").peer->state(); }
-Vec3 Body::position() const { return ANYPHYS_SLOT("Body.position").peer->state().position; }
-Quat Body::orientation() const { return ANYPHYS_SLOT("Body.orientation").peer->state().orientation; }
+BodyState Body::state() const { return ANYPHYS_SLOT("Body.state").userState(); }
+Vec3 Body::position() const { return ANYPHYS_SLOT("Body.position").userState().position; }
+Quat Body::orientation() const { return ANYPHYS_SLOT("Body.orientation").userState().orientation; }
 Vec3 Body::linearVelocity() const { return ANYPHYS_SLOT("Body.linearVelocity").peer->state().linearVelocity; }
 Vec3 Body::angularVelocity() const { return ANYPHYS_SLOT("Body.angularVelocity").peer->state().angularVelocity; }
 MassProperties Body::massProperties() const { return ANYPHYS_SLOT("Body.massProperties").mass; }
 const std::string& Body::material() const { return ANYPHYS_SLOT("Body.material").def.material; }
 
+bool Body::isTrigger() const { return ANYPHYS_SLOT("Body.isTrigger").def.isTrigger; }
+bool Body::isAwake() const { return ANYPHYS_SLOT("Body.isAwake").peer->isAwake(); }
+void Body::wake() { ANYPHYS_SLOT("Body.wake").peer->setAwake(true); }
+Vec3 Body::centerOfMass() const { return ANYPHYS_SLOT("Body.centerOfMass").peer->state().position; }
+
 Vec3 Body::angularVelocityLocal() const {
-    const BodyState s = ANYPHYS_SLOT("Body.angularVelocityLocal").peer->state();
+    const BodyState s = ANYPHYS_SLOT("Body.angularVelocityLocal").userState();
     return s.orientation.conjugate() * s.angularVelocity;
 }
 
 Vec3 Body::angularMomentum() const {
+    // In the peer frame the inertia is diagonal: L = R diag(I) R^T w.
     const auto& slot = ANYPHYS_SLOT("Body.angularMomentum");
     const BodyState s = slot.peer->state();
     const Vec3 local = s.orientation.conjugate() * s.angularVelocity;
@@ -46,7 +52,8 @@ void Body::setTransform(const Vec3& position, const Quat& orientation) {
     detail::requireFinite("Body.setTransform.position", position);
     if (!orientation.coeffs().allFinite() || std::abs(orientation.norm() - 1.0) > kUnitQuaternionTolerance)
         throw Error::invalid("Body.setTransform.orientation", formatQuat(orientation), "must be a unit quaternion");
-    slot.peer->setTransform(position, orientation.normalized());
+    const Transform pose = slot.peerPose(position, orientation.normalized());
+    slot.peer->setTransform(pose.position, pose.orientation);
 }
 
 void Body::setLinearVelocity(const Vec3& v) {

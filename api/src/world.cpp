@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "anyphys/backends.hpp"
-#include "anyphys/mass_properties.hpp"
+#include "body_shapes.hpp"
 #include "anyphys/validation.hpp"
 #include "world_impl.hpp"
 
@@ -42,7 +42,7 @@ public:
     ForceContextImpl(World& world, ForceStage& stage, BodyPeer& (*resolve)(World&, Body))
         : world_(world), stage_(stage), resolve_(resolve) {}
     double time() const override { return stage_.time(); }
-    BodyState state(Body body) const override { return stage_.state(resolve_(world_, body)); }
+    BodyState state(Body body) const override;
     void addForce(Body body, const Vec3& force) override {
         detail::requireFinite("ForceContext.addForce.force", force);
         stage_.addForce(resolve_(world_, body), force);
@@ -60,6 +60,20 @@ private:
 
 }  // namespace
 
+BodyState ForceContextImpl::state(Body body) const {
+    // The stage's state is the peer frame's: convert to the body origin like Body::state().
+    BodyPeer& peer = resolve_(world_, body);
+    BodyState s = stage_.state(peer);
+    const BodyState current = peer.state();
+    const BodyState user = body.state();
+    // Offset of the peer frame from the body origin is fixed in the body: reuse it.
+    const Quat peerToUser = current.orientation.conjugate() * user.orientation;
+    const Vec3 originOffset = current.orientation.conjugate() * (user.position - current.position);
+    s.position += s.orientation * originOffset;
+    s.orientation = (s.orientation * peerToUser).normalized();
+    return s;
+}
+
 World::World(const WorldSettings& settings, MaterialLibrary materials)
     : settings_(settings), materials_(std::move(materials)), impl_(std::make_unique<Impl>()) {
     validate(settings_, "WorldSettings");
@@ -74,7 +88,27 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
         warn("WorldSettings: " + what + "; running without them");
     }
     impl_->peer = impl_->backend->createWorld(settings_);
+    impl_->peer->setMaterialTable(buildMaterialTable());
     refreshEffects();
+}
+
+MaterialTable World::buildMaterialTable() {
+    std::vector<std::string> names{std::string(MaterialLibrary::kDefaultName)};
+    for (const std::string& n : materials_.names()) names.push_back(n);
+    impl_->materialIndex.clear();
+    for (std::uint32_t i = 0; i < names.size(); ++i) impl_->materialIndex[names[i]] = i;
+    MaterialTable table;
+    table.count = names.size();
+    table.values.resize(names.size() * names.size());
+    impl_->anyFriction = impl_->anyRestitution = false;
+    for (std::size_t a = 0; a < names.size(); ++a)
+        for (std::size_t b = 0; b < names.size(); ++b) {
+            const MixedMaterial m = materials_.resolve(names[a], names[b]);
+            table.values[a * names.size() + b] = {m.friction, m.restitution};
+            impl_->anyFriction = impl_->anyFriction || m.friction > 0;
+            impl_->anyRestitution = impl_->anyRestitution || m.restitution > 0;
+        }
+    return table;
 }
 
 World::~World() = default;
@@ -98,6 +132,15 @@ void World::refreshEffects() {
         if (impl_->dampedBodies > 0) wanted.add(Effect::Damping);
         if (impl_->gyroscopicBodies > 0) wanted.add(Effect::Gyroscopic);
         if (impl_->forcesUsed || impl_->forceCallback) wanted.add(Effect::UserForces);
+        // Contacts need two bodies, one of which responds (or a sensor and something moving).
+        const Impl& i = *impl_;
+        const bool contacts = i.liveBodies >= 2 && (i.dynamicBodies > 0 || (i.triggerBodies > 0 && i.movingBodies > 0));
+        if (contacts) {
+            wanted.add(Effect::Contacts).add(Effect::ContinuousCollision).add(Effect::Events);
+            if (i.anyFriction) wanted.add(Effect::Friction);
+            if (i.anyRestitution) wanted.add(Effect::Restitution);
+            if (i.sleepyBodies > 0) wanted.add(Effect::Sleeping);
+        }
     }
     const Effects active = wanted & impl_->backend->capabilities.effects;
     if (active == activeEffects_ && impl_->peer) return;
@@ -133,18 +176,25 @@ Body World::createBody(const BodyDef& input) {
         warn("BodyDef: " + what + "; ignored");
     }
 
-    BodyPeerDef peerDef{input, {}};
-    peerDef.def.orientation.normalize();
-    if (input.type == BodyType::Dynamic) {
-        const double volume = shapeVolume(input.shape);
-        const double density = input.density.value_or(materials_.get(input.material).density);
-        const double mass = input.mass.value_or(density * volume);
-        peerDef.mass.mass = mass;
-        peerDef.mass.inertia = input.inertia.value_or(unitInertia(input.shape) * mass);
-    }
+    BodyDef def = input;
+    def.orientation.normalize();
+    ResolvedShapes resolved = resolveShapes(def, def.density.value_or(materials_.get(def.material).density));
+    BodyPeerDef peerDef;
+    peerDef.def = def;
+    const Transform peerPose{def.position + def.orientation * resolved.peerFrame.position,
+                             def.orientation * resolved.peerFrame.orientation};
+    peerDef.def.position = peerPose.position;
+    peerDef.def.orientation = peerPose.orientation;
+    peerDef.mass = resolved.mass;
+    peerDef.mass.centerOfMass = Vec3::Zero();
+    peerDef.mass.principalAxes = Quat::Identity();
+    peerDef.shapes = std::move(resolved.shapes);
+    peerDef.material = impl_->materialIndex.at(def.material);
 
     const bool reuse = !impl_->freeSlots.empty();
     const std::uint32_t index = reuse ? impl_->freeSlots.back() : static_cast<std::uint32_t>(impl_->slots.size());
+    const std::uint32_t generation = reuse ? impl_->slots[index].generation : 1;
+    peerDef.userData = packId(BodyId{index, generation});
     std::unique_ptr<BodyPeer> peer = impl_->peer->createBody(peerDef);  // may throw: nothing changed yet
     if (reuse)
         impl_->freeSlots.pop_back();
@@ -152,12 +202,10 @@ Body World::createBody(const BodyDef& input) {
         impl_->slots.emplace_back();
     Slot& s = impl_->slots[index];
     s.peer = std::move(peer);
-    s.def = peerDef.def;
-    s.mass = peerDef.mass;
-    ++impl_->liveBodies;
-    impl_->gravityBodies += needsGravity(s.def);
-    impl_->dampedBodies += needsDamping(s.def);
-    impl_->gyroscopicBodies += needsGyroscopic(s.def);
+    s.def = def;
+    s.mass = resolved.mass;
+    s.peerFrame = resolved.peerFrame;
+    countBody(s.def, +1);
     refreshEffects();
     return Body(this, BodyId{index, s.generation});
 }
@@ -173,11 +221,23 @@ void World::destroyBody(Body body) {
     s.peer.reset();
     ++s.generation;
     impl_->freeSlots.push_back(body.id().index);
-    --impl_->liveBodies;
-    impl_->gravityBodies -= needsGravity(s.def);
-    impl_->dampedBodies -= needsDamping(s.def);
-    impl_->gyroscopicBodies -= needsGyroscopic(s.def);
+    countBody(s.def, -1);
     refreshEffects();
+}
+
+void World::countBody(const BodyDef& d, int delta) {
+    Impl& i = *impl_;
+    const auto count = [delta](std::size_t& counter, bool applies) {
+        if (applies) counter += delta;
+    };
+    count(i.liveBodies, true);
+    count(i.gravityBodies, needsGravity(d));
+    count(i.dampedBodies, needsDamping(d));
+    count(i.gyroscopicBodies, needsGyroscopic(d));
+    count(i.dynamicBodies, d.type == BodyType::Dynamic);
+    count(i.movingBodies, d.type != BodyType::Static);
+    count(i.triggerBodies, d.isTrigger);
+    count(i.sleepyBodies, d.type == BodyType::Dynamic && d.allowSleep);
 }
 
 World::Slot& World::slot(BodyId id, const char* operation) {
@@ -236,6 +296,87 @@ void World::step(double dt) {
     timeCompensation_ = (t - time_) - y;
     time_ = t;
     ++stepCount_;
+    if (activeEffects_.has(Effect::Events)) dispatchEvents();
+}
+
+void World::dispatchEvents() {
+    Impl& i = *impl_;
+    i.peerContacts.clear();
+    i.peer->collectContacts(i.peerContacts);
+    // The layer decides what touching means, identically for every backend: a collision pair
+    // touches when some point is closer than linearSlop; a trigger pair when it overlaps.
+    std::vector<TouchingPair> touching;
+    touching.reserve(i.peerContacts.size());
+    for (PeerContact& c : i.peerContacts) {
+        bool touches = c.trigger;
+        for (const ContactPoint& p : c.points) touches = touches || p.depth > -settings_.linearSlop;
+        if (!touches) continue;
+        const Capabilities& caps = i.backend->capabilities;
+        touching.push_back({unpackId(c.bodyA), unpackId(c.bodyB), c.trigger, caps.contactImpulses, c.normal,
+                            std::move(c.points)});
+    }
+    i.lastEvents = i.tracker.update(std::move(touching), [this](BodyId id) {
+        if (!isValid(id)) return false;
+        const Slot& s = impl_->slots[id.index];
+        return s.def.type != BodyType::Static && !s.peer->isAwake();
+    });
+    if (i.listeners.empty()) return;
+    const std::vector<ContactEvent> events = i.lastEvents;  // listeners may step nothing but may destroy
+    const std::vector<ContactListener*> listeners = i.listeners;
+    for (const ContactEvent& e : events) {
+        // A body destroyed by an earlier callback already had its exits delivered.
+        if (e.phase != ContactPhase::Exit && (!isValid(e.bodyA) || !isValid(e.bodyB))) continue;
+        for (ContactListener* l : listeners) {
+            if (e.trigger)
+                e.phase == ContactPhase::Enter ? l->onTriggerEnter(e) : l->onTriggerExit(e);
+            else if (e.phase == ContactPhase::Enter)
+                l->onCollisionEnter(e);
+            else if (e.phase == ContactPhase::Stay)
+                l->onCollisionStay(e);
+            else
+                l->onCollisionExit(e);
+        }
+    }
+}
+
+const std::vector<ContactEvent>& World::lastEvents() const { return impl_->lastEvents; }
+
+// ---- queries --------------------------------------------------------------------------------
+
+namespace {
+void validateRay(const Vec3& origin, const Vec3& direction, double maxDistance, const char* what) {
+    const std::string w(what);
+    detail::requireFinite(w + ".origin", origin);
+    detail::requireFinite(w + ".direction", direction);
+    if (direction.norm() < 1e-12) throw Error::invalid(w + ".direction", formatVec3(direction), "must be non-zero");
+    detail::requireNonNegative(w + ".maxDistance", maxDistance);
+}
+}  // namespace
+
+std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
+    validateRay(origin, direction, maxDistance, "World.raycast");
+    const auto hits = impl_->peer->raycast(origin, direction.normalized(), maxDistance, true, mask);
+    if (hits.empty()) return std::nullopt;
+    return RayHit{Body(this, unpackId(hits.front().body)), hits.front().point, hits.front().normal, hits.front().distance};
+}
+
+std::vector<RayHit> World::raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
+    validateRay(origin, direction, maxDistance, "World.raycastAll");
+    std::vector<RayHit> out;
+    for (const PeerRayHit& h : impl_->peer->raycast(origin, direction.normalized(), maxDistance, false, mask))
+        out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, h.distance});
+    return out;
+}
+
+std::vector<Body> World::overlap(const ShapeDef& shape, const Transform& pose, std::uint32_t mask) {
+    validate(shape, "World.overlap.shape");
+    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh)
+        throw Error::invalid("World.overlap.shape.type", toString(shape.type), "must be sphere, box, capsule, convex or compound");
+    detail::requireFinite("World.overlap.pose.position", pose.position);
+    const Transform unit{pose.position, pose.orientation.normalized()};
+    std::vector<Body> out;
+    for (std::uint64_t key : impl_->peer->overlap(flattenShape(shape), unit, mask)) out.emplace_back(this, unpackId(key));
+    return out;
 }
 
 int World::update(double elapsed) {

@@ -1,5 +1,6 @@
 #pragma once
 // World internals shared by world.cpp and body.cpp.
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -15,7 +16,26 @@ struct World::Slot {
     std::uint32_t generation = 1;    // bumped on destroy, so stale ids never match
     BodyDef def;                     // as created (validated, orientation normalised)
     MassProperties mass;
+    Transform peerFrame;             // the peer's frame (centre of mass, principal axes) in the body frame
+
+    /// The user's view (body origin) of the peer's state (centre of mass frame).
+    BodyState userState() const;
+    /// The peer pose for a user pose of the body origin.
+    Transform peerPose(const Vec3& position, const Quat& orientation) const {
+        return {position + orientation * peerFrame.position, orientation * peerFrame.orientation};
+    }
 };
+
+inline BodyState World::Slot::userState() const {
+    BodyState s = peer->state();
+    s.orientation = (s.orientation * peerFrame.orientation.conjugate()).normalized();
+    s.position -= s.orientation * peerFrame.position;
+    return s;
+}
+
+/// The key a peer echoes back for a body: its id packed in 64 bits.
+inline std::uint64_t packId(BodyId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
+inline BodyId unpackId(std::uint64_t key) { return BodyId{std::uint32_t(key >> 32), std::uint32_t(key)}; }
 
 struct World::Impl {
     const Backend* backend = nullptr;
@@ -28,7 +48,20 @@ struct World::Impl {
     std::size_t gravityBodies = 0;
     std::size_t dampedBodies = 0;
     std::size_t gyroscopicBodies = 0;
+    std::size_t dynamicBodies = 0;
+    std::size_t movingBodies = 0;    // dynamic or kinematic
+    std::size_t triggerBodies = 0;
+    std::size_t sleepyBodies = 0;    // dynamic bodies allowed to sleep
     bool forcesUsed = false;
+
+    // Materials: index per name (row of the table the peer holds) and whether any pair mixes to
+    // a non-zero friction or restitution (else those effects are never derived).
+    std::map<std::string, std::uint32_t, std::less<>> materialIndex;
+    bool anyFriction = false;
+    bool anyRestitution = false;
+
+    std::vector<PeerContact> peerContacts;  // reused each step
+    std::vector<ContactEvent> lastEvents;
 
     ForceCallback forceCallback;
     std::vector<ContactListener*> listeners;

@@ -9,13 +9,17 @@ namespace anyphys {
 Backend makeNativeBackend() {
     Backend backend;
     backend.name = "native";
-    backend.description = "anyphys in-house rigid-body engine (free-body dynamics; contacts arrive next)";
+    backend.description = "anyphys in-house rigid-body engine: soft-step and PGS contact solvers, five integrators";
     Capabilities& caps = backend.capabilities;
     caps.dimensions = 3;
     caps.planar = false;
-    caps.shapes = {ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Plane};
+    caps.shapes = {ShapeType::Sphere, ShapeType::Box,  ShapeType::Capsule, ShapeType::Plane,
+                   ShapeType::Convex, ShapeType::Mesh, ShapeType::Compound};
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
-    caps.effects = Effect::Gravity | Effect::Damping | Effect::Gyroscopic | Effect::UserForces;
+    caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
+    caps.solvers = {Solver::SoftStep, Solver::ProjectedGaussSeidel};
+    caps.contactImpulses = true;
+    caps.queries = {"raycast", "overlap"};
     caps.integrators = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Verlet,
                         Integrator::Midpoint, Integrator::RK4};
     caps.gyroscopicModes = {GyroscopicMode::None, GyroscopicMode::Explicit, GyroscopicMode::Implicit};
@@ -23,7 +27,12 @@ Backend makeNativeBackend() {
     caps.parameters = {"settings.gravity", "settings.timeStep", "settings.integrator", "settings.substeps",
                        "settings.effects", "body.type", "body.position", "body.orientation", "body.linearVelocity",
                        "body.angularVelocity", "body.shape", "body.mass", "body.density", "body.inertia",
-                       "body.linearDamping", "body.angularDamping", "body.gravityScale", "body.gyroscopic"};
+                       "body.linearDamping", "body.angularDamping", "body.gravityScale", "body.gyroscopic",
+                       "body.material", "body.isTrigger", "body.layer", "body.mask", "body.allowSleep", "body.isAwake",
+                       "settings.solver", "settings.iterations", "settings.contactHertz", "settings.contactDampingRatio",
+                       "settings.contactPushMaxVelocity", "settings.baumgarte", "settings.restitutionThreshold",
+                       "settings.linearSlop", "settings.speculativeDistance", "settings.sleepLinearVelocity",
+                       "settings.sleepAngularVelocity", "settings.timeToSleep"};
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
     };

@@ -4,6 +4,7 @@
 
 namespace anyphys::native {
 
+// Every user change wakes the body (and its island): a sleeping body must react to it.
 NativeBody& NativeBodyPeer::body() const { return world_.bodies()[index_]; }
 
 BodyState NativeBodyPeer::state() const { return body().state; }
@@ -11,27 +12,38 @@ BodyState NativeBodyPeer::state() const { return body().state; }
 void NativeBodyPeer::setTransform(const Vec3& position, const Quat& orientation) {
     body().state.position = position;
     body().state.orientation = orientation.normalized();
+    world_.bodyTeleported(index_);
 }
 
 void NativeBodyPeer::setLinearVelocity(const Vec3& v) {
-    if (body().moves()) body().state.linearVelocity = v;
+    if (!body().moves()) return;
+    body().state.linearVelocity = v;
+    world_.wakeBody(index_);
 }
 
 void NativeBodyPeer::setAngularVelocity(const Vec3& w) {
-    if (body().moves()) body().state.angularVelocity = w;
+    if (!body().moves()) return;
+    body().state.angularVelocity = w;
+    world_.wakeBody(index_);
 }
 
 void NativeBodyPeer::addForce(const Vec3& force) {
-    if (body().isDynamic()) body().force += force;
+    if (!body().isDynamic()) return;
+    body().force += force;
+    world_.wakeBody(index_);
 }
 
 void NativeBodyPeer::addTorque(const Vec3& torque) {
-    if (body().isDynamic()) body().torque += torque;
+    if (!body().isDynamic()) return;
+    body().torque += torque;
+    world_.wakeBody(index_);
 }
 
 void NativeBodyPeer::applyLinearImpulse(const Vec3& impulse) {
     NativeBody& b = body();
+    if (!b.isDynamic()) return;
     b.state.linearVelocity += b.invMass * impulse;
+    world_.wakeBody(index_);
 }
 
 void NativeBodyPeer::applyAngularImpulse(const Vec3& impulse) {
@@ -39,11 +51,24 @@ void NativeBodyPeer::applyAngularImpulse(const Vec3& impulse) {
     if (!b.isDynamic()) return;
     const Mat3 r = b.state.orientation.toRotationMatrix();
     b.state.angularVelocity += r * b.invInertia.cwiseProduct(r.transpose() * impulse);
+    world_.wakeBody(index_);
 }
 
 MassProperties NativeBodyPeer::massProperties() const {
     const NativeBody& b = body();
-    return {b.invMass > 0 ? 1.0 / b.invMass : 0.0, b.isDynamic() ? b.inertia : Vec3::Zero()};
+    MassProperties m;
+    m.mass = b.invMass > 0 ? 1.0 / b.invMass : 0.0;
+    m.inertia = b.isDynamic() ? b.inertia : Vec3::Zero();
+    return m;
+}
+
+bool NativeBodyPeer::isAwake() const { return body().awake; }
+
+void NativeBodyPeer::setAwake(bool awake) {
+    if (awake)
+        world_.wakeBody(index_);
+    else
+        world_.sleepBody(index_);
 }
 
 }  // namespace anyphys::native

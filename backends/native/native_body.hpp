@@ -2,9 +2,11 @@
 // Body storage of the native backend: one dense array of bodies, and the peer objects the layer
 // holds, which find their body by index (kept up to date when the array is compacted).
 #include <cstdint>
+#include <vector>
 
 #include "anyphys/defs.hpp"
 #include "anyphys/peers/body_peer.hpp"
+#include "collision/shape.hpp"
 
 namespace anyphys::native {
 
@@ -24,9 +26,34 @@ struct NativeBody {
     Vec3 force = Vec3::Zero();   // user force for the current step, world frame
     Vec3 torque = Vec3::Zero();  // user torque for the current step, world frame
     NativeBodyPeer* peer = nullptr;
+    bool alive = true;           // false while the slot is free
+
+    // ---- collision ----
+    std::vector<Shape> shapes;
+    std::vector<int> proxies;    // broad-phase proxy per shape
+    std::uint64_t userData = 0;
+    std::uint32_t material = 0;
+    std::uint32_t layer = 1;
+    std::uint32_t mask = 0xFFFFFFFFu;
+    bool trigger = false;
+    double coreExtent = 0.0;     // m, smallest distance from a shape's centre to its surface (continuous collision)
+
+    // ---- per step ----
+    bool constrained = false;    // has contact constraints this step: moved by the contact solver
+    Vec3 stepStartPosition = Vec3::Zero();
+    Quat stepStartOrientation = Quat::Identity();
+
+    // ---- sleeping ----
+    bool allowSleep = true;
+    bool awake = true;
+    double sleepTime = 0.0;      // s at rest so far
+    int sleepingIsland = -1;     // island it fell asleep with (woken together)
 
     bool isDynamic() const { return type == BodyType::Dynamic; }
     bool moves() const { return type != BodyType::Static; }
+    /// Simulated this step: dynamic or kinematic, and awake.
+    bool isActive() const { return alive && moves() && awake; }
+    Transform pose() const { return {state.position, state.orientation}; }
 };
 
 class NativeBodyPeer final : public BodyPeer {
@@ -45,6 +72,8 @@ public:
     void applyLinearImpulse(const Vec3& impulse) override;
     void applyAngularImpulse(const Vec3& impulse) override;
     MassProperties massProperties() const override;
+    bool isAwake() const override;
+    void setAwake(bool awake) override;
 
 private:
     NativeBody& body() const;

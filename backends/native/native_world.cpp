@@ -1,16 +1,80 @@
 #include "native_world.hpp"
 
+#include <algorithm>
+#include <limits>
+
+#include "collision/mesh_data.hpp"
+#include "collision/queries.hpp"
 #include "stages.hpp"
 
 namespace anyphys::native {
+namespace {
 
-NativeWorld::NativeWorld(const WorldSettings& settings) : settings_(settings), stages_(makeFreeBodyPipeline()) {}
+// Fat bounds exceed tight ones by this much, so bodies at rest or moving slowly keep their
+// proxies (and broad-phase pairs) for many steps.
+constexpr double kAabbMargin = 0.1;
+
+// Planes are static: the narrow phase reads them in world form (n . x = offset).
+void placePlane(Shape& s, const Transform& bodyPose) {
+    const Transform xf = shapeWorldPose(s, bodyPose);
+    s.normal = xf.orientation * s.planeNormalLocal;
+    s.offset = s.planeOffsetLocal + s.normal.dot(xf.position);
+}
+
+// A native shape from the layer's shape at a static or moving body's pose.
+Shape makeShape(const PeerShape& ps, const Transform& bodyPose) {
+    Shape s;
+    s.type = ps.def.type;
+    s.radius = ps.def.radius;
+    s.halfExtents = ps.def.halfExtents;
+    s.halfHeight = ps.def.halfHeight;
+    s.hull = ps.hull;
+    s.local = ps.local;
+    if (s.type == ShapeType::Mesh) s.mesh = MeshData::build(ps.def);
+    if (s.type == ShapeType::Plane) {
+        s.planeNormalLocal = ps.def.normal.normalized();
+        s.planeOffsetLocal = ps.def.offset / ps.def.normal.norm();
+        placePlane(s, bodyPose);
+    }
+    return s;
+}
+
+// How far a shape's centre lies inside its surface at the least: moving less than half of this
+// per step cannot tunnel through anything.
+double coreExtent(const Shape& s) {
+    switch (s.type) {
+        case ShapeType::Sphere:
+        case ShapeType::Capsule: return s.radius;
+        case ShapeType::Box: return s.halfExtents.minCoeff();
+        case ShapeType::Convex: {
+            double inner = std::numeric_limits<double>::infinity();
+            for (std::size_t f = 0; f < s.hull->faceNormals.size(); ++f)
+                inner = std::min(inner, s.hull->faceOffsets[f] - s.hull->faceNormals[f].dot(s.hull->centroid));
+            return inner;
+        }
+        default: return 0.0;
+    }
+}
+
+}  // namespace
+
+NativeWorld::NativeWorld(const WorldSettings& settings)
+    : settings_(settings), stages_(makePipeline()), broadPhase_(kAabbMargin) {}
 
 NativeWorld::~NativeWorld() = default;
 
 std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
     const BodyDef& def = peerDef.def;
-    NativeBody body;
+    std::uint32_t index;
+    if (!freeSlots_.empty()) {
+        index = freeSlots_.back();
+        freeSlots_.pop_back();
+        bodies_[index] = NativeBody{};
+    } else {
+        index = static_cast<std::uint32_t>(bodies_.size());
+        bodies_.emplace_back();
+    }
+    NativeBody& body = bodies_[index];
     body.type = def.type;
     body.state = {def.position, def.orientation.normalized(), def.linearVelocity, def.angularVelocity};
     if (def.type == BodyType::Dynamic) {
@@ -22,22 +86,46 @@ std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
     body.angularDamping = def.angularDamping;
     body.gravityScale = def.gravityScale;
     body.gyroscopic = def.gyroscopic;
-    auto peer = std::make_unique<NativeBodyPeer>(*this, static_cast<std::uint32_t>(bodies_.size()));
+    body.userData = peerDef.userData;
+    body.material = peerDef.material;
+    body.layer = def.layer;
+    body.mask = def.mask;
+    body.trigger = def.isTrigger;
+    body.allowSleep = def.allowSleep;
+    body.awake = def.type != BodyType::Static && def.isAwake;  // static bodies are never simulated
+    body.stepStartPosition = body.state.position;
+    body.stepStartOrientation = body.state.orientation;
+    body.coreExtent = std::numeric_limits<double>::infinity();
+    for (const PeerShape& ps : peerDef.shapes) {
+        body.shapes.push_back(makeShape(ps, body.pose()));
+        body.coreExtent = std::min(body.coreExtent, coreExtent(body.shapes.back()));
+        const Shape& s = body.shapes.back();
+        const int shapeIndex = static_cast<int>(body.shapes.size()) - 1;
+        body.proxies.push_back(broadPhase_.createProxy(computeAabb(s, shapeWorldPose(s, body.pose())),
+                                                       proxyKey(index, shapeIndex), def.type == BodyType::Static));
+    }
+    auto peer = std::make_unique<NativeBodyPeer>(*this, index);
     body.peer = peer.get();
-    bodies_.push_back(body);
     pipelineDirty_ = true;
     return peer;
 }
 
 void NativeWorld::destroyBody(BodyPeer& peer) {
-    // Swap-and-pop keeps storage dense; the moved body's peer learns its new index.
-    auto& native = static_cast<NativeBodyPeer&>(peer);
-    const std::uint32_t index = native.index();
-    if (index + 1 != bodies_.size()) {
-        bodies_[index] = bodies_.back();
-        bodies_[index].peer->setIndex(index);
+    const std::uint32_t index = static_cast<NativeBodyPeer&>(peer).index();
+    NativeBody& body = bodies_[index];
+    // Bodies resting on this one must not hang in the air.
+    for (const auto& [key, contact] : contacts_.contacts())
+        if (contact.touching && (contact.bodyA == index || contact.bodyB == index))
+            wakeBody(contact.bodyA == index ? contact.bodyB : contact.bodyA);
+    contacts_.removeBody(index);
+    for (int proxy : body.proxies) broadPhase_.destroyProxy(proxy);
+    if (body.sleepingIsland >= 0) {
+        auto& members = sleepingIslands_[body.sleepingIsland];
+        members.erase(std::remove(members.begin(), members.end(), index), members.end());
     }
-    bodies_.pop_back();
+    body = NativeBody{};
+    body.alive = false;
+    freeSlots_.push_back(index);
     pipelineDirty_ = true;
 }
 
@@ -49,6 +137,15 @@ void NativeWorld::setEffects(Effects effects) {
 void NativeWorld::setForceHook(ForceHook hook) {
     forceHook_ = std::move(hook);
     pipelineDirty_ = true;
+}
+
+void NativeWorld::setMaterialTable(const MaterialTable& table) {
+    materials_ = table;
+    for (auto& [key, c] : contacts_.contacts()) {
+        const ContactMaterial& m = materials_.get(bodies_[c.bodyA].material, bodies_[c.bodyB].material);
+        c.friction = m.friction;
+        c.restitution = m.restitution;
+    }
 }
 
 void NativeWorld::rebuildPipelineIfNeeded() {
@@ -68,16 +165,174 @@ std::vector<std::string> NativeWorld::activeStageNames() {
 
 void NativeWorld::step(double time, double dt) {
     rebuildPipelineIfNeeded();
+    for (NativeBody& b : bodies_) {
+        if (!b.isActive()) continue;
+        b.stepStartPosition = b.state.position;
+        b.stepStartOrientation = b.state.orientation;
+        b.constrained = false;
+    }
+    // Consecutive per-substep stages run together, `substeps` times with dt / substeps.
     const int substeps = settings_.substeps;
     const double h = dt / substeps;
-    for (int i = 0; i < substeps; ++i) {
-        const StepInfo info{time + i * h, h};
-        for (Stage* stage : active_)
-            if (stage->perSubstep()) stage->run(*this, info);
+    for (std::size_t i = 0; i < active_.size();) {
+        if (!active_[i]->perSubstep()) {
+            active_[i]->run(*this, {time, dt});
+            ++i;
+            continue;
+        }
+        std::size_t end = i;
+        while (end < active_.size() && active_[end]->perSubstep()) ++end;
+        for (int s = 0; s < substeps; ++s)
+            for (std::size_t j = i; j < end; ++j) active_[j]->run(*this, {time + s * h, h});
+        i = end;
     }
-    const StepInfo whole{time, dt};
-    for (Stage* stage : active_)
-        if (!stage->perSubstep()) stage->run(*this, whole);
+}
+
+void NativeWorld::evaluateForceHook(double time) {
+    hookForces_.assign(bodies_.size(), Vec3::Zero());
+    hookTorques_.assign(bodies_.size(), Vec3::Zero());
+    if (!forceHook_ || !effects_.has(Effect::UserForces)) return;
+    // The hook sees current states and adds forces per body.
+    class CurrentStage final : public ForceStage {
+    public:
+        CurrentStage(NativeWorld& w, double t) : world_(w), time_(t) {}
+        double time() const override { return time_; }
+        BodyState state(const BodyPeer& p) const override {
+            return world_.bodies()[static_cast<const NativeBodyPeer&>(p).index()].state;
+        }
+        void addForce(BodyPeer& p, const Vec3& f) override { world_.hookForces_[static_cast<NativeBodyPeer&>(p).index()] += f; }
+        void addTorque(BodyPeer& p, const Vec3& t) override {
+            world_.hookTorques_[static_cast<NativeBodyPeer&>(p).index()] += t;
+        }
+
+    private:
+        NativeWorld& world_;
+        double time_;
+    } stage(*this, time);
+    forceHook_(stage);
+}
+
+void NativeWorld::wakeBody(std::uint32_t index) {
+    NativeBody& body = bodies_[index];
+    if (!body.alive || body.type == BodyType::Static) return;
+    body.sleepTime = 0.0;
+    if (body.awake) return;
+    if (body.sleepingIsland >= 0) {
+        const auto it = sleepingIslands_.find(body.sleepingIsland);
+        if (it != sleepingIslands_.end()) {
+            const std::vector<std::uint32_t> members = std::move(it->second);
+            sleepingIslands_.erase(it);
+            for (std::uint32_t m : members) {
+                bodies_[m].stepStartPosition = bodies_[m].state.position;
+                bodies_[m].stepStartOrientation = bodies_[m].state.orientation;
+                bodies_[m].awake = true;
+                bodies_[m].sleepTime = 0.0;
+                bodies_[m].sleepingIsland = -1;
+            }
+        }
+    }
+    body.awake = true;
+    body.sleepingIsland = -1;
+    body.stepStartPosition = body.state.position;  // woken mid-step: its motion starts now
+    body.stepStartOrientation = body.state.orientation;
+}
+
+void NativeWorld::sleepBody(std::uint32_t index) { sleepIsland({index}); }
+
+void NativeWorld::sleepIsland(const std::vector<std::uint32_t>& members) {
+    const int id = nextIslandId_++;
+    for (std::uint32_t m : members) {
+        NativeBody& b = bodies_[m];
+        if (!b.alive || b.type == BodyType::Static) continue;
+        b.awake = false;
+        b.constrained = false;  // flags are reset each step only for awake bodies
+        b.sleepingIsland = id;
+        b.state.linearVelocity.setZero();
+        b.state.angularVelocity.setZero();
+        b.force.setZero();
+        b.torque.setZero();
+    }
+    sleepingIslands_[id] = members;
+}
+
+void NativeWorld::updateProxies(std::uint32_t index, const Vec3& displacement) {
+    NativeBody& body = bodies_[index];
+    // The proxy must cover where the shape will be by the end of the step (its bounds swept
+    // along the predicted displacement), or a fast body meets a neighbour before the broad
+    // phase has paired them.
+    for (std::size_t i = 0; i < body.shapes.size(); ++i) {
+        const Aabb now = computeAabb(body.shapes[i], shapeWorldPose(body.shapes[i], body.pose()));
+        const Aabb swept = now.merged({now.min + displacement, now.max + displacement});
+        broadPhase_.moveProxy(body.proxies[i], swept, displacement);
+    }
+}
+
+void NativeWorld::bodyTeleported(std::uint32_t index) {
+    NativeBody& body = bodies_[index];
+    if (body.type == BodyType::Static) {
+        for (Shape& s : body.shapes)
+            if (s.type == ShapeType::Plane) placePlane(s, body.pose());
+        // Contacts with this body must be re-evaluated: wake whatever touches it.
+        for (const auto& [key, contact] : contacts_.contacts())
+            if (contact.bodyA == index || contact.bodyB == index)
+                wakeBody(contact.bodyA == index ? contact.bodyB : contact.bodyA);
+    } else {
+        wakeBody(index);
+    }
+    updateProxies(index, Vec3::Zero());
+}
+
+void NativeWorld::collectContacts(std::vector<PeerContact>& out) {
+    for (const auto& [key, c] : contacts_.contacts()) {
+        const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
+        if (!a.isActive() && !b.isActive()) continue;  // asleep: the layer keeps the pair
+        if (c.trigger) {
+            if (c.touching) out.push_back({a.userData, b.userData, true, Vec3::Zero(), {}});
+            continue;
+        }
+        if (c.manifolds.empty()) continue;
+        PeerContact pc{a.userData, b.userData, false, c.manifolds.front().normal, {}};
+        for (const ContactManifold& m : c.manifolds)
+            for (int i = 0; i < m.pointCount; ++i)
+                pc.points.push_back({m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].normalImpulse});
+        out.push_back(std::move(pc));
+    }
+}
+
+std::vector<PeerRayHit> NativeWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
+                                             bool closestOnly, std::uint32_t mask) {
+    std::vector<PeerRayHit> hits;
+    broadPhase_.rayCast(origin, direction, maxDistance, [&](std::uint64_t key, double clip) {
+        const NativeBody& b = bodies_[proxyBody(key)];
+        if (b.trigger || (b.layer & mask) == 0) return clip;
+        const Shape& s = b.shapes[proxyShape(key)];
+        const auto hit = native::raycast(s, shapeWorldPose(s, b.pose()), origin, direction, clip);
+        if (!hit) return clip;
+        if (closestOnly) hits.clear();
+        hits.push_back({b.userData, hit->point, hit->normal, hit->distance});
+        return closestOnly ? hit->distance : clip;
+    });
+    std::sort(hits.begin(), hits.end(), [](const PeerRayHit& x, const PeerRayHit& y) { return x.distance < y.distance; });
+    return hits;
+}
+
+std::vector<std::uint64_t> NativeWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
+                                                std::uint32_t mask) {
+    std::vector<std::uint64_t> found;
+    for (const PeerShape& ps : shapes) {
+        const Shape query = makeShape(ps, pose);
+        const Transform xf = shapeWorldPose(query, pose);
+        broadPhase_.query(computeAabb(query, xf), [&](std::uint64_t key) {
+            const NativeBody& b = bodies_[proxyBody(key)];
+            if (b.trigger || (b.layer & mask) == 0) return true;
+            const Shape& s = b.shapes[proxyShape(key)];
+            if (native::overlap(query, xf, s, shapeWorldPose(s, b.pose()))) found.push_back(b.userData);
+            return true;
+        });
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
 }
 
 }  // namespace anyphys::native

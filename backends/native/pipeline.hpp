@@ -3,8 +3,9 @@
 // world runs only the stages that are needed, so an effect that is off costs nothing but the
 // one check made when the world's content or effects change.
 //
-// Order today: per substep {implicit gyroscopic -> integrate}, then once: clear forces. Collision detection, contact
-// and joint solving plug in between as further stages.
+// Order: collide (broad + narrow phase, constraint set-up); per substep {implicit gyroscopic,
+// integrate} for free bodies; solve contacts (its own substeps, for constrained bodies);
+// continuous collision; sleep; clear forces. Joints will plug in beside the contact solver.
 #include <string_view>
 
 namespace anyphys::native {

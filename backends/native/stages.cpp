@@ -1,7 +1,10 @@
 #include "stages.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <map>
 
+#include "collision/queries.hpp"
 #include "gyroscopic.hpp"
 #include "integrators.hpp"
 #include "native_world.hpp"
@@ -17,7 +20,7 @@ bool isAnisotropic(const Vec3& inertia) {
 bool hasGyroscopicBody(const NativeWorld& world, GyroscopicMode mode) {
     if (!world.effects().has(Effect::Gyroscopic)) return false;
     return std::any_of(world.bodies().begin(), world.bodies().end(), [&](const NativeBody& b) {
-        return b.isDynamic() && b.gyroscopic == mode && isAnisotropic(b.inertia);
+        return b.alive && b.isDynamic() && b.gyroscopic == mode && isAnisotropic(b.inertia);
     });
 }
 
@@ -27,7 +30,7 @@ public:
     bool needed(const NativeWorld& world) const override { return hasGyroscopicBody(world, GyroscopicMode::Implicit); }
     void run(NativeWorld& world, const StepInfo& step) override {
         for (NativeBody& b : world.bodies()) {
-            if (!b.isDynamic() || b.gyroscopic != GyroscopicMode::Implicit) continue;
+            if (!b.isDynamic() || !b.isActive() || b.constrained || b.gyroscopic != GyroscopicMode::Implicit) continue;
             b.state.angularVelocity =
                 solveImplicitGyroscopic(b.state.angularVelocity, b.state.orientation, b.inertia, step.dt);
         }
@@ -82,7 +85,8 @@ class IntegrateStage final : public Stage {
 public:
     std::string_view name() const override { return "integrate"; }
     bool needed(const NativeWorld& world) const override {
-        return std::any_of(world.bodies().begin(), world.bodies().end(), [](const NativeBody& b) { return b.moves(); });
+        return std::any_of(world.bodies().begin(), world.bodies().end(),
+                           [](const NativeBody& b) { return b.alive && b.moves(); });
     }
 
     void run(NativeWorld& world, const StepInfo& step) override {
@@ -134,7 +138,7 @@ public:
         integrate(world.settings().integrator, step.time, step.dt, states_, accelerations, world.integratorScratch());
         for (std::size_t i = 0; i < dynamic_.size(); ++i) bodies[dynamic_[i]].state = states_[i];
         for (NativeBody& b : bodies)
-            if (b.type == BodyType::Kinematic) b.state = advanceKinematic(b.state, step.dt);
+            if (b.type == BodyType::Kinematic && b.isActive() && !b.constrained) b.state = advanceKinematic(b.state, step.dt);
     }
 
 private:
@@ -144,7 +148,8 @@ private:
         dynamic_.clear();
         slotOfBody_.assign(bodies.size(), -1);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
-            if (!bodies[i].isDynamic()) continue;
+            // Free bodies only: constrained ones are moved by the contact solver, asleep ones not at all.
+            if (!bodies[i].isDynamic() || !bodies[i].isActive() || bodies[i].constrained) continue;
             slotOfBody_[i] = static_cast<int>(dynamic_.size());
             dynamic_.push_back(i);
         }
@@ -174,16 +179,152 @@ public:
     }
 };
 
+bool hasContacts(const NativeWorld& world) { return world.effects().has(Effect::Contacts); }
+
+// Broad phase, narrow phase and constraint set-up, once per step.
+class CollideStage final : public Stage {
+public:
+    std::string_view name() const override { return "collide"; }
+    bool perSubstep() const override { return false; }
+    bool needed(const NativeWorld& world) const override { return hasContacts(world); }
+    void run(NativeWorld& world, const StepInfo& step) override {
+        auto& bodies = world.bodies();
+        for (std::uint32_t i = 0; i < bodies.size(); ++i)
+            if (bodies[i].isActive()) world.updateProxies(i, step.dt * bodies[i].state.linearVelocity);
+        world.broadPhase().updatePairs([&](std::uint64_t a, std::uint64_t b) {
+            world.contactManager().addPair(a, b, bodies, world.materials());
+        });
+        toWake_.clear();
+        const WorldSettings& s = world.settings();
+        world.contactManager().update(bodies, world.broadPhase(), s.speculativeDistance, s.linearSlop, step.dt, toWake_);
+        for (std::uint32_t i : toWake_) world.wakeBody(i);
+        world.contactSolver().prepare(world);
+    }
+
+private:
+    std::vector<std::uint32_t> toWake_;
+};
+
+class SolveContactsStage final : public Stage {
+public:
+    std::string_view name() const override { return "solve_contacts"; }
+    bool perSubstep() const override { return false; }
+    bool needed(const NativeWorld& world) const override { return hasContacts(world); }
+    void run(NativeWorld& world, const StepInfo& step) override { world.contactSolver().solve(world, step); }
+};
+
+// Time of impact against static geometry for bodies that moved far for their size this step:
+// they stop where they would first have touched, keeping their velocity, and the next step's
+// contact handles the impact. A fast small body cannot pass through a thin wall.
+class ContinuousStage final : public Stage {
+public:
+    std::string_view name() const override { return "continuous"; }
+    bool perSubstep() const override { return false; }
+    bool needed(const NativeWorld& world) const override {
+        return hasContacts(world) && world.effects().has(Effect::ContinuousCollision);
+    }
+    void run(NativeWorld& world, const StepInfo&) override {
+        auto& bodies = world.bodies();
+        const double target = world.settings().linearSlop;
+        for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+            NativeBody& b = bodies[i];
+            if (!b.isActive() || !b.isDynamic() || b.trigger || b.shapes.empty()) continue;
+            const Vec3 travel = b.state.position - b.stepStartPosition;
+            if (travel.norm() < 0.5 * b.coreExtent) continue;  // the speculative margin covers it
+            const Transform start{b.stepStartPosition, b.stepStartOrientation}, end = b.pose();
+            double first = 1.0;
+            for (const Shape& shape : b.shapes) {
+                const Transform from = shapeWorldPose(shape, start), to = shapeWorldPose(shape, end);
+                const Aabb swept = computeAabb(shape, from).merged(computeAabb(shape, to));
+                world.broadPhase().query(swept, [&](std::uint64_t key) {
+                    const NativeBody& other = bodies[proxyBody(key)];
+                    if (proxyBody(key) == i || other.type != BodyType::Static || other.trigger ||
+                        !layersCollide(b.layer, b.mask, other.layer, other.mask))
+                        return true;
+                    const Shape& fixed = other.shapes[proxyShape(key)];
+                    // Already touching at the start: the contact solver owns that pair (a body
+                    // sliding fast along the ground must not be frozen in place).
+                    const double t = timeOfImpact(shape, from, to, fixed, shapeWorldPose(fixed, other.pose()), target);
+                    if (t > 0.0) first = std::min(first, t);
+                    return true;
+                });
+            }
+            if (first >= 1.0) continue;
+            b.state.position = start.position + first * travel;
+            b.state.orientation = start.orientation.slerp(first, end.orientation);
+            world.updateProxies(i, Vec3::Zero());
+        }
+    }
+};
+
+// Islands of touching bodies fall asleep together once all of them have rested long enough.
+class SleepStage final : public Stage {
+public:
+    std::string_view name() const override { return "sleep"; }
+    bool perSubstep() const override { return false; }
+    bool needed(const NativeWorld& world) const override { return world.effects().has(Effect::Sleeping); }
+    void run(NativeWorld& world, const StepInfo& step) override {
+        auto& bodies = world.bodies();
+        const WorldSettings& s = world.settings();
+        parent_.resize(bodies.size());
+        for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+            parent_[i] = i;
+            NativeBody& b = bodies[i];
+            if (!b.isActive() || !b.isDynamic()) continue;
+            const bool resting = b.allowSleep && b.state.linearVelocity.norm() < s.sleepLinearVelocity &&
+                                 b.state.angularVelocity.norm() < s.sleepAngularVelocity;
+            b.sleepTime = resting ? b.sleepTime + step.dt : 0.0;
+        }
+        for (const auto& [key, c] : world.contactManager().contacts()) {
+            if (c.trigger || !c.touching) continue;
+            NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
+            const bool da = a.isActive() && a.isDynamic(), db = b.isActive() && b.isDynamic();
+            if (da && db) unite(c.bodyA, c.bodyB);
+            // A moving kinematic body keeps what it touches awake.
+            if (da && isMovingKinematic(b)) a.sleepTime = 0.0;
+            if (db && isMovingKinematic(a)) b.sleepTime = 0.0;
+        }
+        islandRest_.assign(bodies.size(), std::numeric_limits<double>::infinity());
+        for (std::uint32_t i = 0; i < bodies.size(); ++i)
+            if (bodies[i].isActive() && bodies[i].isDynamic())
+                islandRest_[find(i)] = std::min(islandRest_[find(i)], bodies[i].sleepTime);
+        members_.clear();
+        for (std::uint32_t i = 0; i < bodies.size(); ++i)
+            if (bodies[i].isActive() && bodies[i].isDynamic() && islandRest_[find(i)] >= s.timeToSleep)
+                members_[find(i)].push_back(i);
+        for (const auto& [root, island] : members_) world.sleepIsland(island);
+    }
+
+private:
+    static bool isMovingKinematic(const NativeBody& b) {
+        return b.alive && b.type == BodyType::Kinematic &&
+               (!b.state.linearVelocity.isZero(0) || !b.state.angularVelocity.isZero(0));
+    }
+    std::uint32_t find(std::uint32_t i) {
+        while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+        return i;
+    }
+    void unite(std::uint32_t a, std::uint32_t b) { parent_[find(a)] = find(b); }
+
+    std::vector<std::uint32_t> parent_;
+    std::vector<double> islandRest_;
+    std::map<std::uint32_t, std::vector<std::uint32_t>> members_;
+};
+
 }  // namespace
 
 std::unique_ptr<Stage> makeImplicitGyroscopicStage() { return std::make_unique<ImplicitGyroscopicStage>(); }
 std::unique_ptr<Stage> makeIntegrateStage() { return std::make_unique<IntegrateStage>(); }
 std::unique_ptr<Stage> makeClearForcesStage() { return std::make_unique<ClearForcesStage>(); }
 
-std::vector<std::unique_ptr<Stage>> makeFreeBodyPipeline() {
+std::vector<std::unique_ptr<Stage>> makePipeline() {
     std::vector<std::unique_ptr<Stage>> stages;
+    stages.push_back(std::make_unique<CollideStage>());
     stages.push_back(makeImplicitGyroscopicStage());
     stages.push_back(makeIntegrateStage());
+    stages.push_back(std::make_unique<SolveContactsStage>());
+    stages.push_back(std::make_unique<ContinuousStage>());
+    stages.push_back(std::make_unique<SleepStage>());
     stages.push_back(makeClearForcesStage());
     return stages;
 }

@@ -15,7 +15,8 @@ std::unique_ptr<Stage> makeIntegrateStage();
 /// Clears the user forces and torques accumulated for this step.
 std::unique_ptr<Stage> makeClearForcesStage();
 
-/// Every stage in execution order.
-std::vector<std::unique_ptr<Stage>> makeFreeBodyPipeline();
+/// Every stage in execution order: collide, [gyroscopic_implicit, integrate] per substep,
+/// solve_contacts, continuous, sleep, clear_forces.
+std::vector<std::unique_ptr<Stage>> makePipeline();
 
 }  // namespace anyphys::native

@@ -3,10 +3,13 @@
 // physics rather than against another engine.
 #include "anyphys/containers/scene_catalogue.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
+#include <numbers>
 
 #include "anyphys/error.hpp"
 
@@ -174,6 +177,231 @@ CatalogueScene freeBodies() {
     return c;
 }
 
+// ---- contact scenes ----------------------------------------------------------------------------
+
+/// Reduces a run to f(initial states, final states, final time); most checks need no more.
+class EndpointProbe : public SceneProbe {
+public:
+    using Measure = std::function<double(const std::vector<BodyState>&, const std::vector<BodyState>&, double)>;
+    explicit EndpointProbe(Measure measure) : measure_(std::move(measure)) {}
+    void observe(double time, const std::vector<BodyState>& states) override {
+        if (first_.empty()) first_ = states;
+        last_ = states;
+        time_ = time;
+    }
+    double value() const override { return first_.empty() ? 0.0 : measure_(first_, last_, time_); }
+
+private:
+    Measure measure_;
+    std::vector<BodyState> first_, last_;
+    double time_ = 0.0;
+};
+
+SceneCheck endpointCheck(SceneCheck check, EndpointProbe::Measure measure) {
+    check.makeProbe = [measure] { return std::make_unique<EndpointProbe>(measure); };
+    return check;
+}
+
+/// First rebound of a dropped body, as a fraction of its drop: (apex - rest) / (start - rest),
+/// where `rest` is its height when touching the ground. Exact for restitution e: e^2.
+class ReboundProbe : public SceneProbe {
+public:
+    ReboundProbe(std::size_t body, double restHeight) : body_(body), rest_(restHeight) {}
+    void observe(double, const std::vector<BodyState>& states) override {
+        const BodyState& s = states.at(body_);
+        const double y = s.position.y(), vy = s.linearVelocity.y();
+        if (!start_) start_ = y;
+        if (phase_ == Phase::Falling && vy > 0) phase_ = Phase::Rising;  // the first bounce
+        if (phase_ == Phase::Rising) {
+            if (!(y <= apex_)) apex_ = y;  // keeps a NaN (blow-up) visible
+            if (vy < 0) phase_ = Phase::Done;  // past the apex: later bounces do not count
+        }
+    }
+    double value() const override {
+        if (!start_ || phase_ == Phase::Falling) return 0.0;  // no rebound (yet)
+        return (apex_ - rest_) / (*start_ - rest_);
+    }
+
+private:
+    enum class Phase { Falling, Rising, Done };
+    std::size_t body_;
+    double rest_;
+    std::optional<double> start_;
+    double apex_ = -std::numeric_limits<double>::infinity();
+    Phase phase_ = Phase::Falling;
+};
+
+/// Indices of the dynamic bodies of a scene.
+std::vector<std::size_t> dynamicBodies(const Scene& scene) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+        if (scene.bodies[i].type == BodyType::Dynamic) out.push_back(i);
+    return out;
+}
+
+/// Largest horizontal (x, z) distance any of `bodies` moved from its start: a standing stack
+/// moves ~0 sideways. Vertical settling is left out: resting contacts keep a designed overlap
+/// (settings.linearSlop each), so a tall stack sinks by design without drifting.
+EndpointProbe::Measure maxHorizontalDrift(std::vector<std::size_t> bodies) {
+    return [bodies](const std::vector<BodyState>& first, const std::vector<BodyState>& last, double) {
+        double worst = 0.0;
+        for (std::size_t i : bodies) {
+            const Vec3 moved = last[i].position - first[i].position;
+            const double d = std::hypot(moved.x(), moved.z());
+            if (!(d <= worst)) worst = d;  // keeps a NaN (blow-up) visible
+        }
+        return worst;
+    };
+}
+
+BodyDef groundPlane() {
+    BodyDef ground;
+    ground.name = "ground";
+    ground.type = BodyType::Static;
+    ground.shape = ShapeDef::plane(Vec3(0, 1, 0), 0.0);
+    return ground;
+}
+
+BodyDef unitBox(const std::string& name, const Vec3& position) {
+    BodyDef box;
+    box.name = name;
+    box.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));  // 1 m cube, 1000 kg at the default density
+    box.position = position;
+    return box;
+}
+
+CatalogueScene bouncingBall() {
+    constexpr double kRestitution = 0.5, kRadius = 0.5, kStart = 5.0;
+    CatalogueScene c;
+    c.name = "bouncing_ball";
+    c.description = "ball (r 0.5 m, restitution 0.5) dropped from a centre height of 5 m onto the ground: "
+                    "first rebound e^2 = 0.25 of the 4.5 m drop";
+    c.duration = 5.0;
+    c.scene.settings.timeStep = 1.0 / 60.0;
+    c.scene.materials.add("rubber", Material{0.6, kRestitution, 1000.0});
+    c.scene.bodies.push_back(groundPlane());  // default material: restitution 0; the rule "max" gives 0.5
+    BodyDef ball = sphereBody("ball", kRadius, 1.0);
+    ball.position = Vec3(0, kStart, 0);
+    ball.material = "rubber";
+    c.scene.bodies.push_back(ball);
+    // Impact at sqrt(2 g 4.5) = 9.4 m/s, far above the 1 m/s restitution threshold.
+    SceneCheck check{"rebound/drop", "", kRestitution * kRestitution, 0.05 * kRestitution * kRestitution,
+                     "5 %: the contract's bound; the apex is sampled each step (error g dt^2 / 8 = 0.3 mm)", {}};
+    check.makeProbe = [radius = kRadius] { return std::make_unique<ReboundProbe>(1, radius); };
+    c.check = check;
+    return c;
+}
+
+CatalogueScene slopeSlide() {
+    constexpr double kAngle = std::numbers::pi / 6.0, kFriction = 0.3, kG = 9.81, kHalf = 0.25;
+    const double accel = kG * (std::sin(kAngle) - kFriction * std::cos(kAngle));  // 2.356 m/s^2
+    const Quat tilt(Eigen::AngleAxisd(kAngle, Vec3::UnitZ()));
+    const Vec3 normal = tilt * Vec3::UnitY(), uphill = tilt * Vec3::UnitX();
+
+    CatalogueScene c;
+    c.name = "slope_slide";
+    c.description = "box released on a 30 deg slope, friction 0.3: slides with a = g (sin 30 - 0.3 cos 30) = 2.356 m/s^2";
+    c.duration = 1.5;  // slides 2.65 m of the 8 m slope: still on it at the end
+    c.scene.settings.timeStep = 1.0 / 60.0;
+    c.scene.materials.add("slope", Material{kFriction, 0.0, 1000.0});
+    c.scene.materials.add("block", Material{kFriction, 0.0, 1000.0});  // geometric mean: 0.3
+    BodyDef slope;
+    slope.name = "slope";
+    slope.type = BodyType::Static;
+    slope.shape = ShapeDef::box(Vec3(4.0, 0.5, 2.0));  // 8 m long, 1 m thick, centred at the origin
+    slope.orientation = tilt;
+    slope.material = "slope";
+    c.scene.bodies.push_back(slope);
+    BodyDef block;
+    block.name = "block";
+    block.shape = ShapeDef::box(Vec3(kHalf, kHalf, kHalf));
+    block.orientation = tilt;  // flat on the slope
+    block.position = uphill * 2.5 + normal * (0.5 + kHalf);  // resting on the top face, 2.5 m up from its middle
+    block.material = "block";
+    c.scene.bodies.push_back(block);
+
+    const BodyDef start = block;
+    const Vec3 downhill = -uphill;
+    c.reference = [start, downhill, accel](const std::string& body, double t) -> std::optional<BodyState> {
+        if (body != start.name) return std::nullopt;
+        BodyState s;
+        s.position = start.position + 0.5 * accel * t * t * downhill;
+        s.linearVelocity = accel * t * downhill;
+        s.orientation = start.orientation;  // slides without turning
+        return s;
+    };
+    c.check = endpointCheck(
+        SceneCheck{"slide accel", "m/s^2", accel, 0.05 * accel, "5 %: the contract's bound on the slide acceleration", {}},
+        [downhill](const std::vector<BodyState>& first, const std::vector<BodyState>& last, double t) {
+            // s = a t^2 / 2 from rest, so the mean acceleration over the run is 2 s / t^2.
+            return t > 0 ? 2.0 * (last[1].position - first[1].position).dot(downhill) / (t * t) : 0.0;
+        });
+    return c;
+}
+
+CatalogueScene boxStack10() {
+    constexpr int kBoxes = 10;
+    CatalogueScene c;
+    c.name = "box_stack_10";
+    c.description = "10 unit boxes stacked on the ground with no gap: must stand; top box's sideways drift after 10 s";
+    c.duration = 10.0;
+    c.scene.settings.timeStep = 1.0 / 60.0;
+    c.scene.bodies.push_back(groundPlane());
+    for (int i = 0; i < kBoxes; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "box_%02d", i);
+        c.scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
+    }
+    c.check = endpointCheck(
+        SceneCheck{"top drift", "m", 0.0, 0.01, "1 cm sideways: the contract's bound for a standing stack", {}},
+        maxHorizontalDrift({static_cast<std::size_t>(kBoxes)}));
+    return c;
+}
+
+CatalogueScene pyramid20() {
+    constexpr int kRows = 20;
+    CatalogueScene c;
+    c.name = "pyramid_20";
+    c.description = "pyramid of 210 unit boxes, 20 rows, base 20, no gaps: must stand for 5 s (largest sideways drift)";
+    c.duration = 5.0;
+    c.scene.settings.timeStep = 1.0 / 60.0;
+    c.scene.bodies.push_back(groundPlane());
+    for (int row = 0; row < kRows; ++row) {
+        const int count = kRows - row;
+        for (int i = 0; i < count; ++i) {
+            char name[40];
+            std::snprintf(name, sizeof name, "box_r%02d_%02d", row, i);
+            const double x = i - 0.5 * (count - 1);  // each row centred on x = 0, boxes side by side
+            c.scene.bodies.push_back(unitBox(name, Vec3(x, 0.5 + row, 0)));
+        }
+    }
+    c.check = endpointCheck(
+        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways (a tenth of a box): the pyramid stands as built", {}},
+        maxHorizontalDrift(dynamicBodies(c.scene)));
+    return c;
+}
+
+CatalogueScene boxGrid1000() {
+    CatalogueScene c;
+    c.name = "box_grid_1000";
+    c.description = "benchmark load: 10x10x10 unit boxes 1.2 m apart dropped from 1 m onto the ground: settles in 5 s";
+    c.duration = 5.0;
+    c.scene = boxGridScene(10, 10, 10, 1.2, 1.0);
+    const std::vector<std::size_t> boxes = dynamicBodies(c.scene);
+    c.check = endpointCheck(
+        SceneCheck{"max speed", "m/s", 0.0, 0.05, "0.05 m/s: the default sleep threshold; slower counts as settled", {}},
+        [boxes](const std::vector<BodyState>&, const std::vector<BodyState>& last, double) {
+            double fastest = 0.0;
+            for (std::size_t i : boxes) {
+                const double v = last[i].linearVelocity.norm();
+                if (!(v <= fastest)) fastest = v;
+            }
+            return fastest;
+        });
+    c.compareByDefault = false;  // 300 steps of a 1000-box pile per integrator: run it by name
+    return c;
+}
+
 std::vector<CatalogueScene> buildCatalogue() {
     std::vector<CatalogueScene> all;
     all.push_back(projectile());
@@ -183,6 +411,11 @@ std::vector<CatalogueScene> buildCatalogue() {
     all.push_back(dampedMotion());
     all.push_back(freeFallDrop());
     all.push_back(freeBodies());
+    all.push_back(bouncingBall());
+    all.push_back(slopeSlide());
+    all.push_back(boxStack10());
+    all.push_back(pyramid20());
+    all.push_back(boxGrid1000());
     return all;
 }
 
@@ -204,8 +437,27 @@ Scene freeBodiesScene(int count) {
         const double a = 0.7 * i;
         def.linearVelocity = Vec3(std::sin(a), 5.0 + std::cos(a), std::sin(1.3 * a));
         def.angularVelocity = Vec3(std::cos(0.5 * a), std::sin(0.9 * a), 2.0);
+        def.mask = 0;  // collides with nothing, so the load stays free bodies where contacts exist
         scene.bodies.push_back(def);
     }
+    return scene;
+}
+
+Scene boxGridScene(int nx, int ny, int nz, double spacing, double dropHeight) {
+    if (nx < 0 || ny < 0 || nz < 0)
+        throw Error::invalid("boxGridScene.counts", std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz),
+                             "must be >= 0");
+    Scene scene;
+    scene.settings.timeStep = 1.0 / 60.0;
+    scene.bodies.push_back(groundPlane());
+    for (int y = 0; y < ny; ++y)
+        for (int z = 0; z < nz; ++z)
+            for (int x = 0; x < nx; ++x) {
+                const std::string name = "box_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z);
+                // Centred on the y axis; the lowest layer's bottoms at dropHeight.
+                const Vec3 at((x - 0.5 * (nx - 1)) * spacing, dropHeight + 0.5 + y * spacing, (z - 0.5 * (nz - 1)) * spacing);
+                scene.bodies.push_back(unitBox(name, at));
+            }
     return scene;
 }
 

@@ -2,17 +2,19 @@
 // ("bodies[3].shape.radius: must be > 0, got -1"); unknown and duplicate keys are errors too, so
 // a typo never silently falls back to a default.
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -52,7 +54,7 @@ std::string show(const json& v) {
     throw Error::invalid(label(path), show(value), rule);
 }
 
-std::string list(std::initializer_list<std::string_view> names) {
+std::string list(const std::vector<std::string_view>& names) {
     std::string out;
     for (auto n : names) out += (out.empty() ? "" : ", ") + std::string(n);
     return out;
@@ -68,7 +70,7 @@ void requireObject(const json& v, const std::string& path, const std::string& wh
     if (!v.is_object()) fail(path, v, "must be " + what);
 }
 
-void checkKeys(const json& obj, const std::string& path, std::initializer_list<std::string_view> allowed,
+void checkKeys(const json& obj, const std::string& path, const std::vector<std::string_view>& allowed,
                const std::string& context = "") {
     for (const auto& [key, value] : obj.items()) {
         bool known = false;
@@ -98,6 +100,19 @@ int readCount(const json& v, const std::string& path) {
     if (!integral || v.get<double>() < 1 || v.get<double>() > std::numeric_limits<int>::max())
         fail(path, v, "must be an integer >= 1");
     return static_cast<int>(v.get<double>());
+}
+
+// Vertex indices, layer and mask bits. Accepts 3 and 3.0 alike, as counts do.
+std::uint32_t readUint32(const json& v, const std::string& path, const std::string& rule) {
+    const bool integral = v.is_number() && std::floor(v.get<double>()) == v.get<double>();
+    if (!integral || v.get<double>() < 0 || v.get<double>() > std::numeric_limits<std::uint32_t>::max())
+        fail(path, v, rule + " in [0, 4294967295]");
+    return static_cast<std::uint32_t>(v.get<double>());
+}
+
+bool readBool(const json& v, const std::string& path) {
+    if (!v.is_boolean()) fail(path, v, "must be true or false");
+    return v.get<bool>();
 }
 
 std::string readString(const json& v, const std::string& path) {
@@ -138,10 +153,30 @@ CapabilityPolicy readPolicy(const json& v, const std::string& path) {
     fail(path, v, "must be one of strict, lenient");
 }
 
+// The contact and sleeping knobs: plain numbers, read and written alike, in this order.
+// Settings is WorldSettings or const WorldSettings.
+template <class Settings>
+auto settingsNumbers(Settings& s) {
+    using Field = std::pair<std::string_view, decltype(&s.contactHertz)>;
+    return std::array<Field, 10>{{{"contactHertz", &s.contactHertz},
+                                  {"contactDampingRatio", &s.contactDampingRatio},
+                                  {"contactPushMaxVelocity", &s.contactPushMaxVelocity},
+                                  {"baumgarte", &s.baumgarte},
+                                  {"restitutionThreshold", &s.restitutionThreshold},
+                                  {"linearSlop", &s.linearSlop},
+                                  {"speculativeDistance", &s.speculativeDistance},
+                                  {"sleepLinearVelocity", &s.sleepLinearVelocity},
+                                  {"sleepAngularVelocity", &s.sleepAngularVelocity},
+                                  {"timeToSleep", &s.timeToSleep}}};
+}
+
 WorldSettings readSettings(const json& v, const std::string& path) {
     requireObject(v, path);
     checkKeys(v, path, {"backend", "gravity", "timeStep", "integrator", "solver", "substeps", "iterations", "effects",
-                        "maxStepsPerUpdate", "capabilityPolicy", "backendOptions"});
+                        "contactHertz", "contactDampingRatio", "contactPushMaxVelocity", "baumgarte",
+                        "restitutionThreshold", "linearSlop", "speculativeDistance", "sleepLinearVelocity",
+                        "sleepAngularVelocity", "timeToSleep", "maxStepsPerUpdate", "capabilityPolicy",
+                        "backendOptions"});
     WorldSettings s;
     if (auto* x = find(v, "backend")) s.backend = readString(*x, join(path, "backend"));
     if (auto* x = find(v, "gravity")) s.gravity = readVec3(*x, join(path, "gravity"));
@@ -150,6 +185,8 @@ WorldSettings readSettings(const json& v, const std::string& path) {
     if (auto* x = find(v, "solver")) s.solver = readEnum<Solver>(*x, join(path, "solver"));
     if (auto* x = find(v, "substeps")) s.substeps = readCount(*x, join(path, "substeps"));
     if (auto* x = find(v, "iterations")) s.iterations = readCount(*x, join(path, "iterations"));
+    for (const auto& [key, field] : settingsNumbers(s))
+        if (auto* x = find(v, key)) *field = readNumber(*x, join(path, key));
     if (auto* x = find(v, "maxStepsPerUpdate")) s.maxStepsPerUpdate = readCount(*x, join(path, "maxStepsPerUpdate"));
     if (auto* x = find(v, "capabilityPolicy")) s.capabilityPolicy = readPolicy(*x, join(path, "capabilityPolicy"));
     if (auto* x = find(v, "effects")) {
@@ -230,25 +267,73 @@ void readMaterials(const json& doc, MaterialLibrary& lib) {
     }
 }
 
-ShapeDef readShape(const json& v, const std::string& path) {
+// Keys every shape may carry besides its own: its placement in the body frame.
+constexpr std::string_view kPlacementKeys[] = {"position", "orientation"};
+
+// The keys of one shape type, without the placement keys.
+std::vector<std::string_view> shapeKeys(ShapeType type) {
+    switch (type) {
+        case ShapeType::Sphere: return {"type", "radius"};
+        case ShapeType::Box: return {"type", "halfExtents"};
+        case ShapeType::Capsule: return {"type", "radius", "halfHeight"};
+        case ShapeType::Plane: return {"type", "normal", "offset"};
+        case ShapeType::Convex: return {"type", "points"};
+        case ShapeType::Mesh: return {"type", "vertices", "indices"};
+        case ShapeType::Compound: return {"type", "shapes"};
+    }
+    return {"type"};
+}
+
+std::vector<Vec3> readPoints(const json& v, const std::string& path) {
+    if (!v.is_array()) fail(path, v, "must be an array of [x, y, z] points");
+    std::vector<Vec3> points;
+    points.reserve(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) points.push_back(readVec3(v[i], at(path, i)));
+    return points;
+}
+
+std::vector<std::uint32_t> readIndices(const json& v, const std::string& path) {
+    if (!v.is_array()) fail(path, v, "must be a flat array of vertex indices, three per triangle");
+    std::vector<std::uint32_t> indices;
+    indices.reserve(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+        indices.push_back(readUint32(v[i], at(path, i), "must be a non-negative integer (a vertex index)"));
+    return indices;
+}
+
+// `child`: an element of a compound's "shapes", which may also carry its own "density".
+ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
     requireObject(v, path);
     const auto* typeValue = find(v, "type");
     if (!typeValue) missing(join(path, "type"), "allowed types are " + allowedNames<ShapeType>());
     ShapeDef s;
     s.type = readEnum<ShapeType>(*typeValue, join(path, "type"));
     // Each shape type has its own keys; a key of another type is a mistake worth reporting.
-    const std::string context = " for a " + std::string(toString(s.type)) + " shape";
-    switch (s.type) {
-        case ShapeType::Sphere: checkKeys(v, path, {"type", "radius"}, context); break;
-        case ShapeType::Box: checkKeys(v, path, {"type", "halfExtents"}, context); break;
-        case ShapeType::Capsule: checkKeys(v, path, {"type", "radius", "halfHeight"}, context); break;
-        case ShapeType::Plane: checkKeys(v, path, {"type", "normal", "offset"}, context); break;
-    }
+    std::vector<std::string_view> allowed = shapeKeys(s.type);
+    allowed.insert(allowed.end(), std::begin(kPlacementKeys), std::end(kPlacementKeys));
+    if (child) allowed.push_back("density");
+    if (!child && find(v, "density"))
+        throw Error(join(path, "density") + ": allowed only on the children of a compound shape; the body's "
+                                            "\"density\" applies to its whole shape");
+    checkKeys(v, path, allowed, " for a " + std::string(toString(s.type)) + " shape");
+
     if (auto* x = find(v, "radius")) s.radius = readNumber(*x, join(path, "radius"));
     if (auto* x = find(v, "halfExtents")) s.halfExtents = readVec3(*x, join(path, "halfExtents"));
     if (auto* x = find(v, "halfHeight")) s.halfHeight = readNumber(*x, join(path, "halfHeight"));
     if (auto* x = find(v, "normal")) s.normal = readVec3(*x, join(path, "normal"));
     if (auto* x = find(v, "offset")) s.offset = readNumber(*x, join(path, "offset"));
+    if (auto* x = find(v, "points")) s.points = readPoints(*x, join(path, "points"));
+    if (auto* x = find(v, "vertices")) s.vertices = readPoints(*x, join(path, "vertices"));
+    if (auto* x = find(v, "indices")) s.indices = readIndices(*x, join(path, "indices"));
+    if (auto* x = find(v, "shapes")) {
+        const std::string p = join(path, "shapes");
+        if (!x->is_array()) fail(p, *x, "must be an array of child shape objects");
+        for (std::size_t i = 0; i < x->size(); ++i) s.shapes.push_back(readShape((*x)[i], at(p, i), true));
+    }
+    if (auto* x = find(v, "position")) s.position = readVec3(*x, join(path, "position"));
+    if (auto* x = find(v, "orientation")) s.orientation = readQuat(*x, join(path, "orientation"));
+    if (auto* x = find(v, "density")) s.density = readNumber(*x, join(path, "density"));
+    // Ranges (radius > 0, hull not flat, indices in range, ...) are checked by validate(BodyDef).
     return s;
 }
 
@@ -256,7 +341,7 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     requireObject(v, path);
     checkKeys(v, path, {"name", "type", "position", "orientation", "linearVelocity", "angularVelocity", "shape", "mass",
                         "density", "inertia", "material", "linearDamping", "angularDamping", "gravityScale",
-                        "gyroscopic"});
+                        "gyroscopic", "isTrigger", "layer", "mask", "allowSleep", "isAwake"});
     BodyDef b;
     const auto* name = find(v, "name");
     if (!name) missing(join(path, "name"), "every body needs a non-empty, unique name");
@@ -278,6 +363,11 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     if (auto* x = find(v, "angularDamping")) b.angularDamping = readNumber(*x, join(path, "angularDamping"));
     if (auto* x = find(v, "gravityScale")) b.gravityScale = readNumber(*x, join(path, "gravityScale"));
     if (auto* x = find(v, "gyroscopic")) b.gyroscopic = readEnum<GyroscopicMode>(*x, join(path, "gyroscopic"));
+    if (auto* x = find(v, "isTrigger")) b.isTrigger = readBool(*x, join(path, "isTrigger"));
+    if (auto* x = find(v, "layer")) b.layer = readUint32(*x, join(path, "layer"), "must be an unsigned 32-bit integer");
+    if (auto* x = find(v, "mask")) b.mask = readUint32(*x, join(path, "mask"), "must be an unsigned 32-bit integer");
+    if (auto* x = find(v, "allowSleep")) b.allowSleep = readBool(*x, join(path, "allowSleep"));
+    if (auto* x = find(v, "isAwake")) b.isAwake = readBool(*x, join(path, "isAwake"));
     validate(b, path);  // the same range rules, in the same words, as World::createBody
     return b;
 }
@@ -348,6 +438,22 @@ json parseJson(const std::string& text) {
 
 ojson vec(const Vec3& v) { return ojson::array({v.x(), v.y(), v.z()}); }
 
+ojson quat(const Quat& q) { return ojson::array({q.w(), q.x(), q.y(), q.z()}); }
+
+ojson points(const std::vector<Vec3>& list) {
+    ojson j = ojson::array();
+    for (const Vec3& p : list) j.push_back(vec(p));
+    return j;
+}
+
+// Bitwise default (so -0.0 is written, and read back as -0.0).
+bool isDefault(double x, double def) { return x == def && std::signbit(x) == std::signbit(def); }
+bool isOrigin(const Vec3& v) { return isDefault(v.x(), 0) && isDefault(v.y(), 0) && isDefault(v.z(), 0); }
+bool isIdentity(const Quat& q) {
+    return isDefault(q.w(), 1) && isDefault(q.x(), 0) && isDefault(q.y(), 0) && isDefault(q.z(), 0);
+}
+
+// Each shape writes its own keys; the placement keys and a child's density only when set.
 ojson shapeJson(const ShapeDef& s) {
     ojson j;
     j["type"] = std::string(toString(s.type));
@@ -356,7 +462,16 @@ ojson shapeJson(const ShapeDef& s) {
         case ShapeType::Box: j["halfExtents"] = vec(s.halfExtents); break;
         case ShapeType::Capsule: j["radius"] = s.radius; j["halfHeight"] = s.halfHeight; break;
         case ShapeType::Plane: j["normal"] = vec(s.normal); j["offset"] = s.offset; break;
+        case ShapeType::Convex: j["points"] = points(s.points); break;
+        case ShapeType::Mesh: j["vertices"] = points(s.vertices); j["indices"] = s.indices; break;
+        case ShapeType::Compound:
+            j["shapes"] = ojson::array();
+            for (const ShapeDef& child : s.shapes) j["shapes"].push_back(shapeJson(child));
+            break;
     }
+    if (!isOrigin(s.position)) j["position"] = vec(s.position);
+    if (!isIdentity(s.orientation)) j["orientation"] = quat(s.orientation);
+    if (s.density) j["density"] = *s.density;
     return j;
 }
 
@@ -365,7 +480,7 @@ ojson bodyJson(const BodyDef& b) {
     j["name"] = b.name;
     j["type"] = std::string(toString(b.type));
     j["position"] = vec(b.position);
-    j["orientation"] = ojson::array({b.orientation.w(), b.orientation.x(), b.orientation.y(), b.orientation.z()});
+    j["orientation"] = quat(b.orientation);
     j["linearVelocity"] = vec(b.linearVelocity);
     j["angularVelocity"] = vec(b.angularVelocity);
     j["shape"] = shapeJson(b.shape);
@@ -377,6 +492,11 @@ ojson bodyJson(const BodyDef& b) {
     j["angularDamping"] = b.angularDamping;
     j["gravityScale"] = b.gravityScale;
     j["gyroscopic"] = std::string(toString(b.gyroscopic));
+    j["isTrigger"] = b.isTrigger;
+    j["layer"] = b.layer;
+    j["mask"] = b.mask;
+    j["allowSleep"] = b.allowSleep;
+    j["isAwake"] = b.isAwake;
     return j;
 }
 
@@ -390,6 +510,7 @@ ojson settingsJson(const WorldSettings& s) {
     j["substeps"] = s.substeps;
     j["iterations"] = s.iterations;
     if (s.effects) j["effects"] = s.effects->names();
+    for (const auto& [key, field] : settingsNumbers(s)) j[std::string(key)] = *field;
     j["maxStepsPerUpdate"] = s.maxStepsPerUpdate;
     for (const auto& [p, name] : kPolicyNames)
         if (p == s.capabilityPolicy) j["capabilityPolicy"] = std::string(name);

@@ -14,7 +14,8 @@ trap 'rm -rf "$work"' EXIT
 python3 - "$work/all.json" "$work/scenes.json" "$work/backends.json" <<'PY'
 import json, sys
 results = json.load(open(sys.argv[1]))["results"]
-scenes = [s["name"] for s in json.load(open(sys.argv[2]))["scenes"]]
+# Heavy benchmark loads (compareByDefault false) run only when named with --scenes.
+scenes = [s["name"] for s in json.load(open(sys.argv[2]))["scenes"] if s["compareByDefault"]]
 backends = json.load(open(sys.argv[3]))["backends"]
 integrators = sorted({i for b in backends for i in b["capabilities"]["integrators"]})
 

@@ -55,6 +55,16 @@ TEST_P(BadInputTest, RejectedBodyLeavesWorldUnchanged) {
     bad = good;
     bad.linearDamping = -0.5;
     expectError([&] { world.createBody(bad); }, {"BodyDef.linearDamping", "must be >= 0", "-0.5"});
+    bad = good;
+    bad.shape = ShapeDef::convex({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)});
+    expectError([&] { world.createBody(bad); }, {"BodyDef.shape.points", "not all in one plane"});
+    bad = good;
+    bad.type = BodyType::Static;
+    bad.shape = ShapeDef::mesh({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 1)}, {0, 1, 7});
+    expectError([&] { world.createBody(bad); }, {"BodyDef.shape.indices[2]", "got 7", "< the number of vertices"});
+    bad = good;
+    bad.shape = ShapeDef::compound({ShapeDef::sphere(0.5), ShapeDef::sphere(-2).placed(Vec3(1, 0, 0))});
+    expectError([&] { world.createBody(bad); }, {"BodyDef.shape.shapes[1].radius", "must be > 0", "got -2"});
     expectError([&] { a.applyForce(Vec3(std::numeric_limits<double>::infinity(), 0, 0)); },
                 {"Body.applyForce.force", "must be finite"});
     expectError([&] { world.step(0.0); }, {"World.step.dt", "must be > 0"});

@@ -55,6 +55,31 @@ void expectSameVec(const Vec3& a, const Vec3& b, const std::string& what) {
     for (int i = 0; i < 3; ++i) EXPECT_EQ(a[i], b[i]) << what << "[" << i << "]";
 }
 
+void expectSameQuat(const Quat& a, const Quat& b, const std::string& what) {
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(a.coeffs()[k], b.coeffs()[k]) << what << " coeff " << k;
+}
+
+void expectSameShape(const ShapeDef& x, const ShapeDef& y, const std::string& what) {
+    SCOPED_TRACE(what);
+    EXPECT_EQ(x.type, y.type);
+    EXPECT_EQ(x.radius, y.radius);
+    expectSameVec(x.halfExtents, y.halfExtents, "halfExtents");
+    EXPECT_EQ(x.halfHeight, y.halfHeight);
+    expectSameVec(x.normal, y.normal, "normal");
+    EXPECT_EQ(x.offset, y.offset);
+    ASSERT_EQ(x.points.size(), y.points.size());
+    for (std::size_t i = 0; i < x.points.size(); ++i) expectSameVec(x.points[i], y.points[i], "points");
+    ASSERT_EQ(x.vertices.size(), y.vertices.size());
+    for (std::size_t i = 0; i < x.vertices.size(); ++i) expectSameVec(x.vertices[i], y.vertices[i], "vertices");
+    EXPECT_EQ(x.indices, y.indices);
+    ASSERT_EQ(x.shapes.size(), y.shapes.size());
+    for (std::size_t i = 0; i < x.shapes.size(); ++i)
+        expectSameShape(x.shapes[i], y.shapes[i], what + ".shapes[" + std::to_string(i) + "]");
+    expectSameVec(x.position, y.position, "shape position");
+    expectSameQuat(x.orientation, y.orientation, "shape orientation");
+    EXPECT_EQ(x.density, y.density);
+}
+
 void expectSameScene(const Scene& a, const Scene& b) {
     const WorldSettings &sa = a.settings, &sb = b.settings;
     EXPECT_EQ(sa.backend, sb.backend);
@@ -68,6 +93,16 @@ void expectSameScene(const Scene& a, const Scene& b) {
     if (sa.effects && sb.effects) {
         EXPECT_EQ(sa.effects->bits(), sb.effects->bits());
     }
+    EXPECT_EQ(sa.contactHertz, sb.contactHertz);
+    EXPECT_EQ(sa.contactDampingRatio, sb.contactDampingRatio);
+    EXPECT_EQ(sa.contactPushMaxVelocity, sb.contactPushMaxVelocity);
+    EXPECT_EQ(sa.baumgarte, sb.baumgarte);
+    EXPECT_EQ(sa.restitutionThreshold, sb.restitutionThreshold);
+    EXPECT_EQ(sa.linearSlop, sb.linearSlop);
+    EXPECT_EQ(sa.speculativeDistance, sb.speculativeDistance);
+    EXPECT_EQ(sa.sleepLinearVelocity, sb.sleepLinearVelocity);
+    EXPECT_EQ(sa.sleepAngularVelocity, sb.sleepAngularVelocity);
+    EXPECT_EQ(sa.timeToSleep, sb.timeToSleep);
     EXPECT_EQ(sa.maxStepsPerUpdate, sb.maxStepsPerUpdate);
     EXPECT_EQ(sa.capabilityPolicy, sb.capabilityPolicy);
     EXPECT_EQ(sa.backendOptions, sb.backendOptions);
@@ -102,12 +137,7 @@ void expectSameScene(const Scene& a, const Scene& b) {
         for (int k = 0; k < 4; ++k) EXPECT_EQ(x.orientation.coeffs()[k], y.orientation.coeffs()[k]);
         expectSameVec(x.linearVelocity, y.linearVelocity, "linearVelocity");
         expectSameVec(x.angularVelocity, y.angularVelocity, "angularVelocity");
-        EXPECT_EQ(x.shape.type, y.shape.type);
-        EXPECT_EQ(x.shape.radius, y.shape.radius);
-        expectSameVec(x.shape.halfExtents, y.shape.halfExtents, "halfExtents");
-        EXPECT_EQ(x.shape.halfHeight, y.shape.halfHeight);
-        expectSameVec(x.shape.normal, y.shape.normal, "normal");
-        EXPECT_EQ(x.shape.offset, y.shape.offset);
+        expectSameShape(x.shape, y.shape, "shape");
         EXPECT_EQ(x.mass, y.mass);
         EXPECT_EQ(x.density, y.density);
         EXPECT_EQ(x.inertia.has_value(), y.inertia.has_value());
@@ -119,6 +149,11 @@ void expectSameScene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.angularDamping, y.angularDamping);
         EXPECT_EQ(x.gravityScale, y.gravityScale);
         EXPECT_EQ(x.gyroscopic, y.gyroscopic);
+        EXPECT_EQ(x.isTrigger, y.isTrigger);
+        EXPECT_EQ(x.layer, y.layer);
+        EXPECT_EQ(x.mask, y.mask);
+        EXPECT_EQ(x.allowSleep, y.allowSleep);
+        EXPECT_EQ(x.isAwake, y.isAwake);
     }
 }
 
@@ -296,7 +331,7 @@ TEST(SceneJson, ErrorsNamePathValueAndRule) {
     expectParseError(withBody(R"({"name": "b", "type": "ghost", "shape": {"type": "sphere"}})"),
                      {"bodies[0].type: must be one of static, kinematic, dynamic, got \"ghost\""});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "cone"}})"),
-                     {"bodies[0].shape.type: must be one of sphere, box, capsule, plane, got \"cone\""});
+                     {"bodies[0].shape.type: must be one of sphere, box, capsule, plane, convex, mesh, compound, got \"cone\""});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "box", "halfExtents": [1, 0, 1]}})"),
                      {"bodies[0].shape.halfExtents[1]: must be > 0, got 0"});
     expectParseError(withBody(R"({"name": "b", "orientation": [1, 1, 0, 0], "shape": {"type": "sphere"}})"),
@@ -407,4 +442,205 @@ TEST(SceneJson, LoadErrorsStartWithTheFilePath) {
         EXPECT_NE(std::string(e.what()).find(absent + ": cannot read scene file"), std::string::npos) << e.what();
     }
     EXPECT_THROW(saveScene(Scene{}, absent + "/no_such_dir/x.json"), Error);
+}
+
+// ---- contact-era fields: convex, mesh and compound shapes, placements, filtering, sleeping ----
+
+namespace {
+
+const char* kContactScene = R"({
+  "settings": { "contactHertz": 60, "contactDampingRatio": 2, "contactPushMaxVelocity": 4, "baumgarte": 0.3,
+                "restitutionThreshold": 0.5, "linearSlop": 0.01, "speculativeDistance": 0.04,
+                "sleepLinearVelocity": 0.1, "sleepAngularVelocity": 0.2, "timeToSleep": 1 },
+  "bodies": [ { "name": "terrain", "type": "static",
+                "shape": { "type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, -1], [1, 0, -1]],
+                           "indices": [0, 1, 2, 2, 1, 3] } },
+              { "name": "rock", "isTrigger": true, "layer": 4, "mask": 4294967295, "allowSleep": false,
+                "isAwake": false,
+                "shape": { "type": "convex", "points": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                           "position": [0.5, 0, 0], "orientation": [0, 0, 1, 0] } },
+              { "name": "dumbbell", "layer": 2, "mask": 3,
+                "shape": { "type": "compound", "shapes": [
+                  { "type": "sphere", "radius": 0.25, "position": [-1, 0, 0], "density": 7800 },
+                  { "type": "capsule", "radius": 0.05, "halfHeight": 1, "orientation": [0.7071067811865476, 0, 0, 0.7071067811865476] },
+                  { "type": "box", "halfExtents": [0.1, 0.2, 0.3], "position": [1, 0, 0] } ] } } ] })";
+
+}  // namespace
+
+TEST(SceneJson, ParsesContactSettingsShapesAndFilters) {
+    const Scene s = parseScene(kContactScene);
+    EXPECT_EQ(s.settings.contactHertz, 60);
+    EXPECT_EQ(s.settings.contactDampingRatio, 2);
+    EXPECT_EQ(s.settings.contactPushMaxVelocity, 4);
+    EXPECT_EQ(s.settings.baumgarte, 0.3);
+    EXPECT_EQ(s.settings.restitutionThreshold, 0.5);
+    EXPECT_EQ(s.settings.linearSlop, 0.01);
+    EXPECT_EQ(s.settings.speculativeDistance, 0.04);
+    EXPECT_EQ(s.settings.sleepLinearVelocity, 0.1);
+    EXPECT_EQ(s.settings.sleepAngularVelocity, 0.2);
+    EXPECT_EQ(s.settings.timeToSleep, 1);
+
+    ASSERT_EQ(s.bodies.size(), 3u);
+    const ShapeDef& mesh = s.bodies[0].shape;
+    EXPECT_EQ(mesh.type, ShapeType::Mesh);
+    ASSERT_EQ(mesh.vertices.size(), 4u);
+    EXPECT_EQ(mesh.vertices[3], Vec3(1, 0, -1));
+    EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2, 2, 1, 3}));
+
+    const BodyDef& rock = s.bodies[1];
+    EXPECT_TRUE(rock.isTrigger);
+    EXPECT_EQ(rock.layer, 4u);
+    EXPECT_EQ(rock.mask, 0xFFFFFFFFu);
+    EXPECT_FALSE(rock.allowSleep);
+    EXPECT_FALSE(rock.isAwake);
+    EXPECT_EQ(rock.shape.type, ShapeType::Convex);
+    ASSERT_EQ(rock.shape.points.size(), 4u);
+    EXPECT_EQ(rock.shape.points[2], Vec3(0, 1, 0));
+    EXPECT_EQ(rock.shape.position, Vec3(0.5, 0, 0));
+    EXPECT_EQ(rock.shape.orientation.y(), 1);
+
+    const BodyDef& dumbbell = s.bodies[2];
+    EXPECT_EQ(dumbbell.layer, 2u);
+    EXPECT_EQ(dumbbell.mask, 3u);
+    EXPECT_FALSE(dumbbell.isTrigger);  // absent: the defs' defaults
+    EXPECT_TRUE(dumbbell.allowSleep);
+    EXPECT_TRUE(dumbbell.isAwake);
+    ASSERT_EQ(dumbbell.shape.type, ShapeType::Compound);
+    ASSERT_EQ(dumbbell.shape.shapes.size(), 3u);
+    const ShapeDef& head = dumbbell.shape.shapes[0];
+    EXPECT_EQ(head.type, ShapeType::Sphere);
+    EXPECT_EQ(head.radius, 0.25);
+    EXPECT_EQ(head.position, Vec3(-1, 0, 0));
+    EXPECT_EQ(head.density, 7800.0);
+    EXPECT_EQ(dumbbell.shape.shapes[1].orientation.z(), 0.7071067811865476);
+    EXPECT_FALSE(dumbbell.shape.shapes[1].density.has_value());
+    EXPECT_EQ(dumbbell.shape.shapes[2].halfExtents, Vec3(0.1, 0.2, 0.3));
+}
+
+TEST(SceneJson, AbsentContactKeysTakeTheDefaults) {
+    const Scene s = parseScene(withBody(R"({"name": "b", "shape": {"type": "sphere"}})"));
+    const WorldSettings d;
+    EXPECT_EQ(s.settings.contactHertz, d.contactHertz);
+    EXPECT_EQ(s.settings.contactDampingRatio, d.contactDampingRatio);
+    EXPECT_EQ(s.settings.contactPushMaxVelocity, d.contactPushMaxVelocity);
+    EXPECT_EQ(s.settings.baumgarte, d.baumgarte);
+    EXPECT_EQ(s.settings.restitutionThreshold, d.restitutionThreshold);
+    EXPECT_EQ(s.settings.linearSlop, d.linearSlop);
+    EXPECT_EQ(s.settings.speculativeDistance, d.speculativeDistance);
+    EXPECT_EQ(s.settings.sleepLinearVelocity, d.sleepLinearVelocity);
+    EXPECT_EQ(s.settings.sleepAngularVelocity, d.sleepAngularVelocity);
+    EXPECT_EQ(s.settings.timeToSleep, d.timeToSleep);
+    const BodyDef& b = s.bodies[0];
+    const BodyDef db;
+    EXPECT_EQ(b.isTrigger, db.isTrigger);
+    EXPECT_EQ(b.layer, db.layer);
+    EXPECT_EQ(b.mask, db.mask);
+    EXPECT_EQ(b.allowSleep, db.allowSleep);
+    EXPECT_EQ(b.isAwake, db.isAwake);
+    EXPECT_EQ(b.shape.position, Vec3::Zero());
+    EXPECT_TRUE(b.shape.orientation.coeffs() == Quat::Identity().coeffs());
+    EXPECT_FALSE(b.shape.density.has_value());
+}
+
+TEST(SceneJson, RoundTripOfContactFieldsIsExact) {
+    Scene s = parseScene(kContactScene);
+    s.settings.contactHertz = 1.0 / 3.0;
+    s.settings.speculativeDistance = std::nextafter(0.02, 1.0);
+    s.bodies[1].shape.points[0] = Vec3(0.1 + 0.2, -0.0, 1e-300);
+    s.bodies[2].shape.shapes[0].density = 1.0 / 7.0;
+    s.bodies[2].shape.shapes[2].orientation = Quat(1, -0.0, 0, 0);  // not bitwise identity: written
+    s.bodies[2].mask = 0;
+
+    const std::string text = sceneToJson(s);
+    const Scene back = parseScene(text);
+    expectSameScene(s, back);
+    EXPECT_TRUE(std::signbit(back.bodies[1].shape.points[0].y()));
+    EXPECT_TRUE(std::signbit(back.bodies[2].shape.shapes[2].orientation.x()));
+    EXPECT_EQ(sceneToJson(back), text);
+    // Placements are written only where set; every body writes its filter and sleep fields.
+    EXPECT_EQ(back.bodies[2].shape.shapes[1].position, Vec3::Zero());
+    EXPECT_NE(text.find("\"indices\": [0, 1, 2, 2, 1, 3]"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"mask\": 4294967295"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"contactHertz\": "), std::string::npos) << text;
+}
+
+TEST(SceneJson, DefaultShapePlacementIsNotWritten) {
+    Scene s;
+    BodyDef b;
+    b.name = "plain";
+    s.bodies.push_back(b);
+    const std::string text = sceneToJson(s);
+    const auto shape = text.find("\"shape\"");
+    ASSERT_NE(shape, std::string::npos);
+    const std::string shapeText = text.substr(shape, text.find('}', shape) - shape);
+    EXPECT_EQ(shapeText.find("position"), std::string::npos) << shapeText;
+    EXPECT_EQ(shapeText.find("orientation"), std::string::npos) << shapeText;
+    EXPECT_EQ(shapeText.find("density"), std::string::npos) << shapeText;
+    expectSameScene(s, parseScene(text));
+}
+
+TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
+    // Compound children report their own path, from the loader and from validate() alike.
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "box"}, {"type": "sphere", "radius": -1}]}})"),
+                     {"bodies[0].shape.shapes[1].radius: must be > 0, got -1"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "sphere", "position": [0, "x", 0]}]}})"),
+                     {"bodies[0].shape.shapes[0].position: must be an array of 3 numbers"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "sphere", "density": 0}]}})"),
+                     {"bodies[0].shape.shapes[0].density: must be > 0, got 0"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "sphere", "halfExtents": [1, 1, 1]}]}})"),
+                     {"bodies[0].shape.shapes[0].halfExtents: unknown key for a sphere shape",
+                      "type, radius, position, orientation, density"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "compound", "shapes": [{"type": "sphere"}]}]}})"),
+                     {"bodies[0].shape.shapes[0].type", "compound children must be sphere, box, capsule or convex"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": []}})"),
+                     {"bodies[0].shape.shapes: must hold at least one child shape"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": {}}})"),
+                     {"bodies[0].shape.shapes: must be an array of child shape objects"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "density": 10}})"),
+                     {"bodies[0].shape.density: allowed only on the children of a compound shape"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "orientation": [2, 0, 0, 0]}})"),
+                     {"bodies[0].shape.orientation", "unit quaternion"});
+
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "convex", "points": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]}})"),
+                     {"bodies[0].shape.points: must hold at least 4 points that are not all in one plane, got 4 points"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "convex", "points": [[0, 0, 0], [1, 0]]}})"),
+                     {"bodies[0].shape.points[1]: must be an array of 3 numbers, got [1,0]"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "convex", "points": 4}})"),
+                     {"bodies[0].shape.points: must be an array of [x, y, z] points, got 4"});
+
+    const std::string square = R"("vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]])";
+    expectParseError(withBody(R"({"name": "t", "type": "static", "shape": {"type": "mesh", )" + square +
+                              R"(, "indices": [0, -1, 2]}})"),
+                     {"bodies[0].shape.indices[1]: must be a non-negative integer (a vertex index) in [0, 4294967295], got -1"});
+    expectParseError(withBody(R"({"name": "t", "type": "static", "shape": {"type": "mesh", )" + square +
+                              R"(, "indices": [0, 1.5, 2]}})"),
+                     {"bodies[0].shape.indices[1]", "got 1.5"});
+    expectParseError(withBody(R"({"name": "t", "type": "static", "shape": {"type": "mesh", )" + square +
+                              R"(, "indices": [0, 1, 3]}})"),
+                     {"bodies[0].shape.indices[2]: must be < the number of vertices (3), got 3"});
+    expectParseError(withBody(R"({"name": "t", "type": "static", "shape": {"type": "mesh", )" + square +
+                              R"(, "indices": [0, 1]}})"),
+                     {"bodies[0].shape.indices: must be a non-empty multiple of 3"});
+    expectParseError(withBody(R"({"name": "t", "shape": {"type": "mesh", )" + square + R"(, "indices": [0, 1, 2]}})"),
+                     {"bodies[0].shape.type", "only on static bodies"});
+
+    expectParseError(withBody(R"({"name": "b", "isTrigger": 1, "shape": {"type": "sphere"}})"),
+                     {"bodies[0].isTrigger: must be true or false, got 1"});
+    expectParseError(withBody(R"({"name": "b", "allowSleep": "no", "shape": {"type": "sphere"}})"),
+                     {"bodies[0].allowSleep: must be true or false, got \"no\""});
+    expectParseError(withBody(R"({"name": "b", "layer": 4294967296, "shape": {"type": "sphere"}})"),
+                     {"bodies[0].layer: must be an unsigned 32-bit integer in [0, 4294967295], got 4294967296"});
+    expectParseError(withBody(R"({"name": "b", "mask": -1, "shape": {"type": "sphere"}})"),
+                     {"bodies[0].mask: must be an unsigned 32-bit integer", "got -1"});
+
+    expectParseError(R"({"settings": {"contactHertz": 0}})", {"settings.contactHertz: must be > 0, got 0"});
+    expectParseError(R"({"settings": {"baumgarte": 1.5}})", {"settings.baumgarte: must be in [0, 1], got 1.5"});
+    expectParseError(R"({"settings": {"linearSlop": "tiny"}})", {"settings.linearSlop: must be a number, got \"tiny\""});
+    expectParseError(R"({"settings": {"timeToSleep": -1}})", {"settings.timeToSleep: must be >= 0, got -1"});
+    expectParseError(R"({"settings": {"sleepVelocity": 1}})", {"settings.sleepVelocity: unknown key", "sleepLinearVelocity"});
 }

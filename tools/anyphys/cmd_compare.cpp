@@ -29,7 +29,8 @@ struct Selection {
 Selection select(const CompareOptions& o) {
     Selection s;
     if (o.scenes.empty())
-        for (const CatalogueScene& c : sceneCatalogue()) s.scenes.push_back(&c);
+        for (const CatalogueScene& c : sceneCatalogue())
+            if (c.compareByDefault) s.scenes.push_back(&c);  // heavy loads run only when named
     for (const std::string& name : o.scenes) s.scenes.push_back(&catalogueScene(name));
 
     if (o.backends.empty()) s.backends = availableBackends();
@@ -55,13 +56,23 @@ std::string orDash(const std::optional<double>& value, const char* pattern) {
     return value ? format(pattern, *value) : "-";
 }
 
+/// "top drift 3.1e-04 m (want 0 +- 0.01) ok": the scene's own measure against its bound.
+std::string checkText(const ComboResult& r) {
+    if (!r.checkValue) return "-";
+    const SceneCheck& check = *catalogueScene(r.scene).check;
+    const std::string unit = check.unit.empty() ? "" : " " + check.unit;
+    return check.label + " " + format("%.4g", *r.checkValue) + unit + " (want " + format("%g", check.expected) +
+           " +- " + format("%.3g", check.tolerance) + ") " + (r.checkPassed ? "ok" : "FAIL");
+}
+
 std::string statusWord(ComboResult::Status status) {
     return status == ComboResult::Status::Unsupported ? "unsupported" : "failed";
 }
 
 void printTable(const std::vector<ComboResult>& results) {
     using Row = std::vector<std::string>;
-    std::vector<Row> rows{{"scene", "backend", "integrator", "steps", "wall ms", "pos error m", "|L| drift", "energy drift"}};
+    std::vector<Row> rows{
+        {"scene", "backend", "integrator", "steps", "wall ms", "pos error m", "|L| drift", "energy drift", "check"}};
     for (const ComboResult& r : results) {
         if (r.status != ComboResult::Status::Ok) {
             rows.push_back({r.scene, r.backend, r.integrator, statusWord(r.status) + ": " + r.reason});
@@ -69,7 +80,7 @@ void printTable(const std::vector<ComboResult>& results) {
         }
         rows.push_back({r.scene, r.backend, r.integrator, std::to_string(r.steps), format("%.2f", r.wallMs),
                         orDash(r.positionError, "%.3e"), orDash(r.angularMomentumDrift, "%+.3e"),
-                        orDash(r.energyDrift, "%+.3e")});
+                        orDash(r.energyDrift, "%+.3e"), checkText(r)});
     }
     std::vector<std::size_t> widths(rows.front().size(), 0);
     for (const Row& row : rows)
@@ -87,7 +98,8 @@ void printTable(const std::vector<ComboResult>& results) {
         std::cout << line << '\n';
     }
     std::cout << "pos error: max over bodies of |p - p_exact| at the end (\"-\": no analytic answer); "
-                 "drifts: (end - start) / |start| (\"-\": not conserved by the scene)\n";
+                 "drifts: (end - start) / |start| (\"-\": not conserved by the scene); "
+                 "check: the scene's own measure against exact physics (`anyphys scenes` says what each measures)\n";
 }
 
 nlohmann::json toJson(const std::vector<ComboResult>& results) {
@@ -105,6 +117,13 @@ nlohmann::json toJson(const std::vector<ComboResult>& results) {
             row["positionError"] = optional(r.positionError);
             row["angularMomentumDrift"] = optional(r.angularMomentumDrift);
             row["energyDrift"] = optional(r.energyDrift);
+            row["check"] = nlohmann::json();
+            if (r.checkValue) {
+                const SceneCheck& check = *catalogueScene(r.scene).check;
+                row["check"] = {{"label", check.label},       {"unit", check.unit},
+                                {"value", *r.checkValue},     {"expected", check.expected},
+                                {"tolerance", check.tolerance}, {"passed", r.checkPassed}};
+            }
         }
         list.push_back(row);
     }
@@ -146,7 +165,8 @@ Command addCompareCommand(CLI::App& parent) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* app = parent.add_subcommand(
         "compare", "Run catalogue scenes on every backend and integrator and compare accuracy, conservation and speed");
-    app->add_option("--scenes", o->scenes, "Comma-separated catalogue scenes (default: all; see `anyphys scenes`)")
+    app->add_option("--scenes", o->scenes,
+                    "Comma-separated catalogue scenes (default: all but the heavy benchmark loads; see `anyphys scenes`)")
         ->delimiter(',');
     app->add_option("--backends", o->backends, "Comma-separated backends (default: every built one)")->delimiter(',');
     app->add_option("--integrators", o->integrators,

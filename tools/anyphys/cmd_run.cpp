@@ -1,8 +1,10 @@
-// `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV.
+// `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV, and with
+// --events the collision and trigger events of each step.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "cli.hpp"
@@ -17,18 +19,67 @@ struct RunOptions {
     double dt = 0.0;
     std::string integrator;
     std::string out;
+    std::string events;
     // Set after parsing: which optional flags were given.
     const CLI::Option* backendOption = nullptr;
     const CLI::Option* stepsOption = nullptr;
     const CLI::Option* dtOption = nullptr;
     const CLI::Option* integratorOption = nullptr;
     const CLI::Option* outOption = nullptr;
+    const CLI::Option* eventsOption = nullptr;
 };
 
 constexpr const char* kCsvHeader = "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+constexpr const char* kEventsHeader = "step,time,phase,bodyA,bodyB";
+
+/// A body name as one CSV field: quoted (RFC 4180) only if it holds a comma, quote or line break.
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+std::string prefix(long long step, double time) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%lld,%.17g,", step, time);
+    return buffer;
+}
+
+/// enter / stay / exit for collisions; trigger_enter / trigger_exit for sensors (the tracker
+/// sends triggers no stay, so trigger_stay never appears).
+std::string phaseName(const ContactEvent& event) {
+    const char* phase = event.phase == ContactPhase::Enter ? "enter" : event.phase == ContactPhase::Stay ? "stay" : "exit";
+    return (event.trigger ? "trigger_" : "") + std::string(phase);
+}
+
+/// Collects the events each step delivers, so they are written with that step's number and time.
+class EventRecorder : public ContactListener {
+public:
+    void onCollisionEnter(const ContactEvent& e) override { events_.push_back(e); }
+    void onCollisionStay(const ContactEvent& e) override { events_.push_back(e); }
+    void onCollisionExit(const ContactEvent& e) override { events_.push_back(e); }
+    void onTriggerEnter(const ContactEvent& e) override { events_.push_back(e); }
+    void onTriggerExit(const ContactEvent& e) override { events_.push_back(e); }
+
+    /// One row per event received since the last call, in delivery order.
+    void writeRows(std::ostream& out, long long step, double time, const std::map<BodyId, std::string>& names) {
+        const std::string head = prefix(step, time);
+        const auto nameOf = [&names](BodyId id) {
+            const auto it = names.find(id);
+            return it == names.end() ? std::string("#") + std::to_string(id.index) : csvField(it->second);
+        };
+        for (const ContactEvent& e : events_) out << head << phaseName(e) << ',' << nameOf(e.bodyA) << ',' << nameOf(e.bodyB) << '\n';
+        events_.clear();
+    }
+
+private:
+    std::vector<ContactEvent> events_;
+};
 
 /// One row per body. 17 significant digits read back to the same double.
 void writeRows(std::ostream& out, long long step, double time, const std::vector<Body>& bodies) {
+    const std::string head = prefix(step, time);
     char buffer[512];
     for (const Body& body : bodies) {
         const BodyState s = body.state();
@@ -37,9 +88,7 @@ void writeRows(std::ostream& out, long long step, double time, const std::vector
         std::snprintf(buffer, sizeof buffer,
                       ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", p.x(),
                       p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z());
-        char prefix[64];
-        std::snprintf(prefix, sizeof prefix, "%lld,%.17g,", step, time);
-        out << prefix << body.name() << buffer;
+        out << head << csvField(body.name()) << buffer;
     }
 }
 
@@ -65,13 +114,23 @@ int run(const RunOptions& o) {
     // Default: one simulated second.
     const long long steps = o.stepsOption->count() ? o.steps : std::llround(1.0 / scene.settings.timeStep);
 
+    EventRecorder recorder;  // before the world, so it outlives it
     World world(scene.settings, scene.materials);
     const std::vector<Body> bodies = createSceneBodies(world, scene);
+    // Names captured now: an exit flagged as removal names a body that no longer exists.
+    std::map<BodyId, std::string> names;
+    for (const Body& body : bodies) names[body.id()] = body.name();
 
-    std::ofstream file;
+    std::ofstream file, eventFile;
     if (o.outOption->count()) {
         file.open(o.out, std::ios::binary);
         if (!file) throw Error(o.out + ": cannot open for writing");
+    }
+    if (o.eventsOption->count()) {
+        eventFile.open(o.events, std::ios::binary);
+        if (!eventFile) throw Error(o.events + ": cannot open for writing");
+        eventFile << kEventsHeader << '\n';
+        world.addListener(&recorder);
     }
     std::ostream& out = o.outOption->count() ? static_cast<std::ostream&>(file) : std::cout;
     out << kCsvHeader << '\n';
@@ -79,9 +138,12 @@ int run(const RunOptions& o) {
     for (long long step = 1; step <= steps; ++step) {
         world.step();
         writeRows(out, step, world.time(), bodies);
+        if (eventFile.is_open()) recorder.writeRows(eventFile, step, world.time(), names);
     }
     out.flush();
     if (!out) throw Error((o.outOption->count() ? o.out : std::string("stdout")) + ": write failed");
+    eventFile.flush();
+    if (eventFile.is_open() && !eventFile) throw Error(o.events + ": write failed");
     return 0;
 }
 
@@ -97,6 +159,9 @@ Command addRunCommand(CLI::App& parent) {
     o->integratorOption = app->add_option("--integrator", o->integrator,
                                           "Integrator (overrides settings.integrator): " + allowedNames<Integrator>());
     o->outOption = app->add_option("--out", o->out, "CSV output file (default: stdout)");
+    o->eventsOption = app->add_option("--events", o->events,
+                                      "Also write collision and trigger events as CSV (step,time,phase,bodyA,bodyB; "
+                                      "phase enter, stay, exit, trigger_enter or trigger_exit)");
     return {app, [o] { return run(*o); }};
 }
 

@@ -14,17 +14,26 @@ namespace anyphys::cli {
 Command addScenesCommand(CLI::App& parent) {
     auto json = std::make_shared<bool>(false);
     CLI::App* app = parent.add_subcommand("scenes", "List the built-in catalogue scenes");
-    app->add_flag("--json", *json, "Print JSON: name, description, duration (s), bodies");
+    app->add_flag("--json", *json,
+                  "Print JSON: name, description, duration (s), bodies, hasReference, check, compareByDefault");
     return {app, [json] {
                 const auto& catalogue = sceneCatalogue();
                 if (*json) {
                     nlohmann::json list = nlohmann::json::array();
-                    for (const CatalogueScene& c : catalogue)
+                    for (const CatalogueScene& c : catalogue) {
+                        nlohmann::json check;  // null: the scene has no measure of its own
+                        if (c.check)
+                            check = {{"label", c.check->label},       {"unit", c.check->unit},
+                                     {"expected", c.check->expected}, {"tolerance", c.check->tolerance},
+                                     {"why", c.check->why}};
                         list.push_back({{"name", c.name},
                                         {"description", c.description},
                                         {"duration", c.duration},
                                         {"bodies", c.scene.bodies.size()},
-                                        {"hasReference", static_cast<bool>(c.reference)}});
+                                        {"hasReference", static_cast<bool>(c.reference)},
+                                        {"check", check},
+                                        {"compareByDefault", c.compareByDefault}});
+                    }
                     std::cout << nlohmann::json{{"scenes", list}}.dump(2) << '\n';
                     return 0;
                 }
@@ -32,7 +41,8 @@ Command addScenesCommand(CLI::App& parent) {
                 for (const CatalogueScene& c : catalogue) width = std::max(width, c.name.size());
                 std::printf("%-*s  %8s  %s\n", int(width), "name", "duration", "description");
                 for (const CatalogueScene& c : catalogue)
-                    std::printf("%-*s  %7gs  %s\n", int(width), c.name.c_str(), c.duration, c.description.c_str());
+                    std::printf("%-*s  %7gs  %s%s\n", int(width), c.name.c_str(), c.duration, c.description.c_str(),
+                                c.compareByDefault ? "" : " [compare: only with --scenes]");
                 return 0;
             }};
 }

@@ -39,7 +39,19 @@ std::optional<double> relativeChange(double start, double end) {
     return (end - start) / std::abs(start);
 }
 
-/// Effects the scene's content calls for, so the capability check sees them up front.
+/// True when some dynamic body may touch another body (their layers and masks allow it).
+bool mayTouch(const Scene& scene) {
+    const auto& b = scene.bodies;
+    for (std::size_t i = 0; i < b.size(); ++i)
+        for (std::size_t j = i + 1; j < b.size(); ++j)
+            if ((b[i].type == BodyType::Dynamic || b[j].type == BodyType::Dynamic) &&
+                layersCollide(b[i].layer, b[i].mask, b[j].layer, b[j].mask))
+                return true;
+    return false;
+}
+
+/// Effects the scene's content calls for, so the capability check sees them up front (a
+/// backend without contacts would otherwise let a stack fall through the ground).
 Effects contentEffects(const Scene& scene) {
     Effects effects;
     for (const BodyDef& def : scene.bodies) {
@@ -48,7 +60,23 @@ Effects contentEffects(const Scene& scene) {
         if (def.linearDamping > 0.0 || def.angularDamping > 0.0) effects.add(Effect::Damping);
         if (def.gyroscopic != GyroscopicMode::None) effects.add(Effect::Gyroscopic);
     }
+    if (mayTouch(scene)) {
+        effects.add(Effect::Contacts);
+        for (const BodyDef& def : scene.bodies) {
+            if (!scene.materials.contains(def.material)) continue;  // the World reports it, naming the body
+            const Material& m = scene.materials.get(def.material);
+            if (m.friction > 0.0) effects.add(Effect::Friction);
+            if (m.restitution > 0.0) effects.add(Effect::Restitution);
+        }
+    }
     return effects;
+}
+
+std::vector<BodyState> states(const std::vector<Body>& bodies) {
+    std::vector<BodyState> out;
+    out.reserve(bodies.size());
+    for (const Body& body : bodies) out.push_back(body.state());
+    return out;
 }
 
 /// What the backend declares it lacks for this scene; empty when it claims everything.
@@ -98,11 +126,18 @@ ComboResult runCombo(const CatalogueScene& entry, const BackendInfo& backend, In
     result.steps = std::llround(entry.duration / settings.timeStep);
     const double energy0 = mechanicalEnergy(*world, bodies, entry.scene);
     const double momentum0 = angularMomentumNorm(bodies);
+    std::unique_ptr<SceneProbe> probe = entry.check ? entry.check->makeProbe() : nullptr;
+    if (probe) probe->observe(world->time(), states(bodies));
     try {
-        const auto start = std::chrono::steady_clock::now();
-        for (long long i = 0; i < result.steps; ++i) world->step();
-        const auto stop = std::chrono::steady_clock::now();
-        result.wallMs = std::chrono::duration<double, std::milli>(stop - start).count();
+        // Only the stepping is timed, not the probe's observations.
+        std::chrono::steady_clock::duration stepping{};
+        for (long long i = 0; i < result.steps; ++i) {
+            const auto start = std::chrono::steady_clock::now();
+            world->step();
+            stepping += std::chrono::steady_clock::now() - start;
+            if (probe) probe->observe(world->time(), states(bodies));
+        }
+        result.wallMs = std::chrono::duration<double, std::milli>(stepping).count();
     } catch (const Error& e) {
         return refuse(ComboResult::Status::Failed, e.what());
     }
@@ -123,6 +158,10 @@ ComboResult runCombo(const CatalogueScene& entry, const BackendInfo& backend, In
         result.energyDrift = relativeChange(energy0, mechanicalEnergy(*world, bodies, entry.scene));
     if (entry.conservesAngularMomentum)
         result.angularMomentumDrift = relativeChange(momentum0, angularMomentumNorm(bodies));
+    if (probe) {
+        result.checkValue = probe->value();
+        result.checkPassed = entry.check->passes(*result.checkValue);
+    }
     return result;
 }
 

@@ -26,6 +26,8 @@ struct ComboResult {
     std::optional<double> positionError;        ///< m, max over bodies at the end; scenes with a reference
     std::optional<double> angularMomentumDrift; ///< (|L_end| - |L_0|) / |L_0|; scenes conserving L
     std::optional<double> energyDrift;          ///< (E_end - E_0) / |E_0|; scenes conserving energy
+    std::optional<double> checkValue;           ///< the scene's own measure (CatalogueScene::check)
+    bool checkPassed = false;                   ///< checkValue within the check's tolerance
 };
 
 /// Runs `scene` for its duration on `backend` with `integrator`. Never throws for a refusal:

@@ -30,6 +30,12 @@ public:
     /// World-frame angular momentum I_world * omega, kg m^2/s.
     Vec3 angularMomentum() const;
     const std::string& material() const;
+    /// Centre of mass, world frame.
+    Vec3 centerOfMass() const;
+    bool isTrigger() const;
+    bool isAwake() const;
+    /// Wakes the body (and its island). Any velocity, force or transform change wakes it too.
+    void wake();
 
     void setTransform(const Vec3& position, const Quat& orientation);
     void setLinearVelocity(const Vec3& v);

@@ -27,6 +27,9 @@ struct Capabilities {
     std::set<Solver> solvers;                  ///< selectable constraint solvers
     std::set<GyroscopicMode> gyroscopicModes;  ///< per-body gyroscopic modes honoured
     ForceEvaluation forceEvaluation = ForceEvaluation::PerStep;
+    bool contactImpulses = false;              ///< contact events carry real normal impulses
+    std::set<std::string> queries;             ///< "raycast", "overlap"
+    int maxConvexVertices = 0;                 ///< largest convex hull accepted (0: no limit)
     /// Individual def / settings fields honoured, by their scene-file path, e.g.
     /// "settings.substeps", "body.gravityScale". A field not listed is ignored by this backend.
     std::set<std::string> parameters;

@@ -1,8 +1,10 @@
 #pragma once
 // Definitions ("defs") from which bodies are created. Every field has a documented unit and
 // default; a def is a plain value, validated when it is used (see validation.hpp).
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "anyphys/enums.hpp"
 #include "anyphys/math.hpp"
@@ -17,6 +19,13 @@ struct ShapeDef {
     double halfHeight = 0.5;                    ///< m, capsule: half length of the core segment along body Y; default 0.5
     Vec3 normal = Vec3(0, 1, 0);                ///< plane: unit normal (world frame); default +Y
     double offset = 0.0;                        ///< m, plane: points p with normal.dot(p) == offset; default 0
+    std::vector<Vec3> points;                   ///< m, convex: points (body frame) whose hull is the shape; >= 4, not coplanar
+    std::vector<Vec3> vertices;                 ///< m, mesh: vertex positions (body frame)
+    std::vector<std::uint32_t> indices;         ///< mesh: three vertex indices per triangle, counter-clockwise seen from outside
+    std::vector<ShapeDef> shapes;               ///< compound: child shapes (any type but plane, mesh and compound)
+    Vec3 position = Vec3::Zero();               ///< m, compound child: placement in the body frame; default origin
+    Quat orientation = Quat::Identity();        ///< compound child: rotation in the body frame; default identity
+    std::optional<double> density;              ///< kg/m^3, compound child: its own density; default the body's
 
     static ShapeDef sphere(double r) { ShapeDef s; s.type = ShapeType::Sphere; s.radius = r; return s; }
     static ShapeDef box(const Vec3& half) { ShapeDef s; s.type = ShapeType::Box; s.halfExtents = half; return s; }
@@ -25,6 +34,19 @@ struct ShapeDef {
     }
     static ShapeDef plane(const Vec3& n, double offset) {
         ShapeDef s; s.type = ShapeType::Plane; s.normal = n; s.offset = offset; return s;
+    }
+    static ShapeDef convex(std::vector<Vec3> points) {
+        ShapeDef s; s.type = ShapeType::Convex; s.points = std::move(points); return s;
+    }
+    static ShapeDef mesh(std::vector<Vec3> vertices, std::vector<std::uint32_t> indices) {
+        ShapeDef s; s.type = ShapeType::Mesh; s.vertices = std::move(vertices); s.indices = std::move(indices); return s;
+    }
+    static ShapeDef compound(std::vector<ShapeDef> children) {
+        ShapeDef s; s.type = ShapeType::Compound; s.shapes = std::move(children); return s;
+    }
+    /// This shape placed at a pose in the body frame (for compound children).
+    ShapeDef placed(const Vec3& at, const Quat& rotation = Quat::Identity()) const {
+        ShapeDef s = *this; s.position = at; s.orientation = rotation; return s;
     }
 };
 
@@ -45,15 +67,29 @@ struct BodyDef {
     double angularDamping = 0.0;               ///< 1/s, dw/dt = -c w; default 0
     double gravityScale = 1.0;                 ///< multiplies world gravity for this body; default 1
     GyroscopicMode gyroscopic = GyroscopicMode::Implicit;  ///< default implicit (stable, conserves |L| closely)
+    bool isTrigger = false;                    ///< a sensor: reports trigger enter / exit, never collides; default false
+    std::uint32_t layer = 1;                   ///< collision layer bits; default 1
+    std::uint32_t mask = 0xFFFFFFFFu;          ///< layers this body collides with; default all
+    bool allowSleep = true;                    ///< may fall asleep when at rest; default true
+    bool isAwake = true;                       ///< starts awake; default true
 };
+
+/// Two bodies may touch only if each one's layer is in the other's mask. The layer decides
+/// this for every backend, so all of them filter identically.
+inline bool layersCollide(std::uint32_t layerA, std::uint32_t maskA, std::uint32_t layerB, std::uint32_t maskB) {
+    return (layerA & maskB) != 0 && (layerB & maskA) != 0;
+}
 
 /// The solved mass properties of a body (what the backend receives).
 struct MassProperties {
-    double mass = 0.0;                 ///< kg; 0 for static and kinematic bodies
-    Vec3 inertia = Vec3::Zero();       ///< kg m^2, principal moments in the body frame
+    double mass = 0.0;                          ///< kg; 0 for static and kinematic bodies
+    Vec3 inertia = Vec3::Zero();                ///< kg m^2, principal moments about the centre of mass
+    Vec3 centerOfMass = Vec3::Zero();           ///< m, body frame
+    Quat principalAxes = Quat::Identity();      ///< rotation from principal axes to the body frame
 };
 
-/// A body's kinematic state, world frame.
+/// A body's kinematic state, world frame. Position is the body origin; linear velocity is that
+/// of the centre of mass (they coincide unless a compound shape moves the centre of mass).
 struct BodyState {
     Vec3 position = Vec3::Zero();
     Quat orientation = Quat::Identity();

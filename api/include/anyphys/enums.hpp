@@ -34,7 +34,15 @@ enum class Solver {
     Direct,               ///< an engine's global (direct / LCP) solver where it has one
 };
 
-enum class ShapeType { Sphere, Box, Capsule, Plane };
+enum class ShapeType {
+    Sphere,    ///< radius
+    Box,       ///< halfExtents
+    Capsule,   ///< radius, halfHeight along body Y
+    Plane,     ///< normal, offset; static bodies only
+    Convex,    ///< the convex hull of `points`
+    Mesh,      ///< triangles (`vertices`, `indices`); static bodies only
+    Compound,  ///< several child shapes (`shapes`), each placed by its position / orientation
+};
 
 template <class E>
 struct EnumNames;  // specialised below: static constexpr std::array<std::pair<E, std::string_view>, N> values
@@ -70,8 +78,10 @@ struct EnumNames<Solver> {
 template <>
 struct EnumNames<ShapeType> {
     static constexpr std::string_view what = "shape type";
-    static constexpr std::array<std::pair<ShapeType, std::string_view>, 4> values{{
-        {ShapeType::Sphere, "sphere"}, {ShapeType::Box, "box"}, {ShapeType::Capsule, "capsule"}, {ShapeType::Plane, "plane"}}};
+    static constexpr std::array<std::pair<ShapeType, std::string_view>, 7> values{{
+        {ShapeType::Sphere, "sphere"}, {ShapeType::Box, "box"}, {ShapeType::Capsule, "capsule"},
+        {ShapeType::Plane, "plane"}, {ShapeType::Convex, "convex"}, {ShapeType::Mesh, "mesh"},
+        {ShapeType::Compound, "compound"}}};
 };
 
 template <class E>

@@ -6,7 +6,8 @@
 
 namespace anyphys {
 
-/// Volume in m^3 (0 for planes, which are static only).
+/// Volume in m^3 of a sphere, box or capsule (0 otherwise: planes and meshes are static only,
+/// convex hulls and compounds are measured from their built geometry in the layer).
 inline double shapeVolume(const ShapeDef& s) {
     constexpr double pi = std::numbers::pi;
     switch (s.type) {
@@ -16,12 +17,15 @@ inline double shapeVolume(const ShapeDef& s) {
             const double r = s.radius;
             return pi * r * r * (2.0 * s.halfHeight) + 4.0 / 3.0 * pi * r * r * r;
         }
-        case ShapeType::Plane: return 0.0;
+        case ShapeType::Plane:
+        case ShapeType::Mesh:
+        case ShapeType::Convex:
+        case ShapeType::Compound: return 0.0;
     }
     return 0.0;
 }
 
-/// Principal moments of inertia per unit mass (m^2), body frame.
+/// Principal moments of inertia per unit mass (m^2), body frame, of a sphere, box or capsule.
 inline Vec3 unitInertia(const ShapeDef& s) {
     switch (s.type) {
         case ShapeType::Sphere: {
@@ -45,7 +49,10 @@ inline Vec3 unitInertia(const ShapeDef& s) {
             const double trans = (vc * transCyl + vs * transSph) / v;
             return Vec3(trans, axial, trans);
         }
-        case ShapeType::Plane: return Vec3::Zero();
+        case ShapeType::Plane:
+        case ShapeType::Mesh:
+        case ShapeType::Convex:
+        case ShapeType::Compound: return Vec3::Zero();
     }
     return Vec3::Zero();
 }

@@ -2,6 +2,7 @@
 // Validation of defs and settings. Shared by the World (path "BodyDef", "WorldSettings") and the
 // scene loader (path "bodies[3]", "settings") so both report the same rule in the same words:
 //   "bodies[3].shape.radius: must be > 0, got -1".
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -45,7 +46,31 @@ inline void requireNonNegative(const std::string& field, double v) {
 /// [0.7071, 0, 0, 0.7071] are accepted and normalised; anything further off is a mistake.
 inline constexpr double kUnitQuaternionTolerance = 1e-4;
 
-inline void validate(const ShapeDef& s, const std::string& path) {
+namespace detail {
+// True when the points span a volume (four of them are not coplanar), relative to their extent.
+inline bool spansVolume(const std::vector<Vec3>& p) {
+    if (p.size() < 4) return false;
+    double extent = 0;
+    for (const Vec3& q : p) extent = std::max(extent, (q - p[0]).norm());
+    if (extent == 0) return false;
+    const double eps = 1e-9 * extent;
+    std::size_t i1 = 0;
+    for (std::size_t i = 1; i < p.size() && !i1; ++i)
+        if ((p[i] - p[0]).norm() > eps) i1 = i;
+    if (!i1) return false;
+    const Vec3 e1 = p[i1] - p[0];
+    Vec3 n = Vec3::Zero();
+    for (const Vec3& q : p)
+        if (const Vec3 c = e1.cross(q - p[0]); c.norm() > eps * extent && c.norm() > n.norm()) n = c;
+    if (n.isZero(0)) return false;
+    n.normalize();
+    for (const Vec3& q : p)
+        if (std::abs(n.dot(q - p[0])) > eps) return true;
+    return false;
+}
+}  // namespace detail
+
+inline void validate(const ShapeDef& s, const std::string& path, bool isChild = false) {
     using namespace detail;
     switch (s.type) {
         case ShapeType::Sphere: requirePositive(path + ".radius", s.radius); break;
@@ -63,7 +88,49 @@ inline void validate(const ShapeDef& s, const std::string& path) {
             if (s.normal.norm() < 1e-12) throw Error::invalid(path + ".normal", formatVec3(s.normal), "must be non-zero");
             requireFinite(path + ".offset", s.offset);
             break;
+        case ShapeType::Convex:
+            for (std::size_t i = 0; i < s.points.size(); ++i)
+                requireFinite(path + ".points[" + std::to_string(i) + "]", s.points[i]);
+            if (!spansVolume(s.points))
+                throw Error::invalid(path + ".points", std::to_string(s.points.size()) + " points",
+                                     "must hold at least 4 points that are not all in one plane");
+            break;
+        case ShapeType::Mesh: {
+            if (s.vertices.empty()) throw Error::invalid(path + ".vertices", "[]", "must not be empty");
+            for (std::size_t i = 0; i < s.vertices.size(); ++i)
+                requireFinite(path + ".vertices[" + std::to_string(i) + "]", s.vertices[i]);
+            if (s.indices.empty() || s.indices.size() % 3 != 0)
+                throw Error::invalid(path + ".indices", std::to_string(s.indices.size()) + " indices",
+                                     "must be a non-empty multiple of 3 (three per triangle)");
+            for (std::size_t i = 0; i < s.indices.size(); ++i)
+                if (s.indices[i] >= s.vertices.size())
+                    throw Error::invalid(path + ".indices[" + std::to_string(i) + "]", s.indices[i],
+                                         "must be < the number of vertices (" + std::to_string(s.vertices.size()) + ")");
+            for (std::size_t t = 0; t < s.indices.size(); t += 3) {
+                const Vec3 &a = s.vertices[s.indices[t]], &b = s.vertices[s.indices[t + 1]], &c = s.vertices[s.indices[t + 2]];
+                if ((b - a).cross(c - a).norm() <= 1e-12 * std::max(1.0, (b - a).squaredNorm()))
+                    throw Error::invalid(path + ".indices[" + std::to_string(t) + ".." + std::to_string(t + 2) + "]",
+                                         "triangle " + std::to_string(t / 3), "must not be degenerate (zero area)");
+            }
+            break;
+        }
+        case ShapeType::Compound:
+            if (isChild) throw Error::invalid(path + ".type", "compound", "compound shapes cannot be nested");
+            if (s.shapes.empty()) throw Error::invalid(path + ".shapes", "[]", "must hold at least one child shape");
+            for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+                const ShapeDef& child = s.shapes[i];
+                const std::string childPath = path + ".shapes[" + std::to_string(i) + "]";
+                if (child.type == ShapeType::Plane || child.type == ShapeType::Mesh || child.type == ShapeType::Compound)
+                    throw Error::invalid(childPath + ".type", toString(child.type),
+                                         "compound children must be sphere, box, capsule or convex");
+                validate(child, childPath, true);
+            }
+            break;
     }
+    requireFinite(path + ".position", s.position);
+    if (!s.orientation.coeffs().allFinite() || std::abs(s.orientation.norm() - 1.0) > 1e-4)
+        throw Error::invalid(path + ".orientation", formatQuat(s.orientation), "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
+    if (s.density) requirePositive(path + ".density", *s.density);
 }
 
 inline void validate(const BodyDef& b, const std::string& path) {
@@ -77,8 +144,9 @@ inline void validate(const BodyDef& b, const std::string& path) {
     requireFinite(path + ".linearVelocity", b.linearVelocity);
     requireFinite(path + ".angularVelocity", b.angularVelocity);
     validate(b.shape, path + ".shape");
-    if (b.shape.type == ShapeType::Plane && b.type != BodyType::Static)
-        throw Error::invalid(path + ".shape.type", "plane", "plane shapes are allowed only on static bodies (type \"static\")");
+    if ((b.shape.type == ShapeType::Plane || b.shape.type == ShapeType::Mesh) && b.type != BodyType::Static)
+        throw Error::invalid(path + ".shape.type", toString(b.shape.type),
+                             "plane and mesh shapes are allowed only on static bodies (type \"static\")");
     if (b.type == BodyType::Static && (!b.linearVelocity.isZero(0) || !b.angularVelocity.isZero(0)))
         throw Error::invalid(path + (b.linearVelocity.isZero(0) ? ".angularVelocity" : ".linearVelocity"),
                              formatVec3(b.linearVelocity.isZero(0) ? b.angularVelocity : b.linearVelocity),
@@ -104,6 +172,17 @@ inline void validate(const WorldSettings& s, const std::string& path) {
     if (s.substeps < 1) throw Error::invalid(path + ".substeps", s.substeps, "must be >= 1");
     if (s.maxStepsPerUpdate < 1) throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate, "must be >= 1");
     for (const auto& [name, value] : s.backendOptions) requireFinite(path + ".backendOptions." + name, value);
+    requirePositive(path + ".contactHertz", s.contactHertz);
+    requireNonNegative(path + ".contactDampingRatio", s.contactDampingRatio);
+    requirePositive(path + ".contactPushMaxVelocity", s.contactPushMaxVelocity);
+    requireNonNegative(path + ".baumgarte", s.baumgarte);
+    if (s.baumgarte > 1) throw Error::invalid(path + ".baumgarte", s.baumgarte, "must be in [0, 1]");
+    requireNonNegative(path + ".restitutionThreshold", s.restitutionThreshold);
+    requirePositive(path + ".linearSlop", s.linearSlop);
+    requireNonNegative(path + ".speculativeDistance", s.speculativeDistance);
+    requireNonNegative(path + ".sleepLinearVelocity", s.sleepLinearVelocity);
+    requireNonNegative(path + ".sleepAngularVelocity", s.sleepAngularVelocity);
+    requireNonNegative(path + ".timeToSleep", s.timeToSleep);
 }
 
 }  // namespace anyphys

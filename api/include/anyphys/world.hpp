@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,14 @@ public:
 };
 
 using ForceCallback = std::function<void(ForceContext&)>;
+
+/// A ray-cast hit.
+struct RayHit {
+    Body body;
+    Vec3 point = Vec3::Zero();    ///< m, world frame
+    Vec3 normal = Vec3::Zero();   ///< unit surface normal at the hit, facing the ray
+    double distance = 0.0;        ///< m from the ray origin
+};
 using WarningHandler = std::function<void(const std::string&)>;
 
 class World {
@@ -76,9 +85,24 @@ public:
     /// Runs inside every step (see ForceContext). Replaces any previous callback; empty clears.
     void setForceCallback(ForceCallback callback);
 
+    // ---- queries ------------------------------------------------------------------------
+    /// Closest hit of the ray origin + t direction, 0 <= t <= maxDistance (direction need not
+    /// be unit), on bodies whose layer is in `mask`. Triggers are not hit.
+    std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
+                                  std::uint32_t mask = 0xFFFFFFFFu);
+    /// Every hit along the ray, nearest first (at most one per shape).
+    std::vector<RayHit> raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance,
+                                   std::uint32_t mask = 0xFFFFFFFFu);
+    /// Bodies overlapping `shape` placed at `pose`, whose layer is in `mask`. Triggers are skipped.
+    std::vector<Body> overlap(const ShapeDef& shape, const Transform& pose, std::uint32_t mask = 0xFFFFFFFFu);
+
     // ---- events -------------------------------------------------------------------------
+    /// Listeners receive events after each step's physics, on the caller's thread, in pair
+    /// order (exits, enters, stays). A listener may create and destroy bodies in a callback.
     void addListener(ContactListener* listener);
     void removeListener(ContactListener* listener);
+    /// The events of the last step (also what listeners received).
+    const std::vector<ContactEvent>& lastEvents() const;
 
     // ---- configuration ------------------------------------------------------------------
     const WorldSettings& settings() const { return settings_; }
@@ -97,6 +121,9 @@ private:
     Slot& slot(BodyId id, const char* operation);
     const Slot& slot(BodyId id, const char* operation) const;
     void refreshEffects();
+    void countBody(const BodyDef& def, int delta);  // effect-derivation counters
+    void dispatchEvents();
+    struct MaterialTable buildMaterialTable();
     void noteForcesUsed();  // first force or torque: derive the userForces effect
     void warn(const std::string& message);
 

@@ -27,6 +27,18 @@ struct WorldSettings {
     /// Effects to simulate. Unset (default): derived from the world's content, e.g. damping only
     /// when some body has non-zero damping. Set: exactly these effects, nothing else.
     std::optional<Effects> effects;
+    // ---- contacts (used when the contacts effect is on) ----
+    double contactHertz = 60.0;                     ///< Hz, soft-contact stiffness (soft step), > 0; default 60 (capped at the substep rate)
+    double contactDampingRatio = 10.0;              ///< soft-contact damping ratio, >= 0; default 10 (heavily damped: no bounce from overlap)
+    double contactPushMaxVelocity = 3.0;            ///< m/s, fastest speed at which overlap is pushed apart, > 0; default 3
+    double baumgarte = 0.2;                         ///< PGS: fraction of overlap corrected per step, in [0, 1]; default 0.2
+    double restitutionThreshold = 1.0;              ///< m/s, slower impacts do not bounce, >= 0; default 1
+    double linearSlop = 0.005;                      ///< m, allowed overlap and touching tolerance, > 0; default 0.005
+    double speculativeDistance = 0.02;              ///< m, contacts are created this far before touching, >= 0; default 4 x linearSlop
+    // ---- sleeping (used when the sleeping effect is on) ----
+    double sleepLinearVelocity = 0.05;              ///< m/s, slower bodies may sleep, >= 0; default 0.05
+    double sleepAngularVelocity = 0.05;             ///< rad/s, slower-spinning bodies may sleep, >= 0; default 0.05
+    double timeToSleep = 0.5;                       ///< s, an island at rest this long falls asleep, >= 0; default 0.5
     int maxStepsPerUpdate = 8;                      ///< cap on fixed steps one update() may take, >= 1; default 8
     CapabilityPolicy capabilityPolicy = CapabilityPolicy::Strict;  ///< default strict
     /// Backend-specific numeric options by name (e.g. "erp", "cfm" on ODE); each backend lists

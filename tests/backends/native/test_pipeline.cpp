@@ -33,13 +33,16 @@ TEST(NativePipeline, OnlyNeededStagesRun) {
     EXPECT_EQ(world.activeStageNames(), (Names{"gyroscopic_implicit", "integrate", "clear_forces"}));
     world.setEffects(Effect::Gravity);
     EXPECT_EQ(world.activeStageNames(), Names{"integrate"});
+    world.setEffects(Effect::Gravity | Effect::Contacts | Effect::Sleeping | Effect::ContinuousCollision);
+    EXPECT_EQ(world.activeStageNames(), (Names{"collide", "integrate", "solve_contacts", "continuous", "sleep"}));
+    world.setEffects(Effect::Gravity);
     world.destroyBody(*box);
     world.destroyBody(*sphere);
     EXPECT_EQ(world.activeStageNames(), Names{});
 }
 
 // Destroying a body in the middle keeps the others' peers pointing at their own state.
-TEST(NativePipeline, SwapRemoveKeepsPeersConsistent) {
+TEST(NativePipeline, DestroyKeepsOtherPeersConsistent) {
     NativeWorld world{WorldSettings{}};
     std::vector<std::unique_ptr<BodyPeer>> peers;
     for (int i = 0; i < 4; ++i) {

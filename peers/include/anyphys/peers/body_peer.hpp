@@ -1,6 +1,8 @@
 #pragma once
 // The backend side of one body. Inputs arrive validated and resolved by the layer (mass
-// properties, materials); a peer only applies them.
+// properties, materials); a peer only applies them. A peer body's frame is the body's centre of
+// mass and principal axes: positions, orientations and velocities here are those of that frame
+// (the layer converts to the user's body origin).
 #include "anyphys/defs.hpp"
 
 namespace anyphys {
@@ -22,6 +24,11 @@ public:
     virtual void applyAngularImpulse(const Vec3& impulse) = 0;
 
     virtual MassProperties massProperties() const = 0;
+
+    /// Sleeping: an asleep body is not simulated until woken (by contact, or by the layer on
+    /// any user change).
+    virtual bool isAwake() const = 0;
+    virtual void setAwake(bool awake) = 0;
 };
 
 }  // namespace anyphys

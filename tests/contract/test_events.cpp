@@ -1,0 +1,316 @@
+// Collision and trigger events mean the same on every backend: exact enter / exit counts,
+// trigger enter / exit, no duplicates, fixed pair order, and listeners may destroy bodies.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "contact_helpers.hpp"
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+class EventsTest : public ContractTest {
+protected:
+    std::string missingFor(std::initializer_list<ShapeType> shapes) const {
+        return lacking(caps(), shapes, Effect::Contacts | Effect::Events);
+    }
+};
+
+const char* phaseName(const ContactEvent& e) {
+    if (e.trigger) return e.phase == ContactPhase::Enter ? "trigger_enter" : e.phase == ContactPhase::Exit ? "trigger_exit" : "trigger_stay";
+    return e.phase == ContactPhase::Enter ? "enter" : e.phase == ContactPhase::Exit ? "exit" : "stay";
+}
+
+/// Records every event with its step and checks the rules as they arrive: bodyA < bodyB, enter
+/// only for a pair not touching, stay and exit only for one touching, never enter and exit of
+/// one pair in the same step, triggers never stay.
+class CheckingListener : public ContactListener {
+public:
+    struct Record {
+        std::uint64_t step;
+        ContactEvent event;
+    };
+    explicit CheckingListener(const World& world) : world_(world) {}
+
+    void onCollisionEnter(const ContactEvent& e) override { take(e); }
+    void onCollisionStay(const ContactEvent& e) override { take(e); }
+    void onCollisionExit(const ContactEvent& e) override { take(e); }
+    void onTriggerEnter(const ContactEvent& e) override { take(e); }
+    void onTriggerExit(const ContactEvent& e) override { take(e); }
+
+    std::function<void(const ContactEvent&)> then;  ///< runs after each event is checked
+    std::vector<Record> records;
+    std::vector<std::string> violations;
+
+    int count(ContactPhase phase, bool trigger) const {
+        return static_cast<int>(std::count_if(records.begin(), records.end(), [&](const Record& r) {
+            return r.event.phase == phase && r.event.trigger == trigger;
+        }));
+    }
+    std::string log() const {
+        std::ostringstream os;
+        for (const Record& r : records)
+            if (r.event.phase != ContactPhase::Stay) os << " step " << r.step << ": " << phaseName(r.event) << ';';
+        return os.str();
+    }
+
+private:
+    void take(const ContactEvent& e) {
+        const std::uint64_t step = world_.stepCount();
+        const auto key = std::make_pair(e.bodyA, e.bodyB);
+        const auto fail = [&](const std::string& what) {
+            violations.push_back("step " + std::to_string(step) + ": " + phaseName(e) + " " + what);
+        };
+        if (!(e.bodyA < e.bodyB)) fail("pair order: bodyA is not < bodyB");
+        if (e.trigger && e.phase == ContactPhase::Stay) fail("triggers never stay");
+        const bool active = active_.contains(key);
+        const auto sameStep = [&](const std::map<std::pair<BodyId, BodyId>, std::uint64_t>& at) {
+            const auto it = at.find(key);
+            return it != at.end() && it->second == step;
+        };
+        switch (e.phase) {
+            case ContactPhase::Enter:
+                if (active) fail("duplicate enter: the pair is already touching");
+                if (sameStep(exitedAt_)) fail("enter and exit of one pair in one step");
+                active_.insert(key);
+                enteredAt_[key] = step;
+                break;
+            case ContactPhase::Stay:
+                if (!active) fail("stay of a pair that is not touching");
+                break;
+            case ContactPhase::Exit:
+                if (!active) fail("exit of a pair that is not touching");
+                // A removal may follow an enter at once: a listener destroyed the body on enter.
+                if (!e.removal && sameStep(enteredAt_)) fail("enter and exit of one pair in one step");
+                active_.erase(key);
+                exitedAt_[key] = step;
+                break;
+        }
+        records.push_back({step, e});
+        if (then) then(e);
+    }
+
+    const World& world_;
+    std::set<std::pair<BodyId, BodyId>> active_;
+    std::map<std::pair<BodyId, BodyId>, std::uint64_t> enteredAt_, exitedAt_;
+};
+
+// Expected events of a ball dropped from rest with its bottom h above the ground. Impact k comes
+// at v_k = e^k sqrt(2 g h). An impact faster than the restitution threshold bounces (rebound
+// e v_k) and the ball leaves the ground: one enter, one exit. The first impact at or below the
+// threshold does not bounce: its enter is the last event, the ball stays in contact, and falling
+// asleep sends no exit. So enters = bounces + 1, exits = bounces.
+struct BounceEvents {
+    int enters = 0;
+    int exits = 0;
+    double margin = std::numeric_limits<double>::infinity();  ///< m/s, closest impact speed to the threshold
+};
+
+BounceEvents expectedBounceEvents(double h, double e, double threshold) {
+    BounceEvents out;
+    double v = std::sqrt(2 * kG * h);
+    int bounces = 0;
+    for (;;) {
+        out.margin = std::min(out.margin, std::abs(v - threshold));
+        if (v <= threshold) break;
+        ++bounces;
+        v *= e;
+    }
+    out.enters = bounces + 1;
+    out.exits = bounces;
+    return out;
+}
+
+// With e = 0.5, impact 6 m/s and threshold 2 m/s: impacts at 6 and 3 m/s bounce, 1.5 m/s does
+// not -> 3 enters, 2 exits. The last hop (1.5 m/s) rises 11 cm, far beyond any touching margin.
+TEST_P(EventsTest, BallBouncingToRestHasExactEnterAndExitCounts) {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    ANYPHYS_REQUIRE(caps().effects.has(Effect::Restitution), "effect restitution");
+    constexpr double kE = 0.5, kThreshold = 2.0, kImpact = 6.0, kRadius = 0.25;
+    const double h = kImpact * kImpact / (2 * kG);
+    const BounceEvents expected = expectedBounceEvents(h, kE, kThreshold);
+    // The solver sees an impact speed up to g dt = 0.16 m/s off the exact one (the impact falls
+    // inside a step): keep every impact at least 0.3 m/s from the threshold, so the count is exact.
+    ASSERT_GT(expected.margin, 0.3);
+    ASSERT_EQ(expected.enters, 3);
+
+    WorldSettings s = settings();
+    s.restitutionThreshold = kThreshold;
+    MaterialLibrary materials;
+    materials.add("ball", Material{0.6, kE, 1000.0});
+    World world(s, materials);
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    world.createBody(groundDef());
+    world.createBody(ballDef("ball", kRadius, Vec3(0, kRadius + h, 0), "ball"));
+    while (world.time() < 4.0) world.step();  // rests after 1.5 s; 4 s includes falling asleep
+
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    report(backend() + " bouncing ball enters (exact " + std::to_string(expected.enters) + ")",
+           listener.count(ContactPhase::Enter, false));
+    report(backend() + " bouncing ball exits (exact " + std::to_string(expected.exits) + ")",
+           listener.count(ContactPhase::Exit, false));
+    EXPECT_EQ(listener.count(ContactPhase::Enter, false), expected.enters) << listener.log();
+    EXPECT_EQ(listener.count(ContactPhase::Exit, false), expected.exits) << listener.log();
+}
+
+// lastEvents() holds exactly what the listeners received in the last step.
+TEST_P(EventsTest, LastEventsMatchWhatListenersReceived) {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    world.createBody(groundDef());
+    world.createBody(ballDef("ball", 0.5, Vec3(0, 1.0, 0)));
+    std::size_t seen = 0;
+    for (int i = 0; i < 90; ++i) {
+        world.step();
+        const std::vector<ContactEvent>& last = world.lastEvents();
+        ASSERT_EQ(last.size(), listener.records.size() - seen) << "step " << i + 1;
+        for (std::size_t k = 0; k < last.size(); ++k) {
+            EXPECT_EQ(last[k].phase, listener.records[seen + k].event.phase);
+            EXPECT_TRUE(last[k].bodyA == listener.records[seen + k].event.bodyA);
+        }
+        seen = listener.records.size();
+    }
+    EXPECT_GE(listener.count(ContactPhase::Enter, false), 1);
+}
+
+// A body resting on the ground enters once and then stays: never a second enter, never an exit
+// (not even when it falls asleep).
+TEST_P(EventsTest, RestingBodyEntersOnceAndNeverExits) {
+    const std::string missing = missingFor({ShapeType::Box, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    world.createBody(groundDef());
+    world.createBody(boxDef("box", Vec3(0.5, 0.5, 0.5), Vec3(0, 0.5, 0)));
+    while (world.time() < 3.0) world.step();
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    EXPECT_EQ(listener.count(ContactPhase::Enter, false), 1) << listener.log();
+    EXPECT_EQ(listener.count(ContactPhase::Exit, false), 0) << listener.log();
+    EXPECT_GE(listener.count(ContactPhase::Stay, false), 1);
+}
+
+// Pair order is fixed (lower id first) whichever body was created first, and the normal points
+// from A to B.
+TEST_P(EventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    for (bool groundFirst : {true, false}) {
+        SCOPED_TRACE(groundFirst ? "ground created first" : "ball created first");
+        World world(settings());
+        CheckingListener listener(world);
+        world.addListener(&listener);
+        Body ground, ball;
+        if (groundFirst) ground = world.createBody(groundDef());
+        ball = world.createBody(ballDef("ball", 0.5, Vec3(0, 1.0, 0)));
+        if (!groundFirst) ground = world.createBody(groundDef());
+        for (int i = 0; i < 60; ++i) world.step();
+        EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+        const auto enter = std::find_if(listener.records.begin(), listener.records.end(), [](const auto& r) {
+            return r.event.phase == ContactPhase::Enter;
+        });
+        ASSERT_NE(enter, listener.records.end());
+        const ContactEvent& e = enter->event;
+        const BodyId lower = std::min(ground.id(), ball.id());
+        EXPECT_TRUE(e.bodyA == lower);
+        // The ground's normal is +y; from the ball to the ground it is -y.
+        const double expectedY = e.bodyA == ground.id() ? 1.0 : -1.0;
+        EXPECT_NEAR(e.normal.y(), expectedY, 1e-6) << "normal " << e.normal.transpose();
+        EXPECT_FALSE(e.points.empty());
+    }
+}
+
+// A ball flying through a sensor gets one trigger enter and one trigger exit, and is not
+// deflected (a sensor never collides).
+TEST_P(EventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Box});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    WorldSettings s = settings();
+    s.gravity = Vec3::Zero();
+    World world(s);
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    BodyDef sensor = boxDef("sensor", Vec3(1, 1, 1), Vec3(5, 0, 0));
+    sensor.type = BodyType::Static;
+    sensor.isTrigger = true;
+    world.createBody(sensor);
+    BodyDef def = ballDef("ball", 0.25, Vec3(0, 0, 0));
+    def.linearVelocity = Vec3(5, 0, 0);
+    Body ball = world.createBody(def);
+    while (world.time() < 2.0) world.step();
+
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    EXPECT_EQ(listener.count(ContactPhase::Enter, true), 1) << listener.log();
+    EXPECT_EQ(listener.count(ContactPhase::Exit, true), 1) << listener.log();
+    EXPECT_EQ(listener.count(ContactPhase::Enter, false), 0) << "a sensor must not collide:" << listener.log();
+    EXPECT_NEAR((ball.linearVelocity() - Vec3(5, 0, 0)).norm(), 0.0, 1e-9);
+    // Overlap starts when the centre reaches 3.75 m (t = 0.75 s) and ends past 6.25 m (t = 1.25 s).
+    // 3 steps (0.05 s, 25 cm) of slack: overlap is seen at step ends, plus any touching margin.
+    const double dt = world.settings().timeStep;
+    for (const auto& r : listener.records) {
+        const double t = r.step * dt;
+        if (r.event.phase == ContactPhase::Enter) {
+            EXPECT_NEAR(t, 0.75, 3 * dt) << "trigger enter time";
+        }
+        if (r.event.phase == ContactPhase::Exit) {
+            EXPECT_NEAR(t, 1.25, 3 * dt) << "trigger exit time";
+        }
+        if (r.event.phase != ContactPhase::Stay) report(backend() + std::string(" ") + phaseName(r.event) + " time", t, "s");
+    }
+}
+
+// A listener may destroy the body it is told about and create another; the world stays sound,
+// the destroyed pair ends with one exit flagged as removal, and the new body collides normally.
+TEST_P(EventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    Body ground = world.createBody(groundDef());
+    Body ball = world.createBody(ballDef("ball", 0.5, Vec3(0, 1.5, 0)));
+    Body replacement;
+    listener.then = [&](const ContactEvent& e) {
+        if (e.phase == ContactPhase::Enter && ball.isValid() && (e.bodyA == ball.id() || e.bodyB == ball.id())) {
+            world.destroyBody(ball);
+            replacement = world.createBody(ballDef("replacement", 0.5, Vec3(3, 2.0, 0)));
+        }
+    };
+    const BodyId oldBall = ball.id();
+    while (world.time() < 2.0) world.step();
+
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    EXPECT_FALSE(ball.isValid());
+    ASSERT_TRUE(replacement.isValid());
+    EXPECT_EQ(world.bodyCount(), 2u);
+    int removalExits = 0, replacementEnters = 0;
+    for (const auto& r : listener.records) {
+        const bool oldPair = r.event.bodyA == oldBall || r.event.bodyB == oldBall;
+        if (oldPair && r.event.phase == ContactPhase::Exit) {
+            EXPECT_TRUE(r.event.removal) << "an exit caused by destroyBody is flagged as removal";
+            ++removalExits;
+        }
+        const bool newPair = r.event.bodyA == replacement.id() || r.event.bodyB == replacement.id();
+        if (newPair && r.event.phase == ContactPhase::Enter) ++replacementEnters;
+    }
+    EXPECT_EQ(removalExits, 1) << listener.log();
+    EXPECT_EQ(replacementEnters, 1) << listener.log();
+    EXPECT_TRUE(finite(replacement.state()));
+    EXPECT_GT(replacement.position().y(), 0.4);  // landed on the ground, not through it
+    (void)ground;
+}
+
+ANYPHYS_CONTRACT_SUITE(EventsTest);
+
+}  // namespace
+}  // namespace anyphys::test

@@ -1,0 +1,114 @@
+// Ray casts (closest and all hits) and shape overlap against the world. Geometry is exact, so
+// positions and distances are checked to 1e-6 m (rounding only); membership exactly.
+#include <algorithm>
+#include <numbers>
+
+#include "contact_helpers.hpp"
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+constexpr double kExact = 1e-6;  // m: closed-form ray / box intersections, only rounding remains
+
+class QueriesTest : public ContractTest {
+protected:
+    // Ground y = 0 and three static unit boxes centred at x = 2, 4, 6 (y = 0.5); box "b2" is on
+    // layer 2, the others on layer 1; a sensor box at x = 1 that queries must ignore.
+    void build(World& world) {
+        world.createBody(groundDef());
+        for (int i = 0; i < 3; ++i) {
+            BodyDef def = boxDef("b" + std::to_string(i + 1), Vec3(0.5, 0.5, 0.5), Vec3(2.0 * (i + 1), 0.5, 0));
+            def.type = BodyType::Static;
+            def.layer = i == 1 ? 2u : 1u;
+            boxes.push_back(world.createBody(def));
+        }
+        BodyDef sensor = boxDef("sensor", Vec3(0.25, 0.25, 0.25), Vec3(1, 0.5, 0));
+        sensor.type = BodyType::Static;
+        sensor.isTrigger = true;
+        world.createBody(sensor);
+    }
+    bool has(const char* query) const { return caps().queries.contains(query); }
+    std::vector<Body> boxes;
+};
+
+TEST_P(QueriesTest, RaycastReturnsTheClosestHit) {
+    ANYPHYS_REQUIRE(has("raycast") && caps().shapes.contains(ShapeType::Box), "query raycast on boxes");
+    World world(settings());
+    build(world);
+    const auto hit = world.raycast(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 10.0);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_TRUE(hit->body == boxes[0]) << "hit " << hit->body.name();  // the sensor at x = 1 is skipped
+    EXPECT_NEAR(hit->distance, 1.5, kExact);
+    EXPECT_NEAR((hit->point - Vec3(1.5, 0.5, 0)).norm(), 0, kExact);
+    EXPECT_NEAR((hit->normal - Vec3(-1, 0, 0)).norm(), 0, kExact);
+
+    // maxDistance stops short of the first box; a ray pointing away hits nothing.
+    EXPECT_FALSE(world.raycast(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 1.4).has_value());
+    EXPECT_FALSE(world.raycast(Vec3(0, 0.5, 0), Vec3(-1, 0, 0), 10.0).has_value());
+
+    // Straight down onto the ground plane; distance is in metres even for a non-unit direction.
+    const auto down = world.raycast(Vec3(-3, 5, 0), Vec3(0, -2, 0), 10.0);
+    ASSERT_TRUE(down.has_value());
+    EXPECT_EQ(down->body.name(), "ground");
+    EXPECT_NEAR(down->distance, 5.0, kExact);
+    EXPECT_NEAR((down->normal - Vec3(0, 1, 0)).norm(), 0, kExact);
+}
+
+TEST_P(QueriesTest, RaycastAllReturnsEveryHitNearestFirst) {
+    ANYPHYS_REQUIRE(has("raycast") && caps().shapes.contains(ShapeType::Box), "query raycast on boxes");
+    World world(settings());
+    build(world);
+    const std::vector<RayHit> hits = world.raycastAll(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 10.0);
+    ASSERT_EQ(hits.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_TRUE(hits[i].body == boxes[i]) << "hit " << i << " is " << hits[i].body.name();
+        EXPECT_NEAR(hits[i].distance, 1.5 + 2.0 * i, kExact);
+    }
+    // maxDistance 4 m includes the entry into the second box (3.5 m) only.
+    EXPECT_EQ(world.raycastAll(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 4.0).size(), 2u);
+    // The layer mask skips b2 (layer 2).
+    const std::vector<RayHit> layer1 = world.raycastAll(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 10.0, 1u);
+    ASSERT_EQ(layer1.size(), 2u);
+    EXPECT_TRUE(layer1[0].body == boxes[0] && layer1[1].body == boxes[2]);
+    const auto closestOnLayer2 = world.raycast(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 10.0, 2u);
+    ASSERT_TRUE(closestOnLayer2.has_value());
+    EXPECT_TRUE(closestOnLayer2->body == boxes[1]);
+    EXPECT_NEAR(closestOnLayer2->distance, 3.5, kExact);
+}
+
+std::vector<std::string> names(const std::vector<Body>& bodies) {
+    std::vector<std::string> out;
+    for (const Body& b : bodies) out.push_back(b.name());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST_P(QueriesTest, OverlapFindsTheBodiesAShapeTouches) {
+    ANYPHYS_REQUIRE(has("overlap") && caps().shapes.contains(ShapeType::Box), "query overlap on boxes");
+    World world(settings());
+    build(world);
+    using Names = std::vector<std::string>;
+    // A sphere beside b1 reaching 0.1 m into it, clear of the ground (its bottom at y = 0.4).
+    EXPECT_EQ(names(world.overlap(ShapeDef::sphere(0.6), Transform{Vec3(2, 1.0, 1.0), Quat::Identity()})),
+              Names{"b1"});
+    // A sphere 0.1 m short of b1 touches nothing.
+    EXPECT_TRUE(world.overlap(ShapeDef::sphere(0.4), Transform{Vec3(2, 1.0, 1.0), Quat::Identity()}).empty());
+    // A long box along the row covers b1..b3 and dips into the ground; the sensor is skipped.
+    EXPECT_EQ(names(world.overlap(ShapeDef::box(Vec3(4, 0.5, 0.5)), Transform{Vec3(4, 0.4, 0), Quat::Identity()})),
+              (Names{"b1", "b2", "b3", "ground"}));
+    // The same box filtered to layer 2 finds b2 only.
+    EXPECT_EQ(names(world.overlap(ShapeDef::box(Vec3(4, 0.5, 0.5)), Transform{Vec3(4, 0.6, 0), Quat::Identity()}, 2u)),
+              Names{"b2"});
+    // The pose's rotation counts: a box centred at x = 0.85 reaches x = 1.35, short of b1's face at
+    // 1.5; turned 45 deg about y its corner reaches 0.85 + 0.5 sqrt(2) = 1.557, 5.7 cm into b1.
+    const ShapeDef plate = ShapeDef::box(Vec3(0.5, 0.2, 0.5));
+    const Quat turn(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()));
+    EXPECT_TRUE(world.overlap(plate, Transform{Vec3(0.85, 0.5, 0), Quat::Identity()}).empty());
+    EXPECT_EQ(names(world.overlap(plate, Transform{Vec3(0.85, 0.5, 0), turn})), Names{"b1"});
+}
+
+ANYPHYS_CONTRACT_SUITE(QueriesTest);
+
+}  // namespace
+}  // namespace anyphys::test
