@@ -18,12 +18,9 @@ class ContactsTest : public ContractTest {};
 // A ball dropped on the ground rebounds to e^2 of its drop height. Drop 2 m (bottom above the
 // ground): impact at sqrt(2 g 2) = 6.3 m/s, and even e = 0.5 rebounds at 3.1 m/s, both far above
 // the default 1 m/s restitution threshold, so restitution applies at full strength.
-// KNOWN FAILURE (disabled, issue 3 stays open): native at default settings (1 substep,
-// semi-implicit Euler, 60 Hz) measured rebounds 0.441 m for e = 0.5 (exact 0.5) and 1.466 m for
-// e = 0.9 (exact 1.62): about 12 % and 10 % low. Two known causes: semi-implicit Euler loses
-// about v dt / 2 of apex height in free flight, and the impact is resolved at the end of the
-// step instead of at the time of contact. Run with --gtest_also_run_disabled_tests to measure.
-TEST_P(ContactsTest, DISABLED_BallReboundsToRestitutionSquaredOfDropHeight) {
+// Flight runs on an integrator exact for parabolas (exactFlight), so the heights measure the
+// bounce, not semi-implicit Euler's own apex loss.
+TEST_P(ContactsTest, BallReboundsToRestitutionSquaredOfDropHeight) {
     const std::string missing =
         lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
     ANYPHYS_REQUIRE(missing.empty(), missing);
@@ -32,7 +29,7 @@ TEST_P(ContactsTest, DISABLED_BallReboundsToRestitutionSquaredOfDropHeight) {
         SCOPED_TRACE("restitution " + std::to_string(e));
         MaterialLibrary materials;
         materials.add("ball", Material{0.6, e, 1000.0});  // the ground's default restitution 0; rule max gives e
-        World world(settings(), materials);
+        World world(exactFlight(settings(), caps()), materials);  // the bounce alone, not the integrator
         world.createBody(groundDef());
         Body ball = world.createBody(ballDef("ball", kRadius, Vec3(0, kRadius + kDrop, 0), "ball"));
         const double apex = firstReboundApex(world, ball, 4.0);
@@ -149,9 +146,9 @@ CheckRun runCatalogueCheck(const CatalogueScene& entry, const std::string& backe
 
 // 10 unit boxes stacked with no gap stand for 10 s: the top box drifts less than 1 cm sideways
 // (the catalogue's box_stack_10 check), and the stack sinks no more than its contacts may overlap.
-// KNOWN FAILURE (disabled, issue 3 stays open): native measured a top drift of 1.04 cm after
-// 10 s against the 1 cm bound: soft contacts at 60 Hz compress the stack by about that much
-// under load (the drift is mostly vertical settling). The stack stands and falls asleep.
+// KNOWN FAILURE (disabled, issue 3 stays open): native measured the top box 1.036 cm sideways
+// after 10 s against the 1 cm bound (it sank 6.9 mm, within the 5 cm the contacts may overlap).
+// The stack stands and falls asleep. Run with --gtest_also_run_disabled_tests to measure.
 TEST_P(ContactsTest, DISABLED_TenBoxStackStands) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
     ANYPHYS_REQUIRE(missing.empty(), missing);

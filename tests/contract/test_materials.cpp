@@ -64,10 +64,8 @@ TEST_P(MaterialsTest, CombineRulesAndPairOverridesSetTheSlideDistance) {
 
 // A pair override of restitution makes two dead materials bounce: both restitution 0, the pair
 // overridden to 0.8 -> rebound to 0.64 of the drop.
-// KNOWN FAILURE (disabled, issue 3 stays open): the override is applied (e = 0.8 is used), but
-// native measured a rebound of 1.154 m against 1.28 m, for the same timing reasons as
-// ContactsTest.DISABLED_BallReboundsToRestitutionSquaredOfDropHeight.
-TEST_P(MaterialsTest, DISABLED_PairOverrideSetsRestitution) {
+// Flight on an integrator exact for parabolas, as in ContactsTest.BallRebounds...
+TEST_P(MaterialsTest, PairOverrideSetsRestitution) {
     const std::string missing =
         lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
     ANYPHYS_REQUIRE(missing.empty(), missing);
@@ -76,7 +74,7 @@ TEST_P(MaterialsTest, DISABLED_PairOverrideSetsRestitution) {
     materials.add("ball", Material{0.6, 0.0, 1000.0});
     materials.add("floor", Material{0.6, 0.0, 1000.0});
     materials.setPairOverride("ball", "floor", PairOverride{std::nullopt, 0.8});
-    World world(settings(), materials);
+    World world(exactFlight(settings(), caps()), materials);  // the bounce alone, not the integrator
     world.createBody(groundDef("floor"));
     Body ball = world.createBody(ballDef("ball", kRadius, Vec3(0, kRadius + kDrop, 0), "ball"));
     const double rebound = firstReboundApex(world, ball, 4.0) - kRadius;

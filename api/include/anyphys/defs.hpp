@@ -54,7 +54,7 @@ struct ShapeDef {
 struct BodyDef {
     std::string name;                          ///< optional label (scene files, CSV output); default ""
     BodyType type = BodyType::Dynamic;         ///< default dynamic
-    Vec3 position = Vec3::Zero();              ///< m, world frame, centre of mass; default origin
+    Vec3 position = Vec3::Zero();              ///< m, world frame, the body origin (shapes are placed relative to it); default origin
     Quat orientation = Quat::Identity();       ///< unit quaternion body -> world; default identity
     Vec3 linearVelocity = Vec3::Zero();        ///< m/s, world frame; default 0
     Vec3 angularVelocity = Vec3::Zero();       ///< rad/s, world frame; default 0

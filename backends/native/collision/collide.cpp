@@ -44,7 +44,14 @@ std::vector<Vec3> planeProbes(const Shape& s, const Transform& xf) {
             const CapsuleGeom c = capsuleOf(s, xf);
             return {c.p0, c.p1};
         }
-        case ShapeType::Box:
+        case ShapeType::Box: {
+            const Mat3 r = xf.orientation.toRotationMatrix();
+            std::vector<Vec3> corners;
+            corners.reserve(8);
+            for (int i = 0; i < 8; ++i)
+                corners.push_back(xf.position + r * s.halfExtents.cwiseProduct(Vec3((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1)));
+            return corners;
+        }
         case ShapeType::Convex: return polytopeOf(s, xf).vertices;
         default: return {};
     }

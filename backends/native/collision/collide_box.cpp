@@ -53,7 +53,8 @@ void boxFaceContact(const BoxGeom& ref, int refAxis, double sign, const BoxGeom&
 
 struct BoxEdge {
     Vec3 p0, p1;
-    int id;  // axis x 4 + which of the four parallel edges
+    int id;  // axis x 4 + which of the four parallel edges: its index in boxEdges(), so the
+             // polyhedral routines (used while boxes are apart) give an edge pair the same id
 };
 
 // The edge of `box` along `axis` that is farthest in direction d.

@@ -10,19 +10,20 @@
 namespace anyphys::native {
 
 struct Polytope {
-    std::vector<Vec3> vertices;                             // world
-    const std::vector<std::vector<int>>* faces = nullptr;   // vertex loops, counter-clockwise from outside
-    std::vector<Vec3> normals;                              // world, outward, unit
-    std::vector<double> offsets;                            // normals[f].dot(x) == offsets[f] on face f
-    const std::vector<std::array<int, 2>>* sharedEdges = nullptr;  // every edge once (static tables), or
-    std::vector<std::array<int, 2>> ownEdges;               // ... computed for this polytope (hulls)
-    // Per edge, the face on its left (walking v0 -> v1 seen from outside) and on its right.
-    // Empty for a flat triangle, whose two faces meet at every edge.
+    std::vector<Vec3> vertices;                            // world
+    const std::vector<std::vector<int>>* faces = nullptr;  // vertex loops, counter-clockwise from outside
+    std::vector<Vec3> normals;                             // world, outward, unit
+    std::vector<double> offsets;                           // normals[f].dot(x) == offsets[f] on face f
+    Vec3 center = Vec3::Zero();                            // an interior point (centroid)
+    double size = 0.0;                                     // largest distance from center to a vertex (m)
+    bool oneSided = false;                                 // mesh triangle: pushes shapes out of its front only
+
+    // Edges, each once as (v0, v1), and per edge the faces on its left (the face walking
+    // v0 -> v1) and right. Shared with static tables or the hull when precomputed, else owned.
+    // A flat triangle has no edge faces: its two faces meet at every edge.
+    const std::vector<std::array<int, 2>>* sharedEdges = nullptr;
     const std::vector<std::array<int, 2>>* sharedEdgeFaces = nullptr;
-    std::vector<std::array<int, 2>> ownEdgeFaces;
-    bool oneSided = false;                                  // mesh triangle: only face 0 (the front) separates
-    Vec3 center = Vec3::Zero();                             // an interior point (centroid)
-    double size = 0.0;                                      // largest distance from center to a vertex (m)
+    std::vector<std::array<int, 2>> ownEdges, ownEdgeFaces;
 
     const std::vector<int>& face(int f) const { return (*faces)[f]; }
     int faceCount() const { return static_cast<int>(faces->size()); }
