@@ -75,7 +75,7 @@ void ContactSolver::prepare(NativeWorld& world) {
     }
 }
 
-void ContactSolver::prepareConstraint(NativeWorld& world, Constraint& c, double /*h*/) {
+void ContactSolver::prepareConstraint(NativeWorld& world, Constraint& c) {
     auto& bodies = world.bodies();
     const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
     const Mat3 iA = worldInverseInertia(a), iB = worldInverseInertia(b);
@@ -107,7 +107,7 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
     const bool friction = effects.has(Effect::Friction);
     const bool restitution = effects.has(Effect::Restitution);
 
-    for (Constraint& c : constraints_) prepareConstraint(world, c, h);
+    for (Constraint& c : constraints_) prepareConstraint(world, c);
 
     // Velocities and inverse inertia in one dense array the inner loops touch.
     std::vector<int> slot(bodies.size(), -1);
@@ -115,8 +115,7 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
         NativeBody& b = bodies[bodies_[i]];
         slot[bodies_[i]] = static_cast<int>(i);
-        b.stepStartPosition = b.state.position;
-        b.stepStartOrientation = b.state.orientation;
+        // stepStart poses were taken when the step began (or when the body woke).
         motion[i] = {b.state.linearVelocity, b.state.angularVelocity, worldInverseInertia(b), b.isDynamic() ? b.invMass : 0.0};
     }
     Motion fixed{Vec3::Zero(), Vec3::Zero(), Mat3::Zero(), 0.0};  // static or asleep partners

@@ -33,7 +33,7 @@ private:
         ContactManifold* manifold;
         std::uint32_t bodyA, bodyB;
     };
-    void prepareConstraint(NativeWorld& world, Constraint& c, double h);
+    void prepareConstraint(NativeWorld& world, Constraint& c);
     std::vector<Constraint> constraints_;
     std::vector<std::uint32_t> bodies_;  // constrained dynamic and kinematic bodies
 };
