@@ -32,6 +32,9 @@ const std::string& Body::material() const { return ANYPHYS_SLOT("Body.material")
 bool Body::isTrigger() const { return ANYPHYS_SLOT("Body.isTrigger").def.isTrigger; }
 bool Body::isAwake() const { return ANYPHYS_SLOT("Body.isAwake").peer->isAwake(); }
 void Body::wake() { ANYPHYS_SLOT("Body.wake").peer->setAwake(true); }
+void* Body::nativeObject(const std::type_info& pointerType) const {
+    return ANYPHYS_SLOT("Body.native").peer->nativeObject(pointerType);
+}
 Vec3 Body::centerOfMass() const { return ANYPHYS_SLOT("Body.centerOfMass").peer->state().position; }
 
 Vec3 Body::angularVelocityLocal() const {

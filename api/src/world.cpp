@@ -123,6 +123,8 @@ void World::warn(const std::string& message) {
 
 void World::setWarningHandler(WarningHandler handler) { impl_->warningHandler = std::move(handler); }
 
+void* World::nativeObject(const std::type_info& pointerType) { return impl_->peer->nativeObject(pointerType); }
+
 void World::refreshEffects() {
     Effects wanted;
     if (settings_.effects) {

@@ -33,6 +33,9 @@ Backend makeNativeBackend() {
                        "settings.contactPushMaxVelocity", "settings.baumgarte", "settings.restitutionThreshold",
                        "settings.linearSlop", "settings.speculativeDistance", "settings.sleepLinearVelocity",
                        "settings.sleepAngularVelocity", "settings.timeToSleep"};
+    caps.knownDeviations = {
+        {"stack10.top_drift", "top box 1.036 cm sideways after 10 s at the default soft step (1 substep)"},
+    };
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
     };

@@ -7,12 +7,24 @@ namespace anyphys {
 #if ANYPHYS_HAS_NATIVE
 Backend makeNativeBackend();
 #endif
+#if ANYPHYS_HAS_ODE
+Backend makeOdeBackend();
+#endif
+#if ANYPHYS_HAS_BULLET
+Backend makeBulletBackend();
+#endif
 
 const std::vector<Backend>& registeredBackends() {
     static const std::vector<Backend> backends = [] {
         std::vector<Backend> list;
 #if ANYPHYS_HAS_NATIVE
         list.push_back(makeNativeBackend());
+#endif
+#if ANYPHYS_HAS_ODE
+        list.push_back(makeOdeBackend());
+#endif
+#if ANYPHYS_HAS_BULLET
+        list.push_back(makeBulletBackend());
 #endif
         return list;
     }();

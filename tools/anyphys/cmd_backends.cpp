@@ -30,6 +30,7 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"forceEvaluation", forceEvaluationName(caps.forceEvaluation)},
         {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
         {"options", options},
+        {"knownDeviations", caps.knownDeviations},
     };
 }
 
@@ -55,6 +56,7 @@ void printText(const std::vector<BackendInfo>& backends) {
         std::vector<std::string> options;
         for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
         row("options", orNone(options));
+        for (const auto& [criterion, reason] : c.knownDeviations) row("known deviation", criterion + ": " + reason);
     }
 }
 

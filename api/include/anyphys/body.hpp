@@ -1,6 +1,8 @@
 #pragma once
 // A light handle to a body: a world pointer plus a generational id. Copy freely; every call on a
 // destroyed body throws anyphys::Error.
+#include <typeinfo>
+
 #include "anyphys/defs.hpp"
 #include "anyphys/ids.hpp"
 
@@ -48,6 +50,12 @@ public:
     /// Immediate velocity changes: N s and N m s.
     void applyLinearImpulse(const Vec3& impulse);
     void applyAngularImpulse(const Vec3& impulse);
+
+    /// Escape hatch: the engine's own body object when the world's engine has a T, else
+    /// nullptr: dxBody (ODE's dBodyID) on ode, btRigidBody on bullet.
+    template <class T>
+    T* native() const { return static_cast<T*>(nativeObject(typeid(T*))); }
+    void* nativeObject(const std::type_info& pointerType) const;
 
     friend bool operator==(const Body& a, const Body& b) { return a.world_ == b.world_ && a.id_ == b.id_; }
 

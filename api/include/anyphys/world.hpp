@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include "anyphys/body.hpp"
@@ -112,6 +113,14 @@ public:
     const MaterialLibrary& materials() const { return materials_; }
     /// Receives lenient-policy warnings; default: one line on stderr.
     void setWarningHandler(WarningHandler handler);
+
+    // ---- escape hatch -------------------------------------------------------------------
+    /// The engine's own world object when this world runs on the engine that has a T, else
+    /// nullptr: dxWorld (ODE's dWorldID) on ode, btDiscreteDynamicsWorld on bullet. For engine
+    /// features the layer lacks; changes made through it bypass validation and events.
+    template <class T>
+    T* native() { return static_cast<T*>(nativeObject(typeid(T*))); }
+    void* nativeObject(const std::type_info& pointerType);
 
 private:
     friend class Body;

@@ -3,6 +3,8 @@
 // properties, materials); a peer only applies them. A peer body's frame is the body's centre of
 // mass and principal axes: positions, orientations and velocities here are those of that frame
 // (the layer converts to the user's body origin).
+#include <typeinfo>
+
 #include "anyphys/defs.hpp"
 
 namespace anyphys {
@@ -29,6 +31,10 @@ public:
     /// any user change).
     virtual bool isAwake() const = 0;
     virtual void setAwake(bool awake) = 0;
+
+    /// Escape hatch: the engine's body object if `pointerType` is typeid of a pointer to it
+    /// (e.g. typeid(btRigidBody*)), else nullptr.
+    virtual void* nativeObject(const std::type_info& pointerType) { (void)pointerType; return nullptr; }
 };
 
 }  // namespace anyphys

@@ -2,6 +2,7 @@
 // The backend side of one world.
 #include <functional>
 #include <memory>
+#include <typeinfo>
 
 #include "anyphys/defs.hpp"
 #include "anyphys/effects.hpp"
@@ -93,6 +94,10 @@ public:
     /// Bodies (userData) whose shapes overlap `shapes` placed at `pose`, layer in `mask`. Triggers are skipped.
     virtual std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
                                                std::uint32_t mask) = 0;
+
+    /// Escape hatch: the engine's world object if `pointerType` is typeid of a pointer to it
+    /// (e.g. typeid(dxWorld*)), else nullptr.
+    virtual void* nativeObject(const std::type_info& pointerType) { (void)pointerType; return nullptr; }
 };
 
 }  // namespace anyphys
