@@ -22,8 +22,8 @@ std::vector<std::string> missingCapabilities(const Capabilities& caps, const Wor
         missing.push_back("integrator " + std::string(toString(settings.integrator)));
     for (const auto& name : (effects & ~caps.effects).names()) missing.push_back("effect " + name);
     const bool constrained = effects.has(Effect::Contacts) || effects.has(Effect::Joints);
-    if (constrained && !caps.solvers.count(settings.solver))
-        missing.push_back("solver " + std::string(toString(settings.solver)));
+    if (constrained && settings.solver && !caps.solvers.count(*settings.solver))
+        missing.push_back("solver " + std::string(toString(*settings.solver)));
     const WorldSettings defaults;
     if (settings.substeps != defaults.substeps && !caps.parameters.count("settings.substeps"))
         missing.push_back("settings.substeps");

@@ -101,7 +101,7 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
     auto& bodies = world.bodies();
     const WorldSettings& settings = world.settings();
     const Effects effects = world.effects();
-    const bool soft = settings.solver != Solver::ProjectedGaussSeidel;
+    const bool soft = settings.solver.value_or(Solver::SoftStep) != Solver::ProjectedGaussSeidel;
     const int substeps = settings.substeps;
     const double h = step.dt / substeps, invH = 1.0 / h;
     const bool friction = effects.has(Effect::Friction);

@@ -18,6 +18,7 @@ Backend makeNativeBackend() {
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
     caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
     caps.solvers = {Solver::SoftStep, Solver::ProjectedGaussSeidel};
+    caps.defaultSolver = Solver::SoftStep;
     caps.contactImpulses = true;
     caps.queries = {"raycast", "overlap"};
     caps.integrators = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Verlet,

@@ -506,7 +506,7 @@ ojson settingsJson(const WorldSettings& s) {
     j["gravity"] = vec(s.gravity);
     j["timeStep"] = s.timeStep;
     j["integrator"] = std::string(toString(s.integrator));
-    j["solver"] = std::string(toString(s.solver));
+    if (s.solver) j["solver"] = std::string(toString(*s.solver));
     j["substeps"] = s.substeps;
     j["iterations"] = s.iterations;
     if (s.effects) j["effects"] = s.effects->names();

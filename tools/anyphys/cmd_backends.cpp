@@ -26,6 +26,7 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"effects", caps.effects.names()},
         {"integrators", enumNames(caps.integrators)},
         {"solvers", enumNames(caps.solvers)},
+        {"defaultSolver", toString(caps.defaultSolver)},
         {"gyroscopicModes", enumNames(caps.gyroscopicModes)},
         {"forceEvaluation", forceEvaluationName(caps.forceEvaluation)},
         {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
@@ -49,7 +50,7 @@ void printText(const std::vector<BackendInfo>& backends) {
         row("joint types", orNone({c.jointTypes.begin(), c.jointTypes.end()}));
         row("effects", orNone(c.effects.names()));
         row("integrators", orNone(enumNames(c.integrators)));
-        row("solvers", orNone(enumNames(c.solvers)));
+        row("solvers", orNone(enumNames(c.solvers)) + " (default " + std::string(toString(c.defaultSolver)) + ")");
         row("gyroscopic modes", orNone(enumNames(c.gyroscopicModes)));
         row("force evaluation", std::string(forceEvaluationName(c.forceEvaluation)));
         row("parameters", orNone({c.parameters.begin(), c.parameters.end()}));

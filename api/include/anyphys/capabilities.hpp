@@ -26,6 +26,7 @@ struct Capabilities {
     Effects effects;                           ///< effects it can simulate
     std::set<Integrator> integrators;          ///< selectable integrators
     std::set<Solver> solvers;                  ///< selectable constraint solvers
+    Solver defaultSolver = Solver::ProjectedGaussSeidel;  ///< used when WorldSettings::solver is unset
     std::set<GyroscopicMode> gyroscopicModes;  ///< per-body gyroscopic modes honoured
     ForceEvaluation forceEvaluation = ForceEvaluation::PerStep;
     bool contactImpulses = false;              ///< contact events carry real normal impulses

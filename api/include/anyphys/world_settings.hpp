@@ -21,7 +21,9 @@ struct WorldSettings {
     Vec3 gravity = Vec3(0, -9.81, 0);               ///< m/s^2, world frame; default (0, -9.81, 0)
     double timeStep = 1.0 / 60.0;                   ///< s, the fixed step of step() and update(); default 1/60
     Integrator integrator = Integrator::SemiImplicitEuler;  ///< default semi-implicit Euler
-    Solver solver = Solver::SoftStep;               ///< constraint solver; default soft step
+    /// Constraint solver. Unset (default): the backend's own default (capabilities.defaultSolver:
+    /// soft_step on native, pgs on ode and bullet), so default settings run on every backend.
+    std::optional<Solver> solver;
     int iterations = 10;                            ///< solver iterations per (sub)step, >= 1; default 10
     int substeps = 1;                               ///< substeps per step, >= 1; default 1
     /// Effects to simulate. Unset (default): derived from the world's content, e.g. damping only
