@@ -24,10 +24,8 @@ std::vector<std::string> missingCapabilities(const Capabilities& caps, const Wor
     const bool constrained = effects.has(Effect::Contacts) || effects.has(Effect::Joints);
     if (constrained && settings.solver && !caps.solvers.count(*settings.solver))
         missing.push_back("solver " + std::string(toString(*settings.solver)));
-    const WorldSettings defaults;
-    if (settings.substeps != defaults.substeps && !caps.parameters.count("settings.substeps"))
-        missing.push_back("settings.substeps");
-    if (constrained && settings.iterations != defaults.iterations && !caps.parameters.count("settings.iterations"))
+    if (settings.substeps && !caps.parameters.count("settings.substeps")) missing.push_back("settings.substeps");
+    if (constrained && settings.iterations && !caps.parameters.count("settings.iterations"))
         missing.push_back("settings.iterations");
     for (const auto& [name, value] : settings.backendOptions) {
         bool known = false;

@@ -87,6 +87,10 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
             throw Error("WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
         warn("WorldSettings: " + what + "; running without them");
     }
+    // Unset solver knobs take the backend's defaults, so settings() shows what runs.
+    if (!settings_.solver) settings_.solver = caps.defaultSolver;
+    if (!settings_.substeps) settings_.substeps = caps.defaultSubsteps;
+    if (!settings_.iterations) settings_.iterations = caps.defaultIterations;
     impl_->peer = impl_->backend->createWorld(settings_);
     impl_->peer->setMaterialTable(buildMaterialTable());
     refreshEffects();

@@ -18,7 +18,9 @@ Backend makeNativeBackend() {
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
     caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
     caps.solvers = {Solver::SoftStep, Solver::ProjectedGaussSeidel};
-    caps.defaultSolver = Solver::SoftStep;
+    caps.defaultSolver = native::NativeWorld::kDefaultSolver;
+    caps.defaultSubsteps = native::NativeWorld::kDefaultSubsteps;
+    caps.defaultIterations = native::NativeWorld::kDefaultIterations;
     caps.contactImpulses = true;
     caps.queries = {"raycast", "overlap"};
     caps.integrators = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Verlet,
@@ -34,9 +36,6 @@ Backend makeNativeBackend() {
                        "settings.contactPushMaxVelocity", "settings.baumgarte", "settings.restitutionThreshold",
                        "settings.linearSlop", "settings.speculativeDistance", "settings.sleepLinearVelocity",
                        "settings.sleepAngularVelocity", "settings.timeToSleep"};
-    caps.knownDeviations = {
-        {"stack10.top_drift", "top box 1.036 cm sideways after 10 s at the default soft step (1 substep)"},
-    };
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
     };

@@ -59,7 +59,11 @@ double coreExtent(const Shape& s) {
 }  // namespace
 
 NativeWorld::NativeWorld(const WorldSettings& settings)
-    : settings_(settings), stages_(makePipeline()), broadPhase_(kAabbMargin) {}
+    : settings_(settings), stages_(makePipeline()), broadPhase_(kAabbMargin) {
+    if (!settings_.solver) settings_.solver = kDefaultSolver;
+    if (!settings_.substeps) settings_.substeps = kDefaultSubsteps;
+    if (!settings_.iterations) settings_.iterations = kDefaultIterations;
+}
 
 NativeWorld::~NativeWorld() = default;
 
@@ -171,21 +175,7 @@ void NativeWorld::step(double time, double dt) {
         b.stepStartOrientation = b.state.orientation;
         b.constrained = false;
     }
-    // Consecutive per-substep stages run together, `substeps` times with dt / substeps.
-    const int substeps = settings_.substeps;
-    const double h = dt / substeps;
-    for (std::size_t i = 0; i < active_.size();) {
-        if (!active_[i]->perSubstep()) {
-            active_[i]->run(*this, {time, dt});
-            ++i;
-            continue;
-        }
-        std::size_t end = i;
-        while (end < active_.size() && active_[end]->perSubstep()) ++end;
-        for (int s = 0; s < substeps; ++s)
-            for (std::size_t j = i; j < end; ++j) active_[j]->run(*this, {time + s * h, h});
-        i = end;
-    }
+    for (Stage* stage : active_) stage->run(*this, {time, dt});
 }
 
 void NativeWorld::evaluateForceHook(double time) {

@@ -3,8 +3,9 @@
 // world runs only the stages that are needed, so an effect that is off costs nothing but the
 // one check made when the world's content or effects change.
 //
-// Order: collide (broad + narrow phase, constraint set-up); per substep {implicit gyroscopic,
-// integrate} for free bodies; solve contacts (its own substeps, for constrained bodies);
+// Order: collide (broad + narrow phase, constraint set-up); implicit gyroscopic and integrate
+// for free bodies (once per step: they have nothing to substep for); solve contacts (substeps,
+// for constrained bodies);
 // continuous collision; sleep; clear forces. Joints will plug in beside the contact solver.
 #include <string_view>
 
@@ -23,8 +24,6 @@ public:
     virtual std::string_view name() const = 0;
     virtual bool needed(const NativeWorld& world) const = 0;
     virtual void run(NativeWorld& world, const StepInfo& step) = 0;
-    /// Per-substep stages run `substeps` times with dt / substeps; the others once per step.
-    virtual bool perSubstep() const { return true; }
 };
 
 }  // namespace anyphys::native

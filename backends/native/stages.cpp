@@ -169,7 +169,6 @@ private:
 class ClearForcesStage final : public Stage {
 public:
     std::string_view name() const override { return "clear_forces"; }
-    bool perSubstep() const override { return false; }
     bool needed(const NativeWorld& world) const override { return world.effects().has(Effect::UserForces); }
     void run(NativeWorld& world, const StepInfo&) override {
         for (NativeBody& b : world.bodies()) {
@@ -185,7 +184,6 @@ bool hasContacts(const NativeWorld& world) { return world.effects().has(Effect::
 class CollideStage final : public Stage {
 public:
     std::string_view name() const override { return "collide"; }
-    bool perSubstep() const override { return false; }
     bool needed(const NativeWorld& world) const override { return hasContacts(world); }
     void run(NativeWorld& world, const StepInfo& step) override {
         auto& bodies = world.bodies();
@@ -208,7 +206,6 @@ private:
 class SolveContactsStage final : public Stage {
 public:
     std::string_view name() const override { return "solve_contacts"; }
-    bool perSubstep() const override { return false; }
     bool needed(const NativeWorld& world) const override { return hasContacts(world); }
     void run(NativeWorld& world, const StepInfo& step) override { world.contactSolver().solve(world, step); }
 };
@@ -219,7 +216,6 @@ public:
 class ContinuousStage final : public Stage {
 public:
     std::string_view name() const override { return "continuous"; }
-    bool perSubstep() const override { return false; }
     bool needed(const NativeWorld& world) const override {
         return hasContacts(world) && world.effects().has(Effect::ContinuousCollision);
     }
@@ -261,7 +257,6 @@ public:
 class SleepStage final : public Stage {
 public:
     std::string_view name() const override { return "sleep"; }
-    bool perSubstep() const override { return false; }
     bool needed(const NativeWorld& world) const override { return world.effects().has(Effect::Sleeping); }
     void run(NativeWorld& world, const StepInfo& step) override {
         auto& bodies = world.bodies();

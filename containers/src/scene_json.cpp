@@ -507,8 +507,8 @@ ojson settingsJson(const WorldSettings& s) {
     j["timeStep"] = s.timeStep;
     j["integrator"] = std::string(toString(s.integrator));
     if (s.solver) j["solver"] = std::string(toString(*s.solver));
-    j["substeps"] = s.substeps;
-    j["iterations"] = s.iterations;
+    if (s.substeps) j["substeps"] = *s.substeps;
+    if (s.iterations) j["iterations"] = *s.iterations;
     if (s.effects) j["effects"] = s.effects->names();
     for (const auto& [key, field] : settingsNumbers(s)) j[std::string(key)] = *field;
     j["maxStepsPerUpdate"] = s.maxStepsPerUpdate;

@@ -27,6 +27,8 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"integrators", enumNames(caps.integrators)},
         {"solvers", enumNames(caps.solvers)},
         {"defaultSolver", toString(caps.defaultSolver)},
+        {"defaultSubsteps", caps.defaultSubsteps},
+        {"defaultIterations", caps.defaultIterations},
         {"gyroscopicModes", enumNames(caps.gyroscopicModes)},
         {"forceEvaluation", forceEvaluationName(caps.forceEvaluation)},
         {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
@@ -50,7 +52,9 @@ void printText(const std::vector<BackendInfo>& backends) {
         row("joint types", orNone({c.jointTypes.begin(), c.jointTypes.end()}));
         row("effects", orNone(c.effects.names()));
         row("integrators", orNone(enumNames(c.integrators)));
-        row("solvers", orNone(enumNames(c.solvers)) + " (default " + std::string(toString(c.defaultSolver)) + ")");
+        row("solvers", orNone(enumNames(c.solvers)) + " (default " + std::string(toString(c.defaultSolver)) + ", " +
+                           std::to_string(c.defaultSubsteps) + " substeps x " + std::to_string(c.defaultIterations) +
+                           " iterations)");
         row("gyroscopic modes", orNone(enumNames(c.gyroscopicModes)));
         row("force evaluation", std::string(forceEvaluationName(c.forceEvaluation)));
         row("parameters", orNone({c.parameters.begin(), c.parameters.end()}));

@@ -27,6 +27,8 @@ struct Capabilities {
     std::set<Integrator> integrators;          ///< selectable integrators
     std::set<Solver> solvers;                  ///< selectable constraint solvers
     Solver defaultSolver = Solver::ProjectedGaussSeidel;  ///< used when WorldSettings::solver is unset
+    int defaultSubsteps = 1;                   ///< used when WorldSettings::substeps is unset
+    int defaultIterations = 10;                ///< used when WorldSettings::iterations is unset
     std::set<GyroscopicMode> gyroscopicModes;  ///< per-body gyroscopic modes honoured
     ForceEvaluation forceEvaluation = ForceEvaluation::PerStep;
     bool contactImpulses = false;              ///< contact events carry real normal impulses

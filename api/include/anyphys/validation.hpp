@@ -168,8 +168,8 @@ inline void validate(const WorldSettings& s, const std::string& path) {
     if (s.backend.empty()) throw Error::invalid(path + ".backend", "\"\"", "must name a backend");
     requireFinite(path + ".gravity", s.gravity);
     requirePositive(path + ".timeStep", s.timeStep);
-    if (s.iterations < 1) throw Error::invalid(path + ".iterations", s.iterations, "must be >= 1");
-    if (s.substeps < 1) throw Error::invalid(path + ".substeps", s.substeps, "must be >= 1");
+    if (s.iterations && *s.iterations < 1) throw Error::invalid(path + ".iterations", *s.iterations, "must be >= 1");
+    if (s.substeps && *s.substeps < 1) throw Error::invalid(path + ".substeps", *s.substeps, "must be >= 1");
     if (s.maxStepsPerUpdate < 1) throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate, "must be >= 1");
     for (const auto& [name, value] : s.backendOptions) requireFinite(path + ".backendOptions." + name, value);
     requirePositive(path + ".contactHertz", s.contactHertz);

@@ -24,8 +24,13 @@ struct WorldSettings {
     /// Constraint solver. Unset (default): the backend's own default (capabilities.defaultSolver:
     /// soft_step on native, pgs on ode and bullet), so default settings run on every backend.
     std::optional<Solver> solver;
-    int iterations = 10;                            ///< solver iterations per (sub)step, >= 1; default 10
-    int substeps = 1;                               ///< substeps per step, >= 1; default 1
+    /// Solver iterations per substep, >= 1. Unset (default): the backend's default
+    /// (capabilities.defaultIterations).
+    std::optional<int> iterations;
+    /// Constraint-solver substeps per step, >= 1: bodies in contact are solved and moved in
+    /// `substeps` slices of the step; free bodies are integrated once per step by `integrator`.
+    /// Unset (default): the backend's default (capabilities.defaultSubsteps).
+    std::optional<int> substeps;
     /// Effects to simulate. Unset (default): derived from the world's content, e.g. damping only
     /// when some body has non-zero damping. Set: exactly these effects, nothing else.
     std::optional<Effects> effects;
