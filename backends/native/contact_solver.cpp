@@ -42,6 +42,27 @@ double effectiveMass(const NativeBody& a, const Mat3& iA, const Vec3& rA, const 
     return k > 0.0 ? 1.0 / k : 0.0;
 }
 
+/// When the stored velocity of a body in free flight is the true velocity: the integrator's
+/// velocity lags (semi-implicit Euler: a leapfrog, its velocity belongs half a step before its
+/// position) or leads (explicit Euler) by this much; the others keep them in step.
+double velocityTimeOffset(Integrator integrator, double dt) {
+    switch (integrator) {
+        case Integrator::SemiImplicitEuler: return -0.5 * dt;
+        case Integrator::ExplicitEuler: return 0.5 * dt;
+        default: return 0.0;
+    }
+}
+
+/// The normal velocity after a bounce of restitution e, from the stored approach velocity `vn`.
+/// Restitution acts at the instant of impact: under a constant relative acceleration `an` along
+/// the normal the true velocity is vn - an * offset, it reverses to -e times that, and is stored
+/// back with the same offset. So semi-implicit Euler flights rebound to e^2 of the drop height
+/// rather than about 8 % lower (measured, e = 0.5, 2 m drop at dt 1/60), and exact flights are
+/// left unchanged (offset 0).
+double bounceVelocity(double e, double vn, double an, double offset) {
+    return -e * (vn - an * offset) + an * offset;
+}
+
 Vec3 anyPerpendicular(const Vec3& n) {
     const Vec3 axis = std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : Vec3::UnitY();
     return n.cross(axis).normalized();
@@ -75,13 +96,19 @@ void ContactSolver::prepare(NativeWorld& world) {
     }
 }
 
-void ContactSolver::prepareConstraint(NativeWorld& world, Constraint& c) {
+void ContactSolver::prepareConstraint(NativeWorld& world, Constraint& c, double dt) {
     auto& bodies = world.bodies();
     const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
+    const Vec3 gravity = world.effects().has(Effect::Gravity) ? world.settings().gravity : Vec3::Zero();
+    const auto gravityOf = [&](const NativeBody& body) -> Vec3 {
+        return body.isDynamic() ? Vec3(body.gravityScale * gravity) : Vec3::Zero();
+    };
+    const double offset = velocityTimeOffset(world.settings().integrator, dt);
     const Mat3 iA = worldInverseInertia(a), iB = worldInverseInertia(b);
     ContactManifold& m = *c.manifold;
     m.tangent[0] = anyPerpendicular(m.normal);
     m.tangent[1] = m.normal.cross(m.tangent[0]);
+    const double normalAcceleration = m.normal.dot(gravityOf(b) - gravityOf(a));
     for (int i = 0; i < m.pointCount; ++i) {
         ContactPointState& p = m.points[i];
         p.anchorA = p.geometry.point - a.state.position;
@@ -93,6 +120,7 @@ void ContactSolver::prepareConstraint(NativeWorld& world, Constraint& c) {
         const Vec3 dv = b.state.linearVelocity + b.state.angularVelocity.cross(p.anchorB) - a.state.linearVelocity -
                         a.state.angularVelocity.cross(p.anchorA);
         p.relativeVelocity = m.normal.dot(dv);
+        p.restitutionTarget = bounceVelocity(c.contact->restitution, p.relativeVelocity, normalAcceleration, offset);
     }
 }
 
@@ -107,7 +135,7 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
     const bool friction = effects.has(Effect::Friction);
     const bool restitution = effects.has(Effect::Restitution);
 
-    for (Constraint& c : constraints_) prepareConstraint(world, c);
+    for (Constraint& c : constraints_) prepareConstraint(world, c, step.dt);
 
     // Velocities and inverse inertia in one dense array the inner loops touch.
     std::vector<int> slot(bodies.size(), -1);
@@ -210,7 +238,7 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
                 bias = std::max(settings.baumgarte * invH * std::min(0.0, s + settings.linearSlop),
                                 -settings.contactPushMaxVelocity);
                 if (restitution && p.relativeVelocity < -settings.restitutionThreshold)
-                    bias = std::min(bias, c.contact->restitution * p.relativeVelocity);
+                    bias = std::min(bias, -p.restitutionTarget);
             }
             const double vn = m.normal.dot(relativeVelocity(c, p));
             const double impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
@@ -294,7 +322,7 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
                 ContactPointState& p = m.points[i];
                 if (p.relativeVelocity > -settings.restitutionThreshold || p.maxNormalImpulse == 0.0) continue;
                 const double vn = m.normal.dot(relativeVelocity(c, p));
-                const double impulse = -p.normalMass * (vn + c.contact->restitution * p.relativeVelocity);
+                const double impulse = -p.normalMass * (vn - p.restitutionTarget);
                 const double total = std::max(p.normalImpulse + impulse, 0.0);
                 applyImpulse(c, p, (total - p.normalImpulse) * m.normal);
                 p.normalImpulse = total;

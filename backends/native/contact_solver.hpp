@@ -33,7 +33,7 @@ private:
         ContactManifold* manifold;
         std::uint32_t bodyA, bodyB;
     };
-    void prepareConstraint(NativeWorld& world, Constraint& c);
+    void prepareConstraint(NativeWorld& world, Constraint& c, double dt);
     std::vector<Constraint> constraints_;
     std::vector<std::uint32_t> bodies_;  // constrained dynamic and kinematic bodies
 };

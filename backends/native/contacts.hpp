@@ -25,6 +25,7 @@ struct ContactPointState {
     double tangentImpulse[2] = {0.0, 0.0};
     double maxNormalImpulse = 0.0;
     double relativeVelocity = 0.0; // normal approach speed at step start (restitution)
+    double restitutionTarget = 0.0; // normal velocity the bounce aims for (see ContactSolver)
 };
 
 struct ContactManifold {

@@ -52,19 +52,6 @@ inline BodyDef boxDef(const std::string& name, const Vec3& half, const Vec3& pos
     return def;
 }
 
-/// `s` with an integrator that follows free flight under gravity exactly (Verlet, midpoint or
-/// RK4 integrate a parabola without error), where the backend offers one. Bounce heights then
-/// measure the contact alone: semi-implicit Euler at dt 1/60 by itself loses about v dt / 2 of
-/// each apex (2.6 cm of a 0.5 m rebound, 5 %).
-inline WorldSettings exactFlight(WorldSettings s, const Capabilities& caps) {
-    for (Integrator i : {Integrator::Verlet, Integrator::Midpoint, Integrator::RK4})
-        if (caps.integrators.contains(i)) {
-            s.integrator = i;
-            break;
-        }
-    return s;
-}
-
 /// Prints a measured value in the test log, so a run reports numbers, not just pass / fail.
 inline void report(const std::string& what, double value, const std::string& unit = "") {
     std::cout << "[ MEASURED ] " << what << " = " << value << (unit.empty() ? "" : " " + unit) << '\n';
