@@ -12,6 +12,26 @@ World& worldOf(World* world, const char* operation) {
     return *world;
 }
 
+// A planar world keeps motion in the XY plane: pushes out of it are dropped (the plane holds the
+// body, as a table holds a puck), and velocities or poses out of it are refused.
+Vec3 inPlane(const World* world, Vec3 linear) {
+    if (world->settings().planar) linear.z() = 0.0;
+    return linear;
+}
+Vec3 aboutZ(const World* world, Vec3 angular) {
+    if (world->settings().planar) angular.x() = angular.y() = 0.0;
+    return angular;
+}
+void requireInPlane(const World* world, const char* field, const Vec3& linear) {
+    if (world->settings().planar && std::abs(linear.z()) > detail::kPlanarTolerance)
+        throw Error::invalid(field, formatVec3(linear), "must have z = 0 in a planar world");
+}
+void requireAboutZ(const World* world, const char* field, const Vec3& angular) {
+    if (world->settings().planar &&
+        (std::abs(angular.x()) > detail::kPlanarTolerance || std::abs(angular.y()) > detail::kPlanarTolerance))
+        throw Error::invalid(field, formatVec3(angular), "must be about Z only (x = y = 0) in a planar world");
+}
+
 }  // namespace
 
 // Resolves the handle to its live slot or throws a stale-handle error naming the operation.
@@ -55,6 +75,10 @@ void Body::setTransform(const Vec3& position, const Quat& orientation) {
     detail::requireFinite("Body.setTransform.position", position);
     if (!orientation.coeffs().allFinite() || std::abs(orientation.norm() - 1.0) > kUnitQuaternionTolerance)
         throw Error::invalid("Body.setTransform.orientation", formatQuat(orientation), "must be a unit quaternion");
+    requireInPlane(world_, "Body.setTransform.position", position);
+    if (world_->settings().planar && !detail::rotatesAboutZOnly(orientation.normalized()))
+        throw Error::invalid("Body.setTransform.orientation", formatQuat(orientation),
+                             "must be a rotation about Z (x = y = 0) in a planar world");
     const Transform pose = slot.peerPose(position, orientation.normalized());
     slot.peer->setTransform(pose.position, pose.orientation);
 }
@@ -64,6 +88,7 @@ void Body::setLinearVelocity(const Vec3& v) {
     detail::requireFinite("Body.setLinearVelocity.velocity", v);
     if (slot.def.type == BodyType::Static && !v.isZero(0))
         throw Error::invalid("Body.setLinearVelocity.velocity", formatVec3(v), "must be zero for a static body");
+    requireInPlane(world_, "Body.setLinearVelocity.velocity", v);
     slot.peer->setLinearVelocity(v);
 }
 
@@ -72,6 +97,7 @@ void Body::setAngularVelocity(const Vec3& w) {
     detail::requireFinite("Body.setAngularVelocity.velocity", w);
     if (slot.def.type == BodyType::Static && !w.isZero(0))
         throw Error::invalid("Body.setAngularVelocity.velocity", formatVec3(w), "must be zero for a static body");
+    requireAboutZ(world_, "Body.setAngularVelocity.velocity", w);
     slot.peer->setAngularVelocity(w);
 }
 
@@ -79,7 +105,7 @@ void Body::applyForce(const Vec3& force) {
     auto& slot = ANYPHYS_SLOT("Body.applyForce");
     detail::requireFinite("Body.applyForce.force", force);
     world_->noteForcesUsed();
-    slot.peer->addForce(force);
+    slot.peer->addForce(inPlane(world_, force));
 }
 
 void Body::applyForceAtPoint(const Vec3& force, const Vec3& worldPoint) {
@@ -87,27 +113,27 @@ void Body::applyForceAtPoint(const Vec3& force, const Vec3& worldPoint) {
     detail::requireFinite("Body.applyForceAtPoint.force", force);
     detail::requireFinite("Body.applyForceAtPoint.point", worldPoint);
     world_->noteForcesUsed();
-    slot.peer->addForce(force);
-    slot.peer->addTorque((worldPoint - slot.peer->state().position).cross(force));
+    slot.peer->addForce(inPlane(world_, force));
+    slot.peer->addTorque(aboutZ(world_, (worldPoint - slot.peer->state().position).cross(force)));
 }
 
 void Body::applyTorque(const Vec3& torque) {
     auto& slot = ANYPHYS_SLOT("Body.applyTorque");
     detail::requireFinite("Body.applyTorque.torque", torque);
     world_->noteForcesUsed();
-    slot.peer->addTorque(torque);
+    slot.peer->addTorque(aboutZ(world_, torque));
 }
 
 void Body::applyLinearImpulse(const Vec3& impulse) {
     auto& slot = ANYPHYS_SLOT("Body.applyLinearImpulse");
     detail::requireFinite("Body.applyLinearImpulse.impulse", impulse);
-    slot.peer->applyLinearImpulse(impulse);
+    slot.peer->applyLinearImpulse(inPlane(world_, impulse));
 }
 
 void Body::applyAngularImpulse(const Vec3& impulse) {
     auto& slot = ANYPHYS_SLOT("Body.applyAngularImpulse");
     detail::requireFinite("Body.applyAngularImpulse.impulse", impulse);
-    slot.peer->applyAngularImpulse(impulse);
+    slot.peer->applyAngularImpulse(aboutZ(world_, impulse));
 }
 
 #undef ANYPHYS_SLOT

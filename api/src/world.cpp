@@ -45,11 +45,15 @@ public:
     BodyState state(Body body) const override;
     void addForce(Body body, const Vec3& force) override {
         detail::requireFinite("ForceContext.addForce.force", force);
-        stage_.addForce(resolve_(world_, body), force);
+        Vec3 f = force;
+        if (world_.settings().planar) f.z() = 0.0;  // the plane holds the body (see Body::applyForce)
+        stage_.addForce(resolve_(world_, body), f);
     }
     void addTorque(Body body, const Vec3& torque) override {
         detail::requireFinite("ForceContext.addTorque.torque", torque);
-        stage_.addTorque(resolve_(world_, body), torque);
+        Vec3 t = torque;
+        if (world_.settings().planar) t.x() = t.y() = 0.0;
+        stage_.addTorque(resolve_(world_, body), t);
     }
 
 private:
@@ -79,6 +83,10 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
     validate(settings_, "WorldSettings");
     impl_->backend = &findBackend(settings_.backend);
     const Capabilities& caps = impl_->backend->capabilities;
+    if (caps.dimensions == 2 && !settings_.planar)
+        throw Error::invalid("WorldSettings.planar", "false",
+                             "must be true on backend \"" + settings_.backend +
+                                 "\", which simulates planar worlds only (bodies in the XY plane, rotating about Z)");
     const Effects requested = settings_.effects.value_or(Effects::none());
     const auto missing = missingCapabilities(caps, settings_, requested);
     if (!missing.empty()) {
@@ -159,6 +167,7 @@ void World::refreshEffects() {
 Body World::createBody(const BodyDef& input) {
     if (impl_->stepping) throw Error("World.createBody: not allowed while the world is stepping (inside a force callback)");
     validate(input, "BodyDef");
+    if (settings_.planar) validatePlanar(input, "BodyDef");
     if (!materials_.contains(input.material))
         throw Error::invalid("BodyDef.material", "\"" + input.material + "\"",
                              "must name a material of the world's library (" + join(materials_.names()) + ")");

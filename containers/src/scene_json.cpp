@@ -172,7 +172,7 @@ auto settingsNumbers(Settings& s) {
 
 WorldSettings readSettings(const json& v, const std::string& path) {
     requireObject(v, path);
-    checkKeys(v, path, {"backend", "gravity", "timeStep", "integrator", "solver", "substeps", "iterations", "effects",
+    checkKeys(v, path, {"backend", "gravity", "timeStep", "integrator", "planar", "solver", "substeps", "iterations", "effects",
                         "contactHertz", "contactDampingRatio", "contactPushMaxVelocity", "baumgarte",
                         "restitutionThreshold", "linearSlop", "speculativeDistance", "sleepLinearVelocity",
                         "sleepAngularVelocity", "timeToSleep", "maxStepsPerUpdate", "capabilityPolicy",
@@ -182,6 +182,7 @@ WorldSettings readSettings(const json& v, const std::string& path) {
     if (auto* x = find(v, "gravity")) s.gravity = readVec3(*x, join(path, "gravity"));
     if (auto* x = find(v, "timeStep")) s.timeStep = readNumber(*x, join(path, "timeStep"));
     if (auto* x = find(v, "integrator")) s.integrator = readEnum<Integrator>(*x, join(path, "integrator"));
+    if (auto* x = find(v, "planar")) s.planar = readBool(*x, join(path, "planar"));
     if (auto* x = find(v, "solver")) s.solver = readEnum<Solver>(*x, join(path, "solver"));
     if (auto* x = find(v, "substeps")) s.substeps = readCount(*x, join(path, "substeps"));
     if (auto* x = find(v, "iterations")) s.iterations = readCount(*x, join(path, "iterations"));
@@ -506,6 +507,7 @@ ojson settingsJson(const WorldSettings& s) {
     j["gravity"] = vec(s.gravity);
     j["timeStep"] = s.timeStep;
     j["integrator"] = std::string(toString(s.integrator));
+    if (s.planar) j["planar"] = true;
     if (s.solver) j["solver"] = std::string(toString(*s.solver));
     if (s.substeps) j["substeps"] = *s.substeps;
     if (s.iterations) j["iterations"] = *s.iterations;
@@ -571,6 +573,7 @@ Scene parseScene(const std::string& jsonText) {
         std::map<std::string, std::size_t> names;
         for (std::size_t i = 0; i < v->size(); ++i) {
             BodyDef b = readBody((*v)[i], at("bodies", i), scene.materials);
+            if (scene.settings.planar) validatePlanar(b, at("bodies", i));
             if (const auto it = names.find(b.name); it != names.end())
                 fail(at("bodies", i) + ".name", (*v)[i]["name"],
                      "must be unique (already used by " + at("bodies", it->second) + ")");

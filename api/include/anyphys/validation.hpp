@@ -163,10 +163,54 @@ inline void validate(const BodyDef& b, const std::string& path) {
     requireFinite(path + ".gravityScale", b.gravityScale);
 }
 
+namespace detail {
+// Tolerance for "zero" out-of-plane components of a planar body: rounding of an in-plane value.
+inline constexpr double kPlanarTolerance = 1e-9;
+
+inline bool rotatesAboutZOnly(const Quat& q) {
+    return std::abs(q.x()) <= kPlanarTolerance && std::abs(q.y()) <= kPlanarTolerance;
+}
+
+inline void validatePlanarShape(const ShapeDef& s, const std::string& path, const std::string& who) {
+    if (s.type == ShapeType::Plane && std::abs(s.normal.z()) > kPlanarTolerance * s.normal.norm())
+        throw Error::invalid(path + ".normal", formatVec3(s.normal), "must lie in the XY plane (z = 0) in a planar world" + who);
+    for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+        const ShapeDef& child = s.shapes[i];
+        const std::string childPath = path + ".shapes[" + std::to_string(i) + "]";
+        if (std::abs(child.position.z()) > kPlanarTolerance)
+            throw Error::invalid(childPath + ".position", formatVec3(child.position), "must have z = 0 in a planar world" + who);
+        if (!rotatesAboutZOnly(child.orientation))
+            throw Error::invalid(childPath + ".orientation", formatQuat(child.orientation),
+                                 "must be a rotation about Z (x = y = 0) in a planar world" + who);
+    }
+}
+}  // namespace detail
+
+/// The extra rules of a planar world (WorldSettings::planar): the body lies in the XY plane,
+/// turns about Z only and moves in the plane. Messages name the body.
+inline void validatePlanar(const BodyDef& b, const std::string& path) {
+    using namespace detail;
+    const std::string who = b.name.empty() ? "" : " (body \"" + b.name + "\")";
+    if (std::abs(b.position.z()) > kPlanarTolerance)
+        throw Error::invalid(path + ".position", formatVec3(b.position), "must have z = 0 in a planar world" + who);
+    if (!rotatesAboutZOnly(b.orientation))
+        throw Error::invalid(path + ".orientation", formatQuat(b.orientation),
+                             "must be a rotation about Z (x = y = 0) in a planar world" + who);
+    if (std::abs(b.linearVelocity.z()) > kPlanarTolerance)
+        throw Error::invalid(path + ".linearVelocity", formatVec3(b.linearVelocity),
+                             "must have z = 0 in a planar world" + who);
+    if (std::abs(b.angularVelocity.x()) > kPlanarTolerance || std::abs(b.angularVelocity.y()) > kPlanarTolerance)
+        throw Error::invalid(path + ".angularVelocity", formatVec3(b.angularVelocity),
+                             "must be about Z only (x = y = 0) in a planar world" + who);
+    validatePlanarShape(b.shape, path + ".shape", who);
+}
+
 inline void validate(const WorldSettings& s, const std::string& path) {
     using namespace detail;
     if (s.backend.empty()) throw Error::invalid(path + ".backend", "\"\"", "must name a backend");
     requireFinite(path + ".gravity", s.gravity);
+    if (s.planar && std::abs(s.gravity.z()) > kPlanarTolerance)
+        throw Error::invalid(path + ".gravity", formatVec3(s.gravity), "must have z = 0 in a planar world");
     requirePositive(path + ".timeStep", s.timeStep);
     if (s.iterations && *s.iterations < 1) throw Error::invalid(path + ".iterations", *s.iterations, "must be >= 1");
     if (s.substeps && *s.substeps < 1) throw Error::invalid(path + ".substeps", *s.substeps, "must be >= 1");

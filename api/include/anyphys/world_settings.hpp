@@ -21,6 +21,10 @@ struct WorldSettings {
     Vec3 gravity = Vec3(0, -9.81, 0);               ///< m/s^2, world frame; default (0, -9.81, 0)
     double timeStep = 1.0 / 60.0;                   ///< s, the fixed step of step() and update(); default 1/60
     Integrator integrator = Integrator::SemiImplicitEuler;  ///< default semi-implicit Euler
+    /// A planar world: bodies lie in the XY plane (z = 0), rotate about Z only and move in the
+    /// plane; forces, torques and impulses out of the plane are dropped. Needed by 2D backends
+    /// (box2d), honoured by every backend whose capabilities say `planar`. Default false.
+    bool planar = false;
     /// Constraint solver. Unset (default): the backend's own default (capabilities.defaultSolver:
     /// soft_step on native, pgs on ode and bullet), so default settings run on every backend.
     std::optional<Solver> solver;
