@@ -28,17 +28,12 @@ Softness makeSoft(double hertz, double zeta, double h) {
     return {omega / a1, a2 * a3, a3};
 }
 
-Mat3 worldInverseInertia(const NativeBody& b) {
-    if (!b.isDynamic()) return Mat3::Zero();
-    const Mat3 r = b.state.orientation.toRotationMatrix();
-    return r * b.invInertia.asDiagonal() * r.transpose();
-}
-
 // Effective mass of an impulse along `dir` applied at anchors rA, rB.
 double effectiveMass(const NativeBody& a, const Mat3& iA, const Vec3& rA, const NativeBody& b, const Mat3& iB,
                      const Vec3& rB, const Vec3& dir) {
     const Vec3 ra = rA.cross(dir), rb = rB.cross(dir);
-    const double k = a.invMass + b.invMass + ra.dot(iA * ra) + rb.dot(iB * rb);
+    const double k = a.invMass * a.linearFreedom().cwiseProduct(dir).dot(dir) +
+                     b.invMass * b.linearFreedom().cwiseProduct(dir).dot(dir) + ra.dot(iA * ra) + rb.dot(iB * rb);
     return k > 0.0 ? 1.0 / k : 0.0;
 }
 
@@ -72,7 +67,7 @@ Vec3 anyPerpendicular(const Vec3& n) {
 struct Motion {
     Vec3 v, w;
     Mat3 invI;
-    double invMass;
+    Vec3 invMass;  // per world axis: zero along Z in a planar world
 };
 
 }  // namespace
@@ -104,7 +99,7 @@ void ContactSolver::prepareConstraint(NativeWorld& world, Constraint& c, double 
         return body.isDynamic() ? Vec3(body.gravityScale * gravity) : Vec3::Zero();
     };
     const double offset = velocityTimeOffset(world.settings().integrator, dt);
-    const Mat3 iA = worldInverseInertia(a), iB = worldInverseInertia(b);
+    const Mat3 iA = a.worldInverseInertia(), iB = b.worldInverseInertia();
     ContactManifold& m = *c.manifold;
     m.tangent[0] = anyPerpendicular(m.normal);
     m.tangent[1] = m.normal.cross(m.tangent[0]);
@@ -144,9 +139,10 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
         NativeBody& b = bodies[bodies_[i]];
         slot[bodies_[i]] = static_cast<int>(i);
         // stepStart poses were taken when the step began (or when the body woke).
-        motion[i] = {b.state.linearVelocity, b.state.angularVelocity, worldInverseInertia(b), b.isDynamic() ? b.invMass : 0.0};
+        motion[i] = {b.state.linearVelocity, b.state.angularVelocity, b.worldInverseInertia(),
+                     b.isDynamic() ? Vec3(b.invMass * b.linearFreedom()) : Vec3::Zero()};
     }
-    Motion fixed{Vec3::Zero(), Vec3::Zero(), Mat3::Zero(), 0.0};  // static or asleep partners
+    Motion fixed{Vec3::Zero(), Vec3::Zero(), Mat3::Zero(), Vec3::Zero()};  // static or asleep partners
     const auto motionOf = [&](std::uint32_t body) -> Motion& {
         const int s = slot[body];
         if (s >= 0) return motion[s];
@@ -175,9 +171,9 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
     const auto applyImpulse = [&](const Constraint& c, const ContactPointState& p, const Vec3& impulse) {
         Motion& a = motionOf(c.bodyA);
         Motion& b = motionOf(c.bodyB);
-        a.v -= a.invMass * impulse;
+        a.v -= a.invMass.cwiseProduct(impulse);
         a.w -= a.invI * p.anchorA.cross(impulse);
-        b.v += b.invMass * impulse;
+        b.v += b.invMass.cwiseProduct(impulse);
         b.w += b.invI * p.anchorB.cross(impulse);
     };
     const auto relativeVelocity = [&](const Constraint& c, const ContactPointState& p) {
@@ -263,7 +259,8 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
     const Vec3 gravity = effects.has(Effect::Gravity) ? settings.gravity : Vec3::Zero();
     const bool damping = effects.has(Effect::Damping);
     const bool userForces = effects.has(Effect::UserForces);
-    const bool gyroscopic = effects.has(Effect::Gyroscopic);
+    // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
+    const bool gyroscopic = effects.has(Effect::Gyroscopic) && !settings.planar;
     const int iterations = *settings.iterations;
 
     for (int sub = 0; sub < substeps; ++sub) {

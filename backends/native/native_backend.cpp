@@ -12,7 +12,7 @@ Backend makeNativeBackend() {
     backend.description = "anyphys in-house rigid-body engine: soft-step and PGS contact solvers, five integrators";
     Capabilities& caps = backend.capabilities;
     caps.dimensions = 3;
-    caps.planar = false;
+    caps.planar = true;  // a plane constraint: linear Z and rotation about X and Y locked
     caps.shapes = {ShapeType::Sphere, ShapeType::Box,  ShapeType::Capsule, ShapeType::Plane,
                    ShapeType::Convex, ShapeType::Mesh, ShapeType::Compound};
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};

@@ -42,16 +42,26 @@ void NativeBodyPeer::addTorque(const Vec3& torque) {
 void NativeBodyPeer::applyLinearImpulse(const Vec3& impulse) {
     NativeBody& b = body();
     if (!b.isDynamic()) return;
-    b.state.linearVelocity += b.invMass * impulse;
+    b.state.linearVelocity += b.invMass * b.linearFreedom().cwiseProduct(impulse);
     world_.wakeBody(index_);
 }
 
 void NativeBodyPeer::applyAngularImpulse(const Vec3& impulse) {
     NativeBody& b = body();
     if (!b.isDynamic()) return;
-    const Mat3 r = b.state.orientation.toRotationMatrix();
-    b.state.angularVelocity += r * b.invInertia.cwiseProduct(r.transpose() * impulse);
+    b.state.angularVelocity += b.worldInverseInertia() * impulse;
     world_.wakeBody(index_);
+}
+
+Mat3 NativeBody::worldInverseInertia() const {
+    if (!isDynamic()) return Mat3::Zero();
+    const Mat3 r = state.orientation.toRotationMatrix();
+    if (!planar) return r * invInertia.asDiagonal() * r.transpose();
+    const Vec3 z = r.transpose() * Vec3::UnitZ();  // world Z in the principal frame
+    const double izz = z.dot(inertia.cwiseProduct(z));
+    Mat3 out = Mat3::Zero();
+    out(2, 2) = izz > 0.0 ? 1.0 / izz : 0.0;
+    return out;
 }
 
 MassProperties NativeBodyPeer::massProperties() const {

@@ -49,7 +49,14 @@ struct NativeBody {
     double sleepTime = 0.0;      // s at rest so far
     int sleepingIsland = -1;     // island it fell asleep with (woken together)
 
+    bool planar = false;         // in a planar world: moves in XY, turns about Z only
+
     bool isDynamic() const { return type == BodyType::Dynamic; }
+    /// Inverse inertia in the world frame (zero unless dynamic). In a planar world only the
+    /// turn about Z is free: 1 / I_zz of the world-frame tensor, whatever the principal axes.
+    Mat3 worldInverseInertia() const;
+    /// Which linear directions an impulse may move: all, or X and Y in a planar world.
+    Vec3 linearFreedom() const { return planar ? Vec3(1, 1, 0) : Vec3(1, 1, 1); }
     bool moves() const { return type != BodyType::Static; }
     /// Simulated this step: dynamic or kinematic, and awake.
     bool isActive() const { return alive && moves() && awake; }

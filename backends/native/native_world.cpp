@@ -85,6 +85,7 @@ std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
         body.invMass = 1.0 / peerDef.mass.mass;
         body.inertia = peerDef.mass.inertia;
         body.invInertia = peerDef.mass.inertia.cwiseInverse();
+        body.planar = settings_.planar;
     }
     body.linearDamping = def.linearDamping;
     body.angularDamping = def.angularDamping;

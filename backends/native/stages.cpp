@@ -18,7 +18,8 @@ bool isAnisotropic(const Vec3& inertia) {
 }
 
 bool hasGyroscopicBody(const NativeWorld& world, GyroscopicMode mode) {
-    if (!world.effects().has(Effect::Gyroscopic)) return false;
+    // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
+    if (!world.effects().has(Effect::Gyroscopic) || world.settings().planar) return false;
     return std::any_of(world.bodies().begin(), world.bodies().end(), [&](const NativeBody& b) {
         return b.alive && b.isDynamic() && b.gyroscopic == mode && isAnisotropic(b.inertia);
     });
@@ -123,8 +124,13 @@ public:
                     torque += hookTorques_[i];
                 }
                 if (userForces) {
-                    const Quat& q = s.orientation;
-                    a.angular += q * b.invInertia.cwiseProduct(q.conjugate() * torque);
+                    if (b.planar) {
+                        // I_zz about world Z does not change as the body turns about Z.
+                        a.angular += b.worldInverseInertia() * torque;
+                    } else {
+                        const Quat& q = s.orientation;
+                        a.angular += q * b.invInertia.cwiseProduct(q.conjugate() * torque);
+                    }
                 }
                 if (explicitGyro && b.gyroscopic == GyroscopicMode::Explicit)
                     a.angular += gyroscopicAcceleration(s.angularVelocity, s.orientation, b.inertia);

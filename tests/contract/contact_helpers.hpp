@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "anyphys/containers/scene_catalogue.hpp"
 
 namespace anyphys::test {
 
@@ -78,6 +79,42 @@ inline double firstReboundApex(World& world, const Body& body, double maxTime) {
         }
     }
     return apex;
+}
+
+/// Runs a catalogue scene for its duration on this backend; returns its check's value, whether
+/// every state stayed finite, and how far the highest box sank.
+struct CheckRun {
+    double value = 0.0;
+    bool finite = true;
+    double topSag = 0.0;  ///< m, start height - end height of the body that started highest
+};
+
+inline CheckRun runCatalogueCheck(const CatalogueScene& entry, const std::string& backend) {
+    WorldSettings s = entry.scene.settings;
+    s.backend = backend;
+    World world(s, entry.scene.materials);
+    std::vector<Body> bodies;
+    for (const BodyDef& def : entry.scene.bodies) bodies.push_back(world.createBody(def));
+    auto probe = entry.check->makeProbe();
+    const auto observe = [&] {
+        std::vector<BodyState> states;
+        for (const Body& b : bodies) states.push_back(b.state());
+        probe->observe(world.time(), states);
+    };
+    observe();
+    CheckRun run;
+    const long long steps = std::llround(entry.duration / s.timeStep);
+    for (long long i = 0; i < steps; ++i) {
+        world.step();
+        observe();
+    }
+    for (const Body& b : bodies) run.finite = run.finite && finite(b.state());
+    run.value = probe->value();
+    std::size_t top = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (entry.scene.bodies[i].position.y() > entry.scene.bodies[top].position.y()) top = i;
+    run.topSag = entry.scene.bodies[top].position.y() - bodies[top].position().y();
+    return run;
 }
 
 }  // namespace anyphys::test

@@ -19,6 +19,16 @@ inline std::vector<std::string> builtBackendNames() {
 
 class ContractTest : public ::testing::TestWithParam<std::string> {
 protected:
+    /// Contract tests build 3D worlds unless their fixture says planar: a planar-only (2D)
+    /// backend skips them, visibly, by its dimensions capability.
+    virtual bool planarTest() const { return false; }
+
+    void SetUp() override {
+        if (!planarTest() && caps().dimensions < 3)
+            GTEST_SKIP() << "backend " << backend() << " lacks 3D worlds (dimensions " << caps().dimensions << ")";
+        if (planarTest() && !caps().planar) GTEST_SKIP() << "backend " << backend() << " lacks planar worlds";
+    }
+
     const std::string& backend() const { return GetParam(); }
     Capabilities caps() const { return backendInfo(backend()).capabilities; }
 
@@ -43,6 +53,7 @@ protected:
     WorldSettings settings() const {
         WorldSettings s;
         s.backend = backend();
+        s.planar = planarTest();
         return s;
     }
 };

@@ -1,0 +1,197 @@
+// Planar worlds (settings.planar: XY plane, rotation about Z): the subset of the contract every
+// backend with the `planar` capability must meet, 2D engines and 3D engines with a plane
+// constraint alike. Scenes come from the catalogue's *_planar entries, so the tool, the tests and
+// the benchmarks measure the same thing.
+#include <cmath>
+#include <numbers>
+
+#include "contact_helpers.hpp"
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+class PlanarTest : public ContractTest {
+protected:
+    bool planarTest() const override { return true; }
+
+    /// Runs a catalogue scene and checks its own measure as the named criterion.
+    void expectCatalogueCheck(const std::string& scene, const std::string& criterion) {
+        const CatalogueScene& entry = catalogueScene(scene);
+        const CheckRun run = runCatalogueCheck(entry, backend());
+        const SceneCheck& check = *entry.check;
+        report(backend() + " " + scene + ": " + check.label, run.value, check.unit);
+        EXPECT_TRUE(run.finite) << "a state became NaN or infinite";
+        expectCriterion(criterion, check.passes(run.value),
+                        check.label + " " + std::to_string(run.value) + " " + check.unit + " (want " +
+                            std::to_string(check.expected) + " +- " + std::to_string(check.tolerance) + ")");
+    }
+};
+
+// The catalogue's bouncing ball in the plane: first rebound e^2 = 0.25 of the drop, within 5 %.
+TEST_P(PlanarTest, BallReboundsToRestitutionSquared) {
+    const std::string missing =
+        lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectCatalogueCheck("bouncing_ball_planar", "planar.restitution.rebound_height");
+}
+
+// 2 deg below the friction angle (mu 0.5) a box on a plane tilted about Z stays put.
+TEST_P(PlanarTest, BoxStaysOnSlopeBelowFrictionAngle) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    constexpr double kMu = 0.5;
+    MaterialLibrary materials;
+    materials.add("rough", Material{kMu, 0.0, 1000.0});
+    World world(settings(), materials);
+    const Quat tilt(Eigen::AngleAxisd(std::atan(kMu) - 2 * kDegree, Vec3::UnitZ()));
+    const Vec3 normal = tilt * Vec3::UnitY();
+    BodyDef slope = groundDef("rough");
+    slope.shape = ShapeDef::plane(normal, 0.0);
+    world.createBody(slope);
+    BodyDef boxDefinition = boxDef("box", Vec3(0.25, 0.25, 0.25), normal * 0.25, "rough");
+    boxDefinition.orientation = tilt;
+    Body box = world.createBody(boxDefinition);
+    const Vec3 start = box.position();
+    for (int i = 0; i < 120; ++i) world.step();  // 2 s
+    const double moved = (box.position() - start).norm();
+    report(backend() + " planar creep 2 deg below the friction angle, 2 s", moved, "m");
+    // 1 cm, as in 3D: a box that slipped would be metres away (4.1 m/s^2 unopposed: 8 m in 2 s).
+    expectCriterion("planar.slope.static_hold", moved < 0.01, "moved " + std::to_string(moved) + " m in 2 s (bound 0.01)");
+}
+
+// The catalogue's slope in the plane: mean slide acceleration g (sin 30 - 0.3 cos 30) within 5 %.
+TEST_P(PlanarTest, BoxSlidesWithKineticAcceleration) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectCatalogueCheck("slope_slide_planar", "planar.slope.kinetic_acceleration");
+}
+
+// 10 unit boxes stand 10 s in the plane: the top box moves less than 1 cm sideways.
+TEST_P(PlanarTest, TenBoxStackStands) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectCatalogueCheck("box_stack_10_planar", "planar.stack10.top_drift");
+}
+
+// A 20-row pyramid (210 boxes) stands 5 s in the plane: no box moves 5 cm sideways.
+TEST_P(PlanarTest, TwentyRowPyramidStands) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectCatalogueCheck("pyramid_20_planar", "planar.pyramid20.drift");
+}
+
+// The 3D tunnelling case in the plane: a 0.1 m ball at 200 m/s must stop at a 0.1 m wall.
+TEST_P(PlanarTest, FastSphereNeverTunnelsThroughThinWall) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Box},
+                                        Effect::Contacts | Effect::ContinuousCollision);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    WorldSettings s = settings();
+    s.gravity = Vec3::Zero();
+    World world(s);
+    constexpr double kWallX = 10.0, kWallHalf = 0.05, kRadius = 0.05;
+    BodyDef wall = boxDef("wall", Vec3(kWallHalf, 2, 2), Vec3(kWallX, 0, 0));
+    wall.type = BodyType::Static;
+    world.createBody(wall);
+    BodyDef bullet = ballDef("bullet", kRadius, Vec3(0.3, 0, 0));
+    bullet.linearVelocity = Vec3(200, 0, 0);
+    Body ball = world.createBody(bullet);
+    double farthest = ball.position().x();
+    for (int i = 0; i < 60; ++i) {
+        world.step();
+        farthest = std::max(farthest, ball.position().x());
+    }
+    report(backend() + " planar fast sphere: farthest centre x (wall face at 9.95)", farthest, "m");
+    // As in 3D: the centre stops at the face minus the radius, plus 1 cm of slop and speculative gap.
+    expectCriterion("planar.tunnelling.fast_sphere", farthest < kWallX - kWallHalf - kRadius + 0.01,
+                    "farthest centre x " + std::to_string(farthest) + " m (wall face 9.95, middle 10)");
+}
+
+// Motion stays in the plane: a box thrown spinning onto the ground, pushed out of the plane by a
+// force and an impulse (which the plane absorbs), keeps z = 0 and turns about Z only.
+TEST_P(PlanarTest, MotionStaysInThePlane) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    world.createBody(groundDef());
+    BodyDef thrown = boxDef("thrown", Vec3(0.5, 0.25, 0.5), Vec3(0, 2, 0));
+    thrown.linearVelocity = Vec3(3, 1, 0);
+    thrown.angularVelocity = Vec3(0, 0, 4);
+    Body box = world.createBody(thrown);
+    double worstZ = 0.0, worstTilt = 0.0;
+    for (int i = 0; i < 120; ++i) {
+        box.applyForce(Vec3(0, 0, 500));          // out of the plane: dropped
+        if (i == 30) box.applyLinearImpulse(Vec3(0, 0, 50));
+        world.step();
+        const Quat q = box.orientation();
+        worstZ = std::max(worstZ, std::abs(box.position().z()));
+        worstTilt = std::max({worstTilt, std::abs(q.x()), std::abs(q.y())});
+        ASSERT_TRUE(finite(box.state()));
+    }
+    report(backend() + " planar: largest |z|", worstZ, "m");
+    report(backend() + " planar: largest |q.x|, |q.y|", worstTilt);
+    // 1 micrometre and 1e-6: engines that hold the plane with a constraint (rather than by
+    // construction) correct drift each step; anything visible would be millimetres.
+    EXPECT_LT(worstZ, 1e-6);
+    EXPECT_LT(worstTilt, 1e-6);
+    EXPECT_GT(box.position().x(), 1.0) << "the box should have travelled along x";
+}
+
+// Non-planar input to a planar world is refused with the body and the field named, and the
+// world is left as it was.
+TEST_P(PlanarTest, NonPlanarInputIsRejectedNamingBodyAndField) {
+    World world(settings());
+    const auto expectRejected = [&](const BodyDef& def, const std::string& field) {
+        try {
+            world.createBody(def);
+            ADD_FAILURE() << "accepted " << field;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(field), std::string::npos) << message;
+            EXPECT_NE(message.find("\"" + def.name + "\""), std::string::npos) << message;
+            EXPECT_NE(message.find("planar"), std::string::npos) << message;
+        }
+    };
+    BodyDef off = ballDef("off_plane", 0.5, Vec3(0, 1, 0.5));
+    expectRejected(off, "BodyDef.position");
+    BodyDef tilted = ballDef("tilted", 0.5, Vec3(0, 1, 0));
+    tilted.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitX()));
+    expectRejected(tilted, "BodyDef.orientation");
+    BodyDef leaving = ballDef("leaving", 0.5, Vec3(0, 1, 0));
+    leaving.linearVelocity = Vec3(0, 0, 1);
+    expectRejected(leaving, "BodyDef.linearVelocity");
+    BodyDef rolling = ballDef("rolling", 0.5, Vec3(0, 1, 0));
+    rolling.angularVelocity = Vec3(1, 0, 0);
+    expectRejected(rolling, "BodyDef.angularVelocity");
+    EXPECT_EQ(world.bodyCount(), 0u);
+
+    Body ok = world.createBody(ballDef("ok", 0.5, Vec3(0, 1, 0)));
+    EXPECT_THROW(ok.setLinearVelocity(Vec3(0, 0, 2)), Error);
+    EXPECT_THROW(ok.setTransform(Vec3(0, 1, 1), Quat::Identity()), Error);
+    EXPECT_EQ(ok.position(), Vec3(0, 1, 0));  // unchanged by the rejected calls
+}
+
+// A 3D world on a planar-only backend is refused naming settings.planar; a backend with three
+// dimensions takes it.
+TEST_P(PlanarTest, ThreeDimensionalWorldNeedsThreeDimensions) {
+    WorldSettings s = settings();
+    s.planar = false;
+    if (caps().dimensions < 3) {
+        try {
+            World world(s);
+            ADD_FAILURE() << "a 3D world was accepted by a " << caps().dimensions << "D backend";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("WorldSettings.planar"), std::string::npos) << e.what();
+        }
+    } else {
+        World world(s);
+        EXPECT_FALSE(world.settings().planar);
+    }
+}
+
+ANYPHYS_CONTRACT_SUITE(PlanarTest);
+
+}  // namespace
+}  // namespace anyphys::test
