@@ -19,6 +19,7 @@ BackendInfo backendInfo(const std::string& name) {
 std::vector<std::string> missingCapabilities(const Capabilities& caps, const WorldSettings& settings, Effects effects) {
     std::vector<std::string> missing;
     if (settings.planar && !caps.planar) missing.push_back("planar worlds");
+    if (!settings.planar && caps.dimensions < 3) missing.push_back("3D worlds (planar only)");
     if (!caps.integrators.count(settings.integrator))
         missing.push_back("integrator " + std::string(toString(settings.integrator)));
     for (const auto& name : (effects & ~caps.effects).names()) missing.push_back("effect " + name);
