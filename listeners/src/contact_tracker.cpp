@@ -1,5 +1,6 @@
 #include "anyphys/listeners/contact_tracker.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace anyphys {
@@ -31,41 +32,46 @@ ContactEvent touchEvent(TouchingPair&& p, ContactPhase phase) {
 }  // namespace
 
 std::vector<ContactEvent> ContactTracker::update(std::vector<TouchingPair> touching, const AsleepQuery& asleep) {
-    // Normalise order (A < B, normal from A to B) and keep the first report of each pair.
-    std::map<std::pair<BodyId, BodyId>, TouchingPair> now;
-    for (auto& p : touching) {
-        if (p.bodyA == p.bodyB) continue;  // a body never touches itself
+    // Normalise order (A < B, normal from A to B), sort, and keep the first report of each pair.
+    std::erase_if(touching, [](const TouchingPair& p) { return p.bodyA == p.bodyB; });  // never itself
+    for (TouchingPair& p : touching)
         if (p.bodyB < p.bodyA) {
             std::swap(p.bodyA, p.bodyB);
             p.normal = -p.normal;
         }
-        now.try_emplace({p.bodyA, p.bodyB}, std::move(p));
-    }
-    const auto sleeping = [&](const std::pair<BodyId, BodyId>& key) {
-        return asleep && (asleep(key.first) || asleep(key.second));
-    };
+    const auto keyOf = [](const TouchingPair& p) { return PairKey{p.bodyA, p.bodyB}; };
+    std::stable_sort(touching.begin(), touching.end(),
+                     [&](const TouchingPair& x, const TouchingPair& y) { return keyOf(x) < keyOf(y); });
+    touching.erase(std::unique(touching.begin(), touching.end(),
+                               [&](const TouchingPair& x, const TouchingPair& y) { return keyOf(x) == keyOf(y); }),
+                   touching.end());
+    const auto sleeping = [&](const PairKey& key) { return asleep && (asleep(key.first) || asleep(key.second)); };
 
+    // Merge walk of the two sorted lists; each output list comes out in (bodyA, bodyB) order.
     std::vector<ContactEvent> exits, enters, stays;
-    for (auto it = active_.begin(); it != active_.end();) {
-        if (now.count(it->first) || sleeping(it->first)) {
-            ++it;  // still touching, or asleep: a sleeping contact persists silently
-            continue;
+    std::vector<Active> next;
+    next.reserve(touching.size() + active_.size());
+    std::size_t i = 0, j = 0;
+    while (i < active_.size() || j < touching.size()) {
+        const bool takeOld = j == touching.size() || (i < active_.size() && active_[i].key < keyOf(touching[j]));
+        const bool takeNew = i == active_.size() || (j < touching.size() && keyOf(touching[j]) < active_[i].key);
+        if (takeOld) {  // touching before, not now: exit, unless asleep (the contact persists silently)
+            const Active& old = active_[i++];
+            if (sleeping(old.key)) next.push_back(old);
+            else exits.push_back(exitEvent(old.key.first, old.key.second, old.trigger, false));
+        } else if (takeNew) {
+            TouchingPair& p = touching[j++];
+            next.push_back({keyOf(p), p.trigger});
+            enters.push_back(touchEvent(std::move(p), ContactPhase::Enter));
+        } else {  // both: stay (triggers report only enter and exit; sleeping pairs nothing)
+            TouchingPair& p = touching[j++];
+            ++i;
+            next.push_back({keyOf(p), p.trigger});
+            if (!p.trigger && !sleeping(next.back().key)) stays.push_back(touchEvent(std::move(p), ContactPhase::Stay));
         }
-        exits.push_back(exitEvent(it->first.first, it->first.second, it->second.trigger, false));
-        it = active_.erase(it);
     }
-    for (auto& [key, pair] : now) {
-        auto [it, isNew] = active_.try_emplace(key, Active{pair.trigger});
-        if (isNew) {
-            enters.push_back(touchEvent(std::move(pair), ContactPhase::Enter));
-        } else {
-            it->second.trigger = pair.trigger;
-            // Triggers report only enter and exit; sleeping pairs report nothing while asleep.
-            if (!pair.trigger && !sleeping(key)) stays.push_back(touchEvent(std::move(pair), ContactPhase::Stay));
-        }
-    }
+    active_ = std::move(next);
 
-    // Each list is already in (bodyA, bodyB) order because both maps iterate sorted.
     std::vector<ContactEvent> events = std::move(exits);
     events.reserve(events.size() + enters.size() + stays.size());
     for (auto& e : enters) events.push_back(std::move(e));
@@ -75,15 +81,11 @@ std::vector<ContactEvent> ContactTracker::update(std::vector<TouchingPair> touch
 
 std::vector<ContactEvent> ContactTracker::removeBody(BodyId body) {
     std::vector<ContactEvent> events;
-    for (auto it = active_.begin(); it != active_.end();) {
-        const auto& [a, b] = it->first;
-        if (a == body || b == body) {
-            events.push_back(exitEvent(a, b, it->second.trigger, true));
-            it = active_.erase(it);
-        } else {
-            ++it;
-        }
-    }
+    std::erase_if(active_, [&](const Active& a) {
+        const bool involved = a.key.first == body || a.key.second == body;
+        if (involved) events.push_back(exitEvent(a.key.first, a.key.second, a.trigger, true));
+        return involved;
+    });
     return events;
 }
 

@@ -8,7 +8,6 @@
 //  - removing a body ends its pairs with an Exit flagged `removal`;
 //  - a pair reported twice in one step counts once (first report wins).
 #include <functional>
-#include <map>
 #include <utility>
 #include <vector>
 
@@ -32,10 +31,14 @@ public:
     void clear() { active_.clear(); }
 
 private:
+    using PairKey = std::pair<BodyId, BodyId>;
     struct Active {
+        PairKey key;
         bool trigger = false;
     };
-    std::map<std::pair<BodyId, BodyId>, Active> active_;
+    // Sorted by key: a step is one sort of the new pairs and one merge walk, with no per-pair
+    // allocation (piles report thousands of pairs every step).
+    std::vector<Active> active_;
 };
 
 }  // namespace anyphys
