@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# `anyphys compare` runs every catalogue scene x backend x integrator and reports each
-# combination, either measured or "unsupported: <reason>" (never dropped). Analytic checks on the
+# `anyphys compare` runs every catalogue scene x backend x that backend's integrators and reports
+# each combination, either measured or "unsupported: <reason>" (never dropped); integrators named
+# with --integrators get a row on every backend, "unsupported" where a backend lacks them. Analytic checks on the
 # native backend use the same bounds as run_projectile.sh (Euler variants 1/6 m off at t = 2 s,
 # higher-order methods exact to rounding) and RK4's fourth order on the damped scene.
 set -euo pipefail
@@ -9,19 +10,19 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
 "$anyphys" compare --json > "$work/all.json"
+"$anyphys" compare --json --scenes projectile --integrators rk4 > "$work/named.json"
 "$anyphys" scenes --json > "$work/scenes.json"
 "$anyphys" backends --json > "$work/backends.json"
-python3 - "$work/all.json" "$work/scenes.json" "$work/backends.json" <<'PY'
+python3 - "$work/all.json" "$work/scenes.json" "$work/backends.json" "$work/named.json" <<'PY'
 import json, sys
 results = json.load(open(sys.argv[1]))["results"]
 # Heavy benchmark loads (compareByDefault false) run only when named with --scenes.
 scenes = [s["name"] for s in json.load(open(sys.argv[2]))["scenes"] if s["compareByDefault"]]
 backends = json.load(open(sys.argv[3]))["backends"]
-integrators = sorted({i for b in backends for i in b["capabilities"]["integrators"]})
 
-# Every combination has exactly one row.
+# Every combination of a scene, a backend and one of its integrators has exactly one row.
 seen = {(r["scene"], r["backend"], r["integrator"]) for r in results}
-want = {(s, b["name"], i) for s in scenes for b in backends for i in integrators}
+want = {(s, b["name"], i) for s in scenes for b in backends for i in b["capabilities"]["integrators"]}
 assert seen == want and len(results) == len(want), (want - seen, seen - want)
 for r in results:
     assert r["status"] in ("ok", "unsupported"), r
@@ -48,6 +49,13 @@ assert row("damped_motion", "explicit_euler")["positionError"] > 1e-3
 assert row("torque_free_spin", "rk4")["positionError"] is None
 assert row("damped_motion", "rk4")["energyDrift"] is None
 print(f"ok compare: {len(results)} rows")
+
+# A named integrator is answered on every backend: measured, or unsupported with the reason.
+named = json.load(open(sys.argv[4]))["results"]
+assert {r["backend"] for r in named} == {b["name"] for b in backends}, named
+for r in named:
+    offered = "rk4" in next(b for b in backends if b["name"] == r["backend"])["capabilities"]["integrators"]
+    assert r["status"] == ("ok" if offered else "unsupported"), r
 PY
 
 # The table has a header and one line per combination, and filters narrow it.
