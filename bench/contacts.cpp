@@ -1,6 +1,7 @@
 // BM_BoxGrid1000/<backend>: the catalogue's box_grid_1000 (10x10x10 unit boxes 1.2 m apart,
 // dropped from 1 m onto the ground, dt 1/60) run for its 5 s on every backend that simulates
-// boxes, planes and contacts. Reported:
+// boxes, planes and contacts in 3D. BM_BoxGrid1000Planar/<backend>: box_grid_1000_planar (50x20
+// boxes in the XY plane, settings.planar) on every backend with planar worlds. Reported:
 //   time                 wall time per World::step, averaged over the whole drop (falling, impacts
 //                        and the settling pile: each phase costs differently)
 //   cpu_ms_per_step      process CPU time per step (steadier than wall time on a loaded machine)
@@ -29,11 +30,12 @@ namespace {
 constexpr double kSettledSpeed = 0.05;  // m/s: the default sleep threshold
 
 /// What this benchmark needs from a backend; empty when it has everything.
-std::string lacking(const Capabilities& caps) {
+std::string lacking(const Capabilities& caps, bool planar) {
     std::string missing;
     const auto need = [&missing](bool has, const char* what) {
         if (!has) missing += (missing.empty() ? "" : ", ") + std::string(what);
     };
+    need(planar ? caps.planar : caps.dimensions == 3, planar ? "planar worlds" : "3D worlds");
     need(caps.shapes.contains(ShapeType::Box), "shape box");
     need(caps.shapes.contains(ShapeType::Plane), "shape plane");
     need(caps.effects.has(Effect::Contacts), "effect contacts");
@@ -66,12 +68,12 @@ double maxEventDepth(const std::vector<ContactEvent>& events) {
     return deepest;
 }
 
-void boxGrid1000(benchmark::State& state, const BackendInfo& backend) {
-    if (const std::string missing = lacking(backend.capabilities); !missing.empty()) {
+void boxGrid(benchmark::State& state, const BackendInfo& backend, const std::string& sceneName) {
+    const CatalogueScene& entry = catalogueScene(sceneName);
+    if (const std::string missing = lacking(backend.capabilities, entry.scene.settings.planar); !missing.empty()) {
         state.SkipWithError(("skipped: backend " + backend.name + " lacks " + missing).c_str());
         return;
     }
-    const CatalogueScene& entry = catalogueScene("box_grid_1000");
     const long long steps = std::llround(entry.duration / entry.scene.settings.timeStep);
     for (auto _ : state) {
         WorldSettings settings = entry.scene.settings;
@@ -108,12 +110,14 @@ void boxGrid1000(benchmark::State& state, const BackendInfo& backend) {
 }
 
 void registerAll() {
-    for (const BackendInfo& info : availableBackends())
-        benchmark::RegisterBenchmark(("BM_BoxGrid1000/" + info.name).c_str(),
-                                     [info](benchmark::State& s) { boxGrid1000(s, info); })
-            ->UseManualTime()
-            ->Iterations(1)  // one drop is 300 steps of a 1000-box pile: a sample in itself
-            ->Unit(benchmark::kMillisecond);
+    for (const auto& [label, scene] : {std::pair{"BM_BoxGrid1000/", "box_grid_1000"},
+                                       std::pair{"BM_BoxGrid1000Planar/", "box_grid_1000_planar"}})
+        for (const BackendInfo& info : availableBackends())
+            benchmark::RegisterBenchmark((label + info.name).c_str(),
+                                         [info, scene = std::string(scene)](benchmark::State& s) { boxGrid(s, info, scene); })
+                ->UseManualTime()
+                ->Iterations(1)  // one drop is 300 steps of a 1000-box pile: a sample in itself
+                ->Unit(benchmark::kMillisecond);
 }
 
 }  // namespace
