@@ -11,6 +11,8 @@
 //   settled              1 if every box is asleep or slower than 0.05 m/s at the end, else 0
 //   asleep_bodies        boxes asleep at the end
 //   max_speed_mps        fastest box at the end
+//   rest_ms_per_step     wall time per step of 60 further steps once the pile has settled
+//                        (a resting, sleeping pile should cost almost nothing)
 // A backend lacking something is listed with the reason instead of a time.
 #include <benchmark/benchmark.h>
 
@@ -105,6 +107,11 @@ void boxGrid(benchmark::State& state, const BackendInfo& backend, const std::str
         state.counters["max_speed_mps"] = fastest;
         state.counters["asleep_bodies"] = asleep;
         state.counters["settled"] = asleep == static_cast<int>(boxes.size()) || fastest < kSettledSpeed ? 1 : 0;
+        constexpr int kRestSteps = 60;
+        const auto restStart = std::chrono::steady_clock::now();
+        for (int i = 0; i < kRestSteps; ++i) world.step();
+        const std::chrono::duration<double, std::milli> rest = std::chrono::steady_clock::now() - restStart;
+        state.counters["rest_ms_per_step"] = rest.count() / kRestSteps;
     }
     state.SetLabel(std::to_string(steps) + " steps of dt 1/60");
 }

@@ -24,6 +24,8 @@ public:
     /// dynamic body) and marks their dynamic bodies `constrained`.
     void prepare(NativeWorld& world);
     bool empty() const { return constraints_.empty(); }
+    /// No constraints this step (nothing awake).
+    void clear() { constraints_.clear(); }
     /// Advances the constrained bodies over the whole step.
     void solve(NativeWorld& world, const StepInfo& step);
 

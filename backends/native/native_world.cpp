@@ -170,8 +170,10 @@ std::vector<std::string> NativeWorld::activeStageNames() {
 
 void NativeWorld::step(double time, double dt) {
     rebuildPipelineIfNeeded();
+    anyActive_ = false;
     for (NativeBody& b : bodies_) {
         if (!b.isActive()) continue;
+        anyActive_ = true;
         b.stepStartPosition = b.state.position;
         b.stepStartOrientation = b.state.orientation;
         b.constrained = false;
@@ -274,6 +276,7 @@ void NativeWorld::bodyTeleported(std::uint32_t index) {
 }
 
 void NativeWorld::collectContacts(std::vector<PeerContact>& out) {
+    if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
     for (const auto& [key, c] : contacts_.contacts()) {
         const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
         if (!a.isActive() && !b.isActive()) continue;  // asleep: the layer keeps the pair

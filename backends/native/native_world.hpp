@@ -44,6 +44,9 @@ public:
 
     // ---- for stages and peers -------------------------------------------------------
     const WorldSettings& settings() const { return settings_; }
+    /// Some dynamic or kinematic body was awake when this step began. When none is, nothing can
+    /// move or touch anew, so the contact stages skip their walks: a sleeping pile costs ~nothing.
+    bool anyActive() const { return anyActive_; }
     Effects effects() const { return effects_; }
     /// Body slots; a slot with alive == false is free.
     std::vector<NativeBody>& bodies() { return bodies_; }
@@ -83,6 +86,7 @@ private:
     std::vector<std::unique_ptr<Stage>> stages_;
     std::vector<Stage*> active_;
     bool pipelineDirty_ = true;
+    bool anyActive_ = true;
     IntegratorScratch scratch_;
     BroadPhase broadPhase_;
     ContactManager contacts_;

@@ -192,6 +192,10 @@ public:
     std::string_view name() const override { return "collide"; }
     bool needed(const NativeWorld& world) const override { return hasContacts(world); }
     void run(NativeWorld& world, const StepInfo& step) override {
+        if (!world.anyActive()) {
+            world.contactSolver().clear();
+            return;
+        }
         auto& bodies = world.bodies();
         for (std::uint32_t i = 0; i < bodies.size(); ++i)
             if (bodies[i].isActive()) world.updateProxies(i, step.dt * bodies[i].state.linearVelocity);
@@ -265,6 +269,7 @@ public:
     std::string_view name() const override { return "sleep"; }
     bool needed(const NativeWorld& world) const override { return world.effects().has(Effect::Sleeping); }
     void run(NativeWorld& world, const StepInfo& step) override {
+        if (!world.anyActive()) return;  // all asleep already
         auto& bodies = world.bodies();
         const WorldSettings& s = world.settings();
         parent_.resize(bodies.size());
