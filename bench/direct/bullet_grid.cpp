@@ -67,7 +67,8 @@ double runDirect(const CatalogueScene& entry, double& finalHeight) {
     si.m_numIterations = s.iterations.value_or(info.capabilities.defaultIterations);
     si.m_erp = si.m_erp2 = static_cast<btScalar>(s.baumgarte);
     si.m_splitImpulse = true;
-    si.m_splitImpulsePenetrationThreshold = -0.005f;
+    si.m_splitImpulsePenetrationThreshold = -0.04f;
+    si.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
     si.m_maxGyroscopicForce = BT_LARGE_FLOAT;
     si.m_restitutionVelocityThreshold = static_cast<btScalar>(s.restitutionThreshold);
     gDeactivationTime = static_cast<btScalar>(s.timeToSleep);  // a process global: fine in a benchmark

@@ -92,7 +92,11 @@ TEST_P(ContactsTest, BoxStaysOnSlopeBelowFrictionAngle) {
 TEST_P(ContactsTest, BoxSlidesAboveFrictionAngleWithKineticAcceleration) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    for (double angle : {std::atan(kMu) + 2 * kDegree, 35 * kDegree}) {
+    // Two criteria: just past the friction angle (where a friction model that is not a circle, or
+    // slow to switch from sticking to sliding, shows) and well past it.
+    const std::pair<double, const char*> cases[] = {{std::atan(kMu) + 2 * kDegree, "slope.kinetic_acceleration.near_threshold"},
+                                                    {35 * kDegree, "slope.kinetic_acceleration"}};
+    for (const auto& [angle, criterion] : cases) {
         SCOPED_TRACE("slope " + std::to_string(angle / kDegree) + " deg");
         World world(settings(), slopeMaterials(kMu));
         const Slope slope = makeSlope(world, angle);
@@ -104,7 +108,7 @@ TEST_P(ContactsTest, BoxSlidesAboveFrictionAngleWithKineticAcceleration) {
         const double exact = kG * (std::sin(angle) - kMu * std::cos(angle));
         report(backend() + " slide acceleration (exact " + std::to_string(exact) + ")", measured, "m/s^2");
         // 5 %: the contract. Both velocities are read at step ends, so the time base is exact.
-        expectCriterion("slope.kinetic_acceleration", std::abs(measured - exact) <= 0.05 * exact,
+        expectCriterion(criterion, std::abs(measured - exact) <= 0.05 * exact,
                         "a = " + std::to_string(measured) + " m/s^2, exact " + std::to_string(exact) + " +- 5 %");
         // Still on the slope: its centre stays half a box above the plane (1 cm of overlap or lift).
         EXPECT_NEAR(slope.box.position().dot(slope.normal), 0.25, 0.01);

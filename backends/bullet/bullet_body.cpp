@@ -1,0 +1,262 @@
+#include "bullet_body.hpp"
+
+#include <cmath>
+
+#include "bullet_convert.hpp"
+#include "bullet_world.hpp"
+
+namespace anyphys::bullet {
+namespace {
+
+int gyroscopicFlags(GyroscopicMode mode) {
+    switch (mode) {
+        case GyroscopicMode::None: return 0;
+        // Bullet adds -w x Iw as a torque to the step's velocity update (capped at the solver
+        // info's m_maxGyroscopicForce, raised to "no cap" by the world).
+        case GyroscopicMode::Explicit: return BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT;
+        // One Newton step of backward Euler on the body-frame angular velocity: the implicit mode.
+        case GyroscopicMode::Implicit: return BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY;
+    }
+    return 0;
+}
+
+// Bullet damps by v *= (1 - d)^dt each step; d = 1 - exp(-c) makes that exp(-c dt), the exact
+// solution of dv/dt = -c v over the step.
+btScalar bulletDamping(double c) { return static_cast<btScalar>(-std::expm1(-c)); }
+
+}  // namespace
+
+BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
+    : world_(world),
+      type_(def.def.type),
+      userData_(def.userData),
+      material_(def.material),
+      layer_(def.def.layer),
+      mask_(def.def.mask),
+      trigger_(def.def.isTrigger),
+      allowSleep_(def.def.allowSleep),
+      mass_(def.mass),
+      linearDamping_(def.def.linearDamping),
+      angularDamping_(def.def.angularDamping),
+      gravityScale_(def.def.gravityScale),
+      gyroscopic_(def.def.gyroscopic),
+      shapes_(std::make_unique<ShapeSet>(def.shapes)) {
+    coreExtent_ = shapes_->coreExtent();
+    const bool dyn = type_ == BodyType::Dynamic;
+    const btScalar m = dyn ? static_cast<btScalar>(mass_.mass) : btScalar(0);
+    const btVector3 inertia = dyn ? toBt(mass_.inertia) : btVector3(0, 0, 0);
+    btRigidBody::btRigidBodyConstructionInfo info(m, nullptr, shapes_->root(), inertia);
+    const Quat q = def.def.orientation.normalized();
+    info.m_startWorldTransform = toBt(def.def.position, q);
+    info.m_friction = 0;     // per contact point from the material table instead
+    info.m_restitution = 0;
+    info.m_linearSleepingThreshold = static_cast<btScalar>(world.settings().sleepLinearVelocity);
+    info.m_angularSleepingThreshold = static_cast<btScalar>(world.settings().sleepAngularVelocity);
+    body_ = std::make_unique<btRigidBody>(info);
+    body_->setUserPointer(this);
+    int flags = body_->getCollisionFlags();
+    if (type_ == BodyType::Kinematic) flags = (flags & ~btCollisionObject::CF_STATIC_OBJECT) | btCollisionObject::CF_KINEMATIC_OBJECT;
+    if (trigger_) flags |= btCollisionObject::CF_NO_CONTACT_RESPONSE;
+    body_->setCollisionFlags(flags);
+    body_->setFlags(BT_DISABLE_WORLD_GRAVITY);  // gravity is per body: world gravity x gravity scale
+
+    setPosition_ = def.def.position;
+    setOrientation_ = q;
+    btPosition_ = body_->getWorldTransform().getOrigin();
+    btBasis_ = body_->getWorldTransform().getBasis();
+    if (moves()) {
+        setLinear_ = def.def.linearVelocity;
+        setAngular_ = def.def.angularVelocity;
+    }
+    btLinear_ = toBt(setLinear_);
+    btAngular_ = toBt(setAngular_);
+    body_->setLinearVelocity(btLinear_);
+    body_->setAngularVelocity(btAngular_);
+    kinematic_ = {setPosition_, setOrientation_, setLinear_, setAngular_};
+    // A planar world: Bullet's linear and angular factors hold the body in the XY plane, turning
+    // about Z (they mask every velocity change, contacts' included).
+    if (dyn && world.settings().planar) {
+        body_->setLinearFactor(btVector3(1, 1, 0));
+        body_->setAngularFactor(btVector3(0, 0, 1));
+    }
+    // Kinematic bodies are moved by anyphys and never put to sleep by Bullet.
+    if (type_ == BodyType::Kinematic || (dyn && !allowSleep_)) body_->forceActivationState(DISABLE_DEACTIVATION);
+}
+
+BulletBodyPeer::~BulletBodyPeer() {
+    if (inWorld_) world_.detach(*this);
+}
+
+void BulletBodyPeer::applyEffects() {
+    if (!dynamic()) return;
+    const Effects e = world_.effects();
+    const Vec3 g = e.has(Effect::Gravity) ? Vec3(gravityScale_ * world_.settings().gravity) : Vec3(Vec3::Zero());
+    body_->setGravity(toBt(g));
+    const bool damping = e.has(Effect::Damping);
+    body_->setDamping(damping ? bulletDamping(linearDamping_) : 0, damping ? bulletDamping(angularDamping_) : 0);
+    // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
+    const int gyro = e.has(Effect::Gyroscopic) && !world_.settings().planar ? gyroscopicFlags(gyroscopic_) : 0;
+    body_->setFlags(BT_DISABLE_WORLD_GRAVITY | gyro);
+    if (e.has(Effect::ContinuousCollision) && std::isfinite(coreExtent_) && !trigger_) {
+        // Moving more than half its inner radius in a step may tunnel: sweep a sphere a little
+        // smaller than the body's core along the motion (Bullet's CCD and predictive contacts).
+        body_->setCcdMotionThreshold(static_cast<btScalar>(0.5 * coreExtent_));
+        body_->setCcdSweptSphereRadius(static_cast<btScalar>(0.9 * coreExtent_));
+    } else {
+        body_->setCcdMotionThreshold(0);
+        body_->setCcdSweptSphereRadius(0);
+    }
+}
+
+BodyState BulletBodyPeer::state() const {
+    if (type_ == BodyType::Kinematic) return kinematic_;
+    if (type_ == BodyType::Static) return {setPosition_, setOrientation_, Vec3::Zero(), Vec3::Zero()};
+    const btTransform& xf = body_->getWorldTransform();
+    BodyState s;
+    s.position = sameBt(xf.getOrigin(), btPosition_) ? setPosition_ : fromBt(xf.getOrigin());
+    if (xf.getBasis() == btBasis_) {
+        s.orientation = setOrientation_;
+    } else {
+        btQuaternion q;
+        xf.getBasis().getRotation(q);
+        s.orientation = fromBt(q).normalized();
+    }
+    const btVector3& v = body_->getLinearVelocity();
+    const btVector3& w = body_->getAngularVelocity();
+    s.linearVelocity = sameBt(v, btLinear_) ? setLinear_ : fromBt(v);
+    s.angularVelocity = sameBt(w, btAngular_) ? setAngular_ : fromBt(w);
+    return s;
+}
+
+void BulletBodyPeer::setTransform(const Vec3& position, const Quat& orientation) {
+    setPosition_ = position;
+    setOrientation_ = orientation.normalized();
+    kinematic_.position = setPosition_;
+    kinematic_.orientation = setOrientation_;
+    const btTransform xf = toBt(setPosition_, setOrientation_);
+    body_->setWorldTransform(xf);
+    body_->setInterpolationWorldTransform(xf);
+    btPosition_ = xf.getOrigin();
+    btBasis_ = xf.getBasis();
+    if (moves()) wake();
+    world_.teleported(*this);
+}
+
+void BulletBodyPeer::setLinearVelocity(const Vec3& v) {
+    if (!moves()) return;
+    setLinear_ = kinematic_.linearVelocity = v;
+    btLinear_ = toBt(v);
+    body_->setLinearVelocity(btLinear_);
+    body_->setInterpolationLinearVelocity(btLinear_);
+    wake();
+}
+
+void BulletBodyPeer::setAngularVelocity(const Vec3& w) {
+    if (!moves()) return;
+    setAngular_ = kinematic_.angularVelocity = w;
+    btAngular_ = toBt(w);
+    body_->setAngularVelocity(btAngular_);
+    body_->setInterpolationAngularVelocity(btAngular_);
+    wake();
+}
+
+void BulletBodyPeer::addForce(const Vec3& force) {
+    if (!dynamic()) return;
+    force_ += force;
+    markForced();
+    wake();
+}
+
+void BulletBodyPeer::addTorque(const Vec3& torque) {
+    if (!dynamic()) return;
+    torque_ += torque;
+    markForced();
+    wake();
+}
+
+// Impulses are added in double to the reported velocity, so that exact values stay exact.
+void BulletBodyPeer::applyLinearImpulse(const Vec3& impulse) {
+    if (!dynamic()) return;
+    setLinearVelocity(state().linearVelocity + impulse / mass_.mass);
+}
+
+void BulletBodyPeer::applyAngularImpulse(const Vec3& impulse) {
+    if (!dynamic()) return;
+    const BodyState s = state();
+    const Mat3 r = s.orientation.toRotationMatrix();
+    setAngularVelocity(s.angularVelocity + r * mass_.inertia.cwiseInverse().cwiseProduct(r.transpose() * impulse));
+}
+
+bool BulletBodyPeer::isAwake() const {
+    switch (type_) {
+        case BodyType::Static: return false;
+        case BodyType::Kinematic: return kinematicAwake_;
+        case BodyType::Dynamic: return body_->getActivationState() != ISLAND_SLEEPING;
+    }
+    return false;
+}
+
+void BulletBodyPeer::setAwake(bool awake) {
+    if (!moves()) return;
+    if (awake) {
+        wake();
+        return;
+    }
+    kinematicAwake_ = false;
+    setLinear_ = setAngular_ = kinematic_.linearVelocity = kinematic_.angularVelocity = Vec3::Zero();
+    btLinear_ = btAngular_ = btVector3(0, 0, 0);
+    body_->setLinearVelocity(btLinear_);
+    body_->setAngularVelocity(btAngular_);
+    force_.setZero();
+    torque_.setZero();
+    body_->forceActivationState(ISLAND_SLEEPING);
+}
+
+void BulletBodyPeer::wake() {
+    if (type_ == BodyType::Kinematic) {
+        kinematicAwake_ = true;
+        body_->forceActivationState(DISABLE_DEACTIVATION);
+    } else if (!allowSleep_) {
+        body_->forceActivationState(DISABLE_DEACTIVATION);
+    } else {
+        if (body_->getActivationState() == DISABLE_DEACTIVATION) body_->forceActivationState(ACTIVE_TAG);
+        body_->activate(true);  // also restarts its rest time
+    }
+}
+
+void* BulletBodyPeer::nativeObject(const std::type_info& pointerType) {
+    if (pointerType == typeid(btRigidBody*)) return body_.get();
+    if (pointerType == typeid(btCollisionObject*)) return static_cast<btCollisionObject*>(body_.get());
+    return nullptr;
+}
+
+void BulletBodyPeer::markForced() {
+    if (forced_) return;
+    forced_ = true;
+    world_.addForced(this);
+}
+
+void BulletBodyPeer::pushForces() {
+    body_->applyCentralForce(toBt(force_));
+    body_->applyTorque(toBt(torque_));
+}
+
+void BulletBodyPeer::clearForces() {
+    force_.setZero();
+    torque_.setZero();
+    forced_ = false;
+}
+
+void BulletBodyPeer::advanceKinematic(double h) {
+    if (!kinematicAwake_) return;
+    kinematic_.position += h * kinematic_.linearVelocity;
+    const double speed = kinematic_.angularVelocity.norm();
+    if (speed > 0)
+        kinematic_.orientation =
+            (Quat(Eigen::AngleAxisd(speed * h, kinematic_.angularVelocity / speed)) * kinematic_.orientation).normalized();
+    const btTransform xf = toBt(kinematic_.position, kinematic_.orientation);
+    body_->setWorldTransform(xf);
+    body_->setInterpolationWorldTransform(xf);
+}
+
+}  // namespace anyphys::bullet

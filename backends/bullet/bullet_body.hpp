@@ -1,0 +1,99 @@
+#pragma once
+// One body: a btRigidBody, its shapes, and what the layer gave it that Bullet has no place for
+// (material index, layer and mask, user forces until the step, the exact kinematic path).
+#include <memory>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "anyphys/peers/world_peer.hpp"
+#include "bullet_shapes.hpp"
+
+namespace anyphys::bullet {
+
+class BulletWorld;
+
+class BulletBodyPeer final : public BodyPeer {
+public:
+    BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def);
+    ~BulletBodyPeer() override;
+
+    // ---- BodyPeer ------------------------------------------------------------------------
+    BodyState state() const override;
+    void setTransform(const Vec3& position, const Quat& orientation) override;
+    void setLinearVelocity(const Vec3& v) override;
+    void setAngularVelocity(const Vec3& w) override;
+    void addForce(const Vec3& force) override;
+    void addTorque(const Vec3& torque) override;
+    void applyLinearImpulse(const Vec3& impulse) override;
+    void applyAngularImpulse(const Vec3& impulse) override;
+    MassProperties massProperties() const override { return mass_; }
+    bool isAwake() const override;
+    void setAwake(bool awake) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for the world -------------------------------------------------------------------
+    btRigidBody& rigidBody() { return *body_; }
+    const btRigidBody& rigidBody() const { return *body_; }
+    BodyType type() const { return type_; }
+    std::uint64_t userData() const { return userData_; }
+    std::uint32_t material() const { return material_; }
+    std::uint32_t layer() const { return layer_; }
+    std::uint32_t mask() const { return mask_; }
+    bool trigger() const { return trigger_; }
+    /// Several shapes (a btCompoundShape): one manifold per touching child pair.
+    bool compound() const { return shapes_->root()->isCompound(); }
+    bool moves() const { return type_ != BodyType::Static; }
+    bool dynamic() const { return type_ == BodyType::Dynamic; }
+    /// Dynamic or kinematic and awake: simulated this step.
+    bool activeMover() const { return moves() && body_->isActive(); }
+
+    /// Applies the world's effects to this body (gravity, damping, gyroscopic, CCD, sleeping).
+    void applyEffects();
+    /// Adds a force / torque from the force hook for this step.
+    void addHookForce(const Vec3& force) { force_ += force; markForced(); }
+    void addHookTorque(const Vec3& torque) { torque_ += torque; markForced(); }
+    /// Hands this step's accumulated force and torque to Bullet (again before every substep:
+    /// Bullet clears its forces after each stepSimulation).
+    void pushForces();
+    void clearForces();
+    /// Kinematic bodies follow their velocity exactly (double precision, exponential map for
+    /// the rotation); Bullet sees the pose and velocity for contacts.
+    void advanceKinematic(double h);
+
+private:
+    void markForced();
+    void wake();
+    void syncKinematicToBullet();
+
+    BulletWorld& world_;
+    BodyType type_;
+    std::uint64_t userData_;
+    std::uint32_t material_;
+    std::uint32_t layer_, mask_;
+    bool trigger_, allowSleep_;
+    MassProperties mass_;
+    double linearDamping_, angularDamping_, gravityScale_;
+    GyroscopicMode gyroscopic_;
+    double coreExtent_;
+
+    Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();  // this step, world frame
+    bool forced_ = false;                                // listed in the world's forced bodies
+
+    // The values the layer last set, and the floats they became: while Bullet still holds
+    // those floats, the doubles are reported (exact round trip).
+    Vec3 setPosition_ = Vec3::Zero(), setLinear_ = Vec3::Zero(), setAngular_ = Vec3::Zero();
+    Quat setOrientation_ = Quat::Identity();
+    btVector3 btPosition_, btLinear_, btAngular_;
+    btMatrix3x3 btBasis_;
+    // Kinematic bodies: their exact state (Bullet gets a copy).
+    BodyState kinematic_;
+    bool kinematicAwake_ = true;
+
+    // Declared before the body: destroyed after it.
+    std::unique_ptr<ShapeSet> shapes_;
+    std::unique_ptr<btRigidBody> body_;
+    bool inWorld_ = false;
+    friend class BulletWorld;
+};
+
+}  // namespace anyphys::bullet

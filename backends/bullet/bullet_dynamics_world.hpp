@@ -1,0 +1,48 @@
+#pragma once
+// btDiscreteDynamicsWorld with the two per-world hooks anyphys needs, both through virtual
+// overrides so that two worlds in one process never share state (Bullet's own ways, such as
+// gContactAddedCallback and gDeactivationTime, are process globals):
+//  - solveConstraints: before Bullet solves, every contact point gets the layer's resolved
+//    friction and restitution for its pair of materials (Bullet would multiply the two bodies'
+//    values);
+//  - updateActivationState: sleeping with this world's timeToSleep, or never.
+//  - saveKinematicState: a no-op; Bullet would recompute a kinematic body's velocity from its
+//    last two poses, but anyphys moves kinematic bodies itself at their exact velocity.
+#include <btBulletDynamicsCommon.h>
+
+#include "anyphys/effects.hpp"
+#include "anyphys/peers/world_peer.hpp"
+
+namespace anyphys::bullet {
+
+class AnyphysDynamicsWorld final : public btDiscreteDynamicsWorld {
+public:
+    AnyphysDynamicsWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
+                         btCollisionConfiguration* configuration)
+        : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration) {}
+
+    void setMaterials(const MaterialTable* table) { materials_ = table; }
+    void setEffects(Effects effects) { effects_ = effects; }
+    void setTimeToSleep(double seconds) { timeToSleep_ = static_cast<btScalar>(seconds); }
+    void setRestitutionThreshold(double speed) { restitutionThreshold_ = static_cast<btScalar>(speed); }
+
+    /// Writes the table's friction and restitution into every contact point (also called by
+    /// tests to check the table reaches the points).
+    void applyMaterials();
+    /// Continuous collision's predictive contacts of the last step (they live in the dispatcher
+    /// next to the ordinary manifolds, so one pair may have both).
+    int predictiveManifoldCount() const { return m_predictiveManifolds.size(); }
+
+protected:
+    void solveConstraints(btContactSolverInfo& solverInfo) override;
+    void updateActivationState(btScalar timeStep) override;
+    void saveKinematicState(btScalar timeStep) override { (void)timeStep; }
+
+private:
+    const MaterialTable* materials_ = nullptr;
+    Effects effects_;
+    btScalar timeToSleep_ = 0.5f;
+    btScalar restitutionThreshold_ = 1.0f;
+};
+
+}  // namespace anyphys::bullet

@@ -1,0 +1,99 @@
+// Ray casts and shape overlap through Bullet's collision world, filtered like the layer wants:
+// bodies on a layer in the mask, sensors skipped.
+#include <algorithm>
+
+#include "bullet_convert.hpp"
+#include "bullet_world.hpp"
+
+namespace anyphys::bullet {
+namespace {
+
+const BulletBodyPeer* peerOf(const btCollisionObject* object) {
+    return static_cast<const BulletBodyPeer*>(object->getUserPointer());
+}
+
+bool queryable(const btBroadphaseProxy* proxy, std::uint32_t mask) {
+    const BulletBodyPeer* peer = peerOf(static_cast<const btCollisionObject*>(proxy->m_clientObject));
+    return peer != nullptr && !peer->trigger() && (peer->layer() & mask) != 0;
+}
+
+class RayHits final : public btCollisionWorld::RayResultCallback {
+public:
+    RayHits(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly, std::uint32_t mask)
+        : origin_(origin), direction_(direction), maxDistance_(maxDistance), closestOnly_(closestOnly), mask_(mask) {}
+
+    bool needsCollision(btBroadphaseProxy* proxy) const override { return queryable(proxy, mask_); }
+
+    btScalar addSingleResult(btCollisionWorld::LocalRayResult& r, bool normalInWorldSpace) override {
+        const btVector3 n = normalInWorldSpace ? r.m_hitNormalLocal
+                                               : r.m_collisionObject->getWorldTransform().getBasis() * r.m_hitNormalLocal;
+        const double distance = static_cast<double>(r.m_hitFraction) * maxDistance_;
+        const PeerRayHit hit{peerOf(r.m_collisionObject)->userData(), origin_ + distance * direction_,
+                             fromBt(n).normalized(), distance};
+        m_collisionObject = r.m_collisionObject;
+        if (closestOnly_) {
+            hits.assign(1, hit);
+            m_closestHitFraction = r.m_hitFraction;  // only nearer hits from now on
+            return r.m_hitFraction;
+        }
+        hits.push_back(hit);
+        return m_closestHitFraction;  // keep looking along the whole ray
+    }
+
+    std::vector<PeerRayHit> hits;
+
+private:
+    Vec3 origin_, direction_;
+    double maxDistance_;
+    bool closestOnly_;
+    std::uint32_t mask_;
+};
+
+class OverlapHits final : public btCollisionWorld::ContactResultCallback {
+public:
+    OverlapHits(const btCollisionObject* query, std::uint32_t mask) : query_(query), mask_(mask) {}
+
+    bool needsCollision(btBroadphaseProxy* proxy) const override { return queryable(proxy, mask_); }
+
+    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* w0, int, int,
+                             const btCollisionObjectWrapper* w1, int, int) override {
+        if (p.getDistance() > 0) return 0;  // near, not overlapping
+        const btCollisionObject* other = w0->getCollisionObject() == query_ ? w1->getCollisionObject() : w0->getCollisionObject();
+        if (const BulletBodyPeer* peer = peerOf(other)) found.push_back(peer->userData());
+        return 0;
+    }
+
+    std::vector<std::uint64_t> found;
+
+private:
+    const btCollisionObject* query_;
+    std::uint32_t mask_;
+};
+
+}  // namespace
+
+std::vector<PeerRayHit> BulletWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
+                                             bool closestOnly, std::uint32_t mask) {
+    world_->updateAabbs();  // bodies moved since their bounds were last refreshed (at step start)
+    RayHits hits(origin, direction, maxDistance, closestOnly, mask);
+    world_->rayTest(toBt(origin), toBt(origin + maxDistance * direction), hits);
+    std::sort(hits.hits.begin(), hits.hits.end(),
+              [](const PeerRayHit& x, const PeerRayHit& y) { return x.distance < y.distance; });
+    return std::move(hits.hits);
+}
+
+std::vector<std::uint64_t> BulletWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
+                                                std::uint32_t mask) {
+    world_->updateAabbs();
+    ShapeSet shape(shapes);
+    btCollisionObject query;
+    query.setCollisionShape(shape.root());
+    query.setWorldTransform(toBt(pose));
+    OverlapHits hits(&query, mask);
+    world_->contactTest(&query, hits);
+    std::sort(hits.found.begin(), hits.found.end());
+    hits.found.erase(std::unique(hits.found.begin(), hits.found.end()), hits.found.end());
+    return std::move(hits.found);
+}
+
+}  // namespace anyphys::bullet

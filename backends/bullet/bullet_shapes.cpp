@@ -1,0 +1,136 @@
+#include "bullet_shapes.hpp"
+
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <LinearMath/btGeometryUtil.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "bullet_convert.hpp"
+
+namespace anyphys::bullet {
+namespace {
+
+// Bullet keeps a collision margin around convex shapes for robust GJK. For boxes it lies inside
+// the box (the corners are rounded by it), so the size is exact; it is kept to a tenth of the
+// thinnest half extent so small boxes stay boxes.
+constexpr double kBoxMargin = 0.04;
+// Hull margins lie outside the points, so hulls are shrunk by their margin first (their surface
+// then stays where the layer put it); at most a quarter of the hull's inner radius.
+constexpr double kHullMargin = 0.01;
+
+bool isIdentity(const Transform& t) {
+    return t.position.squaredNorm() == 0.0 && t.orientation.coeffs() == Quat::Identity().coeffs();
+}
+
+double hullInnerRadius(const HullData& hull) {
+    double inner = std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < hull.faceNormals.size(); ++f)
+        inner = std::min(inner, hull.faceOffsets[f] - hull.faceNormals[f].dot(hull.centroid));
+    return inner;
+}
+
+// The hull moved inwards by `margin` on every face, so that hull + margin is the layer's hull.
+btAlignedObjectArray<btVector3> shrunkHull(const HullData& hull, double margin) {
+    btAlignedObjectArray<btVector3> planes, vertices;
+    for (std::size_t f = 0; f < hull.faceNormals.size(); ++f) {
+        btVector3 plane = toBt(hull.faceNormals[f]);
+        plane.setW(static_cast<btScalar>(-(hull.faceOffsets[f] - margin)));  // n . x + w = 0
+        planes.push_back(plane);
+    }
+    btGeometryUtil::getVerticesFromPlaneEquations(planes, vertices);
+    return vertices;
+}
+
+}  // namespace
+
+ShapeSet::ShapeSet(const std::vector<PeerShape>& shapes) {
+    coreExtent_ = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<btCollisionShape*, bool>> built;  // shape, pose absorbed into it
+    for (const PeerShape& s : shapes) {
+        bool absorbed = false;
+        built.emplace_back(build(s, absorbed), absorbed);
+    }
+    if (built.size() == 1 && (built[0].second || isIdentity(shapes[0].local))) {
+        root_ = built[0].first;
+        return;
+    }
+    compound_ = std::make_unique<btCompoundShape>(/*enableDynamicAabbTree=*/built.size() > 8,
+                                                  static_cast<int>(built.size()));
+    for (std::size_t i = 0; i < built.size(); ++i)
+        compound_->addChildShape(built[i].second ? btTransform::getIdentity() : toBt(shapes[i].local), built[i].first);
+    root_ = compound_.get();
+}
+
+ShapeSet::~ShapeSet() = default;
+
+btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
+    const ShapeDef& d = ps.def;
+    std::unique_ptr<btCollisionShape> shape;
+    switch (d.type) {
+        case ShapeType::Sphere:
+            shape = std::make_unique<btSphereShape>(static_cast<btScalar>(d.radius));
+            coreExtent_ = std::min(coreExtent_, d.radius);
+            break;
+        case ShapeType::Box: {
+            auto box = std::make_unique<btBoxShape>(toBt(d.halfExtents));
+            box->setMargin(static_cast<btScalar>(std::min(kBoxMargin, 0.1 * d.halfExtents.minCoeff())));
+            shape = std::move(box);
+            coreExtent_ = std::min(coreExtent_, d.halfExtents.minCoeff());
+            break;
+        }
+        case ShapeType::Capsule:  // along Y; Bullet's height is the core segment's length
+            shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(d.radius), static_cast<btScalar>(2 * d.halfHeight));
+            coreExtent_ = std::min(coreExtent_, d.radius);
+            break;
+        case ShapeType::Plane: {
+            // Planes are infinite: the local pose folds into the plane's normal and offset.
+            const double length = d.normal.norm();
+            const Vec3 n = ps.local.orientation * (d.normal / length);
+            const double offset = d.offset / length + n.dot(ps.local.position);
+            shape = std::make_unique<btStaticPlaneShape>(toBt(n), static_cast<btScalar>(offset));
+            absorbedPose = true;
+            break;
+        }
+        case ShapeType::Convex: {
+            const HullData& hull = *ps.hull;
+            const double inner = hullInnerRadius(hull);
+            const double margin = std::min(kHullMargin, 0.25 * inner);
+            btAlignedObjectArray<btVector3> points = shrunkHull(hull, margin);
+            auto convex = std::make_unique<btConvexHullShape>();
+            if (points.size() >= 4) {
+                for (int i = 0; i < points.size(); ++i) convex->addPoint(points[i], false);
+                convex->setMargin(static_cast<btScalar>(margin));
+            } else {  // degenerate after shrinking: the hull itself, with a negligible margin
+                for (const Vec3& v : hull.vertices) convex->addPoint(toBt(v), false);
+                convex->setMargin(static_cast<btScalar>(1e-4));
+            }
+            convex->recalcLocalAabb();
+            convex->initializePolyhedralFeatures();  // face-based manifolds (stable resting contact)
+            shape = std::move(convex);
+            coreExtent_ = std::min(coreExtent_, inner);
+            break;
+        }
+        case ShapeType::Mesh: {
+            auto mesh = std::make_unique<Mesh>();
+            mesh->vertices.reserve(d.vertices.size() * 3);
+            for (const Vec3& v : d.vertices)
+                for (int k = 0; k < 3; ++k) mesh->vertices.push_back(static_cast<btScalar>(v[k]));
+            mesh->indices.assign(d.indices.begin(), d.indices.end());
+            mesh->array = std::make_unique<btTriangleIndexVertexArray>(
+                static_cast<int>(mesh->indices.size() / 3), mesh->indices.data(), static_cast<int>(3 * sizeof(int)),
+                static_cast<int>(d.vertices.size()), mesh->vertices.data(), static_cast<int>(3 * sizeof(btScalar)));
+            auto bvh = std::make_unique<btBvhTriangleMeshShape>(mesh->array.get(), /*useQuantizedAabbCompression=*/true);
+            bvh->setMargin(0);  // triangles are exact; the other shape's margin keeps GJK robust
+            meshes_.push_back(std::move(mesh));
+            shape = std::move(bvh);
+            break;
+        }
+        case ShapeType::Compound:  // flattened by the layer
+            break;
+    }
+    children_.push_back(std::move(shape));
+    return children_.back().get();
+}
+
+}  // namespace anyphys::bullet

@@ -1,0 +1,46 @@
+#pragma once
+// Bullet collision shapes built from the layer's shapes (already flattened into primitives and
+// placed in the peer body frame), together with everything they point to: Bullet shapes do not
+// own their children or their triangle arrays, so one ShapeSet owns them all and frees them in
+// the right order.
+#include <memory>
+#include <vector>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "anyphys/peers/shape_data.hpp"
+
+namespace anyphys::bullet {
+
+class ShapeSet {
+public:
+    /// Builds the shapes; several shapes, or one not at the body frame's origin, become a
+    /// btCompoundShape.
+    explicit ShapeSet(const std::vector<PeerShape>& shapes);
+    ~ShapeSet();
+    ShapeSet(const ShapeSet&) = delete;
+    ShapeSet& operator=(const ShapeSet&) = delete;
+
+    /// The shape to give the collision object.
+    btCollisionShape* root() const { return root_; }
+    /// m, smallest distance from a shape's centre to its surface: moving less than this per
+    /// step cannot tunnel (used for continuous collision).
+    double coreExtent() const { return coreExtent_; }
+
+private:
+    struct Mesh {
+        std::vector<btScalar> vertices;  // x, y, z per vertex
+        std::vector<int> indices;        // three per triangle
+        std::unique_ptr<btTriangleIndexVertexArray> array;
+    };
+    btCollisionShape* build(const PeerShape& shape, bool& absorbedPose);
+
+    // Destroyed in reverse: the compound first, then the children, then the meshes' arrays.
+    std::vector<std::unique_ptr<Mesh>> meshes_;
+    std::vector<std::unique_ptr<btCollisionShape>> children_;
+    std::unique_ptr<btCompoundShape> compound_;
+    btCollisionShape* root_ = nullptr;
+    double coreExtent_ = 0.0;
+};
+
+}  // namespace anyphys::bullet

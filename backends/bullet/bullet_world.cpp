@@ -1,0 +1,232 @@
+#include "bullet_world.hpp"
+
+#include <algorithm>
+
+#include "bullet_convert.hpp"
+
+namespace anyphys::bullet {
+
+bool LayerFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const {
+    const auto* o0 = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
+    const auto* o1 = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
+    const auto* a = static_cast<const BulletBodyPeer*>(o0->getUserPointer());
+    const auto* b = static_cast<const BulletBodyPeer*>(o1->getUserPointer());
+    if (a == nullptr || b == nullptr) return true;  // not ours (e.g. a user's object through the escape hatch)
+    if (!contacts) return false;
+    if (!layersCollide(a->layer(), a->mask(), b->layer(), b->mask())) return false;
+    if (a->trigger() || b->trigger()) return a->moves() || b->moves();  // sensors see anything that moves
+    return a->dynamic() || b->dynamic();                               // something must respond
+}
+
+BulletWorld::BulletWorld(const WorldSettings& settings)
+    : settings_(settings),
+      configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()) {
+    const Solver solver = settings.solver.value_or(Solver::ProjectedGaussSeidel);
+    if (solver == Solver::Direct) {
+        // Bullet's MLCP: contacts and friction as one mixed LCP solved by Dantzig's pivoting method
+        // (btMLCPSolver falls back to sequential impulses when the pivoting fails).
+        mlcpInterface_ = std::make_unique<btDantzigSolver>();
+        solver_ = std::make_unique<btMLCPSolver>(mlcpInterface_.get());
+    } else {
+        solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+    }
+    world_ = std::make_unique<AnyphysDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                    configuration_.get());
+    broadphase_->getOverlappingPairCache()->setOverlapFilterCallback(&filter_);
+    world_->setGravity(btVector3(0, 0, 0));  // per body (gravity scale), see BulletBodyPeer::applyEffects
+    world_->setMaterials(&materials_);
+    world_->setTimeToSleep(settings.timeToSleep);
+    world_->setRestitutionThreshold(settings.restitutionThreshold);
+    // Only moving bodies need fresh bounds each step; static ones are refreshed when teleported.
+    world_->setForceUpdateAllAabbs(false);
+
+    btContactSolverInfo& info = world_->getSolverInfo();
+    const auto option = [&settings](const char* name, double fallback) {
+        const auto it = settings.backendOptions.find(name);
+        return it == settings.backendOptions.end() ? fallback : it->second;
+    };
+    info.m_numIterations = settings.iterations.value_or(10);  // resolved by the layer
+    // Overlap is pushed out at the layer's Baumgarte fraction per step: through the velocity up to
+    // 4 cm deep, by split impulse (moving positions only) beyond (Bullet's defaults). Split impulse
+    // from 5 mm on lets a box sliding down a 35 deg slope sink 4 cm into it, and at every depth a
+    // 10-box stack topples. Bouncing impacts get no push at all (AnyphysDynamicsWorld::applyMaterials).
+    info.m_erp = static_cast<btScalar>(settings.baumgarte);
+    info.m_erp2 = static_cast<btScalar>(option("erp2", settings.baumgarte));
+    info.m_splitImpulse = option("splitImpulse", 1.0) != 0.0;
+    info.m_splitImpulsePenetrationThreshold = static_cast<btScalar>(-option("splitImpulseDepth", 0.04));
+    // Two friction directions per point (Bullet's SOLVER_USE_2_FRICTION_DIRECTIONS): with one,
+    // along the sliding velocity only, a box resting 2 deg under the friction angle creeps away
+    // (0.85 m in 2 s) because at rest that direction is arbitrary. Two make friction a square
+    // rather than a circle, which holds slightly more than mu (see the known deviations).
+    if (option("frictionDirections", 2) >= 2) info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+    if (option("frictionCaching", 0) != 0) info.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+    if (option("fixedFrictionDirections", 0) != 0) info.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+    info.m_linearSlop = static_cast<btScalar>(option("linearSlop", 0.0));
+    info.m_warmstartingFactor = static_cast<btScalar>(option("warmstarting", info.m_warmstartingFactor));
+    info.m_maxGyroscopicForce = BT_LARGE_FLOAT;  // explicit gyroscopic torque uncapped: the exact term
+    info.m_restitutionVelocityThreshold = static_cast<btScalar>(settings.restitutionThreshold);
+    info.m_globalCfm = static_cast<btScalar>(option("cfm", info.m_globalCfm));
+}
+
+BulletWorld::~BulletWorld() {
+    // Bodies whose peers outlive the world (the layer destroys them first; tests may not) leave
+    // it now, so their peers never touch a dead world.
+    while (!bodies_.empty()) detach(*bodies_.back());
+}
+
+std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
+    auto peer = std::make_unique<BulletBodyPeer>(*this, def);
+    btRigidBody& body = peer->rigidBody();
+    // Filtering is the layer's rule (LayerFilter); Bullet's own groups let everything through.
+    world_->addRigidBody(&body, btBroadphaseProxy::AllFilter, btBroadphaseProxy::AllFilter);
+    peer->inWorld_ = true;
+    bodies_.push_back(peer.get());
+    if (peer->type() == BodyType::Kinematic) kinematic_.push_back(peer.get());
+    peer->applyEffects();
+    if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
+    return peer;
+}
+
+void BulletWorld::destroyBody(BodyPeer& peer) { detach(static_cast<BulletBodyPeer&>(peer)); }
+
+void BulletWorld::detach(BulletBodyPeer& peer) {
+    if (!peer.inWorld_) return;
+    btRigidBody& body = peer.rigidBody();
+    // Bodies resting on this one must not hang in the air.
+    const int manifolds = dispatcher_->getNumManifolds();
+    for (int m = 0; m < manifolds; ++m) {
+        btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+        if (manifold->getBody0() == &body) const_cast<btCollisionObject*>(manifold->getBody1())->activate();
+        if (manifold->getBody1() == &body) const_cast<btCollisionObject*>(manifold->getBody0())->activate();
+    }
+    world_->removeRigidBody(&body);
+    peer.inWorld_ = false;
+    const auto drop = [&peer](std::vector<BulletBodyPeer*>& list) {
+        list.erase(std::remove(list.begin(), list.end(), &peer), list.end());
+    };
+    drop(bodies_);
+    if (peer.type() == BodyType::Kinematic) drop(kinematic_);
+    drop(forced_);
+}
+
+void BulletWorld::teleported(BulletBodyPeer& peer) {
+    if (!peer.inWorld_) return;
+    world_->updateSingleAabb(&peer.rigidBody());
+    if (peer.moves()) return;
+    // A moved static body: what touched it must look again.
+    const int manifolds = dispatcher_->getNumManifolds();
+    for (int m = 0; m < manifolds; ++m) {
+        btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+        if (manifold->getBody0() == &peer.rigidBody()) const_cast<btCollisionObject*>(manifold->getBody1())->activate();
+        if (manifold->getBody1() == &peer.rigidBody()) const_cast<btCollisionObject*>(manifold->getBody0())->activate();
+    }
+}
+
+void BulletWorld::setEffects(Effects effects) {
+    const bool contactsChanged = effects.has(Effect::Contacts) != effects_.has(Effect::Contacts);
+    effects_ = effects;
+    world_->setEffects(effects);
+    filter_.contacts = effects.has(Effect::Contacts);
+    // Continuous collision: Bullet's swept-sphere CCD and its predictive contacts.
+    world_->getDispatchInfo().m_useContinuous = effects.has(Effect::ContinuousCollision);
+    for (BulletBodyPeer* body : bodies_) {
+        body->applyEffects();
+        // Pairs are filtered when they are created: re-filter every proxy when contacts toggle.
+        if (contactsChanged && body->rigidBody().getBroadphaseHandle())
+            world_->refreshBroadphaseProxy(&body->rigidBody());
+    }
+}
+
+void BulletWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
+
+void BulletWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
+
+void BulletWorld::step(double time, double dt) {
+    if (forceHook_ && effects_.has(Effect::UserForces)) {
+        // ForceEvaluation::PerStep: the hook runs once, at the step's start, and its forces hold
+        // for the whole step.
+        class StepStart final : public ForceStage {
+        public:
+            explicit StepStart(double t) : time_(t) {}
+            double time() const override { return time_; }
+            BodyState state(const BodyPeer& body) const override { return body.state(); }
+            void addForce(BodyPeer& body, const Vec3& f) override { static_cast<BulletBodyPeer&>(body).addHookForce(f); }
+            void addTorque(BodyPeer& body, const Vec3& t) override {
+                static_cast<BulletBodyPeer&>(body).addHookTorque(t);
+            }
+
+        private:
+            double time_;
+        } stage(time);
+        forceHook_(stage);
+    }
+    // One internal Bullet step per substep, of exactly dt / substeps: the layer already takes
+    // fixed steps, so Bullet's own accumulator must neither add nor drop a step.
+    const int substeps = settings_.substeps.value_or(1);  // resolved by the layer
+    const double h = dt / substeps;
+    const auto bh = static_cast<btScalar>(h);
+    for (int s = 0; s < substeps; ++s) {
+        for (BulletBodyPeer* body : forced_) body->pushForces();
+        world_->stepSimulation(bh, 1, bh);
+        for (BulletBodyPeer* body : kinematic_) body->advanceKinematic(h);
+    }
+    for (BulletBodyPeer* body : forced_) body->clearForces();
+    forced_.clear();
+}
+
+void BulletWorld::collectContacts(std::vector<PeerContact>& out) {
+    pairIndex_.clear();
+    const bool severalPerPair = world_->predictiveManifoldCount() > 0;
+    const int manifolds = dispatcher_->getNumManifolds();
+    for (int m = 0; m < manifolds; ++m) {
+        const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+        const int count = manifold->getNumContacts();
+        if (count == 0) continue;
+        const auto* a = static_cast<const BulletBodyPeer*>(manifold->getBody0()->getUserPointer());
+        const auto* b = static_cast<const BulletBodyPeer*>(manifold->getBody1()->getUserPointer());
+        if (a == nullptr || b == nullptr) continue;
+        if (!a->activeMover() && !b->activeMover()) continue;  // asleep: the layer keeps the pair
+        // One PeerContact per body pair (a compound makes one manifold per child pair).
+        const bool swapped = a->userData() > b->userData();
+        const std::uint64_t low = swapped ? b->userData() : a->userData();
+        const std::uint64_t high = swapped ? a->userData() : b->userData();
+        if (a->trigger() || b->trigger()) {
+            bool overlapping = false;  // a sensor overlaps when some point touches or penetrates
+            for (int i = 0; i < count && !overlapping; ++i) overlapping = manifold->getContactPoint(i).getDistance() <= 0;
+            if (overlapping && pairIndex_.try_emplace({low, high}, out.size()).second)
+                out.push_back({low, high, true, Vec3::Zero(), {}});
+            continue;
+        }
+        // Only compound bodies and continuous collision's predictive contacts make several
+        // manifolds per pair: otherwise the lookup is skipped.
+        std::size_t index = out.size();
+        if (severalPerPair || a->compound() || b->compound()) {
+            const auto [it, fresh] = pairIndex_.try_emplace({low, high}, out.size());
+            index = it->second;
+            if (fresh) out.push_back({low, high, false, Vec3::Zero(), {}});
+        } else {
+            out.push_back({low, high, false, Vec3::Zero(), {}});
+        }
+        PeerContact& pc = out[index];
+        pc.points.reserve(pc.points.size() + static_cast<std::size_t>(count));
+        // Bullet's normal points from body 1 to body 0; the layer wants it from A to B.
+        const double sign = swapped ? 1.0 : -1.0;
+        for (int i = 0; i < count; ++i) {
+            const btManifoldPoint& p = manifold->getContactPoint(i);
+            if (pc.points.empty()) pc.normal = sign * fromBt(p.m_normalWorldOnB);
+            const Vec3 point = 0.5 * (fromBt(p.getPositionWorldOnA()) + fromBt(p.getPositionWorldOnB()));
+            pc.points.push_back({point, -static_cast<double>(p.getDistance()), static_cast<double>(p.getAppliedImpulse())});
+        }
+    }
+}
+
+void* BulletWorld::nativeObject(const std::type_info& pointerType) {
+    if (pointerType == typeid(btDiscreteDynamicsWorld*)) return static_cast<btDiscreteDynamicsWorld*>(world_.get());
+    if (pointerType == typeid(btDynamicsWorld*)) return static_cast<btDynamicsWorld*>(world_.get());
+    if (pointerType == typeid(btCollisionWorld*)) return static_cast<btCollisionWorld*>(world_.get());
+    return nullptr;
+}
+
+}  // namespace anyphys::bullet

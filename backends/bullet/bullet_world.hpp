@@ -1,0 +1,85 @@
+#pragma once
+// The Bullet backend's world: a btDiscreteDynamicsWorld and the objects it needs, owned here and
+// destroyed in the right order (the world first, then solver, broad phase, dispatcher and
+// configuration), plus what anyphys adds per world: the material table, the layer filter, the
+// effects, user forces and the force hook.
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <BulletDynamics/MLCPSolvers/btDantzigSolver.h>
+#include <BulletDynamics/MLCPSolvers/btMLCPSolver.h>
+#include <btBulletDynamicsCommon.h>
+
+#include "anyphys/peers/world_peer.hpp"
+#include "anyphys/world_settings.hpp"
+#include "bullet_body.hpp"
+#include "bullet_dynamics_world.hpp"
+
+namespace anyphys::bullet {
+
+/// The layer's filter, per world: two bodies pair only if their layers and masks agree and one
+/// of them can respond (a sensor needs something that moves). Contacts off: nothing pairs.
+class LayerFilter final : public btOverlapFilterCallback {
+public:
+    bool needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const override;
+    bool contacts = false;
+};
+
+class BulletWorld final : public WorldPeer {
+public:
+    explicit BulletWorld(const WorldSettings& settings);
+    ~BulletWorld() override;
+
+    std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
+    void destroyBody(BodyPeer& body) override;
+    void setEffects(Effects effects) override;
+    void setForceHook(ForceHook hook) override;
+    void step(double time, double dt) override;
+    void setMaterialTable(const MaterialTable& table) override;
+    void collectContacts(std::vector<PeerContact>& out) override;
+    std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
+                                    std::uint32_t mask) override;
+    std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
+                                       std::uint32_t mask) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for body peers ------------------------------------------------------------------
+    const WorldSettings& settings() const { return settings_; }
+    Effects effects() const { return effects_; }
+    AnyphysDynamicsWorld& dynamicsWorld() { return *world_; }
+    /// The body has force or torque to apply this step.
+    void addForced(BulletBodyPeer* body) { forced_.push_back(body); }
+    /// Removes the body from the Bullet world (on destroyBody, or when its peer dies first).
+    void detach(BulletBodyPeer& body);
+    /// After a teleport: refresh the body's bounds and wake what touches it.
+    void teleported(BulletBodyPeer& body);
+
+private:
+    WorldSettings settings_;
+    Effects effects_;
+    ForceHook forceHook_;
+    MaterialTable materials_;
+    std::vector<BulletBodyPeer*> bodies_;     // every attached body
+    std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
+    std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
+    struct PairHash {
+        std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& p) const {
+            return std::hash<std::uint64_t>{}(p.first * 0x9E3779B97F4A7C15ull ^ p.second);
+        }
+    };
+    // collectContacts scratch: body pair -> its entry in the output
+    std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::size_t, PairHash> pairIndex_;
+
+    // Destroyed in reverse order of declaration: world_ first.
+    std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+    std::unique_ptr<btCollisionDispatcher> dispatcher_;
+    std::unique_ptr<btBroadphaseInterface> broadphase_;
+    std::unique_ptr<btDantzigSolver> mlcpInterface_;
+    std::unique_ptr<btConstraintSolver> solver_;
+    LayerFilter filter_;
+    std::unique_ptr<AnyphysDynamicsWorld> world_;
+};
+
+}  // namespace anyphys::bullet
