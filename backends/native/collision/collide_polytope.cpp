@@ -30,7 +30,7 @@ constexpr double kSupportTolerance = 1e-9;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-std::uint32_t featureCode(const std::vector<int>& indices) {
+std::uint32_t featureCode(const CoreFeature& indices) {
     std::uint32_t h = static_cast<std::uint32_t>(indices.size());
     for (int i : indices) h = feature::combine(h, static_cast<std::uint32_t>(i));
     return h;
@@ -218,7 +218,7 @@ int edgeIndex(const Polytope& p, int v, int w) {
 // normal of a face (a face's interior is closest), that face is the reference and the other's
 // face is clipped to it; otherwise (edges or vertices closest) the closest points are the contact.
 bool separatedPolytopes(const Polytope& a, const Polytope& b, const GjkResult& g, double speculative, Manifold& m) {
-    const Vec3 n = (g.onB - g.onA) / g.distance;
+    const Vec3 n = (g.pointB - g.pointA) / g.distance;
     int faceA = 0, faceB = 0;
     double alignA = -kInfinity, alignB = -kInfinity;
     for (int f = 0; f < a.faceCount(); ++f)
@@ -249,7 +249,7 @@ bool separatedPolytopes(const Polytope& a, const Polytope& b, const GjkResult& g
         if (ea >= 0 && eb >= 0) id = feature::id(feature::Kind::EdgeEdge, ea, eb);
     }
     ManifoldBuilder builder(n);
-    builder.add(0.5 * (g.onA + g.onB), g.distance, id);
+    builder.add(0.5 * (g.pointA + g.pointB), g.distance, id);
     return builder.finish(m);
 }
 
@@ -263,13 +263,13 @@ bool collideSpherePolytope(const SphereGeom& a, const Polytope& b, double specul
     if (deepest.separation - a.radius >= speculative) return false;
 
     const double tol = tolerance::kDistanceSwitch * b.size;
-    const GjkResult g = gjkDistance(std::span<const Vec3>(&a.center, 1), b.vertices, tol);
+    const GjkResult g = gjkFromFirstVertices(ConvexCore::points({&a.center, 1}), ConvexCore::points(b.vertices), tol);
     if (g.distance > tol) {
         const double separation = g.distance - a.radius;
         if (separation >= speculative) return false;
-        const Vec3 n = (g.onB - a.center) / g.distance;
+        const Vec3 n = (g.pointB - a.center) / g.distance;
         ManifoldBuilder builder(n);
-        builder.add(0.5 * (a.center + n * a.radius + g.onB), separation,
+        builder.add(0.5 * (a.center + n * a.radius + g.pointB), separation,
                     feature::id(feature::Kind::Closest, featureCode(g.featureB)));
         return builder.finish(m);
     }
@@ -290,10 +290,10 @@ bool collideCapsulePolytope(const CapsuleGeom& a, const Polytope& b, double spec
         if (std::min(b.normals[f].dot(a.p0), b.normals[f].dot(a.p1)) - b.offsets[f] - r >= speculative) return false;
 
     const double tol = tolerance::kDistanceSwitch * b.size;
-    const GjkResult g = gjkDistance(segment, b.vertices, tol);
+    const GjkResult g = gjkFromFirstVertices(ConvexCore::points(segment), ConvexCore::points(b.vertices), tol);
     if (g.distance > tol) {
         if (g.distance - r >= speculative) return false;
-        const Vec3 n = (g.onB - g.onA) / g.distance;  // from the capsule to the polytope
+        const Vec3 n = (g.pointB - g.pointA) / g.distance;  // from the capsule to the polytope
         int face = 0;
         double alignment = -kInfinity;
         for (int f = 0; f < b.axisFaceCount(); ++f)
@@ -310,7 +310,7 @@ bool collideCapsulePolytope(const CapsuleGeom& a, const Polytope& b, double spec
             if (builder.deepest() <= g.distance - r + tol) return builder.finish(m);
         }
         ManifoldBuilder builder(n);
-        builder.add(0.5 * (g.onA + n * r + g.onB), g.distance - r,
+        builder.add(0.5 * (g.pointA + n * r + g.pointB), g.distance - r,
                     feature::id(feature::Kind::Closest, featureCode(g.featureA), featureCode(g.featureB)));
         return builder.finish(m);
     }
@@ -380,7 +380,7 @@ bool collidePolytopes(const Polytope& a, const Polytope& b, double speculative, 
     // Apart: the axes only bound the distance from below; the distance routine is exact.
     const double tol = tolerance::kDistanceSwitch * std::min(a.size, b.size);
     if (std::max({faceA.separation, faceB.separation, edge.separation}) > tol) {
-        const GjkResult g = gjkDistance(a.vertices, b.vertices, tol);
+        const GjkResult g = gjkFromFirstVertices(ConvexCore::points(a.vertices), ConvexCore::points(b.vertices), tol);
         if (g.distance > tol) return g.distance < speculative && separatedPolytopes(a, b, g, speculative, m);
     }
     // Overlapping a one-sided triangle: the way out is through its front only.

@@ -1,5 +1,7 @@
 #pragma once
-// Per-shape geometric queries: bounds, ray casts, distance (GJK) and time of impact.
+// Per-shape geometric queries, one file each: bounds (bounds.cpp), ray casts (raycast.cpp),
+// distance and overlap (distance.cpp, on the GJK of gjk.hpp) and time of impact
+// (time_of_impact.cpp).
 #include <optional>
 
 #include "collision/shape.hpp"

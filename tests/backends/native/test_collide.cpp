@@ -707,15 +707,16 @@ TEST(Collide, DistanceRoutineOnSimpleSets) {
         return c;
     }();
     const Vec3 point(3, 2, 0.5);
-    const GjkResult toFace = gjkDistance(std::span<const Vec3>(&point, 1), cube, 1e-12);
+    const ConvexCore cubeCore = ConvexCore::points(cube);
+    const GjkResult toFace = gjkFromFirstVertices(ConvexCore::points({&point, 1}), cubeCore);
     EXPECT_NEAR(toFace.distance, std::sqrt(4.0 + 1.0), 1e-12);  // to the edge x = y = 1
-    EXPECT_TRUE(toFace.onB.isApprox(Vec3(1, 1, 0.5), 1e-12));
-    EXPECT_EQ(toFace.featureB.size(), 2u);
+    EXPECT_TRUE(toFace.pointB.isApprox(Vec3(1, 1, 0.5), 1e-12));
+    EXPECT_EQ(toFace.featureB.size(), 2);
 
     const std::vector<Vec3> segment{Vec3(-5, 3, 0), Vec3(5, 3, 0)};
-    EXPECT_NEAR(gjkDistance(segment, cube, 1e-12).distance, 2.0, 1e-12);
+    EXPECT_NEAR(gjkFromFirstVertices(ConvexCore::points(segment), cubeCore).distance, 2.0, 1e-12);
     const std::vector<Vec3> through{Vec3(-5, 0.5, 0), Vec3(5, 0.5, 0)};
-    EXPECT_EQ(gjkDistance(through, cube, 1e-12).distance, 0.0);
+    EXPECT_EQ(gjkFromFirstVertices(ConvexCore::points(through), cubeCore).distance, 0.0);
 }
 
 }  // namespace
