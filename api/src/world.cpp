@@ -12,6 +12,14 @@
 namespace anyphys {
 namespace {
 
+/// The primitive shape types of a body's shape (a compound's children), each once.
+std::set<ShapeType> primitiveTypes(const ShapeDef& shape) {
+    if (shape.type != ShapeType::Compound) return {shape.type};
+    std::set<ShapeType> out;
+    for (const ShapeDef& child : shape.shapes) out.insert(child.type);
+    return out;
+}
+
 std::string join(const std::vector<std::string>& items) {
     std::string out;
     for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
@@ -185,6 +193,11 @@ Body World::createBody(const BodyDef& input) {
     checkParameter(input.linearDamping != defaults.linearDamping, "body.linearDamping");
     checkParameter(input.angularDamping != defaults.angularDamping, "body.angularDamping");
     checkParameter(input.gravityScale != defaults.gravityScale, "body.gravityScale");
+    for (ShapeType mine : primitiveTypes(input.shape))
+        for (const auto& [present, count] : impl_->shapeBodies)
+            if (count > 0 && caps.missingShapePairs.contains(std::minmax(mine, present)))
+                missing.push_back("collision between " + std::string(toString(std::min(mine, present))) + " and " +
+                                  std::string(toString(std::max(mine, present))) + " shapes");
     if (!missing.empty()) {
         const std::string what = "backend \"" + settings_.backend + "\" does not support: " + join(missing);
         if (settings_.capabilityPolicy == CapabilityPolicy::Strict) throw Error("BodyDef: " + what);
@@ -253,6 +266,7 @@ void World::countBody(const BodyDef& d, int delta) {
     count(i.movingBodies, d.type != BodyType::Static);
     count(i.triggerBodies, d.isTrigger);
     count(i.sleepyBodies, d.type == BodyType::Dynamic && d.allowSleep);
+    for (ShapeType type : primitiveTypes(d.shape)) i.shapeBodies[type] += delta;
 }
 
 World::Slot& World::slot(BodyId id, const char* operation) {

@@ -52,6 +52,7 @@ struct World::Impl {
     std::size_t movingBodies = 0;    // dynamic or kinematic
     std::size_t triggerBodies = 0;
     std::size_t sleepyBodies = 0;    // dynamic bodies allowed to sleep
+    std::map<ShapeType, std::size_t> shapeBodies;  // bodies having a primitive shape of each type
     bool forcesUsed = false;
 
     // Materials: index per name (row of the table the peer holds) and whether any pair mixes to

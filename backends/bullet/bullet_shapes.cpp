@@ -16,8 +16,11 @@ namespace {
 // thinnest half extent so small boxes stay boxes.
 constexpr double kBoxMargin = 0.04;
 // Hull margins lie outside the points, so hulls are shrunk by their margin first (their surface
-// then stays where the layer put it); at most a quarter of the hull's inner radius.
-constexpr double kHullMargin = 0.01;
+// then stays where the layer put it); at most a quarter of the hull's inner radius. Kept small:
+// hull-hull contacts use the polyhedral clipping path (initializePolyhedralFeatures), which sees
+// the shrunk hulls without their margins, so two hulls rest 2 x margin too deep (measured: a
+// cube on a convex slab 2 cm low at 0.01, 2 mm at 0.001).
+constexpr double kHullMargin = 0.001;
 
 bool isIdentity(const Transform& t) {
     return t.position.squaredNorm() == 0.0 && t.orientation.coeffs() == Quat::Identity().coeffs();

@@ -13,6 +13,12 @@ std::string_view forceEvaluationName(ForceEvaluation f) {
     return f == ForceEvaluation::PerStage ? "per_stage" : "per_step";
 }
 
+std::vector<std::string> missingPairNames(const Capabilities& caps) {
+    std::vector<std::string> out;
+    for (const auto& [a, b] : caps.missingShapePairs) out.push_back(std::string(toString(a)) + "-" + std::string(toString(b)));
+    return out;
+}
+
 /// Capabilities with scene-file names, so the output can be matched against scene files.
 nlohmann::json capabilitiesJson(const Capabilities& caps) {
     nlohmann::json options = nlohmann::json::object();
@@ -34,10 +40,12 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
         {"options", options},
         {"knownDeviations", caps.knownDeviations},
+        {"missingShapePairs", missingPairNames(caps)},
     };
 }
 
 std::string orNone(const std::vector<std::string>& items) { return items.empty() ? "-" : join(items); }
+
 
 void printText(const std::vector<BackendInfo>& backends) {
     for (const BackendInfo& b : backends) {
@@ -61,6 +69,7 @@ void printText(const std::vector<BackendInfo>& backends) {
         std::vector<std::string> options;
         for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
         row("options", orNone(options));
+        row("missing pairs", orNone(missingPairNames(c)));
         for (const auto& [criterion, reason] : c.knownDeviations) row("known deviation", criterion + ": " + reason);
     }
 }

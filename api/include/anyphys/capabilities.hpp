@@ -3,6 +3,7 @@
 // against it; `anyphys backends --json` prints it.
 #include <map>
 #include <set>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,10 @@ struct Capabilities {
     bool contactImpulses = false;              ///< contact events carry real normal impulses
     std::set<std::string> queries;             ///< "raycast", "overlap"
     int maxConvexVertices = 0;                 ///< largest convex hull accepted (0: no limit)
+    /// Pairs of (primitive) shape types this backend cannot collide, each stored with the smaller
+    /// type first. A world whose content would pair them is refused (strict) or warned about
+    /// (lenient) when the second body arrives.
+    std::set<std::pair<ShapeType, ShapeType>> missingShapePairs;
     /// Individual def / settings fields honoured, by their scene-file path, e.g.
     /// "settings.substeps", "body.gravityScale". A field not listed is ignored by this backend.
     std::set<std::string> parameters;
