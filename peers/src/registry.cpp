@@ -7,6 +7,9 @@ namespace anyphys {
 #if ANYPHYS_HAS_NATIVE
 Backend makeNativeBackend();
 #endif
+#if ANYPHYS_HAS_ODE
+Backend makeOdeBackend();
+#endif
 #if ANYPHYS_HAS_BULLET
 Backend makeBulletBackend();
 #endif
@@ -16,6 +19,9 @@ const std::vector<Backend>& registeredBackends() {
         std::vector<Backend> list;
 #if ANYPHYS_HAS_NATIVE
         list.push_back(makeNativeBackend());
+#endif
+#if ANYPHYS_HAS_ODE
+        list.push_back(makeOdeBackend());
 #endif
 #if ANYPHYS_HAS_BULLET
         list.push_back(makeBulletBackend());

@@ -1,0 +1,99 @@
+#pragma once
+// One anyphys body over ODE: a dBody (dynamic and kinematic bodies; static bodies have none)
+// and its geoms. The body frame is the layer's peer frame (centre of mass, principal axes), so
+// ODE's own body frame is used as is.
+#include <ode/ode.h>
+
+#include <memory>
+#include <vector>
+
+#include "anyphys/peers/world_peer.hpp"
+#include "anyphys/world_settings.hpp"
+#include "ode_shapes.hpp"
+
+namespace anyphys::ode {
+
+class OdeWorld;
+
+class OdeBody final : public BodyPeer {
+public:
+    OdeBody(OdeWorld& world, const BodyPeerDef& def);
+    ~OdeBody() override;
+    OdeBody(const OdeBody&) = delete;
+    OdeBody& operator=(const OdeBody&) = delete;
+
+    BodyState state() const override;
+    void setTransform(const Vec3& position, const Quat& orientation) override;
+    void setLinearVelocity(const Vec3& v) override;
+    void setAngularVelocity(const Vec3& w) override;
+    void addForce(const Vec3& force) override;
+    void addTorque(const Vec3& torque) override;
+    void applyLinearImpulse(const Vec3& impulse) override;
+    void applyAngularImpulse(const Vec3& impulse) override;
+    MassProperties massProperties() const override;
+    bool isAwake() const override;
+    void setAwake(bool awake) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for the world ------------------------------------------------------------------
+    dBodyID id() const { return body_; }
+    BodyType type() const { return type_; }
+    bool isDynamic() const { return type_ == BodyType::Dynamic; }
+    bool moves() const { return type_ != BodyType::Static; }
+    /// Simulated now: moving and enabled (not asleep).
+    bool isActive() const { return body_ && dBodyIsEnabled(body_); }
+    /// Planar worlds: removes the drift the plane-2D joint leaves (z, z speed, off-axis spin).
+    void projectToPlane() const;
+    std::uint64_t userData() const { return userData_; }
+    std::uint32_t material() const { return material_; }
+    std::uint32_t layer() const { return layer_; }
+    std::uint32_t mask() const { return mask_; }
+    bool isTrigger() const { return trigger_; }
+    double gravityScale() const { return gravityScale_; }
+    double mass() const { return mass_.mass; }
+    double coreExtent() const { return coreExtent_; }
+    std::size_t shapeCount() const { return shapes_.size(); }
+    const OdeShape& shape(std::size_t i) const { return *shapes_[i]; }
+
+    /// Applies the world's effects to this body: damping (as ODE's per-step scale for steps of
+    /// `h` seconds), gyroscopic mode and auto-disable.
+    void applyEffects(Effects effects, double h);
+    /// Has the implicit gyroscopic term applied by the world (dynamic, anisotropic, implicit mode).
+    bool needsGyroscopic(Effects effects) const;
+    /// The gyroscopic term over an ODE step of h seconds (before ODE's step, which has it off).
+    void applyGyroscopic(double h) const;
+    /// Forces held for the step (user forces and the force hook's), world frame.
+    void addHookForce(const Vec3& f) { hookForce_ += f; }
+    void addHookTorque(const Vec3& t) { hookTorque_ += t; }
+    /// Hands the held forces to ODE for one ODE step (ODE clears its accumulators after each).
+    void feedForces() const;
+    void clearForces();
+    /// Index in the world's body list (kept by the world).
+    std::size_t slot = 0;
+    /// Queued in the world's list of bodies with forces this step.
+    bool forceQueued = false;
+
+private:
+    void wake();
+
+    OdeWorld& world_;
+    dBodyID body_ = nullptr;
+    dJointID planeJoint_ = nullptr;  // planar worlds only
+    Quat planeTilt_ = Quat::Identity();  // planar: orientation = (turn about Z) x planeTilt_
+    BodyType type_;
+    std::vector<std::unique_ptr<OdeShape>> shapes_;
+    Transform staticPose_;  // static bodies: their frame's pose (they have no dBody)
+    MassProperties mass_;
+    std::uint64_t userData_;
+    std::uint32_t material_, layer_, mask_;
+    bool trigger_;
+    bool allowSleep_;
+    double gravityScale_;
+    double linearDamping_, angularDamping_;  // 1/s
+    GyroscopicMode gyroscopic_;
+    double coreExtent_ = 0.0;
+    Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();          // user, this step
+    Vec3 hookForce_ = Vec3::Zero(), hookTorque_ = Vec3::Zero();  // force hook, this step
+};
+
+}  // namespace anyphys::ode

@@ -1,0 +1,101 @@
+// Queries against the space: ray casts and shape overlap, both through ODE's own colliders
+// (dSpaceCollide2 for the broad phase, dCollide for the exact test).
+#include <algorithm>
+#include <unordered_map>
+
+#include "ode_math.hpp"
+#include "ode_world.hpp"
+
+namespace anyphys::ode {
+namespace {
+
+struct RayQuery {
+    dGeomID ray;
+    std::uint32_t mask;
+    Vec3 direction;
+    std::unordered_map<std::uint64_t, PeerRayHit> nearest;  // per body: its nearest hit
+};
+
+void rayCallback(void* data, dGeomID o1, dGeomID o2) {
+    auto& q = *static_cast<RayQuery*>(data);
+    const dGeomID other = o1 == q.ray ? o2 : o1;
+    const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
+    if (!body || body->isTrigger() || (body->layer() & q.mask) == 0) return;
+    dContactGeom hit;
+    if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
+    Vec3 normal = toVec3(hit.normal);
+    if (normal.dot(q.direction) > 0) normal = -normal;  // the surface normal facing the ray
+    const PeerRayHit h{body->userData(), toVec3(hit.pos), normal, hit.depth};  // depth: distance along the ray
+    const auto [it, inserted] = q.nearest.try_emplace(h.body, h);
+    if (!inserted && h.distance < it->second.distance) it->second = h;
+}
+
+struct OverlapQuery {
+    dGeomID probe;
+    std::uint32_t mask;
+    bool movingOnly;  // wakeTouching: only bodies that can be woken
+    std::vector<std::uint64_t>* found;
+    std::vector<const OdeBody*>* bodies;
+};
+
+void overlapCallback(void* data, dGeomID o1, dGeomID o2) {
+    auto& q = *static_cast<OverlapQuery*>(data);
+    const dGeomID other = o1 == q.probe ? o2 : o1;
+    if (other == q.probe) return;
+    const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
+    if (!body || (body->layer() & q.mask) == 0) return;
+    if (q.movingOnly ? !body->moves() : body->isTrigger()) return;
+    if (!collidable(q.probe, other)) return;
+    dContactGeom contact;
+    if (dCollide(q.probe, other, 1, &contact, sizeof(dContactGeom)) < 1) return;
+    if (q.found) q.found->push_back(body->userData());
+    if (q.bodies) q.bodies->push_back(body);
+}
+
+}  // namespace
+
+std::vector<PeerRayHit> OdeWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
+                                          bool closestOnly, std::uint32_t mask) {
+    if (!(maxDistance > 0.0)) return {};  // ODE rays need a length
+    dGeomRaySetLength(ray_, maxDistance);
+    dGeomRaySet(ray_, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(), direction.z());
+    dGeomRaySetFirstContact(ray_, 0);  // the nearest hit per geom, not the first found
+    dGeomRaySetBackfaceCull(ray_, 0);  // mesh back faces count too
+    dGeomRaySetClosestHit(ray_, 1); // per mesh: its nearest triangle
+    RayQuery q{ray_, mask, direction, {}};
+    dSpaceCollide2(ray_, reinterpret_cast<dGeomID>(space_), &q, &rayCallback);
+    std::vector<PeerRayHit> hits;
+    hits.reserve(q.nearest.size());
+    for (const auto& [key, hit] : q.nearest) hits.push_back(hit);
+    std::sort(hits.begin(), hits.end(), [](const PeerRayHit& x, const PeerRayHit& y) { return x.distance < y.distance; });
+    if (closestOnly && hits.size() > 1) hits.resize(1);
+    return hits;
+}
+
+std::vector<std::uint64_t> OdeWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
+                                             std::uint32_t mask) {
+    std::vector<std::uint64_t> found;
+    for (const PeerShape& ps : shapes) {
+        OdeShape probe(ps, nullptr);  // in no space: never part of the simulation
+        probe.place(pose);
+        dGeomSetCategoryBits(probe.geom(), ~0ul);
+        dGeomSetCollideBits(probe.geom(), ~0ul);
+        OverlapQuery q{probe.geom(), mask, false, &found, nullptr};
+        dSpaceCollide2(probe.geom(), reinterpret_cast<dGeomID>(space_), &q, &overlapCallback);
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+}
+
+void OdeWorld::wakeTouching(const OdeBody& body) {
+    std::vector<const OdeBody*> touching;
+    for (std::size_t i = 0; i < body.shapeCount(); ++i) {
+        OverlapQuery q{body.shape(i).geom(), ~0u, true, nullptr, &touching};
+        dSpaceCollide2(body.shape(i).geom(), reinterpret_cast<dGeomID>(space_), &q, &overlapCallback);
+    }
+    for (const OdeBody* b : touching)
+        if (b != &body) dBodyEnable(b->id());
+}
+
+}  // namespace anyphys::ode

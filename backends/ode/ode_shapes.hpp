@@ -1,0 +1,63 @@
+#pragma once
+// Collision shapes as ODE geoms. ODE does not copy convex or mesh arrays, so each geom lives
+// with the arrays it points into, and both die together.
+#include <ode/ode.h>
+
+#include <memory>
+#include <vector>
+
+#include "anyphys/peers/shape_data.hpp"
+
+namespace anyphys::ode {
+
+/// False for geom pairs ODE cannot collide safely: convex against triangle mesh, whose collider
+/// in ODE 0.16 built without libccd (Debian's) crashes inside OPCODE. Such pairs never touch.
+inline bool collidable(dGeomID a, dGeomID b) {
+    const int ca = dGeomGetClass(a), cb = dGeomGetClass(b);
+    return !((ca == dConvexClass && cb == dTriMeshClass) || (ca == dTriMeshClass && cb == dConvexClass));
+}
+
+class OdeShape {
+public:
+    /// Builds the geom of `shape` in `space` (0: in no space, e.g. a query probe). Not placed yet.
+    explicit OdeShape(const PeerShape& shape, dSpaceID space);
+    ~OdeShape();
+    OdeShape(const OdeShape&) = delete;
+    OdeShape& operator=(const OdeShape&) = delete;
+
+    dGeomID geom() const { return geom_; }
+    ShapeType type() const { return type_; }
+
+    /// Attaches the geom to a moving body at its pose in the body frame.
+    void attach(dBodyID body);
+    /// Places the geom of a static body (or a query probe) whose frame is at `bodyPose`.
+    void place(const Transform& bodyPose);
+
+    /// m: how far the shape's surface lies from the body frame's origin at least, along any
+    /// direction (continuous collision stops a fast body this far before its hit point, so it
+    /// then overlaps and ODE's discrete contact takes over).
+    double coreExtent() const { return coreExtent_; }
+
+private:
+    /// The geom's pose in the body frame: the shape's own, with ODE's capsule axis (z) turned
+    /// onto the layer's (y).
+    Transform geomLocal() const;
+
+    dGeomID geom_ = nullptr;
+    ShapeType type_;
+    Transform local_;
+    double coreExtent_ = 0.0;
+    // plane: n . x = offset in the body frame
+    Vec3 planeNormal_ = Vec3::UnitY();
+    double planeOffset_ = 0.0;
+    // convex: ODE reads these arrays in place
+    std::vector<dReal> convexPlanes_;
+    std::vector<dReal> convexPoints_;
+    std::vector<unsigned int> convexPolygons_;
+    // mesh
+    std::vector<dReal> meshVertices_;
+    std::vector<dTriIndex> meshIndices_;
+    dTriMeshDataID meshData_ = nullptr;
+};
+
+}  // namespace anyphys::ode

@@ -1,0 +1,46 @@
+#pragma once
+// Defaults of the ODE backend that are not WorldSettings fields. bench/direct/ode_grid.cpp
+// repeats them to drive raw ODE exactly like the backend does: change both together.
+
+namespace anyphys::ode {
+
+/// Used when WorldSettings leaves them unset. 50 quickstep iterations (ODE's own default is 20):
+/// measured on box_stack_10 over five random-reorder seeds, 20 let the top box wander 1.3 to
+/// 10 cm before the stack sleeps, 50 keeps it within 4.3 mm. One ODE step per anyphys step
+/// (substeps step the whole world, free bodies included).
+constexpr int kDefaultIterations = 50;
+constexpr int kDefaultSubsteps = 1;
+
+/// Contact points kept per geom pair (dCollide's limit). Four carry a box face on a face
+/// (ODE culls box-box manifolds to the most spread-out points).
+constexpr int kMaxContactsPerPair = 4;
+
+/// Constraint force mixing (contact softness) of resting contacts. ODE's CFM is absolute, not
+/// per unit mass: 1e-5 (ODE's demos, bodies of about 1 kg) lets the layer's 1000 kg boxes sink
+/// centimetres; ODE's double default 1e-10 is so rigid that quickstep jitters and stacks walk.
+/// 1e-6 measured best on box_stack_10 and pyramid_20. Overridden by backendOptions["cfm"].
+constexpr double kDefaultCfm = 1e-6;
+
+/// CFM of contacts that bounce (restitution above the threshold): ODE's rigid default. A soft
+/// contact acts as a damped spring and absorbs part of the rebound ODE's bounce asks for
+/// (1e-6 loses 10 % of a 523 kg ball's rebound speed).
+constexpr double kBounceCfm = 1e-10;
+
+/// Successive over-relaxation of quickstep (ODE's default 1.3; 1.0 measured no better).
+constexpr double kQuickStepW = 1.3;
+
+/// Hash-space cell levels: cells from 2^-3 to 2^10 m (ODE's defaults), covering centimetre to
+/// kilometre shapes.
+constexpr int kHashMinLevel = -3;
+constexpr int kHashMaxLevel = 10;
+
+}  // namespace anyphys::ode
+
+namespace anyphys::ode {
+
+/// ODE's contact surface layer (depth allowed without correction, so resting contacts persist
+/// instead of flickering) as a fraction of settings.linearSlop. A fifth of the slop: resting contacts settle
+/// about this deep and persist; half the slop measured twice the stack's sinking.
+constexpr double kSurfaceLayerPerSlop = 0.2;
+
+}  // namespace anyphys::ode

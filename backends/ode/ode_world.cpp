@@ -1,0 +1,218 @@
+#include "ode_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "anyphys/error.hpp"
+#include "ode_init.hpp"
+#include "ode_math.hpp"
+#include "ode_tuning.hpp"
+
+namespace anyphys::ode {
+namespace {
+
+double option(const WorldSettings& s, const char* name, double fallback) {
+    const auto it = s.backendOptions.find(name);
+    return it == s.backendOptions.end() ? fallback : it->second;
+}
+
+// The force hook's view inside a step: ODE evaluates forces once per step, so states are those
+// at the step start, and forces are held for the whole step (every substep).
+class HookStage final : public ForceStage {
+public:
+    HookStage(OdeWorld& world, double time) : world_(world), time_(time) {}
+    double time() const override { return time_; }
+    BodyState state(const BodyPeer& body) const override { return body.state(); }
+    void addForce(BodyPeer& peer, const Vec3& force) override {
+        auto& body = static_cast<OdeBody&>(peer);
+        if (!body.isDynamic()) return;
+        body.addHookForce(force);
+        world_.queueForces(body);
+    }
+    void addTorque(BodyPeer& peer, const Vec3& torque) override {
+        auto& body = static_cast<OdeBody&>(peer);
+        if (!body.isDynamic()) return;
+        body.addHookTorque(torque);
+        world_.queueForces(body);
+    }
+
+private:
+    OdeWorld& world_;
+    double time_;
+};
+
+}  // namespace
+
+OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
+    // Unset solver knobs: this backend's defaults (the layer normally resolves them already).
+    if (!settings_.solver) settings_.solver = Solver::ProjectedGaussSeidel;
+    if (!settings_.substeps) settings_.substeps = kDefaultSubsteps;
+    if (!settings_.iterations) settings_.iterations = kDefaultIterations;
+    erp_ = option(settings, "erp", settings.baumgarte);
+    cfm_ = option(settings, "cfm", kDefaultCfm);
+    if (!(erp_ >= 0.0 && erp_ <= 1.0))
+        throw Error::invalid("WorldSettings.backendOptions.erp", erp_, "must be in [0, 1]");
+    if (!(cfm_ >= 0.0 && std::isfinite(cfm_)))
+        throw Error::invalid("WorldSettings.backendOptions.cfm", cfm_, "must be >= 0 and finite");
+    ensureOdeInitialised();
+    world_ = dWorldCreate();
+    dWorldSetData(world_, this);  // lets tests reach the peer from the escape hatch
+    space_ = dHashSpaceCreate(nullptr);
+    dHashSpaceSetLevels(space_, kHashMinLevel, kHashMaxLevel);
+    contactGroup_ = dJointGroupCreate(0);
+    ray_ = dCreateRay(nullptr, 1.0);
+    dGeomSetCategoryBits(ray_, ~0ul);
+    dGeomSetCollideBits(ray_, ~0ul);
+
+    dWorldSetERP(world_, erp_);
+    dWorldSetCFM(world_, cfm_);
+    direct_ = *settings_.solver == Solver::Direct;
+    dWorldSetQuickStepNumIterations(world_, *settings_.iterations);
+    dWorldSetQuickStepW(world_, kQuickStepW);
+    // ODE 0.16's dWorldStep with a surface layer pumps energy into resting stacks (three stacked
+    // boxes thrown 20 m up when the correcting velocity is not capped): the direct solver runs
+    // without one.
+    dWorldSetContactSurfaceLayer(world_, direct_ ? 0.0 : kSurfaceLayerPerSlop * settings.linearSlop);
+    dWorldSetContactMaxCorrectingVel(world_, settings.contactPushMaxVelocity);
+    // Sleeping: ODE's auto-disable with the layer's thresholds, instantaneous (one velocity
+    // sample), after timeToSleep seconds at rest. Set as the world's defaults, so each body
+    // starts its idle countdown from timeToSleep; the flag is per body (effects, def.allowSleep).
+    dWorldSetAutoDisableFlag(world_, 0);
+    dWorldSetAutoDisableLinearThreshold(world_, settings.sleepLinearVelocity);
+    dWorldSetAutoDisableAngularThreshold(world_, settings.sleepAngularVelocity);
+    dWorldSetAutoDisableAverageSamplesCount(world_, 1);
+    dWorldSetAutoDisableSteps(world_, 0);
+    dWorldSetAutoDisableTime(world_, settings.timeToSleep);
+    dWorldSetGravity(world_, 0, 0, 0);  // until setEffects turns gravity on
+}
+
+OdeWorld::~OdeWorld() {
+    // Bodies are destroyed by the layer before the world; whatever is left goes with the world.
+    dGeomDestroy(ray_);
+    dJointGroupDestroy(contactGroup_);
+    dSpaceDestroy(space_);
+    dWorldDestroy(world_);
+}
+
+std::unique_ptr<BodyPeer> OdeWorld::createBody(const BodyPeerDef& def) {
+    auto body = std::make_unique<OdeBody>(*this, def);
+    body->slot = bodies_.size();
+    bodies_.push_back(body.get());
+    if (body->isDynamic() && body->gravityScale() != 0.0 && body->gravityScale() != 1.0) scaledGravity_.push_back(body.get());
+    if (body->shapeCount() > 1) ++multiShapeBodies_;
+    if (body->needsGyroscopic(effects_)) gyroscopic_.push_back(body.get());
+    body->applyEffects(effects_, odeStep());
+    return body;
+}
+
+void OdeWorld::destroyBody(BodyPeer& peer) {
+    auto& body = static_cast<OdeBody&>(peer);
+    wakeTouching(body);  // bodies resting on it (even asleep) must not hang in the air
+    std::erase_if(pairs_, [&](const PairRecord& p) { return p.a == &body || p.b == &body; });
+    std::erase(forced_, &body);
+    std::erase(scaledGravity_, &body);
+    std::erase(gyroscopic_, &body);
+    if (body.shapeCount() > 1) --multiShapeBodies_;
+    bodies_.back()->slot = body.slot;
+    bodies_[body.slot] = bodies_.back();
+    bodies_.pop_back();
+}
+
+void OdeWorld::setEffects(Effects effects) {
+    effects_ = effects;
+    const Vec3 g = effects.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
+    dWorldSetGravity(world_, g.x(), g.y(), g.z());
+    const double h = odeStep();
+    gyroscopic_.clear();
+    for (OdeBody* b : bodies_) {
+        b->applyEffects(effects_, h);
+        if (b->needsGyroscopic(effects_)) gyroscopic_.push_back(b);
+    }
+}
+
+double OdeWorld::odeStep() const {
+    // Before the first step: the step the settings announce.
+    return lastH_ > 0.0 ? lastH_ : settings_.timeStep / *settings_.substeps;
+}
+
+void OdeWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
+
+void OdeWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
+
+void OdeWorld::queueForces(OdeBody& body) {
+    if (body.forceQueued) return;
+    body.forceQueued = true;
+    forced_.push_back(&body);
+}
+
+void OdeWorld::applyDampingStep(double h) {
+    // Damping scales depend on the ODE step length: recomputed when dt / substeps changes.
+    lastH_ = h;
+    if (!effects_.has(Effect::Damping)) return;
+    for (OdeBody* b : bodies_) b->applyEffects(effects_, h);
+}
+
+void OdeWorld::step(double time, double dt) {
+    const int substeps = *settings_.substeps;
+    const double h = dt / substeps;
+    lastDt_ = dt;
+    if (h != lastH_) applyDampingStep(h);
+    if (forceHook_ && effects_.has(Effect::UserForces)) {
+        HookStage stage(*this, time);
+        forceHook_(stage);
+    }
+    const bool contacts = effects_.has(Effect::Contacts);
+    const bool continuous = contacts && effects_.has(Effect::ContinuousCollision);
+    const Vec3 g = settings_.gravity;
+    // Quickstep shuffles constraint rows with ODE's one global generator: each world keeps its own
+    // stream, so a world's results never depend on what other worlds (or users of ODE) did.
+    const unsigned long outsideSeed = dRandGetSeed();
+    dRandSetSeed(randomSeed_);
+    if (!contacts) {
+        pairs_.clear();
+        contacts_.clear();
+    }
+    for (int s = 0; s < substeps; ++s) {
+        if (contacts) {
+            collide();
+            createContactJoints();
+        }
+        for (const OdeBody* b : forced_) b->feedForces();
+        if (effects_.has(Effect::Gravity))
+            for (const OdeBody* b : scaledGravity_) {
+                // ODE applies g to every body: add the rest of gravityScale x g as a force.
+                const Vec3 f = b->mass() * (b->gravityScale() - 1.0) * g;
+                dBodyAddForce(b->id(), f.x(), f.y(), f.z());
+            }
+        for (const OdeBody* b : gyroscopic_)
+            if (b->isActive()) b->applyGyroscopic(h);
+        if (continuous) {
+            before_.resize(bodies_.size());
+            for (std::size_t i = 0; i < bodies_.size(); ++i)
+                if (bodies_[i]->id()) before_[i] = toVec3(dBodyGetPosition(bodies_[i]->id()));
+        }
+        if (direct_) {
+            dWorldStep(world_, h);
+            ++directSteps_;
+        } else {
+            dWorldQuickStep(world_, h);
+            ++quickSteps_;
+        }
+        if (contacts) dJointGroupEmpty(contactGroup_);
+        if (settings_.planar)
+            for (const OdeBody* b : bodies_) b->projectToPlane();
+        if (continuous) continuousCollision(before_);
+    }
+    for (OdeBody* b : forced_) b->clearForces();
+    forced_.clear();
+    randomSeed_ = dRandGetSeed();
+    dRandSetSeed(outsideSeed);
+}
+
+void* OdeWorld::nativeObject(const std::type_info& pointerType) {
+    if (pointerType == typeid(dxWorld*)) return world_;
+    if (pointerType == typeid(dxSpace*)) return space_;
+    return nullptr;
+}
+
+}  // namespace anyphys::ode

@@ -1,0 +1,100 @@
+#pragma once
+// The ODE backend's world: a dWorld, one hash space holding every geom, and a joint group for
+// the contacts of one ODE step. Each step: force hook, then per substep collide (contact joints
+// with the layer's resolved materials), quickstep or dWorldStep, and the continuous-collision
+// clamp.
+#include <ode/ode.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "anyphys/peers/world_peer.hpp"
+#include "anyphys/world_settings.hpp"
+#include "ode_body.hpp"
+
+namespace anyphys::ode {
+
+class OdeWorld final : public WorldPeer {
+public:
+    explicit OdeWorld(const WorldSettings& settings);
+    ~OdeWorld() override;
+    OdeWorld(const OdeWorld&) = delete;
+    OdeWorld& operator=(const OdeWorld&) = delete;
+
+    std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
+    void destroyBody(BodyPeer& body) override;
+    void setEffects(Effects effects) override;
+    void setForceHook(ForceHook hook) override;
+    void step(double time, double dt) override;
+    void setMaterialTable(const MaterialTable& table) override;
+    void collectContacts(std::vector<PeerContact>& out) override;
+    std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
+                                    std::uint32_t mask) override;
+    std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
+                                       std::uint32_t mask) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for bodies and tests ------------------------------------------------------------
+    dWorldID id() const { return world_; }
+    dSpaceID space() const { return space_; }
+    const WorldSettings& settings() const { return settings_; }
+    Effects effects() const { return effects_; }
+    double erp() const { return erp_; }
+    double cfm() const { return cfm_; }
+    /// ODE steps taken by dWorldStep (the direct solver) and by dWorldQuickStep.
+    std::uint64_t directSteps() const { return directSteps_; }
+    std::uint64_t quickSteps() const { return quickSteps_; }
+    /// Queues a body whose held forces must be fed to ODE this step.
+    void queueForces(OdeBody& body);
+    /// Wakes the moving bodies whose geoms touch `body`'s (after a static body moved).
+    void wakeTouching(const OdeBody& body);
+
+private:
+    // One geom pair found touching in the last ODE step.
+    struct PairRecord {
+        OdeBody* a;            // contact normals point into a (ODE's convention for geom 1)
+        OdeBody* b;
+        bool trigger;
+        std::uint32_t first;   // contacts_[first, first + count)
+        std::uint32_t count;
+    };
+
+    static void nearCallback(void* self, dGeomID o1, dGeomID o2);
+    void collidePair(dGeomID o1, dGeomID o2);
+    void collide();
+    void createContactJoints();
+    void continuousCollision(const std::vector<Vec3>& before);
+    void applyDampingStep(double h);
+    double odeStep() const;  // s, the length of one ODE step
+
+    WorldSettings settings_;
+    Effects effects_;
+    ForceHook forceHook_;
+    MaterialTable materials_;
+    dWorldID world_ = nullptr;
+    dSpaceID space_ = nullptr;
+    dJointGroupID contactGroup_ = nullptr;
+    dGeomID ray_ = nullptr;  // reused by raycasts and continuous collision
+    double erp_ = 0.2, cfm_ = 1e-5;
+    bool direct_ = false;
+    double lastH_ = 0.0;  // s, the ODE step the bodies' damping scales were computed for
+
+    std::vector<OdeBody*> bodies_;
+    std::vector<OdeBody*> forced_;         // bodies with held forces this step
+    std::vector<OdeBody*> scaledGravity_;  // dynamic bodies with gravityScale other than 0 and 1
+    std::vector<OdeBody*> gyroscopic_;     // bodies whose implicit gyroscopic term this backend applies
+    std::size_t multiShapeBodies_ = 0;     // bodies with more than one geom (contacts then merge per body pair)
+
+    // Contacts of the last ODE step: the pairs, their points and the joints' feedback.
+    std::vector<PairRecord> pairs_;
+    std::vector<dContact> contacts_;
+    std::vector<dJointFeedback> feedback_;
+    bool feedbackValid_ = false;    // feedback_ holds the last ODE step's joint forces
+    double lastDt_ = 0.0;           // s, the last anyphys step (impulse = force x dt)
+    std::vector<Vec3> before_;      // positions before the ODE step (continuous collision)
+
+    std::uint64_t directSteps_ = 0, quickSteps_ = 0;
+    unsigned long randomSeed_ = 0;  // this world's stream of ODE's global generator (quickstep reorders rows)
+};
+
+}  // namespace anyphys::ode
