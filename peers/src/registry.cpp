@@ -13,6 +13,9 @@ Backend makeOdeBackend();
 #if ANYPHYS_HAS_BULLET
 Backend makeBulletBackend();
 #endif
+#if ANYPHYS_HAS_BOX2D
+Backend makeBox2dBackend();
+#endif
 
 const std::vector<Backend>& registeredBackends() {
     static const std::vector<Backend> backends = [] {
@@ -25,6 +28,9 @@ const std::vector<Backend>& registeredBackends() {
 #endif
 #if ANYPHYS_HAS_BULLET
         list.push_back(makeBulletBackend());
+#endif
+#if ANYPHYS_HAS_BOX2D
+        list.push_back(makeBox2dBackend());
 #endif
         return list;
     }();

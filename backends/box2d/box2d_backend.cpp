@@ -1,0 +1,57 @@
+// Registration record of the Box2D backend: its name, capabilities and world factory.
+#include <memory>
+#include <string>
+
+#include "anyphys/peers/backend.hpp"
+#include "box2d_world.hpp"
+
+namespace anyphys {
+
+Backend makeBox2dBackend() {
+    Backend backend;
+    backend.name = "box2d";
+    backend.description = "Box2D " + std::to_string(b2_version.major) + "." + std::to_string(b2_version.minor) + "." +
+                          std::to_string(b2_version.revision) +
+                          " (single precision): planar worlds (XY, rotation about Z), sequential impulses";
+    Capabilities& caps = backend.capabilities;
+    caps.dimensions = 2;
+    caps.planar = true;
+    caps.maxConvexVertices = b2_maxPolygonVertices;  // of a hull's outline in the XY plane
+    caps.shapes = {ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Plane, ShapeType::Convex,
+                   ShapeType::Compound};
+    caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
+    // Gyroscopic: in planar motion w is along Z, so w x (I w) has no Z part and the plane takes
+    // the rest; every mode gives the same (exact) motion.
+    caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
+    caps.solvers = {Solver::ProjectedGaussSeidel};
+    caps.defaultSolver = box2d::Box2dWorld::kDefaultSolver;
+    caps.defaultSubsteps = box2d::Box2dWorld::kDefaultSubsteps;
+    caps.defaultIterations = box2d::Box2dWorld::kDefaultIterations;
+    caps.contactImpulses = true;  // b2ManifoldPoint::normalImpulse, the velocity solver's (summed over substeps)
+    caps.queries = {"raycast", "overlap"};
+    caps.integrators = {Integrator::SemiImplicitEuler};  // Box2D's own
+    caps.gyroscopicModes = {GyroscopicMode::None, GyroscopicMode::Explicit, GyroscopicMode::Implicit};
+    caps.forceEvaluation = ForceEvaluation::PerStep;
+    // Not honoured (Box2D 2.4 compile-time constants, b2_common.h): settings.linearSlop (b2_linearSlop
+    // 0.005 m), settings.baumgarte (b2_baumgarte 0.2), settings.contactPushMaxVelocity
+    // (b2_maxLinearCorrection 0.2 m per step), settings.sleepLinearVelocity / sleepAngularVelocity
+    // / timeToSleep (0.01 m/s, 2 deg/s, 0.5 s), settings.speculativeDistance (none: contacts start
+    // at touching), settings.contactHertz / contactDampingRatio (rigid contacts). Also
+    // b2_maxTranslation: a body moves at most 2 m per Box2D step, its velocity clamped to match.
+    caps.parameters = {"settings.gravity", "settings.timeStep", "settings.integrator", "settings.planar",
+                       "settings.substeps", "settings.effects", "settings.solver", "settings.iterations",
+                       "settings.restitutionThreshold", "body.type", "body.position", "body.orientation",
+                       "body.linearVelocity", "body.angularVelocity", "body.shape", "body.mass", "body.density",
+                       "body.inertia", "body.linearDamping", "body.angularDamping", "body.gravityScale",
+                       "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",
+                       "body.allowSleep", "body.isAwake"};
+    caps.options = {
+        {"positionIterations", "Box2D position-correction iterations per Box2D step (b2World::Step); default 3"},
+    };
+    backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
+        return std::make_unique<box2d::Box2dWorld>(settings);
+    };
+    return backend;
+}
+
+}  // namespace anyphys

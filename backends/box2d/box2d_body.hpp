@@ -1,0 +1,90 @@
+#pragma once
+// The Box2D backend's body peer: one b2Body, its fixtures' extra data, and what the layer asked
+// for that Box2D keeps differently (damping rate, pending forces, filter layers, material).
+#include <box2d/box2d.h>
+
+#include <memory>
+#include <vector>
+
+#include "anyphys/peers/body_peer.hpp"
+#include "anyphys/peers/world_peer.hpp"
+#include "box2d_convert.hpp"
+#include "box2d_shapes.hpp"
+
+namespace anyphys::box2d {
+
+class Box2dWorld;
+class Box2dBody;
+
+/// Reached from a fixture's user data: which body it belongs to and its exact geometry.
+struct FixtureInfo {
+    Box2dBody* body = nullptr;
+    Piece piece;
+};
+
+class Box2dBody final : public BodyPeer {
+public:
+    Box2dBody(Box2dWorld& world, b2Body* body, const BodyPeerDef& def, const Embedding& embedding);
+    /// Destroys the b2Body too if the world still has it (a peer dropped without destroyBody).
+    ~Box2dBody() override;
+    Box2dBody(const Box2dBody&) = delete;
+    Box2dBody& operator=(const Box2dBody&) = delete;
+
+    BodyState state() const override;
+    void setTransform(const Vec3& position, const Quat& orientation) override;
+    void setLinearVelocity(const Vec3& v) override;
+    void setAngularVelocity(const Vec3& w) override;
+    void addForce(const Vec3& force) override;
+    void addTorque(const Vec3& torque) override;
+    void applyLinearImpulse(const Vec3& impulse) override;
+    void applyAngularImpulse(const Vec3& impulse) override;
+    MassProperties massProperties() const override;
+    bool isAwake() const override;
+    void setAwake(bool awake) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for the world ----------------------------------------------------------------
+    b2Body* b2() const { return body_; }
+    /// The world let go of the b2Body (destroyed it, or is itself going away).
+    void detach() { world_ = nullptr; body_ = nullptr; }
+    void addFixture(std::unique_ptr<FixtureInfo> info) { fixtures_.push_back(std::move(info)); }
+    const std::vector<std::unique_ptr<FixtureInfo>>& fixtures() const { return fixtures_; }
+
+    std::uint64_t userData() const { return userData_; }
+    std::uint32_t material() const { return material_; }
+    std::uint32_t layer() const { return layer_; }
+    std::uint32_t mask() const { return mask_; }
+    bool isDynamic() const { return body_->GetType() == b2_dynamicBody; }
+
+    /// Box2D damps v *= 1 / (1 + h c') per step; c' = (e^{c h} - 1) / h makes that e^{-c h},
+    /// the exact decay of dv/dt = -c v over a step of h. Zero when damping is off.
+    void applyDamping(bool on, double h);
+    /// Pending user force and torque (world frame, in the plane), applied at the next step start.
+    void flushForces(bool apply);
+    /// Marks the body a Box2D bullet (time of impact against other moving bodies too) when this
+    /// step would carry it more than half its smallest inner radius.
+    void updateBullet(bool continuous, double h);
+    void setInnerRadius(double r) { innerRadius_ = r; }
+    /// Velocity at the start of the current Box2D step: unchanged means its solve has not run yet.
+    void markStepStart() { stepStartVelocity_ = body_->GetLinearVelocity(); }
+    bool movedSinceStepStart() const { return !(body_->GetLinearVelocity() == stepStartVelocity_); }
+
+private:
+    Box2dWorld* world_;
+    b2Body* body_;
+    Embedding embedding_;
+    MassProperties mass_;
+    std::vector<std::unique_ptr<FixtureInfo>> fixtures_;
+    std::uint64_t userData_;
+    std::uint32_t material_;
+    std::uint32_t layer_;
+    std::uint32_t mask_;
+    double linearDamping_;   // 1/s, the layer's rate (dv/dt = -c v)
+    double angularDamping_;  // 1/s
+    double innerRadius_ = 0.0;
+    b2Vec2 force_{0.0f, 0.0f};
+    float torque_ = 0.0f;
+    b2Vec2 stepStartVelocity_{0.0f, 0.0f};
+};
+
+}  // namespace anyphys::box2d

@@ -1,0 +1,68 @@
+#include "box2d_contacts.hpp"
+
+#include <algorithm>
+
+#include "anyphys/defs.hpp"
+#include "box2d_body.hpp"
+
+namespace anyphys::box2d {
+
+Box2dBody& bodyOf(const b2Fixture* fixture) {
+    return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(fixture)->GetUserData().pointer)->body;
+}
+
+bool ContactRules::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
+    if (!effects_.has(Effect::Contacts)) return false;  // contacts off: nothing touches
+    const Box2dBody& a = bodyOf(fixtureA);
+    const Box2dBody& b = bodyOf(fixtureB);
+    return layersCollide(a.layer(), a.mask(), b.layer(), b.mask());
+}
+
+void ContactRules::PreSolve(b2Contact* contact, const b2Manifold* /*oldManifold*/) {
+    const ContactMaterial& m = materials_.get(bodyOf(contact->GetFixtureA()).material(), bodyOf(contact->GetFixtureB()).material());
+    contact->SetFriction(effects_.has(Effect::Friction) ? static_cast<float>(m.friction) : 0.0f);
+    contact->SetRestitution(effects_.has(Effect::Restitution) ? impactRestitution(contact, static_cast<float>(m.restitution)) : 0.0f);
+    contact->SetRestitutionThreshold(restitutionThreshold_);
+}
+
+// Box2D bounces the normal velocity its solver finds, -e' v_rel. The layer's restitution means:
+// leave with e times the speed at the instant of impact. Under gravity the two differ by parts of
+// a step's g h, because semi-implicit Euler (Box2D's integrator) moves each step with the
+// velocity after that step's gravity:
+// - a body reaching the contact moved its last step with v_n, which on the discrete path lies
+//   g h / 2 below the speed of the exact fall (v_n^2 + v_n g h = 2 g H), so v_impact = |v_n| + g h / 2;
+// - leaving with u, a discrete flight rises to about u^2 / 2g - u h / 2 when its first move
+//   uses u - g h (after a time-of-impact stop, which ends the step at the contact), or
+//   u^2 / 2g + u h / 2 when its first move uses u (a bounce in the main solve, which moves the
+//   body in the same step); e^2 H needs u = e v_impact + g h / 2 or - g h / 2 respectively;
+// - the main solve sees v_rel after this step's gravity (|v_n| + g h); time of impact sees v_n.
+// g is the closing part of the pair's relative gravity along the normal; without gravity e' = e.
+float ContactRules::impactRestitution(b2Contact* contact, float e) const {
+    if (e <= 0.0f) return e;
+    b2WorldManifold wm;
+    contact->GetWorldManifold(&wm);
+    const int32 count = contact->GetManifold()->pointCount;
+    if (count == 0) return e;
+    const b2Body* a = contact->GetFixtureA()->GetBody();
+    const b2Body* b = contact->GetFixtureB()->GetBody();
+    float vn = 0.0f;
+    for (int32 i = 0; i < count; ++i) {
+        const b2Vec2 dv = b->GetLinearVelocityFromWorldPoint(wm.points[i]) - a->GetLinearVelocityFromWorldPoint(wm.points[i]);
+        vn += b2Dot(dv, wm.normal) / static_cast<float>(count);
+    }
+    if (vn >= -restitutionThreshold_) return e;  // no bounce: leave Box2D's own rule in charge
+    const auto fall = [&](const b2Body* body) {
+        return body->GetType() == b2_dynamicBody ? body->GetGravityScale() * gravity_ : b2Vec2(0.0f, 0.0f);
+    };
+    const float g = -b2Dot(fall(b) - fall(a), wm.normal);  // > 0: gravity closes the pair
+    // Pre-solve runs twice a step: in Box2D's collide phase, before any velocity changed, and
+    // again for time-of-impact contacts after the solve (gravity already added).
+    const bool afterSolve = solved_ || bodyOf(contact->GetFixtureA()).movedSinceStepStart() ||
+                            bodyOf(contact->GetFixtureB()).movedSinceStepStart();
+    const float impact = -vn + 0.5f * g * h_;
+    const float leave = afterSolve ? e * impact + 0.5f * g * h_ : e * impact - 0.5f * g * h_;
+    const float seen = afterSolve ? -vn : -vn + g * h_;
+    return seen > 0.0f ? std::max(0.0f, leave / seen) : e;
+}
+
+}  // namespace anyphys::box2d

@@ -1,0 +1,47 @@
+#pragma once
+// The layer's rules inside Box2D's contact pipeline: which pairs may touch (layersCollide on the
+// 32-bit layers, where b2Filter has 16 bits), and the resolved friction, restitution and
+// restitution threshold of each pair (set in pre-solve, replacing Box2D's own mixing).
+#include <box2d/box2d.h>
+
+#include "anyphys/effects.hpp"
+#include "anyphys/peers/world_peer.hpp"
+
+namespace anyphys::box2d {
+
+class Box2dBody;
+
+/// The body a fixture belongs to (every fixture of this backend carries a FixtureInfo).
+Box2dBody& bodyOf(const b2Fixture* fixture);
+
+/// One per world (no globals): Box2D asks it about each new pair and each touching contact.
+class ContactRules final : public b2ContactFilter, public b2ContactListener {
+public:
+    void setEffects(Effects effects) { effects_ = effects; }
+    void setMaterials(const MaterialTable& table) { materials_ = table; }
+    void setRestitutionThreshold(double v) { restitutionThreshold_ = static_cast<float>(v); }
+    /// Before each b2World::Step: its duration and the world's gravity (for restitution).
+    void beginStep(float h, const b2Vec2& gravity) {
+        h_ = h;
+        gravity_ = gravity;
+        solved_ = false;
+    }
+
+    bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) override;
+    void PreSolve(b2Contact* contact, const b2Manifold* oldManifold) override;
+    void PostSolve(b2Contact*, const b2ContactImpulse*) override { solved_ = true; }
+
+private:
+    /// The restitution to give Box2D so that the pair leaves with e times its speed at the
+    /// instant of impact, in the way a semi-implicit Euler flight then rises (see the .cpp).
+    float impactRestitution(b2Contact* contact, float e) const;
+
+    float h_ = 1.0f / 60.0f;
+    b2Vec2 gravity_{0.0f, 0.0f};
+    bool solved_ = false;  // the step's main solve is done: pre-solve calls now come from time of impact
+    Effects effects_;
+    MaterialTable materials_;
+    float restitutionThreshold_ = 1.0f;
+};
+
+}  // namespace anyphys::box2d

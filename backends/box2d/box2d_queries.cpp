@@ -1,0 +1,138 @@
+// Ray casts and overlap queries. Both answer about the user's geometry (each fixture's exact
+// outline, without the contact skin), and both refuse a query that leaves the XY plane: a planar
+// world cannot say what lies off it, so it says so rather than flatten the query silently.
+#include <algorithm>
+#include <cmath>
+
+#include "anyphys/error.hpp"
+#include "anyphys/validation.hpp"
+#include "box2d_world.hpp"
+
+namespace anyphys::box2d {
+namespace {
+
+const FixtureInfo& infoOf(const b2Fixture* f) { return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(f)->GetUserData().pointer); }
+
+bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (bodyOf(f).layer() & mask) == 0; }
+
+// Visits the broad phase's proxies along the ray and casts against each fixture's exact shape
+// (b2World::RayCast would cast against the skinned collision shapes).
+class RayCollector {
+public:
+    RayCollector(const b2BroadPhase& bp, const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
+                 std::uint32_t mask)
+        : broadPhase_(bp), origin_(origin), direction_(direction), maxDistance_(maxDistance), closestOnly_(closestOnly), mask_(mask) {}
+
+    float RayCastCallback(const b2RayCastInput& input, int32 proxyId) {
+        const auto* proxy = static_cast<const b2FixtureProxy*>(broadPhase_.GetUserData(proxyId));
+        const b2Fixture* f = proxy->fixture;
+        if (skipped(f, mask_)) return input.maxFraction;
+        b2RayCastOutput out;
+        if (!infoOf(f).piece.exact->RayCast(&out, input, f->GetBody()->GetTransform(), 0)) return input.maxFraction;
+        const double distance = static_cast<double>(out.fraction) * maxDistance_;
+        PeerRayHit hit{bodyOf(f).userData(), origin_ + distance * direction_, fromB2(out.normal), distance};
+        if (!closestOnly_) {
+            hits.push_back(hit);
+            return input.maxFraction;
+        }
+        hits.assign(1, hit);
+        return out.fraction;  // only nearer hits matter from now on
+    }
+
+    std::vector<PeerRayHit> hits;
+
+private:
+    const b2BroadPhase& broadPhase_;
+    Vec3 origin_, direction_;
+    double maxDistance_;
+    bool closestOnly_;
+    std::uint32_t mask_;
+};
+
+// The smallest value of normal.dot(x) over a shape placed at xf (how deep it reaches below a plane).
+float lowest(const b2Shape& s, const b2Transform& xf, const b2Vec2& normal) {
+    if (s.GetType() == b2Shape::e_circle)
+        return b2Dot(normal, b2Mul(xf, static_cast<const b2CircleShape&>(s).m_p)) - s.m_radius;
+    const auto& p = static_cast<const b2PolygonShape&>(s);
+    float low = b2Dot(normal, b2Mul(xf, p.m_vertices[0]));
+    for (int32 i = 1; i < p.m_count; ++i) low = std::min(low, b2Dot(normal, b2Mul(xf, p.m_vertices[i])));
+    return low;
+}
+
+class OverlapCollector final : public b2QueryCallback {
+public:
+    OverlapCollector(const Piece& query, const b2Transform& xf, std::uint32_t mask, std::vector<std::uint64_t>& found)
+        : query_(query), xf_(xf), mask_(mask), found_(found) {}
+
+    bool ReportFixture(b2Fixture* f) override {
+        if (skipped(f, mask_)) return true;
+        const Piece& piece = infoOf(f).piece;
+        const b2Transform& bodyXf = f->GetBody()->GetTransform();
+        bool hit;
+        if (piece.plane) {  // a plane is a half-plane, not its edge: anything reaching below it overlaps
+            const b2Vec2 n = b2Mul(bodyXf.q, piece.plane->normal);
+            hit = lowest(*query_.exact, xf_, n) < piece.plane->offset + b2Dot(n, bodyXf.p);
+        } else {
+            hit = b2TestOverlap(query_.exact.get(), 0, piece.exact.get(), 0, xf_, bodyXf);
+        }
+        if (hit) found_.push_back(bodyOf(f).userData());
+        return true;
+    }
+
+private:
+    const Piece& query_;
+    b2Transform xf_;
+    std::uint32_t mask_;
+    std::vector<std::uint64_t>& found_;
+};
+
+void requireInPlane(const char* field, double z, const std::string& value) {
+    if (std::abs(z) > detail::kPlanarTolerance)
+        throw Error::invalid(field, value, "must lie in the XY plane (z = 0) on backend \"box2d\", which simulates planar worlds only");
+}
+
+}  // namespace
+
+std::vector<PeerRayHit> Box2dWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
+                                            std::uint32_t mask) {
+    requireInPlane("World.raycast.origin", origin.z(), formatVec3(origin));
+    requireInPlane("World.raycast.direction", direction.z(), formatVec3(direction));
+    if (maxDistance <= 0.0) return {};  // Box2D casts segments of non-zero length
+    const Vec3 dir(direction.x(), direction.y(), 0.0);
+    b2RayCastInput input;
+    input.p1 = toB2(origin);
+    input.p2 = toB2(origin + maxDistance * dir);
+    input.maxFraction = 1.0f;
+    const b2BroadPhase& bp = world_->GetContactManager().m_broadPhase;
+    RayCollector collector(bp, Vec3(origin.x(), origin.y(), 0.0), dir, maxDistance, closestOnly, mask);
+    bp.RayCast(&collector, input);
+    std::sort(collector.hits.begin(), collector.hits.end(),
+              [](const PeerRayHit& a, const PeerRayHit& b) { return a.distance < b.distance; });
+    return std::move(collector.hits);
+}
+
+std::vector<std::uint64_t> Box2dWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose, std::uint32_t mask) {
+    requireInPlane("World.overlap.pose.position", pose.position.z(), formatVec3(pose.position));
+    if (!detail::rotatesAboutZOnly(pose.orientation))
+        throw Error::invalid("World.overlap.pose.orientation", formatQuat(pose.orientation),
+                             "must be a rotation about Z (x = y = 0) on backend \"box2d\", which simulates planar worlds only");
+    double angle = 0.0;
+    const Embedding embedding = Embedding::of(pose, angle);
+    const b2Transform xf(toB2(pose.position), b2Rot(static_cast<float>(angle)));
+    const b2Vec2 originInQuery = b2MulT(xf, b2Vec2(0.0f, 0.0f));
+    std::vector<std::uint64_t> found;
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const std::string path = shapes.size() > 1 ? "World.overlap.shape.shapes[" + std::to_string(i) + "]" : "World.overlap.shape";
+        for (const Piece& piece : makePieces(shapes[i], embedding.toBody(shapes[i].local), originInQuery, path)) {
+            b2AABB box;
+            piece.exact->ComputeAABB(&box, xf, 0);
+            OverlapCollector collector(piece, xf, mask, found);
+            world_->QueryAABB(&collector, box);
+        }
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+}
+
+}  // namespace anyphys::box2d

@@ -1,0 +1,239 @@
+#include "box2d_shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "anyphys/error.hpp"
+#include "box2d_convert.hpp"
+
+namespace anyphys::box2d {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+// Box2D welds polygon vertices closer than this (b2PolygonShape::Set); our outlines weld the
+// same way so the vertex count we check is the count Box2D would use.
+constexpr double kWeld = 0.5 * b2_linearSlop;
+
+double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Counter-clockwise convex outline of points in the plane (Andrew's monotone chain), with
+// near-coincident and collinear vertices removed.
+std::vector<Vec2> convexOutline(std::vector<Vec2> p) {
+    if (p.size() < 3) return p;
+    std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    double extent = 0.0;
+    for (const Vec2& q : p) extent = std::max(extent, (q - p.front()).norm());
+    const double flat = 1e-12 * std::max(extent * extent, 1e-12);
+    std::vector<Vec2> hull(2 * p.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {  // lower chain
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= flat) --k;
+        hull[k++] = p[i];
+    }
+    for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+        while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i]) <= flat) --k;
+        hull[k++] = p[i];
+    }
+    hull.resize(k > 1 ? k - 1 : k);
+    // Weld as Box2D does, then drop vertices that became collinear.
+    bool changed = true;
+    while (changed && hull.size() >= 3) {
+        changed = false;
+        for (std::size_t i = 0; i < hull.size() && hull.size() >= 3; ++i) {
+            const Vec2& prev = hull[(i + hull.size() - 1) % hull.size()];
+            const Vec2& next = hull[(i + 1) % hull.size()];
+            const double chord = (next - prev).norm();
+            if ((hull[i] - next).norm() < kWeld || (chord > 0 && cross(prev, hull[i], next) / chord < 1e-9 * extent)) {
+                hull.erase(hull.begin() + static_cast<std::ptrdiff_t>(i));
+                changed = true;
+            }
+        }
+    }
+    return hull;
+}
+
+double area(const std::vector<Vec2>& v) {
+    double a = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) a += cross(Vec2::Zero(), v[i], v[(i + 1) % v.size()]);
+    return 0.5 * a;
+}
+
+// The outline moved inward by `inset` (each edge's line shifted along its normal), or nothing if
+// an edge would vanish or come closer to Box2D's weld distance.
+std::optional<std::vector<Vec2>> inset(const std::vector<Vec2>& v, double by) {
+    const std::size_t n = v.size();
+    std::vector<Vec2> normal(n);
+    std::vector<double> offset(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 e = (v[(i + 1) % n] - v[i]).normalized();
+        normal[i] = Vec2(e.y(), -e.x());
+        offset[i] = normal[i].dot(v[i]) - by;
+    }
+    std::vector<Vec2> out(n);
+    for (std::size_t i = 0; i < n; ++i) {  // vertex i: lines of edges i-1 and i
+        const Vec2& n1 = normal[(i + n - 1) % n];
+        const Vec2& n2 = normal[i];
+        const double c1 = offset[(i + n - 1) % n], c2 = offset[i];
+        const double det = n1.x() * n2.y() - n1.y() * n2.x();
+        out[i] = Vec2((c1 * n2.y() - c2 * n1.y()) / det, (n1.x() * c2 - n2.x() * c1) / det);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 e = out[(i + 1) % n] - out[i];
+        if (e.dot(v[(i + 1) % n] - v[i]) <= 0 || e.norm() < 1.5 * kWeld) return std::nullopt;
+    }
+    return out;
+}
+
+std::unique_ptr<b2PolygonShape> polygon(const std::vector<Vec2>& v, double radius) {
+    b2Vec2 points[b2_maxPolygonVertices];
+    for (std::size_t i = 0; i < v.size(); ++i) points[i].Set(static_cast<float>(v[i].x()), static_cast<float>(v[i].y()));
+    auto shape = std::make_unique<b2PolygonShape>();
+    shape->Set(points, static_cast<int32>(v.size()));
+    shape->m_radius = static_cast<float>(radius);
+    return shape;
+}
+
+// A polygon piece from its true outline (counter-clockwise, convex, at most 8 vertices).
+Piece polygonPiece(const std::vector<Vec2>& outline) {
+    // Box2D's rounding radius stays (its time of impact aims for a separation inside it); the core
+    // shrinks so core + radius = outline + kSkin. Small polygons get a smaller radius: at most a
+    // quarter of their inner radius, so the core keeps its shape.
+    Vec2 centre = Vec2::Zero();
+    for (const Vec2& p : outline) centre += p;
+    centre /= static_cast<double>(outline.size());
+    double inner = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+        const Vec2 e = (outline[(i + 1) % outline.size()] - outline[i]).normalized();
+        inner = std::min(inner, Vec2(e.y(), -e.x()).dot(outline[i] - centre));
+    }
+    double shrink = std::min<double>(b2_polygonRadius - kSkin, 0.25 * inner);
+    std::optional<std::vector<Vec2>> core;
+    for (int attempt = 0; attempt < 8; ++attempt) {
+        if ((core = inset(outline, shrink))) break;
+        shrink *= 0.5;
+    }
+    if (!core) {
+        core = outline;
+        shrink = 0.0;
+    }
+    Piece piece;
+    piece.collision = polygon(*core, shrink + kSkin);
+    piece.exact = polygon(outline, 0.0);
+    return piece;
+}
+
+Piece circlePiece(const Vec2& centre, double radius) {
+    auto collision = std::make_unique<b2CircleShape>();
+    collision->m_p.Set(static_cast<float>(centre.x()), static_cast<float>(centre.y()));
+    collision->m_radius = static_cast<float>(radius + kSkin);
+    auto exact = std::make_unique<b2CircleShape>(*collision);
+    exact->m_radius = static_cast<float>(radius);
+    Piece piece;
+    piece.collision = std::move(collision);
+    piece.exact = std::move(exact);
+    return piece;
+}
+
+// A polygon outline from 3D points (already in the body frame), projected onto XY.
+std::vector<Vec2> projectedOutline(const std::vector<Vec3>& points, const std::string& path, const char* what) {
+    std::vector<Vec2> flat;
+    flat.reserve(points.size());
+    for (const Vec3& p : points) flat.emplace_back(p.x(), p.y());
+    std::vector<Vec2> outline = convexOutline(std::move(flat));
+    if (outline.size() > b2_maxPolygonVertices)
+        throw Error::invalid(path, std::to_string(outline.size()) + " vertices",
+                             std::string("the outline of a ") + what + " in the XY plane must have at most " +
+                                 std::to_string(b2_maxPolygonVertices) +
+                                 " vertices on backend \"box2d\" (b2_maxPolygonVertices, capabilities.maxConvexVertices)");
+    if (outline.size() < 3 || area(outline) < 4.0 * kWeld * kWeld)
+        throw Error::invalid(path, std::to_string(outline.size()) + " distinct vertices",
+                             std::string("the outline of a ") + what +
+                                 " in the XY plane is too thin for a Box2D polygon (needs 3 vertices " +
+                                 std::to_string(kWeld) + " m apart)");
+    return outline;
+}
+
+}  // namespace
+
+std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, const b2Vec2& originInBody,
+                              const std::string& path) {
+    const ShapeDef& s = shape.def;
+    const Mat3 r = pose.orientation.toRotationMatrix();
+    const auto at = [&](const Vec3& local) -> Vec3 { return pose.position + r * local; };
+    std::vector<Piece> pieces;
+    switch (s.type) {
+        case ShapeType::Sphere:
+            pieces.push_back(circlePiece(Vec2(pose.position.x(), pose.position.y()), s.radius));
+            break;
+        case ShapeType::Box: {
+            std::vector<Vec3> corners;
+            for (int i = 0; i < 8; ++i)
+                corners.push_back(at(Vec3((i & 1 ? 1 : -1) * s.halfExtents.x(), (i & 2 ? 1 : -1) * s.halfExtents.y(),
+                                          (i & 4 ? 1 : -1) * s.halfExtents.z())));
+            pieces.push_back(polygonPiece(projectedOutline(corners, path, "box")));
+            break;
+        }
+        case ShapeType::Convex: {
+            std::vector<Vec3> points;
+            for (const Vec3& v : shape.hull->vertices) points.push_back(at(v));
+            pieces.push_back(polygonPiece(projectedOutline(points, path + ".points", "convex hull")));
+            break;
+        }
+        case ShapeType::Capsule: {
+            // Box2D 2.4 has no capsule: the exact stadium is a rectangle between the two end
+            // circles, all three on the same body (they never collide with each other).
+            const Vec3 a3 = at(Vec3(0, s.halfHeight, 0)), b3 = at(Vec3(0, -s.halfHeight, 0));
+            const Vec2 a(a3.x(), a3.y()), b(b3.x(), b3.y());
+            pieces.push_back(circlePiece(a, s.radius));
+            if ((a - b).norm() < kWeld) break;  // seen end on, or a sphere: one circle is the shape
+            pieces.push_back(circlePiece(b, s.radius));
+            const Vec2 side = Vec2(b.y() - a.y(), a.x() - b.x()).normalized() * s.radius;
+            pieces.push_back(polygonPiece(convexOutline({a + side, a - side, b + side, b - side})));
+            break;
+        }
+        case ShapeType::Plane: {
+            const Vec3 n3 = r * s.normal.normalized();
+            const double d = s.offset / s.normal.norm() + n3.dot(pose.position);
+            const Vec2 n = Vec2(n3.x(), n3.y()).normalized();
+            const Vec2 o(originInBody.x, originInBody.y);
+            const Vec2 centre = o - (n.dot(o) - d) * n;
+            const Vec2 t(-n.y(), n.x());  // Box2D's edge normal is the right-hand side of v1 -> v2
+            const auto point = [](const Vec2& p) { return b2Vec2(static_cast<float>(p.x()), static_cast<float>(p.y())); };
+            // The edge keeps Box2D's radius and sits that much minus the skin below the plane, so
+            // its surface is kSkin above the plane like every other piece's.
+            const Vec2 sunk = centre - (b2_polygonRadius - kSkin) * n;
+            auto collision = std::make_unique<b2EdgeShape>();
+            const Vec2 v1 = sunk - kPlaneHalfLength * t, v2 = sunk + kPlaneHalfLength * t;
+            collision->SetOneSided(point(v1 - t), point(v1), point(v2), point(v2 + t));  // one-sided: a half-plane's surface
+            auto exact = std::make_unique<b2EdgeShape>();
+            exact->SetTwoSided(point(centre - kPlaneHalfLength * t), point(centre + kPlaneHalfLength * t));
+            exact->m_radius = 0.0f;
+            Piece piece;
+            piece.collision = std::move(collision);
+            piece.exact = std::move(exact);
+            piece.plane = HalfPlane{point(n), static_cast<float>(n.dot(centre))};
+            pieces.push_back(std::move(piece));
+            break;
+        }
+        case ShapeType::Mesh:
+        case ShapeType::Compound:
+            throw Error::invalid(path + ".type", toString(s.type), "has no Box2D form (sphere, box, capsule, convex, plane)");
+    }
+    return pieces;
+}
+
+double innerRadius(const Piece& piece) {
+    const b2Shape& s = *piece.exact;
+    if (s.GetType() == b2Shape::e_circle) return s.m_radius;
+    if (s.GetType() != b2Shape::e_polygon) return std::numeric_limits<double>::infinity();
+    const auto& p = static_cast<const b2PolygonShape&>(s);
+    double inner = std::numeric_limits<double>::infinity();
+    for (int32 i = 0; i < p.m_count; ++i) inner = std::min<double>(inner, b2Dot(p.m_normals[i], p.m_vertices[i] - p.m_centroid));
+    return inner;
+}
+
+}  // namespace anyphys::box2d

@@ -1,0 +1,44 @@
+#pragma once
+// The layer's shapes as Box2D shapes: each PeerShape becomes one or more 2D pieces in the Box2D
+// body frame (sphere -> circle, box and convex -> polygon, capsule -> rectangle + two circles,
+// plane -> a long one-sided edge).
+#include <box2d/box2d.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "anyphys/peers/shape_data.hpp"
+
+namespace anyphys::box2d {
+
+/// A plane as a half-plane in the Box2D body frame: points x with normal.dot(x) <= offset are
+/// inside.
+struct HalfPlane {
+    b2Vec2 normal;
+    float offset = 0.0f;
+};
+
+/// One Box2D fixture's geometry.
+struct Piece {
+    /// What collides: the true outline grown by kSkin. Polygons and edges keep Box2D's rounding
+    /// radius (b2_polygonRadius, which its time of impact needs) with their core shrunk to match.
+    std::unique_ptr<b2Shape> collision;
+    /// The true outline, for ray casts and overlap queries (answers about the user's geometry).
+    std::unique_ptr<b2Shape> exact;
+    std::optional<HalfPlane> plane;  ///< set for planes: overlap tests use the half-plane
+};
+
+/// Builds the pieces of one shape placed at `pose` in the Box2D body frame. `originInBody` is the
+/// world origin in that frame (planes are centred on the point of their line nearest to it).
+/// Throws anyphys::Error naming `path` when the shape has no Box2D form (a convex outline of more
+/// than b2_maxPolygonVertices vertices, or one too thin to be a polygon).
+std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, const b2Vec2& originInBody,
+                              const std::string& path);
+
+/// Smallest distance from a piece's centre to its surface, m (how far it may move in a step
+/// before a discrete step can miss a hit); infinite for planes.
+double innerRadius(const Piece& piece);
+
+}  // namespace anyphys::box2d

@@ -1,0 +1,237 @@
+#include "box2d_world.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+#include "anyphys/error.hpp"
+
+namespace anyphys::box2d {
+namespace {
+
+int option(const WorldSettings& s, const char* name, int fallback) {
+    const auto it = s.backendOptions.find(name);
+    return it == s.backendOptions.end() ? fallback : static_cast<int>(it->second);
+}
+
+// The user's force callback, evaluated once at the start of a step (ForceEvaluation::PerStep):
+// forces go straight onto the b2Body and are held for the whole step.
+class StepStartForces final : public ForceStage {
+public:
+    explicit StepStartForces(double time) : time_(time) {}
+    double time() const override { return time_; }
+    BodyState state(const BodyPeer& body) const override { return body.state(); }
+    void addForce(BodyPeer& body, const Vec3& force) override {
+        b2Body* b = static_cast<Box2dBody&>(body).b2();
+        if (b->GetType() == b2_dynamicBody) b->ApplyForceToCenter(toB2(force), false);
+    }
+    void addTorque(BodyPeer& body, const Vec3& torque) override {
+        b2Body* b = static_cast<Box2dBody&>(body).b2();
+        if (b->GetType() == b2_dynamicBody) b->ApplyTorque(static_cast<float>(torque.z()), false);
+    }
+
+private:
+    double time_;
+};
+
+b2BodyType bodyType(BodyType t) {
+    switch (t) {
+        case BodyType::Static: return b2_staticBody;
+        case BodyType::Kinematic: return b2_kinematicBody;
+        case BodyType::Dynamic: break;
+    }
+    return b2_dynamicBody;
+}
+
+}  // namespace
+
+Box2dWorld::Box2dWorld(const WorldSettings& settings)
+    : settings_(settings),
+      velocityIterations_(settings.iterations.value_or(kDefaultIterations)),
+      positionIterations_(std::max(0, option(settings, "positionIterations", kDefaultPositionIterations))),
+      substeps_(std::max(1, settings.substeps.value_or(kDefaultSubsteps))),
+      world_(std::make_unique<b2World>(b2Vec2(0.0f, 0.0f))) {
+    world_->SetContactFilter(&rules_);
+    world_->SetContactListener(&rules_);
+    // Forces are held across substeps and cleared once per step (see step()).
+    world_->SetAutoClearForces(false);
+    rules_.setRestitutionThreshold(settings_.restitutionThreshold);
+    dampingStep_ = settings_.timeStep / substeps_;
+    setEffects(Effects::none());
+}
+
+Box2dWorld::~Box2dWorld() {
+    // Body peers may outlive the world: they must not touch the b2World after this.
+    for (Box2dBody* b : bodies_) b->detach();
+}
+
+std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
+    const BodyDef& def = peerDef.def;
+    double angle = 0.0;
+    const Embedding embedding = Embedding::of({def.position, def.orientation}, angle);
+    const b2Transform pose(toB2(def.position), b2Rot(static_cast<float>(angle)));
+    const b2Vec2 originInBody = b2MulT(pose, b2Vec2(0.0f, 0.0f));
+
+    // Every piece first: a shape Box2D cannot take throws before anything changed.
+    std::vector<Piece> pieces;
+    try {
+        for (std::size_t i = 0; i < peerDef.shapes.size(); ++i) {
+            const std::string path = def.shape.type == ShapeType::Compound
+                                         ? "BodyDef.shape.shapes[" + std::to_string(i) + "]"
+                                         : std::string("BodyDef.shape");
+            const PeerShape& shape = peerDef.shapes[i];
+            for (Piece& p : makePieces(shape, embedding.toBody(shape.local), originInBody, path)) pieces.push_back(std::move(p));
+        }
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + (def.name.empty() ? "" : " (body \"" + def.name + "\")"));
+    }
+
+    b2BodyDef bd;
+    bd.type = bodyType(def.type);
+    bd.position = pose.p;
+    bd.angle = static_cast<float>(angle);
+    bd.linearVelocity = toB2(def.linearVelocity);
+    bd.angularVelocity = static_cast<float>(def.angularVelocity.z());
+    bd.allowSleep = def.allowSleep;
+    bd.awake = def.isAwake;
+    bd.gravityScale = static_cast<float>(def.gravityScale);
+    b2Body* body = world_->CreateBody(&bd);
+    auto peer = std::make_unique<Box2dBody>(*this, body, peerDef, embedding);
+    bodies_.insert(peer.get());
+
+    double inner = std::numeric_limits<double>::infinity();
+    for (Piece& piece : pieces) {
+        inner = std::min(inner, innerRadius(piece));
+        auto info = std::make_unique<FixtureInfo>(FixtureInfo{peer.get(), std::move(piece)});
+        b2FixtureDef fd;
+        fd.shape = info->piece.collision.get();
+        fd.density = 0.0f;   // mass comes from the layer (below), not from Box2D's areas
+        fd.friction = 0.0f;  // friction and restitution are set per contact in pre-solve
+        fd.isSensor = def.isTrigger;
+        fd.userData.pointer = reinterpret_cast<uintptr_t>(info.get());
+        body->CreateFixture(&fd);
+        peer->addFixture(std::move(info));
+    }
+    peer->setInnerRadius(inner);
+    if (def.type == BodyType::Dynamic) {
+        // The layer's mass and its moment about Z through the centre of mass (the peer frame's
+        // inertia turned into the Box2D body frame), so masses agree with the 3D backends.
+        const Mat3 r = embedding.rotation.toRotationMatrix();
+        const Mat3 inertia = r * peerDef.mass.inertia.asDiagonal() * r.transpose();
+        b2MassData md;
+        md.mass = static_cast<float>(peerDef.mass.mass);
+        md.center.SetZero();
+        md.I = static_cast<float>(inertia(2, 2));
+        body->SetMassData(&md);
+    }
+    peer->applyDamping(effects_.has(Effect::Damping), dampingStep_);
+    return peer;
+}
+
+void Box2dWorld::destroyBody(BodyPeer& body) { removeBody(static_cast<Box2dBody&>(body)); }
+
+void Box2dWorld::forgetBody(Box2dBody& body) { removeBody(body); }
+
+void Box2dWorld::removeBody(Box2dBody& body) {
+    b2Body* b = body.b2();
+    wakeTouching(b);  // bodies resting on this one must not hang in the air
+    for (b2ContactEdge* e = b->GetContactList(); e; e = e->next) impulses_.erase(e->contact);
+    world_->DestroyBody(b);
+    bodies_.erase(&body);
+    body.detach();
+}
+
+void Box2dWorld::wakeTouching(b2Body* body) {
+    for (b2ContactEdge* e = body->GetContactList(); e; e = e->next)
+        if (e->contact->IsTouching()) e->other->SetAwake(true);
+}
+
+void Box2dWorld::refilterAll() {
+    for (b2Body* b = world_->GetBodyList(); b; b = b->GetNext())
+        for (b2Fixture* f = b->GetFixtureList(); f; f = f->GetNext()) f->Refilter();
+}
+
+void Box2dWorld::setEffects(Effects effects) {
+    const bool contactsChanged = effects.has(Effect::Contacts) != effects_.has(Effect::Contacts);
+    effects_ = effects;
+    rules_.setEffects(effects);
+    world_->SetGravity(effects.has(Effect::Gravity) ? toB2(settings_.gravity) : b2Vec2(0.0f, 0.0f));
+    world_->SetAllowSleeping(effects.has(Effect::Sleeping));
+    world_->SetContinuousPhysics(effects.has(Effect::ContinuousCollision) && effects.has(Effect::Contacts));
+    for (Box2dBody* b : bodies_) {
+        b->applyDamping(effects.has(Effect::Damping), dampingStep_);
+        if (!effects.has(Effect::ContinuousCollision)) b->updateBullet(false, dampingStep_);
+    }
+    if (contactsChanged) refilterAll();
+}
+
+void Box2dWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
+
+void Box2dWorld::setMaterialTable(const MaterialTable& table) { rules_.setMaterials(table); }
+
+void Box2dWorld::step(double time, double dt) {
+    const double h = dt / substeps_;
+    if (h != dampingStep_) {  // Box2D's damping factor depends on the step: convert again
+        dampingStep_ = h;
+        for (Box2dBody* b : bodies_) b->applyDamping(effects_.has(Effect::Damping), h);
+    }
+    const bool continuous = effects_.has(Effect::ContinuousCollision) && effects_.has(Effect::Contacts);
+    const bool userForces = effects_.has(Effect::UserForces);
+    for (Box2dBody* b : bodies_) {
+        b->updateBullet(continuous, h);
+        b->flushForces(userForces);
+    }
+    if (userForces && forceHook_) {
+        StepStartForces stage(time);
+        forceHook_(stage);
+    }
+    impulses_.clear();
+    for (int i = 0; i < substeps_; ++i) {
+        rules_.beginStep(static_cast<float>(h), world_->GetGravity());
+        if (effects_.has(Effect::Restitution))
+            for (Box2dBody* b : bodies_) b->markStepStart();
+        world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
+        if (substeps_ == 1) continue;
+        for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+            if (!c->IsTouching()) continue;
+            auto& sum = impulses_.try_emplace(c, std::array<float, b2_maxManifoldPoints>{}).first->second;
+            const b2Manifold* m = c->GetManifold();
+            for (int32 p = 0; p < m->pointCount; ++p) sum[static_cast<std::size_t>(p)] += m->points[p].normalImpulse;
+        }
+    }
+    world_->ClearForces();
+}
+
+void Box2dWorld::collectContacts(std::vector<PeerContact>& out) {
+    // Box2D keeps one contact per fixture pair; the layer wants one per body pair (a capsule has
+    // three fixtures): merge them, the first contact's body order and normal leading.
+    std::map<std::pair<std::uint64_t, std::uint64_t>, std::size_t> pairIndex;
+    for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+        if (!c->IsTouching()) continue;
+        const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
+        if (!fa->GetBody()->IsAwake() && !fb->GetBody()->IsAwake()) continue;  // asleep: the layer keeps the pair
+        const std::uint64_t a = bodyOf(fa).userData(), b = bodyOf(fb).userData();
+        const bool sensor = fa->IsSensor() || fb->IsSensor();
+        const auto [it, added] = pairIndex.try_emplace(std::minmax(a, b), out.size());
+        if (added) out.push_back(PeerContact{a, b, sensor, Vec3::Zero(), {}});
+        PeerContact& pc = out[it->second];
+        if (sensor) continue;  // a trigger overlap has no points
+        b2WorldManifold wm;
+        c->GetWorldManifold(&wm);
+        const double sign = pc.bodyA == a ? 1.0 : -1.0;  // Box2D's normal points from fixture A to B
+        if (pc.points.empty()) pc.normal = sign * fromB2(wm.normal);
+        const b2Manifold* m = c->GetManifold();
+        const auto summed = impulses_.find(c);
+        for (int32 p = 0; p < m->pointCount; ++p) {
+            const float impulse = summed != impulses_.end() ? summed->second[static_cast<std::size_t>(p)] : m->points[p].normalImpulse;
+            // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.
+            pc.points.push_back({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulse});
+        }
+    }
+}
+
+void* Box2dWorld::nativeObject(const std::type_info& pointerType) {
+    return pointerType == typeid(b2World*) ? static_cast<void*>(world_.get()) : nullptr;
+}
+
+}  // namespace anyphys::box2d

@@ -1,0 +1,69 @@
+#pragma once
+// The Box2D backend's world: a b2World simulating the XY plane, its bodies, the layer's contact
+// rules, and the step (force hook, damping, bullets, substeps).
+#include <box2d/box2d.h>
+
+#include <array>
+#include <memory>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "anyphys/peers/world_peer.hpp"
+#include "anyphys/world_settings.hpp"
+#include "box2d_body.hpp"
+#include "box2d_contacts.hpp"
+
+namespace anyphys::box2d {
+
+class Box2dWorld final : public WorldPeer {
+public:
+    /// Defaults, declared in the capabilities too: Box2D 2.4's recommended 8 velocity and 3
+    /// position iterations, one Box2D step per step.
+    static constexpr Solver kDefaultSolver = Solver::ProjectedGaussSeidel;
+    static constexpr int kDefaultIterations = 8;
+    static constexpr int kDefaultSubsteps = 1;
+    static constexpr int kDefaultPositionIterations = 3;
+
+    explicit Box2dWorld(const WorldSettings& settings);
+    ~Box2dWorld() override;
+
+    std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
+    void destroyBody(BodyPeer& body) override;
+    void setEffects(Effects effects) override;
+    void setForceHook(ForceHook hook) override;
+    void step(double time, double dt) override;
+    void setMaterialTable(const MaterialTable& table) override;
+    void collectContacts(std::vector<PeerContact>& out) override;
+    std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
+                                    std::uint32_t mask) override;
+    std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
+                                       std::uint32_t mask) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for body peers ------------------------------------------------------------------
+    /// A body peer destroyed without destroyBody: drop its b2Body.
+    void forgetBody(Box2dBody& body);
+    /// Wakes every body touching `body` (it moved, or is about to disappear).
+    void wakeTouching(b2Body* body);
+
+private:
+    void removeBody(Box2dBody& body);
+    /// Contacts on or off changes which pairs pass the filter: let Box2D ask again.
+    void refilterAll();
+
+    WorldSettings settings_;
+    int velocityIterations_;
+    int positionIterations_;
+    int substeps_;
+    Effects effects_;
+    ForceHook forceHook_;
+    ContactRules rules_;
+    std::unique_ptr<b2World> world_;
+    std::unordered_set<Box2dBody*> bodies_;
+    double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
+    /// Per contact, the normal impulses summed over this step's substeps (substeps > 1 only;
+    /// with one substep the manifold's own impulses are the step's).
+    std::unordered_map<const b2Contact*, std::array<float, b2_maxManifoldPoints>> impulses_;
+};
+
+}  // namespace anyphys::box2d
