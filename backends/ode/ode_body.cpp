@@ -42,6 +42,7 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
                 planeJoint_ = dJointCreatePlane2D(world.id(), nullptr);
                 dJointAttach(planeJoint_, body_, nullptr);
                 planeTilt_ = staticPose_.orientation;
+                planeZ_ = def.position.z();  // the centre of mass may sit off z = 0 (a hull uneven in z)
             }
         }
     }
@@ -71,15 +72,15 @@ OdeBody::~OdeBody() {
 
 void OdeBody::projectToPlane() const {
     // The plane-2D joint removes out-of-plane velocity within the step, but not the drift its
-    // linearised constraint leaves (as ODE's own plane-2D demo notes): put z, its speed and the
-    // off-axis spin back to exactly zero.
+    // linearised constraint leaves (as ODE's own plane-2D demo notes): put z back where it
+    // started, and its speed and the off-axis spin back to exactly zero.
     // The orientation is a turn about Z of the one it was created with (planeTilt_, which holds
     // the principal axes' fixed tilt): keep the twist about Z of the drifted turn, drop the rest.
     if (!planeJoint_ || !dBodyIsEnabled(body_)) return;
     const dReal* p = dBodyGetPosition(body_);
     const dReal* v = dBodyGetLinearVel(body_);
     const dReal* w = dBodyGetAngularVel(body_);
-    dBodySetPosition(body_, p[0], p[1], 0.0);
+    dBodySetPosition(body_, p[0], p[1], planeZ_);
     dBodySetLinearVel(body_, v[0], v[1], 0.0);
     dBodySetAngularVel(body_, 0.0, 0.0, w[2]);
     const Quat turn = toQuat(dBodyGetQuaternion(body_)) * planeTilt_.conjugate();

@@ -80,6 +80,7 @@ private:
     dBodyID body_ = nullptr;
     dJointID planeJoint_ = nullptr;  // planar worlds only
     Quat planeTilt_ = Quat::Identity();  // planar: orientation = (turn about Z) x planeTilt_
+    double planeZ_ = 0.0;                // planar: the centre of mass's constant z
     BodyType type_;
     std::vector<std::unique_ptr<OdeShape>> shapes_;
     Transform staticPose_;  // static bodies: their frame's pose (they have no dBody)
