@@ -286,8 +286,9 @@ CatalogueScene bouncingBall() {
     c.scene.bodies.push_back(ball);
     // Impact at sqrt(2 g 4.5) = 9.4 m/s, far above the 1 m/s restitution threshold.
     SceneCheck check{"rebound/drop", "", kRestitution * kRestitution, 0.05 * kRestitution * kRestitution,
-                     "5 %: the contract's bound; the apex is sampled each step (g dt^2 / 8 = 0.3 mm low)", {}};
+                     "5 %: the contract's bound; the apex is sampled each step (g dt^2 / 8 = 0.3 mm low)", {}, ""};
     check.makeProbe = [radius = kRadius] { return std::make_unique<ReboundProbe>(1, radius); };
+    check.criterion = "restitution.rebound_height";
     c.check = check;
     return c;
 }
@@ -331,7 +332,8 @@ CatalogueScene slopeSlide() {
         return s;
     };
     c.check = endpointCheck(
-        SceneCheck{"slide accel", "m/s^2", accel, 0.05 * accel, "5 %: the contract's bound on the slide acceleration", {}},
+        SceneCheck{"slide accel", "m/s^2", accel, 0.05 * accel, "5 %: the contract's bound on the slide acceleration", {},
+                   "slope.kinetic_acceleration"},
         [downhill](const std::vector<BodyState>& first, const std::vector<BodyState>& last, double t) {
             // s = a t^2 / 2 from rest, so the mean acceleration over the run is 2 s / t^2.
             return t > 0 ? 2.0 * (last[1].position - first[1].position).dot(downhill) / (t * t) : 0.0;
@@ -353,7 +355,8 @@ CatalogueScene boxStack10() {
         c.scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
     }
     c.check = endpointCheck(
-        SceneCheck{"top drift", "m", 0.0, 0.01, "1 cm sideways: the contract's bound for a standing stack", {}},
+        SceneCheck{"top drift", "m", 0.0, 0.01, "1 cm sideways: the contract's bound for a standing stack", {},
+                   "stack10.top_drift"},
         maxHorizontalDrift({static_cast<std::size_t>(kBoxes)}));
     return c;
 }
@@ -376,7 +379,8 @@ CatalogueScene pyramid20() {
         }
     }
     c.check = endpointCheck(
-        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways (a tenth of a box): the pyramid stands as built", {}},
+        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways (a tenth of a box): the pyramid stands as built", {},
+                   "pyramid20.drift"},
         maxHorizontalDrift(dynamicBodies(c.scene)));
     return c;
 }
@@ -389,7 +393,7 @@ CatalogueScene boxGrid1000() {
     c.scene = boxGridScene(10, 10, 10, 1.2, 1.0);
     const std::vector<std::size_t> boxes = dynamicBodies(c.scene);
     c.check = endpointCheck(
-        SceneCheck{"max speed", "m/s", 0.0, 0.05, "0.05 m/s: the default sleep threshold; slower counts as settled", {}},
+        SceneCheck{"max speed", "m/s", 0.0, 0.05, "0.05 m/s: the default sleep threshold; slower counts as settled", {}, ""},
         [boxes](const std::vector<BodyState>&, const std::vector<BodyState>& last, double) {
             double fastest = 0.0;
             for (std::size_t i : boxes) {
@@ -408,6 +412,7 @@ CatalogueScene planar(CatalogueScene c) {
     c.name += "_planar";
     c.description = "planar (XY) " + c.description;
     c.scene.settings.planar = true;
+    if (c.check && !c.check->criterion.empty()) c.check->criterion = "planar." + c.check->criterion;
     return c;
 }
 

@@ -65,7 +65,7 @@ std::string checkText(const ComboResult& r) {
     const SceneCheck& check = *catalogueScene(r.scene).check;
     const std::string unit = check.unit.empty() ? "" : " " + check.unit;
     return check.label + " " + format("%.4g", *r.checkValue) + unit + " (want " + format("%g", check.expected) +
-           " +- " + format("%.3g", check.tolerance) + ") " + (r.checkPassed ? "ok" : "FAIL");
+           " +- " + format("%.3g", check.tolerance) + ") " + (r.checkPassed ? "ok" : r.knownDeviation ? "FAIL (declared known deviation)" : "FAIL");
 }
 
 std::string statusWord(ComboResult::Status status) {
@@ -125,7 +125,8 @@ nlohmann::json toJson(const std::vector<ComboResult>& results) {
                 const SceneCheck& check = *catalogueScene(r.scene).check;
                 row["check"] = {{"label", check.label},       {"unit", check.unit},
                                 {"value", *r.checkValue},     {"expected", check.expected},
-                                {"tolerance", check.tolerance}, {"passed", r.checkPassed}};
+                                {"tolerance", check.tolerance}, {"passed", r.checkPassed},
+                                {"criterion", check.criterion}, {"knownDeviation", r.knownDeviation}};
             }
         }
         list.push_back(row);

@@ -161,6 +161,8 @@ ComboResult runCombo(const CatalogueScene& entry, const BackendInfo& backend, In
     if (probe) {
         result.checkValue = probe->value();
         result.checkPassed = entry.check->passes(*result.checkValue);
+        result.knownDeviation =
+            !result.checkPassed && backend.capabilities.knownDeviations.contains(entry.check->criterion);
     }
     return result;
 }

@@ -28,6 +28,7 @@ struct ComboResult {
     std::optional<double> energyDrift;          ///< (E_end - E_0) / |E_0|; scenes conserving energy
     std::optional<double> checkValue;           ///< the scene's own measure (CatalogueScene::check)
     bool checkPassed = false;                   ///< checkValue within the check's tolerance
+    bool knownDeviation = false;                ///< failed, and the backend declares that criterion missed
 };
 
 /// Runs `scene` for its duration on `backend` with `integrator`. Never throws for a refusal:

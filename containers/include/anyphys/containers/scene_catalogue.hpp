@@ -32,6 +32,9 @@ struct SceneCheck {
     double tolerance = 0.0;   ///< passes when |value - expected| <= tolerance
     std::string why;          ///< the reason for the tolerance, one line
     std::function<std::unique_ptr<SceneProbe>()> makeProbe;  ///< a fresh probe per run
+    /// The contract criterion this check measures (e.g. "stack10.top_drift"), so a backend's
+    /// declared known deviation (Capabilities::knownDeviations) can be recognised; "" for none.
+    std::string criterion;
 
     bool passes(double value) const { return std::abs(value - expected) <= tolerance; }
 };
