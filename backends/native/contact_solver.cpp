@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "gyroscopic.hpp"
+#include "anyphys/peers/gyroscopic.hpp"
 #include "integrators.hpp"
 #include "native_world.hpp"
 
@@ -280,9 +280,9 @@ void ContactSolver::solve(NativeWorld& world, const StepInfo& step) {
             mo.v += h * accel;
             mo.w += h * (mo.invI * torque);
             if (gyroscopic && b.gyroscopic == GyroscopicMode::Implicit)
-                mo.w = solveImplicitGyroscopic(mo.w, b.state.orientation, b.inertia, h);
+                mo.w = gyroscopic::solveImplicit(mo.w, b.state.orientation, b.inertia, h);
             else if (gyroscopic && b.gyroscopic == GyroscopicMode::Explicit)
-                mo.w += h * gyroscopicAcceleration(mo.w, b.state.orientation, b.inertia);
+                mo.w += h * gyroscopic::acceleration(mo.w, b.state.orientation, b.inertia);
             if (damping) {  // implicit: stable for any damping
                 mo.v /= 1.0 + h * b.linearDamping;
                 mo.w /= 1.0 + h * b.angularDamping;

@@ -5,23 +5,18 @@
 #include <map>
 
 #include "collision/queries.hpp"
-#include "gyroscopic.hpp"
+#include "anyphys/peers/gyroscopic.hpp"
 #include "integrators.hpp"
 #include "native_world.hpp"
 
 namespace anyphys::native {
 namespace {
 
-bool isAnisotropic(const Vec3& inertia) {
-    // The gyroscopic term w x (I w) vanishes identically when all moments are equal.
-    return inertia.maxCoeff() - inertia.minCoeff() > 1e-12 * inertia.maxCoeff();
-}
-
 bool hasGyroscopicBody(const NativeWorld& world, GyroscopicMode mode) {
     // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
     if (!world.effects().has(Effect::Gyroscopic) || world.settings().planar) return false;
     return std::any_of(world.bodies().begin(), world.bodies().end(), [&](const NativeBody& b) {
-        return b.alive && b.isDynamic() && b.gyroscopic == mode && isAnisotropic(b.inertia);
+        return b.alive && b.isDynamic() && b.gyroscopic == mode && gyroscopic::isAnisotropic(b.inertia);
     });
 }
 
@@ -33,7 +28,7 @@ public:
         for (NativeBody& b : world.bodies()) {
             if (!b.isDynamic() || !b.isActive() || b.constrained || b.gyroscopic != GyroscopicMode::Implicit) continue;
             b.state.angularVelocity =
-                solveImplicitGyroscopic(b.state.angularVelocity, b.state.orientation, b.inertia, step.dt);
+                gyroscopic::solveImplicit(b.state.angularVelocity, b.state.orientation, b.inertia, step.dt);
         }
     }
 };
@@ -133,7 +128,7 @@ public:
                     }
                 }
                 if (explicitGyro && b.gyroscopic == GyroscopicMode::Explicit)
-                    a.angular += gyroscopicAcceleration(s.angularVelocity, s.orientation, b.inertia);
+                    a.angular += gyroscopic::acceleration(s.angularVelocity, s.orientation, b.inertia);
                 if (damping) {
                     a.linear -= b.linearDamping * s.linearVelocity;
                     a.angular -= b.angularDamping * s.angularVelocity;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "ode_gyroscopic.hpp"
+#include "anyphys/peers/gyroscopic.hpp"
 #include "ode_math.hpp"
 #include "ode_world.hpp"
 
@@ -198,7 +198,7 @@ void OdeBody::applyEffects(Effects effects, double h) {
         dBodySetDamping(body_, 0.0, 0.0);
     }
     // Gyroscopic: ODE's own term is always off; the world applies the layer's implicit form
-    // (ode_gyroscopic.hpp) to bodies that need it.
+    // (anyphys/peers/gyroscopic.hpp) to bodies that need it.
     dBodySetGyroscopicMode(body_, 0);
     // Sleeping: ODE's auto-disable, with the thresholds the world set as ODE's defaults.
     dBodySetAutoDisableFlag(body_, effects.has(Effect::Sleeping) && allowSleep_ ? 1 : 0);
@@ -207,11 +207,11 @@ void OdeBody::applyEffects(Effects effects, double h) {
 bool OdeBody::needsGyroscopic(Effects effects) const {
     // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
     return isDynamic() && !planeJoint_ && effects.has(Effect::Gyroscopic) && gyroscopic_ == GyroscopicMode::Implicit &&
-           isAnisotropic(mass_.inertia);
+           gyroscopic::isAnisotropic(mass_.inertia);
 }
 
 void OdeBody::applyGyroscopic(double h) const {
-    const Vec3 w = solveImplicitGyroscopic(toVec3(dBodyGetAngularVel(body_)), toQuat(dBodyGetQuaternion(body_)),
+    const Vec3 w = gyroscopic::solveImplicit(toVec3(dBodyGetAngularVel(body_)), toQuat(dBodyGetQuaternion(body_)),
                                            mass_.inertia, h);
     dBodySetAngularVel(body_, w.x(), w.y(), w.z());
 }

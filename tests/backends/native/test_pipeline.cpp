@@ -1,7 +1,7 @@
 // Native pipeline: stages a world does not need are not run at all.
 #include <gtest/gtest.h>
 
-#include "gyroscopic.hpp"
+#include "anyphys/peers/gyroscopic.hpp"
 #include "native_world.hpp"
 
 namespace anyphys::native {
@@ -62,7 +62,7 @@ TEST(NativeGyroscopic, ImplicitSolveSatisfiesBackwardEuler) {
     const Vec3 inertia(1, 2, 3), w0(0.3, 5, -1);
     const Quat q(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
     const double h = 1.0 / 60;
-    const Vec3 w1 = q.conjugate() * solveImplicitGyroscopic(q * w0, q, inertia, h);
+    const Vec3 w1 = q.conjugate() * gyroscopic::solveImplicit(q * w0, q, inertia, h);
     const Vec3 residual = inertia.cwiseProduct(w1 - w0) + h * w1.cross(inertia.cwiseProduct(w1));
     EXPECT_LT(residual.norm(), 1e-12);
     // Backward Euler never adds kinetic energy.
@@ -72,7 +72,7 @@ TEST(NativeGyroscopic, ImplicitSolveSatisfiesBackwardEuler) {
 // The explicit term is Euler's: I dw/dt = -w x I w.
 TEST(NativeGyroscopic, ExplicitTermMatchesEulersEquations) {
     const Vec3 inertia(1, 2, 3), w(1, 2, 3);
-    const Vec3 alpha = gyroscopicAcceleration(w, Quat::Identity(), inertia);
+    const Vec3 alpha = gyroscopic::acceleration(w, Quat::Identity(), inertia);
     const Vec3 expected = -(w.cross(inertia.cwiseProduct(w))).cwiseQuotient(inertia);
     EXPECT_LT((alpha - expected).norm(), 1e-15);
 }
