@@ -52,7 +52,7 @@ public:
     void applyAngularImpulse(const Vec3& impulse);
 
     /// Escape hatch: the engine's own body object when the world's engine has a T, else
-    /// nullptr: dxBody (ODE's dBodyID) on ode, btRigidBody on bullet.
+    /// nullptr: dxBody (ODE's dBodyID) on ode, btRigidBody on bullet, b2Body on box2d.
     template <class T>
     T* native() const { return static_cast<T*>(nativeObject(typeid(T*))); }
     void* nativeObject(const std::type_info& pointerType) const;
