@@ -116,8 +116,9 @@ public:
 
     // ---- escape hatch -------------------------------------------------------------------
     /// The engine's own world object when this world runs on the engine that has a T, else
-    /// nullptr: dxWorld (ODE's dWorldID) on ode, btDiscreteDynamicsWorld on bullet, b2World on box2d. For engine
-    /// features the layer lacks; changes made through it bypass validation and events.
+    /// nullptr: dxWorld (ODE's dWorldID) on ode, btDiscreteDynamicsWorld on bullet, b2World on
+    /// box2d. For engine features the layer lacks; changes made through it bypass validation and
+    /// events.
     template <class T>
     T* native() { return static_cast<T*>(nativeObject(typeid(T*))); }
     void* nativeObject(const std::type_info& pointerType);
