@@ -10,22 +10,6 @@
 namespace anyphys::box2d::test {
 namespace {
 
-// Highest centre height after the first bounce (NaN if the body never rose again).
-double firstReboundApex(World& world, const Body& body, double maxTime) {
-    bool rising = false;
-    double apex = std::numeric_limits<double>::quiet_NaN();
-    while (world.time() < maxTime) {
-        world.step();
-        const double y = body.position().y(), vy = body.linearVelocity().y();
-        if (!rising && vy > 0) rising = true;
-        if (rising) {
-            if (!(y <= apex)) apex = y;
-            if (vy < 0) break;
-        }
-    }
-    return apex;
-}
-
 // A ball dropped 2 m on the ground rebounds to e^2 h. Impact at 6.3 m/s, far above the 1 m/s
 // restitution threshold. 5 %: the contract's bound. Box2D alone bounces the velocity its solver
 // finds, which on the discrete path lags the impact speed by parts of g dt (6 % low at e = 0.5);

@@ -11,11 +11,10 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
-
-constexpr double kG = 9.81;
 
 WorldSettings bulletSettings() {
     WorldSettings s;
@@ -23,20 +22,10 @@ WorldSettings bulletSettings() {
     return s;
 }
 
-BodyDef ground(const std::string& material = "") {
-    BodyDef def;
-    def.type = BodyType::Static;
-    def.shape = ShapeDef::plane(Vec3(0, 1, 0), 0.0);
-    def.material = material;
-    return def;
-}
+BodyDef ground(const std::string& material = "") { return groundDef(material); }
 
 BodyDef box(const Vec3& at, const std::string& material = "") {
-    BodyDef def;
-    def.shape = ShapeDef::box(Vec3(0.25, 0.25, 0.25));
-    def.position = at;
-    def.material = material;
-    return def;
+    return boxDef("", Vec3(0.25, 0.25, 0.25), at, material);
 }
 
 /// Friction of every contact point in the Bullet world (what the solver will use).

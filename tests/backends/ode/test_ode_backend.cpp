@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "contact_helpers.hpp"
 #include "ode_world.hpp"
 
 namespace anyphys {
 namespace {
 
-constexpr double kG = 9.81;
+using test::kG;
 
 WorldSettings odeSettings() {
     WorldSettings s;
@@ -20,21 +21,10 @@ WorldSettings odeSettings() {
     return s;
 }
 
-BodyDef ground(const std::string& material = "") {
-    BodyDef def;
-    def.name = "ground";
-    def.type = BodyType::Static;
-    def.shape = ShapeDef::plane(Vec3(0, 1, 0), 0.0);
-    def.material = material;
-    return def;
-}
+BodyDef ground(const std::string& material = "") { return test::groundDef(material); }
 
 BodyDef box(const Vec3& at, const std::string& material = "") {
-    BodyDef def;
-    def.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
-    def.position = at;
-    def.material = material;
-    return def;
+    return test::boxDef("", Vec3(0.5, 0.5, 0.5), at, material);
 }
 
 /// The backend's world behind a World, reached through the escape hatch (the peer registers
