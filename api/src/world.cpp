@@ -108,6 +108,12 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
     if (!settings_.substeps) settings_.substeps = caps.defaultSubsteps;
     if (!settings_.iterations) settings_.iterations = caps.defaultIterations;
     impl_->peer = impl_->backend->createWorld(settings_);
+    TaskSystem* tasks = settings_.taskSystem;
+    if (!tasks && settings_.workers > 1 && caps.parameters.contains("settings.workers")) {
+        impl_->pool = std::make_unique<ThreadPool>(settings_.workers);
+        tasks = impl_->pool.get();
+    }
+    if (tasks) impl_->peer->setTaskSystem(tasks);
     impl_->peer->setMaterialTable(buildMaterialTable());
     refreshEffects();
 }

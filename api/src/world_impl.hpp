@@ -7,6 +7,7 @@
 
 #include "anyphys/listeners/contact_tracker.hpp"
 #include "anyphys/peers/backend.hpp"
+#include "anyphys/thread_pool.hpp"
 #include "anyphys/world.hpp"
 
 namespace anyphys {
@@ -39,6 +40,7 @@ inline BodyId unpackId(std::uint64_t key) { return BodyId{std::uint32_t(key >> 3
 
 struct World::Impl {
     const Backend* backend = nullptr;
+    std::unique_ptr<ThreadPool> pool;  // the world's own workers (settings.workers > 1, no taskSystem); outlives the peer
     std::unique_ptr<WorldPeer> peer;  // declared before slots: body peers die first
     std::vector<Slot> slots;
     std::vector<std::uint32_t> freeSlots;

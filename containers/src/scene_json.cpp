@@ -175,7 +175,7 @@ WorldSettings readSettings(const json& v, const std::string& path) {
     checkKeys(v, path, {"backend", "gravity", "timeStep", "integrator", "planar", "solver", "substeps", "iterations", "effects",
                         "contactHertz", "contactDampingRatio", "contactPushMaxVelocity", "baumgarte",
                         "restitutionThreshold", "linearSlop", "speculativeDistance", "sleepLinearVelocity",
-                        "sleepAngularVelocity", "timeToSleep", "maxStepsPerUpdate", "capabilityPolicy",
+                        "sleepAngularVelocity", "timeToSleep", "maxStepsPerUpdate", "workers", "capabilityPolicy",
                         "backendOptions"});
     WorldSettings s;
     if (auto* x = find(v, "backend")) s.backend = readString(*x, join(path, "backend"));
@@ -189,6 +189,7 @@ WorldSettings readSettings(const json& v, const std::string& path) {
     for (const auto& [key, field] : settingsNumbers(s))
         if (auto* x = find(v, key)) *field = readNumber(*x, join(path, key));
     if (auto* x = find(v, "maxStepsPerUpdate")) s.maxStepsPerUpdate = readCount(*x, join(path, "maxStepsPerUpdate"));
+    if (auto* x = find(v, "workers")) s.workers = readCount(*x, join(path, "workers"));
     if (auto* x = find(v, "capabilityPolicy")) s.capabilityPolicy = readPolicy(*x, join(path, "capabilityPolicy"));
     if (auto* x = find(v, "effects")) {
         const std::string p = join(path, "effects");
@@ -514,6 +515,7 @@ ojson settingsJson(const WorldSettings& s) {
     if (s.effects) j["effects"] = s.effects->names();
     for (const auto& [key, field] : settingsNumbers(s)) j[std::string(key)] = *field;
     j["maxStepsPerUpdate"] = s.maxStepsPerUpdate;
+    if (s.workers != 1) j["workers"] = s.workers;
     for (const auto& [p, name] : kPolicyNames)
         if (p == s.capabilityPolicy) j["capabilityPolicy"] = std::string(name);
     j["backendOptions"] = ojson::object();

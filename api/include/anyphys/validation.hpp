@@ -27,6 +27,9 @@ inline std::string formatQuat(const Quat& q) {
     return os.str();
 }
 
+/// Largest WorldSettings::workers accepted.
+inline constexpr int kMaxWorkers = 256;
+
 namespace detail {
 inline void requireFinite(const std::string& field, double v) {
     if (!std::isfinite(v)) throw Error::invalid(field, v, "must be finite");
@@ -215,6 +218,8 @@ inline void validate(const WorldSettings& s, const std::string& path) {
     if (s.iterations && *s.iterations < 1) throw Error::invalid(path + ".iterations", *s.iterations, "must be >= 1");
     if (s.substeps && *s.substeps < 1) throw Error::invalid(path + ".substeps", *s.substeps, "must be >= 1");
     if (s.maxStepsPerUpdate < 1) throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate, "must be >= 1");
+    if (s.workers < 1 || s.workers > kMaxWorkers)
+        throw Error::invalid(path + ".workers", s.workers, "must be in [1, " + std::to_string(kMaxWorkers) + "]");
     for (const auto& [name, value] : s.backendOptions) requireFinite(path + ".backendOptions." + name, value);
     requirePositive(path + ".contactHertz", s.contactHertz);
     requireNonNegative(path + ".contactDampingRatio", s.contactDampingRatio);

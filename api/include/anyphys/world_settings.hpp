@@ -7,6 +7,7 @@
 #include "anyphys/effects.hpp"
 #include "anyphys/enums.hpp"
 #include "anyphys/math.hpp"
+#include "anyphys/task_system.hpp"
 
 namespace anyphys {
 
@@ -51,6 +52,14 @@ struct WorldSettings {
     double sleepAngularVelocity = 0.05;             ///< rad/s, slower-spinning bodies may sleep, >= 0; default 0.05
     double timeToSleep = 0.5;                       ///< s, an island at rest this long falls asleep, >= 0; default 0.5
     int maxStepsPerUpdate = 8;                      ///< cap on fixed steps one update() may take, >= 1; default 8
+    /// Threads that step the world, the calling thread included, in [1, 256]; default 1. With more
+    /// than one the world runs a ThreadPool of its own (unless `taskSystem` is set). Results do
+    /// not depend on the count. Backends whose engine steps on one thread ignore it (they do not
+    /// list the parameter "settings.workers").
+    int workers = 1;
+    /// The game's own scheduler, not owned: it must outlive the world. Default null. When set, the
+    /// world runs its parallel work on it and `workers` is ignored. Not saved in scene files.
+    TaskSystem* taskSystem = nullptr;
     CapabilityPolicy capabilityPolicy = CapabilityPolicy::Strict;  ///< default strict
     /// Backend-specific numeric options by name (e.g. "erp", "cfm" on ODE); each backend lists
     /// the ones it honours in its capabilities. Default: none.

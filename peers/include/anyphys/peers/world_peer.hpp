@@ -9,6 +9,7 @@
 #include "anyphys/listeners/events.hpp"
 #include "anyphys/peers/body_peer.hpp"
 #include "anyphys/peers/shape_data.hpp"
+#include "anyphys/task_system.hpp"
 
 namespace anyphys {
 
@@ -82,6 +83,11 @@ public:
 
     /// Advances by dt seconds (the layer guarantees dt > 0 and finite). `time` is the start time.
     virtual void step(double time, double dt) = 0;
+
+    /// Where to run parallel work from now on (not owned; outlives the peer, or is replaced
+    /// first). Null: step on the calling thread. Called after construction when the world has
+    /// more than one worker; a backend whose engine steps on one thread ignores it.
+    virtual void setTaskSystem(TaskSystem* tasks) { (void)tasks; }
 
     /// Pair materials; called before any body is created and whenever the library changes.
     virtual void setMaterialTable(const MaterialTable& table) = 0;

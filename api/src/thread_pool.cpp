@@ -1,0 +1,74 @@
+#include "anyphys/thread_pool.hpp"
+
+#include <algorithm>
+
+namespace anyphys {
+
+ThreadPool::ThreadPool(int workers) {
+    for (int w = 1; w < std::max(workers, 1); ++w) threads_.emplace_back([this, w] { workerLoop(w); });
+}
+
+ThreadPool::~ThreadPool() {
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    work_.notify_all();
+    for (std::thread& t : threads_) t.join();
+}
+
+void* ThreadPool::enqueue(int count, int minRange, RangeFn fn, void* context) {
+    if (count <= 0) return nullptr;
+    if (threads_.empty()) {
+        fn(0, count, 0, context);
+        return nullptr;
+    }
+    // About four ranges per worker balance uneven ranges without much queue traffic.
+    const int workers = workerCount();
+    const int size = std::max({minRange, 1, (count + 4 * workers - 1) / (4 * workers)});
+    {
+        std::lock_guard lock(mutex_);
+        Task& task = tasks_.emplace_back();
+        task.fn = fn;
+        task.context = context;
+        for (int begin = 0; begin < count; begin += size) {
+            queue_.push_back({&task, begin, std::min(count, begin + size)});
+            ++task.pending;
+        }
+        ++unfinishedTasks_;
+        work_.notify_all();
+        return &task;
+    }
+}
+
+bool ThreadPool::runOne(std::unique_lock<std::mutex>& lock, int worker) {
+    if (queue_.empty()) return false;
+    const Range range = queue_.front();
+    queue_.pop_front();
+    lock.unlock();
+    range.task->fn(range.begin, range.end, worker, range.task->context);
+    lock.lock();
+    if (--range.task->pending == 0) done_.notify_all();
+    return true;
+}
+
+void ThreadPool::finish(void* handle) {
+    if (!handle) return;
+    Task& task = *static_cast<Task*>(handle);
+    std::unique_lock lock(mutex_);
+    // Help while waiting: the calling thread is worker 0.
+    while (task.pending > 0)
+        if (!runOne(lock, 0)) done_.wait(lock, [&] { return task.pending == 0 || !queue_.empty(); });
+    if (--unfinishedTasks_ == 0) tasks_.clear();
+}
+
+void ThreadPool::workerLoop(int worker) {
+    std::unique_lock lock(mutex_);
+    while (true) {
+        work_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        if (stopping_) return;
+        runOne(lock, worker);
+    }
+}
+
+}  // namespace anyphys
