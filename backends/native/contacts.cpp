@@ -26,10 +26,10 @@ void warmStartFrom(const std::vector<ContactManifold>& old, ContactManifold& fre
         bool matched[4] = {false, false, false, false};
         const auto copy = [&](ContactPointState& to, int from) {
             to.normalImpulse = m.points[from].normalImpulse;
-            to.tangentImpulse[0] = m.points[from].tangentImpulse[0];
-            to.tangentImpulse[1] = m.points[from].tangentImpulse[1];
             taken[from] = true;
         };
+        fresh.frictionImpulse = m.frictionImpulse;
+        fresh.twistImpulse = m.twistImpulse;
         for (int i = 0; i < fresh.pointCount; ++i)
             for (int j = 0; j < m.pointCount && !matched[i]; ++j)
                 if (!taken[j] && m.points[j].geometry.id == fresh.points[i].geometry.id) {
@@ -53,6 +53,29 @@ void warmStartFrom(const std::vector<ContactManifold>& old, ContactManifold& fre
     }
 }
 
+// Planar fast path: the points of a box face come in pairs at z = +h and -h with the same x and
+// y. In a planar world they act as one constraint (no body can tilt about X or Y), and solving
+// both doubles the stiffness and the cost. One point per (x, y) is kept, at z = 0, the deeper
+// one's separation and the lower feature id (so warm starting matches step to step).
+void mergePlanarPoints(Manifold& m, double tolerance) {
+    int kept = 0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        ManifoldPoint p = m.points[i];
+        p.point.z() = 0.0;
+        int same = -1;
+        for (int k = 0; k < kept && same < 0; ++k)
+            if ((m.points[k].point - p.point).squaredNorm() <= tolerance * tolerance) same = k;
+        if (same < 0) {
+            m.points[kept++] = p;
+            continue;
+        }
+        ManifoldPoint& q = m.points[same];
+        q.separation = std::min(q.separation, p.separation);
+        q.id = std::min(q.id, p.id);
+    }
+    m.pointCount = kept;
+}
+
 }  // namespace
 
 void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies,
@@ -62,75 +85,125 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     if (ia == ib) return;
     const NativeBody &a = bodies[ia], &b = bodies[ib];
     if (!mayTouch(a, b)) return;
-    auto [it, inserted] = contacts_.try_emplace({keyA, keyB});
-    if (!inserted) return;
-    Contact& c = it->second;
+    std::uint32_t slot;
+    if (!free_.empty()) {
+        slot = free_.back();
+    } else {
+        slot = static_cast<std::uint32_t>(slots_.size());
+    }
+    if (!index_.try_emplace({keyA, keyB}, slot).second) return;  // already in contact
+    if (slot == slots_.size())
+        slots_.emplace_back();
+    else
+        free_.pop_back();
+    Contact& c = slots_[slot];
+    c.alive = true;
     c.bodyA = ia;
     c.bodyB = ib;
     c.shapeA = proxyShape(keyA);
     c.shapeB = proxyShape(keyB);
     c.trigger = a.trigger || b.trigger;
+    c.touching = false;
+    c.separated = false;
+    c.manifolds.clear();
     const ContactMaterial& m = materials.get(a.material, b.material);
     c.friction = m.friction;
     c.restitution = m.restitution;
 }
 
+void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
+                                    double speculativeDistance, double linearSlop, double dt, bool planar,
+                                    Scratch& scratch) const {
+    const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
+    if (!a.isActive() && !b.isActive()) return;  // at rest (asleep or static): keep what we had
+    if (!broadPhase.testOverlap(a.proxies[c.shapeA], b.proxies[c.shapeB])) {
+        c.separated = true;
+        return;
+    }
+    const Shape &sa = a.shapes[c.shapeA], &sb = b.shapes[c.shapeB];
+    const Transform xfA = shapeWorldPose(sa, a.pose()), xfB = shapeWorldPose(sb, b.pose());
+    if (c.trigger) {
+        c.touching = overlap(sa, xfA, sb, xfB);
+        c.manifolds.clear();
+        return;
+    }
+    scratch.found.clear();
+    const double closing = (b.state.linearVelocity - a.state.linearVelocity).norm() * dt;
+    collide(sa, xfA, sb, xfB, speculativeDistance + closing, scratch.found);
+    if (planar)
+        for (Manifold& m : scratch.found) mergePlanarPoints(m, 0.1 * linearSlop);
+    // The new manifolds replace the old in place (no allocation once the capacity is there);
+    // the old ones are kept aside for warm starting.
+    scratch.previous.assign(c.manifolds.begin(), c.manifolds.end());
+    c.manifolds.resize(scratch.found.size());
+    bool touching = false;
+    for (std::size_t k = 0; k < scratch.found.size(); ++k) {
+        const Manifold& m = scratch.found[k];
+        ContactManifold& cm = c.manifolds[k];
+        cm = ContactManifold{};
+        cm.normal = m.normal;
+        cm.key = m.key;
+        cm.pointCount = m.pointCount;
+        for (int i = 0; i < m.pointCount; ++i) {
+            cm.points[i].geometry = m.points[i];
+            touching = touching || m.points[i].separation < linearSlop;
+        }
+        warmStartFrom(scratch.previous, cm, speculativeDistance);
+    }
+    c.touching = touching;
+}
+
 void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& broadPhase, double speculativeDistance,
-                            double linearSlop, double dt, std::vector<std::uint32_t>& toWake) {
-    for (auto it = contacts_.begin(); it != contacts_.end();) {
-        Contact& c = it->second;
-        NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
-        const bool activeA = a.isActive(), activeB = b.isActive();
-        if (!activeA && !activeB) {  // at rest (asleep or static): keep what we had
-            ++it;
-            continue;
+                            double linearSlop, double dt, bool planar, std::vector<std::uint32_t>& toWake,
+                            TaskSystem* tasks) {
+    const int workers = tasks ? tasks->workerCount() : 1;
+    if (static_cast<int>(scratch_.size()) < workers) scratch_.resize(static_cast<std::size_t>(workers));
+    auto narrowPhase = [&](int begin, int end, int worker) {
+        Scratch& scratch = scratch_[static_cast<std::size_t>(worker)];
+        for (int i = begin; i < end; ++i) {
+            Contact& c = slots_[static_cast<std::size_t>(i)];
+            if (c.alive) collideContact(c, bodies, broadPhase, speculativeDistance, linearSlop, dt, planar, scratch);
         }
-        const int proxyA = a.proxies[c.shapeA], proxyB = b.proxies[c.shapeB];
-        if (!broadPhase.testOverlap(proxyA, proxyB)) {
-            it = contacts_.erase(it);
+    };
+    constexpr int kMinContactsPerRange = 64;
+    parallelFor(tasks, static_cast<int>(slots_.size()), kMinContactsPerRange, narrowPhase);
+
+    for (std::uint32_t slot = 0; slot < slots_.size(); ++slot) {
+        Contact& c = slots_[slot];
+        if (!c.alive) continue;
+        if (c.separated) {
+            destroy(slot);
             continue;
-        }
-        const Shape &sa = a.shapes[c.shapeA], &sb = b.shapes[c.shapeB];
-        const Transform xfA = shapeWorldPose(sa, a.pose()), xfB = shapeWorldPose(sb, b.pose());
-        if (c.trigger) {
-            c.touching = overlap(sa, xfA, sb, xfB);
-            c.manifolds.clear();
-        } else {
-            scratch_.clear();
-            const double closing = (b.state.linearVelocity - a.state.linearVelocity).norm() * dt;
-            collide(sa, xfA, sb, xfB, speculativeDistance + closing, scratch_);
-            std::vector<ContactManifold> fresh;
-            fresh.reserve(scratch_.size());
-            bool touching = false;
-            for (const Manifold& m : scratch_) {
-                ContactManifold cm;
-                cm.normal = m.normal;
-                cm.key = m.key;
-                cm.pointCount = m.pointCount;
-                for (int i = 0; i < m.pointCount; ++i) {
-                    cm.points[i].geometry = m.points[i];
-                    touching = touching || m.points[i].separation < linearSlop;
-                }
-                warmStartFrom(c.manifolds, cm, speculativeDistance);
-                fresh.push_back(cm);
-            }
-            c.manifolds = std::move(fresh);
-            c.touching = touching;
         }
         // A moving body about to hit a sleeping one wakes it (and so its island) as soon as
         // their manifold has points, speculative ones included: otherwise the solver would
         // treat the sleeper as immovable for the step of the impact.
-        if (!c.trigger && !c.manifolds.empty()) {
-            if (!a.awake && a.moves()) toWake.push_back(c.bodyA);
-            if (!b.awake && b.moves()) toWake.push_back(c.bodyB);
-        }
-        ++it;
+        if (c.trigger || c.manifolds.empty()) continue;
+        const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
+        if (!a.isActive() && !b.isActive()) continue;
+        if (!a.awake && a.moves()) toWake.push_back(c.bodyA);
+        if (!b.awake && b.moves()) toWake.push_back(c.bodyB);
     }
 }
 
+void ContactManager::destroy(std::uint32_t slot) {
+    Contact& c = slots_[slot];
+    index_.erase({proxyKey(c.bodyA, c.shapeA), proxyKey(c.bodyB, c.shapeB)});
+    c.alive = false;
+    c.manifolds.clear();
+    free_.push_back(slot);
+}
+
 void ContactManager::removeBody(std::uint32_t body) {
-    for (auto it = contacts_.begin(); it != contacts_.end();)
-        it = (it->second.bodyA == body || it->second.bodyB == body) ? contacts_.erase(it) : std::next(it);
+    for (std::uint32_t slot = 0; slot < slots_.size(); ++slot) {
+        const Contact& c = slots_[slot];
+        if (c.alive && (c.bodyA == body || c.bodyB == body)) destroy(slot);
+    }
+}
+
+void ContactManager::clear() {
+    for (std::uint32_t slot = 0; slot < slots_.size(); ++slot)
+        if (slots_[slot].alive) destroy(slot);
 }
 
 }  // namespace anyphys::native

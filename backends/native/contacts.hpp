@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "anyphys/peers/world_peer.hpp"
+#include "anyphys/task_system.hpp"
 #include "collision/broad_phase.hpp"
 #include "collision/shape.hpp"
 
@@ -14,36 +15,32 @@ namespace anyphys::native {
 
 struct NativeBody;
 
-/// A manifold point with the solver's data for it.
+/// A manifold point with the impulses the solver left on it.
 struct ContactPointState {
     ManifoldPoint geometry;
-    Vec3 anchorA = Vec3::Zero();   // point - centre of mass of A, world frame, at step start
-    Vec3 anchorB = Vec3::Zero();
-    double normalMass = 0.0;
-    double tangentMass[2] = {0.0, 0.0};
-    double normalImpulse = 0.0;    // accumulated, N s
-    double tangentImpulse[2] = {0.0, 0.0};
-    double maxNormalImpulse = 0.0;
-    double relativeVelocity = 0.0; // normal approach speed at step start (restitution)
-    double restitutionTarget = 0.0; // normal velocity the bounce aims for (see ContactSolver)
+    double normalImpulse = 0.0;    // N s, accumulated in the last substep: the next step's warm start
+    double stepImpulse = 0.0;      // N s, pushed through this point over the whole last step (events)
 };
 
 struct ContactManifold {
     Vec3 normal = Vec3::Zero();    // A -> B
-    Vec3 tangent[2] = {Vec3::Zero(), Vec3::Zero()};
     std::uint32_t key = 0;
     int pointCount = 0;
     ContactPointState points[4];
+    Vec3 frictionImpulse = Vec3::Zero();  // N s, world frame, at the friction centre (warm start)
+    double twistImpulse = 0.0;            // N m s, about the normal (warm start)
 };
 
 struct Contact {
     std::uint32_t bodyA = 0, bodyB = 0;
     int shapeA = 0, shapeB = 0;
+    bool alive = false;             // false while the slot is free
     bool trigger = false;
     bool touching = false;          // some point within linearSlop (or overlapping, for triggers)
+    bool separated = false;         // set by the narrow phase: fat bounds apart, destroy the contact
     double friction = 0.0;
     double restitution = 0.0;
-    std::vector<ContactManifold> manifolds;
+    std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
 };
 
 /// Broad-phase proxy key of a body's shape.
@@ -51,32 +48,58 @@ inline std::uint64_t proxyKey(std::uint32_t body, int shape) { return (std::uint
 inline std::uint32_t proxyBody(std::uint64_t key) { return std::uint32_t(key >> 20); }
 inline int proxyShape(std::uint64_t key) { return int(key & ((1u << 20) - 1)); }
 
+/// Contacts live in slots of one array, visited in slot order; freed slots are reused last
+/// freed first. So the order in which constraints are solved depends only on the sequence of
+/// operations, never on hashing: the same run gives the same bits with any standard library.
 class ContactManager {
 public:
+    /// A broad-phase pair: creates the contact if the bodies may touch at all.
+    void addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies, const MaterialTable& materials);
+    /// Runs the narrow phase on every contact with an awake moving body (on the workers of
+    /// `tasks`, if any), then, in slot order, destroys contacts whose fat bounds separated and
+    /// appends to `toWake` the sleeping bodies that an awake body is about to touch. The
+    /// speculative margin of a pair grows with how fast the bodies approach (relative speed x
+    /// dt), so an impact in the next step always has a contact to stop it.
+    /// In a planar world (`planar`) points that differ only in Z are merged: the plane holds the
+    /// bodies, so they would be the same constraint twice.
+    void update(std::vector<NativeBody>& bodies, const BroadPhase& broadPhase, double speculativeDistance,
+                double linearSlop, double dt, bool planar, std::vector<std::uint32_t>& toWake, TaskSystem* tasks);
+    void removeBody(std::uint32_t body);
+    void clear();
+
+    /// Calls fn(contact) for every live contact, in slot order.
+    template <class Fn>
+    void forEach(Fn&& fn) {
+        for (Contact& c : slots_)
+            if (c.alive) fn(c);
+    }
+    template <class Fn>
+    void forEach(Fn&& fn) const {
+        for (const Contact& c : slots_)
+            if (c.alive) fn(c);
+    }
+    std::size_t size() const { return index_.size(); }
+
+private:
     struct PairHash {
         std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& k) const noexcept {
             return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ull ^ k.second);
         }
     };
-    using Map = std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, Contact, PairHash>;
+    struct Scratch {  // one per worker
+        std::vector<Manifold> found;
+        std::vector<ContactManifold> previous;
+    };
 
-    /// A broad-phase pair: creates the contact if the bodies may touch at all.
-    void addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies, const MaterialTable& materials);
-    /// Runs the narrow phase on every contact with an awake moving body, drops contacts whose
-    /// fat bounds separated. Returns the bodies that began touching an awake body while asleep.
-    /// The speculative margin of a pair grows with how fast the bodies approach (relative speed
-    /// x dt), so an impact in the next step always has a contact to stop it.
-    void update(std::vector<NativeBody>& bodies, const BroadPhase& broadPhase, double speculativeDistance,
-                double linearSlop, double dt, std::vector<std::uint32_t>& toWake);
-    void removeBody(std::uint32_t body);
-    void clear() { contacts_.clear(); }
+    void destroy(std::uint32_t slot);
+    void collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
+                        double speculativeDistance, double linearSlop, double dt, bool planar, Scratch& scratch) const;
 
-    Map& contacts() { return contacts_; }
-    const Map& contacts() const { return contacts_; }
-
-private:
-    Map contacts_;
-    std::vector<Manifold> scratch_;
+    std::vector<Contact> slots_;
+    std::vector<std::uint32_t> free_;
+    // Finds a pair's slot. Only looked up, never iterated.
+    std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::uint32_t, PairHash> index_;
+    std::vector<Scratch> scratch_;
 };
 
 }  // namespace anyphys::native

@@ -35,7 +35,7 @@ Backend makeNativeBackend() {
                        "settings.solver", "settings.iterations", "settings.contactHertz", "settings.contactDampingRatio",
                        "settings.contactPushMaxVelocity", "settings.baumgarte", "settings.restitutionThreshold",
                        "settings.linearSlop", "settings.speculativeDistance", "settings.sleepLinearVelocity",
-                       "settings.sleepAngularVelocity", "settings.timeToSleep"};
+                       "settings.sleepAngularVelocity", "settings.timeToSleep", "settings.workers"};
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
     };

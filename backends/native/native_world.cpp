@@ -119,9 +119,10 @@ void NativeWorld::destroyBody(BodyPeer& peer) {
     const std::uint32_t index = static_cast<NativeBodyPeer&>(peer).index();
     NativeBody& body = bodies_[index];
     // Bodies resting on this one must not hang in the air.
-    for (const auto& [key, contact] : contacts_.contacts())
+    contacts_.forEach([&](const Contact& contact) {
         if (contact.touching && (contact.bodyA == index || contact.bodyB == index))
             wakeBody(contact.bodyA == index ? contact.bodyB : contact.bodyA);
+    });
     contacts_.removeBody(index);
     for (int proxy : body.proxies) broadPhase_.destroyProxy(proxy);
     if (body.sleepingIsland >= 0) {
@@ -146,11 +147,11 @@ void NativeWorld::setForceHook(ForceHook hook) {
 
 void NativeWorld::setMaterialTable(const MaterialTable& table) {
     materials_ = table;
-    for (auto& [key, c] : contacts_.contacts()) {
+    contacts_.forEach([&](Contact& c) {
         const ContactMaterial& m = materials_.get(bodies_[c.bodyA].material, bodies_[c.bodyB].material);
         c.friction = m.friction;
         c.restitution = m.restitution;
-    }
+    });
 }
 
 void NativeWorld::rebuildPipelineIfNeeded() {
@@ -266,9 +267,10 @@ void NativeWorld::bodyTeleported(std::uint32_t index) {
         for (Shape& s : body.shapes)
             if (s.type == ShapeType::Plane) placePlane(s, body.pose());
         // Contacts with this body must be re-evaluated: wake whatever touches it.
-        for (const auto& [key, contact] : contacts_.contacts())
+        contacts_.forEach([&](const Contact& contact) {
             if (contact.bodyA == index || contact.bodyB == index)
                 wakeBody(contact.bodyA == index ? contact.bodyB : contact.bodyA);
+        });
     } else {
         wakeBody(index);
     }
@@ -277,20 +279,21 @@ void NativeWorld::bodyTeleported(std::uint32_t index) {
 
 void NativeWorld::collectContacts(std::vector<PeerContact>& out) {
     if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
-    for (const auto& [key, c] : contacts_.contacts()) {
+    contacts_.forEach([&](const Contact& c) {
         const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
-        if (!a.isActive() && !b.isActive()) continue;  // asleep: the layer keeps the pair
+        if (!a.isActive() && !b.isActive()) return;  // asleep: the layer keeps the pair
         if (c.trigger) {
             if (c.touching) out.push_back({a.userData, b.userData, true, Vec3::Zero(), {}});
-            continue;
+            return;
         }
-        if (c.manifolds.empty()) continue;
+        if (c.manifolds.empty()) return;
         PeerContact pc{a.userData, b.userData, false, c.manifolds.front().normal, {}};
+        // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
         for (const ContactManifold& m : c.manifolds)
             for (int i = 0; i < m.pointCount; ++i)
-                pc.points.push_back({m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].normalImpulse});
+                pc.points.push_back({m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].stepImpulse});
         out.push_back(std::move(pc));
-    }
+    });
 }
 
 std::vector<PeerRayHit> NativeWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,

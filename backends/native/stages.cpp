@@ -188,7 +188,7 @@ public:
     bool needed(const NativeWorld& world) const override { return hasContacts(world); }
     void run(NativeWorld& world, const StepInfo& step) override {
         if (!world.anyActive()) {
-            world.contactSolver().clear();
+            world.solver().clear();
             return;
         }
         auto& bodies = world.bodies();
@@ -199,9 +199,10 @@ public:
         });
         toWake_.clear();
         const WorldSettings& s = world.settings();
-        world.contactManager().update(bodies, world.broadPhase(), s.speculativeDistance, s.linearSlop, step.dt, toWake_);
+        world.contactManager().update(bodies, world.broadPhase(), s.speculativeDistance, s.linearSlop, step.dt, s.planar,
+                                      toWake_, world.taskSystem());
         for (std::uint32_t i : toWake_) world.wakeBody(i);
-        world.contactSolver().prepare(world);
+        world.solver().collect(world);
     }
 
 private:
@@ -212,7 +213,7 @@ class SolveContactsStage final : public Stage {
 public:
     std::string_view name() const override { return "solve_contacts"; }
     bool needed(const NativeWorld& world) const override { return hasContacts(world); }
-    void run(NativeWorld& world, const StepInfo& step) override { world.contactSolver().solve(world, step); }
+    void run(NativeWorld& world, const StepInfo& step) override { world.solver().solve(world, step); }
 };
 
 // Time of impact against static geometry for bodies that moved far for their size this step:
@@ -276,15 +277,15 @@ public:
                                  b.state.angularVelocity.norm() < s.sleepAngularVelocity;
             b.sleepTime = resting ? b.sleepTime + step.dt : 0.0;
         }
-        for (const auto& [key, c] : world.contactManager().contacts()) {
-            if (c.trigger || !c.touching) continue;
+        world.contactManager().forEach([&](const Contact& c) {
+            if (c.trigger || !c.touching) return;
             NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
             const bool da = a.isActive() && a.isDynamic(), db = b.isActive() && b.isDynamic();
             if (da && db) unite(c.bodyA, c.bodyB);
             // A moving kinematic body keeps what it touches awake.
             if (da && isMovingKinematic(b)) a.sleepTime = 0.0;
             if (db && isMovingKinematic(a)) b.sleepTime = 0.0;
-        }
+        });
         islandRest_.assign(bodies.size(), std::numeric_limits<double>::infinity());
         for (std::uint32_t i = 0; i < bodies.size(); ++i)
             if (bodies[i].isActive() && bodies[i].isDynamic())

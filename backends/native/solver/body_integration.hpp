@@ -1,0 +1,18 @@
+#pragma once
+// The solver's integration of its bodies within a substep (semi-implicit Euler, as every
+// sequential-impulse solver): velocities first (forces, gyroscopic term, damping), then
+// positions from the new velocities. Each works on a range of solver bodies, so workers can
+// share the bodies out.
+#include "solver/solver_body.hpp"
+
+namespace anyphys::native {
+
+/// v += h a, w += h alpha, gyroscopic term, damping (exact factor exp(-c h)). Dynamic bodies only.
+void integrateVelocities(const SolverBody* bodies, SolverState* states, int begin, int end, double h);
+/// dp += h v; dq = exp(h w / 2) dq. Dynamic and kinematic bodies.
+void integratePositions(SolverState* states, int begin, int end, double h);
+
+/// Rotation by the rotation vector r (angle |r| about r / |r|), exact for every angle.
+Quat rotationFromVector(const Vec3& r);
+
+}  // namespace anyphys::native

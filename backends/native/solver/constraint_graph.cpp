@@ -1,0 +1,53 @@
+#include "solver/constraint_graph.hpp"
+
+#include <array>
+#include <bit>
+
+namespace anyphys::native {
+
+void ConstraintGraph::build(std::span<const ContactLane> constraints, std::span<const SolverBody> bodies) {
+    used_.assign(bodies.size(), 0u);
+    colorOf_.resize(constraints.size());
+    std::array<int, kMaxColors + 1> count{};
+    static_assert(kMaxColors == 32);
+    // Colours open to constraints between two dynamic bodies; the top ones stay free for
+    // constraints with static bodies.
+    constexpr std::uint32_t kDynamicColors = (1u << 28) - 1;
+    const auto takesImpulses = [&](std::int32_t body) { return body != kStaticBody && bodies[body].dynamic; };
+    for (std::size_t i = 0; i < constraints.size(); ++i) {
+        const ContactLane& c = constraints[i];
+        const bool a = takesImpulses(c.bodyA), b = takesImpulses(c.bodyB);
+        const std::uint32_t used = (a ? used_[c.bodyA] : 0u) | (b ? used_[c.bodyB] : 0u);
+        int color = kMaxColors;
+        if (a && b) {
+            const std::uint32_t free = ~used & kDynamicColors;
+            if (free != 0) color = std::countr_zero(free);
+        } else {
+            // A constraint on one dynamic body (against the ground, say) takes the highest free
+            // colour, so it is solved after the constraints between moving bodies: the support
+            // has the last word in every pass, as in Box2D v3.
+            const std::uint32_t free = ~used & ~1u;
+            if (free != 0) color = 31 - std::countl_zero(free);
+        }
+        if (color < kMaxColors) {
+            if (a) used_[c.bodyA] |= 1u << color;
+            if (b) used_[c.bodyB] |= 1u << color;
+        }
+        colorOf_[i] = static_cast<std::int8_t>(color);
+        ++count[color];
+    }
+    // Counting sort by colour keeps the constraint order within each colour.
+    std::array<int, kMaxColors + 1> start{};
+    colors_.clear();
+    int next = 0;
+    for (int color = 0; color <= kMaxColors; ++color) {
+        start[color] = next;
+        if (count[color] > 0) colors_.push_back({next, count[color]});
+        next += count[color];
+    }
+    hasOverflow_ = count[kMaxColors] > 0;
+    order_.resize(constraints.size());
+    for (std::size_t i = 0; i < constraints.size(); ++i) order_[start[colorOf_[i]]++] = static_cast<int>(i);
+}
+
+}  // namespace anyphys::native

@@ -1,0 +1,405 @@
+#include "solver/contact_constraint.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "contacts.hpp"
+
+namespace anyphys::native {
+
+using namespace wide;
+
+Softness makeSoftness(double hertz, double zeta, double h) {
+    if (hertz == 0.0) return {};
+    const double omega = 2.0 * std::numbers::pi * hertz;
+    const double a1 = 2.0 * zeta + h * omega;
+    const double a2 = h * omega * a1;
+    const double a3 = 1.0 / (1.0 + a2);
+    return {omega / a1, a2 * a3, a3};
+}
+
+namespace {
+
+// ---- preparing one lane (scalar) ---------------------------------------------------------------
+
+Vec3 perpendicular(const Vec3& n) {
+    // In a planar world the normal lies in XY: this picks the in-plane tangent first, the
+    // locked Z direction second.
+    const Vec3 axis = std::abs(n.z()) < 0.57735 ? Vec3::UnitZ() : Vec3::UnitX();
+    return axis.cross(n).normalized();
+}
+
+/// The normal velocity after a bounce of restitution e, from the stored approach velocity `vn`.
+/// Restitution acts at the instant of impact: under a constant relative acceleration `an` along
+/// the normal the true velocity is vn - an * offset, it reverses to -e times that, and is stored
+/// back with the same offset. Semi-implicit Euler's velocity lags its position by half a step
+/// (offset -h/2), explicit Euler's leads (+h/2); exact flights have offset 0.
+double bounceVelocity(double e, double vn, double an, double offset) { return -e * (vn - an * offset) + an * offset; }
+
+// Inverse of a symmetric 2x2 matrix; a direction with no mass (a planar body's Z) gets none.
+void invertTangentMass(double k11, double k12, double k22, double out[3]) {
+    const double det = k11 * k22 - k12 * k12;
+    if (det > 1e-12 * k11 * k22 && det > 0.0) {
+        const double inv = 1.0 / det;
+        out[0] = inv * k22;
+        out[1] = -inv * k12;
+        out[2] = inv * k11;
+        return;
+    }
+    out[0] = k11 > 0.0 ? 1.0 / k11 : 0.0;
+    out[1] = 0.0;
+    out[2] = k22 > 0.0 ? 1.0 / k22 : 0.0;
+}
+
+void setLane(Vec3W& to, int lane, const Vec3& v) {
+    to.x[lane] = v.x();
+    to.y[lane] = v.y();
+    to.z[lane] = v.z();
+}
+
+void setLane(SymMat3W& to, int lane, const Mat3& m) {
+    to.xx[lane] = m(0, 0);
+    to.xy[lane] = m(0, 1);
+    to.xz[lane] = m(0, 2);
+    to.yy[lane] = m(1, 1);
+    to.yz[lane] = m(1, 2);
+    to.zz[lane] = m(2, 2);
+}
+
+struct BodyView {
+    Vec3 invMass = Vec3::Zero();
+    Mat3 invI = Mat3::Zero();
+    Vec3 center = Vec3::Zero();
+    Vec3 v = Vec3::Zero(), w = Vec3::Zero();
+    Vec3 acceleration = Vec3::Zero();
+    bool moves = false;  // has a solver state (dynamic or kinematic)
+};
+
+BodyView viewOf(std::int32_t index, const SolverBody* bodies, const SolverState* states) {
+    BodyView view;
+    if (index == kStaticBody) return view;
+    const SolverBody& b = bodies[index];
+    const SolverState& s = states[index];
+    view.invMass = b.invMass;
+    view.invI = b.invInertia;
+    view.center = b.position0;
+    view.v = Vec3(s.v[0], s.v[1], s.v[2]);
+    view.w = Vec3(s.w[0], s.w[1], s.w[2]);
+    view.acceleration = b.linearAcceleration;
+    view.moves = true;
+    return view;
+}
+
+double effectiveMass(const BodyView& a, const Vec3& rA, const BodyView& b, const Vec3& rB, const Vec3& dir) {
+    const Vec3 ra = rA.cross(dir), rb = rB.cross(dir);
+    return dir.dot(a.invMass.cwiseProduct(dir)) + dir.dot(b.invMass.cwiseProduct(dir)) + ra.dot(a.invI * ra) +
+           rb.dot(b.invI * rb);
+}
+
+void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
+                 const ContactPrepareParams& params) {
+    ContactManifold& m = *in.manifold;
+    const BodyView a = viewOf(in.bodyA, bodies, states), b = viewOf(in.bodyB, bodies, states);
+    wc.bodyA[lane] = in.bodyA;
+    wc.bodyB[lane] = in.bodyB;
+    wc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
+    wc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
+    wc.manifold[lane] = &m;
+    wc.pointCount = std::max(wc.pointCount, m.pointCount);
+
+    setLane(wc.invMassA, lane, a.invMass);
+    setLane(wc.invMassB, lane, b.invMass);
+    setLane(wc.invIA, lane, a.invI);
+    setLane(wc.invIB, lane, b.invI);
+    const Vec3 n = m.normal;
+    const Vec3 t1 = perpendicular(n), t2 = n.cross(t1);
+    setLane(wc.normal, lane, n);
+    setLane(wc.tangent1, lane, t1);
+    setLane(wc.tangent2, lane, t2);
+    wc.friction[lane] = in.friction;
+    wc.restitution[lane] = in.restitution;
+    const bool againstStatic = a.invMass.isZero(0) || b.invMass.isZero(0);
+    const Softness& soft = againstStatic ? params.staticSoftness : params.dynamicSoftness;
+    wc.biasRate[lane] = soft.biasRate;
+    wc.massScale[lane] = soft.massScale;
+    wc.impulseScale[lane] = soft.impulseScale;
+
+    const double normalAcceleration = n.dot(b.acceleration - a.acceleration);
+    const double invTau = params.speculativeDistance > 0.0 ? 1.0 / params.speculativeDistance : 0.0;
+    Vec3 center = Vec3::Zero();
+    double totalWeight = 0.0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        const ContactPointState& mp = m.points[i];
+        WideContactPoint& cp = wc.points[i];
+        const Vec3 p = mp.geometry.point;
+        // A static body's anchor is the point itself (zero offset): it never moves or turns.
+        const Vec3 rA = a.moves ? Vec3(p - a.center) : Vec3::Zero();
+        const Vec3 rB = b.moves ? Vec3(p - b.center) : Vec3::Zero();
+        setLane(cp.anchorA, lane, rA);
+        setLane(cp.anchorB, lane, rB);
+        const double s = mp.geometry.separation;
+        cp.baseSeparation[lane] = s - n.dot(rB - rA);
+        const double k = effectiveMass(a, rA, b, rB, n);
+        cp.normalMass[lane] = k > 0.0 ? 1.0 / k : 0.0;
+        cp.normalImpulse[lane] = params.warmStart ? mp.normalImpulse : 0.0;
+        cp.stepImpulse[lane] = 0.0;
+        cp.maxImpulse[lane] = 0.0;
+        const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
+        cp.relativeVelocity[lane] = vn;
+        cp.restitutionTarget[lane] = bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset);
+        // Points well beyond the speculative distance only matter for fast approach; they
+        // must not pull the friction centre around as they come and go.
+        const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
+        center += weight * p;
+        totalWeight += weight;
+    }
+    center /= totalWeight;
+    for (int i = 0; i < m.pointCount; ++i) wc.points[i].leverArm[lane] = (m.points[i].geometry.point - center).norm();
+    const Vec3 cA = a.moves ? Vec3(center - a.center) : Vec3::Zero();
+    const Vec3 cB = b.moves ? Vec3(center - b.center) : Vec3::Zero();
+    setLane(wc.centerA, lane, cA);
+    setLane(wc.centerB, lane, cB);
+
+    const Vec3 a1 = cA.cross(t1), a2 = cA.cross(t2), b1 = cB.cross(t1), b2 = cB.cross(t2);
+    const double k11 = effectiveMass(a, cA, b, cB, t1);
+    const double k22 = effectiveMass(a, cA, b, cB, t2);
+    const double k12 = t1.dot(a.invMass.cwiseProduct(t2)) + t1.dot(b.invMass.cwiseProduct(t2)) + a1.dot(a.invI * a2) +
+                       b1.dot(b.invI * b2);
+    double tangentMass[3];
+    invertTangentMass(k11, k12, k22, tangentMass);
+    wc.tangentMass.xx[lane] = tangentMass[0];
+    wc.tangentMass.xy[lane] = tangentMass[1];
+    wc.tangentMass.yy[lane] = tangentMass[2];
+    const double kt = n.dot((a.invI + b.invI) * n);
+    wc.twistMass[lane] = kt > 0.0 ? 1.0 / kt : 0.0;
+    const double warm = params.warmStart ? 1.0 : 0.0;
+    wc.frictionImpulse1[lane] = warm * t1.dot(m.frictionImpulse);
+    wc.frictionImpulse2[lane] = warm * t2.dot(m.frictionImpulse);
+    wc.twistImpulse[lane] = warm * m.twistImpulse;
+}
+
+// ---- gathering the lanes' bodies ---------------------------------------------------------------
+
+struct BodyW {
+    Vec3W v, w, dp;
+    QuatW dq;
+};
+
+BodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
+    BodyW b{};
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (index[lane] == kStaticBody) continue;
+        const SolverState& s = states[index[lane]];
+        b.v.x[lane] = s.v[0];
+        b.v.y[lane] = s.v[1];
+        b.v.z[lane] = s.v[2];
+        b.w.x[lane] = s.w[0];
+        b.w.y[lane] = s.w[1];
+        b.w.z[lane] = s.w[2];
+    }
+    return b;
+}
+
+BodyW gatherMotion(const SolverState* states, const std::int32_t* index) {
+    BodyW b = gatherVelocities(states, index);
+    b.dq.w = splat(1.0);
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (index[lane] == kStaticBody) continue;
+        const SolverState& s = states[index[lane]];
+        b.dp.x[lane] = s.dp[0];
+        b.dp.y[lane] = s.dp[1];
+        b.dp.z[lane] = s.dp[2];
+        b.dq.w[lane] = s.dq[0];
+        b.dq.x[lane] = s.dq[1];
+        b.dq.y[lane] = s.dq[2];
+        b.dq.z[lane] = s.dq[3];
+    }
+    return b;
+}
+
+void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write, const BodyW& b) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (!write[lane]) continue;
+        SolverState& s = states[index[lane]];
+        s.v[0] = b.v.x[lane];
+        s.v[1] = b.v.y[lane];
+        s.v[2] = b.v.z[lane];
+        s.w[0] = b.w.x[lane];
+        s.w[1] = b.w.y[lane];
+        s.w[2] = b.w.z[lane];
+    }
+}
+
+// Applies impulse P at anchors rA (on A, negated) and rB.
+inline void applyImpulse(BodyW& a, BodyW& b, const WideContact& c, const Vec3W& rA, const Vec3W& rB, const Vec3W& P) {
+    a.v = a.v - scale(c.invMassA, P);
+    a.w = a.w - c.invIA * cross(rA, P);
+    b.v = b.v + scale(c.invMassB, P);
+    b.w = b.w + c.invIB * cross(rB, P);
+}
+
+inline Vec3W relativeVelocity(const BodyW& a, const BodyW& b, const Vec3W& rA, const Vec3W& rB) {
+    return (b.v + cross(b.w, rB)) - (a.v + cross(a.w, rA));
+}
+
+// Central friction (two tangents in a circle of mu * sum of normal impulses) and twist friction
+// (in mu * sum of lever arm x normal impulse).
+void solveFriction(WideContact& c, BodyW& a, BodyW& b) {
+    FloatW totalNormal = zero(), twistLimit = zero();
+    for (int j = 0; j < c.pointCount; ++j) {
+        totalNormal += c.points[j].normalImpulse;
+        twistLimit += c.points[j].leverArm * c.points[j].normalImpulse;
+    }
+    {
+        const FloatW twistSpeed = dot(c.normal, b.w - a.w);
+        const FloatW maxTwist = c.friction * twistLimit;
+        const FloatW old = c.twistImpulse;
+        c.twistImpulse = clamp(old - c.twistMass * twistSpeed, -maxTwist, maxTwist);
+        const Vec3W L = (c.twistImpulse - old) * c.normal;
+        a.w = a.w - c.invIA * L;
+        b.w = b.w + c.invIB * L;
+    }
+    const Vec3W vr = relativeVelocity(a, b, c.centerA, c.centerB);
+    const FloatW vt1 = dot(vr, c.tangent1), vt2 = dot(vr, c.tangent2);
+    FloatW f1 = c.frictionImpulse1 - (c.tangentMass.xx * vt1 + c.tangentMass.xy * vt2);
+    FloatW f2 = c.frictionImpulse2 - (c.tangentMass.xy * vt1 + c.tangentMass.yy * vt2);
+    const FloatW maxImpulse = c.friction * totalNormal;
+    const FloatW lengthSquared = f1 * f1 + f2 * f2;
+    const MaskW outside = lengthSquared > maxImpulse * maxImpulse;
+    // Outside the circle lengthSquared > 0, so the division is safe where it is used.
+    const FloatW factor = select(outside, maxImpulse / sqrt(select(outside, lengthSquared, splat(1.0))), splat(1.0));
+    f1 *= factor;
+    f2 *= factor;
+    const Vec3W P = (f1 - c.frictionImpulse1) * c.tangent1 + (f2 - c.frictionImpulse2) * c.tangent2;
+    c.frictionImpulse1 = f1;
+    c.frictionImpulse2 = f2;
+    applyImpulse(a, b, c, c.centerA, c.centerB, P);
+}
+
+}  // namespace
+
+void prepareContacts(WideContact& wc, const ContactLane* lanes, int count, const SolverBody* bodies,
+                     const SolverState* states, const ContactPrepareParams& params) {
+    wc = WideContact{};
+    for (int lane = 0; lane < kLanes; ++lane) {
+        wc.bodyA[lane] = wc.bodyB[lane] = kStaticBody;
+        wc.massScale[lane] = 1.0;
+    }
+    for (int lane = 0; lane < count; ++lane) prepareLane(wc, lane, lanes[lane], bodies, states, params);
+}
+
+void warmStartContacts(WideContact* contacts, int count, SolverState* states) {
+    for (int i = 0; i < count; ++i) {
+        WideContact& c = contacts[i];
+        BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        for (int j = 0; j < c.pointCount; ++j) {
+            const WideContactPoint& cp = c.points[j];
+            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, cp.normalImpulse * c.normal);
+        }
+        applyImpulse(a, b, c, c.centerA, c.centerB, c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * c.tangent2);
+        const Vec3W L = c.twistImpulse * c.normal;
+        a.w = a.w - c.invIA * L;
+        b.w = b.w + c.invIB * L;
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+void solveContacts(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params, bool useBias,
+                   bool endOfSubstep) {
+    const FloatW invH = splat(params.invH);
+    const FloatW maxPush = splat(-params.pushMaxVelocity);
+    const FloatW one = splat(1.0);
+    const FloatW baumgarte = splat(params.baumgarte * params.invH);
+    const FloatW slop = splat(params.linearSlop);
+    for (int i = 0; i < count; ++i) {
+        WideContact& c = contacts[i];
+        BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
+        // Friction first, against the last normal impulses; non-penetration matters more and so
+        // has the last word in each pass.
+        if (params.friction) solveFriction(c, a, b);
+
+        FloatW biasRate = zero(), massScale = one, impulseScale = zero();
+        if (useBias && params.soft) {
+            biasRate = c.biasRate;
+            massScale = c.massScale;
+            impulseScale = c.impulseScale;
+        }
+        const Vec3W dp = b.dp - a.dp;
+        for (int j = 0; j < c.pointCount; ++j) {
+            WideContactPoint& cp = c.points[j];
+            // Current separation from the bodies' motion since the step began (no new collision pass).
+            const Vec3W moved = dp + rotate(b.dq, cp.anchorB) - rotate(a.dq, cp.anchorA);
+            const FloatW s = dot(c.normal, moved) + cp.baseSeparation;
+            const MaskW speculative = s > zero();
+            FloatW bias;
+            if (!useBias) {
+                bias = zero();
+            } else if (params.soft) {
+                bias = max(biasRate * s, maxPush);
+            } else {  // Baumgarte: a fraction of the overlap beyond linearSlop per substep
+                bias = max(baumgarte * min(zero(), s + slop), maxPush);
+            }
+            // A speculative point allows the approach to close exactly the gap this substep.
+            bias = select(speculative, s * invH, bias);
+            const FloatW pointMassScale = select(speculative, one, massScale);
+            const FloatW pointImpulseScale = select(speculative, zero(), impulseScale);
+
+            const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
+            const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
+            const FloatW total = max(cp.normalImpulse + impulse, zero());
+            const FloatW applied = total - cp.normalImpulse;
+            cp.normalImpulse = total;
+            cp.maxImpulse = max(cp.maxImpulse, total);
+            if (endOfSubstep) cp.stepImpulse += total;
+            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
+        }
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+void applyRestitution(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+    const FloatW threshold = splat(-params.restitutionThreshold);
+    for (int i = 0; i < count; ++i) {
+        WideContact& c = contacts[i];
+        if (allZero(c.restitution)) continue;
+        BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        for (int j = 0; j < c.pointCount; ++j) {
+            WideContactPoint& cp = c.points[j];
+            // Only where the approach was fast and the contact pushed (not speculative points
+            // that never closed).
+            const MaskW bounces = (cp.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
+            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cp.restitutionTarget), zero());
+            const FloatW total = max(cp.normalImpulse + impulse, zero());
+            const FloatW applied = total - cp.normalImpulse;
+            cp.normalImpulse = total;
+            cp.stepImpulse += applied;
+            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
+        }
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+void storeImpulses(const WideContact* contacts, int count) {
+    for (int i = 0; i < count; ++i) {
+        const WideContact& c = contacts[i];
+        for (int lane = 0; lane < kLanes; ++lane) {
+            ContactManifold* m = c.manifold[lane];
+            if (!m) continue;
+            for (int j = 0; j < m->pointCount; ++j) {
+                m->points[j].normalImpulse = c.points[j].normalImpulse[lane];
+                m->points[j].stepImpulse = c.points[j].stepImpulse[lane];
+            }
+            const Vec3 t1(c.tangent1.x[lane], c.tangent1.y[lane], c.tangent1.z[lane]);
+            const Vec3 t2(c.tangent2.x[lane], c.tangent2.y[lane], c.tangent2.z[lane]);
+            m->frictionImpulse = c.frictionImpulse1[lane] * t1 + c.frictionImpulse2[lane] * t2;
+            m->twistImpulse = c.twistImpulse[lane];
+        }
+    }
+}
+
+}  // namespace anyphys::native

@@ -1,0 +1,102 @@
+#pragma once
+// Contact constraints in the wide layout: each lane of a WideContact is one manifold (up to four
+// points sharing a normal), and the four lanes of one WideContact never share a dynamic body
+// (they come from one graph colour). Per manifold: a normal impulse per point (non-penetration,
+// soft or Baumgarte), and friction at the manifold's centre (two tangents clamped to the
+// friction circle, plus twist about the normal), as Box3D does; that is 3 friction rows per
+// manifold instead of 8, with the same total force on a sliding face.
+//
+// The stages, each over a range of WideContacts:
+//   prepareContacts     once per step: anchors, effective masses, warm-start impulses
+//   warmStartContacts   each substep: apply the accumulated impulses again
+//   solveContacts       each pass: friction, then non-penetration (with or without bias)
+//   applyRestitution    once per step, after the substeps
+//   storeImpulses       once per step: impulses back to the manifolds for the next step
+#include <cstdint>
+
+#include "solver/solver_body.hpp"
+#include "solver/wide.hpp"
+
+namespace anyphys::native {
+
+struct ContactManifold;
+
+struct WideContactPoint {
+    wide::Vec3W anchorA, anchorB;      // contact point - centre of mass, world frame, step start
+    wide::FloatW baseSeparation;       // s = base + n . (dpB - dpA + dqB rB - dqA rA)
+    wide::FloatW normalMass;
+    wide::FloatW normalImpulse;        // accumulated within the substep, N s
+    wide::FloatW stepImpulse;          // sum over the step's substeps (what events report)
+    wide::FloatW maxImpulse;           // largest accumulated impulse seen (did it push at all?)
+    wide::FloatW relativeVelocity;     // normal velocity at the step start (< 0: approaching)
+    wide::FloatW restitutionTarget;    // normal velocity a bounce aims for
+    wide::FloatW leverArm;             // distance to the friction centre (twist friction limit)
+};
+
+struct WideContact {
+    std::int32_t bodyA[wide::kLanes];  // solver body index or kStaticBody
+    std::int32_t bodyB[wide::kLanes];
+    bool writeA[wide::kLanes];         // the lane's body takes impulses (dynamic, not a padding lane)
+    bool writeB[wide::kLanes];
+    ContactManifold* manifold[wide::kLanes];  // source of each lane; null in padding lanes
+    int pointCount;                    // most points in any lane
+    wide::Vec3W invMassA, invMassB;    // per axis
+    wide::SymMat3W invIA, invIB;
+    wide::Vec3W normal, tangent1, tangent2;
+    wide::Vec3W centerA, centerB;      // friction centre relative to each centre of mass
+    wide::SymMat2W tangentMass;
+    wide::FloatW twistMass;
+    wide::FloatW friction, restitution;
+    wide::FloatW frictionImpulse1, frictionImpulse2, twistImpulse;
+    wide::FloatW biasRate, massScale, impulseScale;  // soft-contact coefficients of the lane
+    WideContactPoint points[4];
+};
+
+/// One manifold to place in a lane: its solver bodies (kStaticBody for static or asleep) and
+/// the contact's mixed material.
+struct ContactLane {
+    ContactManifold* manifold = nullptr;
+    std::int32_t bodyA = kStaticBody, bodyB = kStaticBody;
+    double friction = 0.0, restitution = 0.0;
+};
+
+/// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h
+/// (implicit Euler on a mass-spring-damper; Catto, "Solver2D", 2024). Zero hertz: rigid.
+struct Softness {
+    double biasRate = 0.0;
+    double massScale = 1.0;
+    double impulseScale = 0.0;
+};
+Softness makeSoftness(double hertz, double zeta, double h);
+
+struct ContactPrepareParams {
+    Softness dynamicSoftness;          // contacts between two moving bodies
+    Softness staticSoftness;           // contacts with a static body: stiffer, so piles do not sink
+    double speculativeDistance = 0.0;  // m: points farther than this weigh little in the friction centre
+    double velocityTimeOffset = 0.0;   // s: where the integrator's velocity sits in time (restitution)
+    bool warmStart = true;
+};
+
+/// Fills `wc` from up to four lanes (`count` of them; the rest are padding with no effect).
+void prepareContacts(WideContact& wc, const ContactLane* lanes, int count, const SolverBody* bodies,
+                     const SolverState* states, const ContactPrepareParams& params);
+
+struct ContactSolveParams {
+    double invH = 0.0;                 // 1 / substep
+    double pushMaxVelocity = 0.0;      // m/s, fastest push-out of overlap
+    bool soft = true;                  // soft contacts; false: PGS with Baumgarte bias
+    double baumgarte = 0.0;            // PGS: fraction of overlap (beyond linearSlop) per substep
+    double linearSlop = 0.0;
+    bool friction = true;
+    double restitutionThreshold = 0.0; // m/s
+};
+
+void warmStartContacts(WideContact* contacts, int count, SolverState* states);
+/// One Gauss-Seidel pass. `useBias`: push overlap apart (soft or Baumgarte); false is the relax
+/// pass. `endOfSubstep`: this pass ends a substep, so its impulses add to the step's total.
+void solveContacts(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params, bool useBias,
+                   bool endOfSubstep);
+void applyRestitution(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params);
+void storeImpulses(const WideContact* contacts, int count);
+
+}  // namespace anyphys::native

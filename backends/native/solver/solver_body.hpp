@@ -1,0 +1,39 @@
+#pragma once
+// The solver's two views of an awake body that has constraints this step, packed in arrays in
+// the order the solver gathered them (Box2D v3 splits them the same way):
+//  - SolverState: what the constraint stages read and write every pass (velocities, and the
+//    motion since the step began, from which contact separations are updated). Small, hot.
+//  - SolverBody: what stays fixed over the step (masses, inertia, forces, the step-start pose).
+// Static and sleeping partners have no entry: constraints refer to them with kStaticBody and
+// read a zero state.
+#include <cstdint>
+
+#include "anyphys/defs.hpp"
+
+namespace anyphys::native {
+
+inline constexpr std::int32_t kStaticBody = -1;
+
+struct alignas(64) SolverState {
+    double v[3] = {0, 0, 0};               // m/s, centre-of-mass velocity, world frame
+    double w[3] = {0, 0, 0};               // rad/s, world frame
+    double dp[3] = {0, 0, 0};              // m, displacement since the step began
+    double dq[4] = {1, 0, 0, 0};           // rotation since the step began, (w, x, y, z): q = dq q0
+};
+
+struct SolverBody {
+    std::uint32_t body = 0;                // index in NativeWorld::bodies()
+    bool dynamic = false;                  // kinematic bodies keep their velocity
+    Vec3 invMass = Vec3::Zero();           // per world axis (zero along Z in a planar world)
+    Mat3 invInertia = Mat3::Zero();        // world frame, at the step start
+    Vec3 inertia = Vec3::Zero();           // principal moments (gyroscopic term)
+    Vec3 position0 = Vec3::Zero();         // centre of mass at the step start
+    Quat orientation0 = Quat::Identity();  // at the step start
+    Vec3 linearAcceleration = Vec3::Zero();  // gravity and user force, constant over the step
+    Vec3 angularAcceleration = Vec3::Zero(); // user torque, world frame
+    double linearDampingFactor = 1.0;      // velocity factor per substep, exp(-c h)
+    double angularDampingFactor = 1.0;
+    GyroscopicMode gyroscopic = GyroscopicMode::None;  // None unless the effect applies to this body
+};
+
+}  // namespace anyphys::native

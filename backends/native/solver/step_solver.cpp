@@ -1,0 +1,304 @@
+#include "solver/step_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "anyphys/peers/gyroscopic.hpp"
+#include "native_world.hpp"
+#include "solver/body_integration.hpp"
+
+namespace anyphys::native {
+namespace {
+
+/// When the stored velocity of a body in free flight is the true velocity: the integrator's
+/// velocity lags (semi-implicit Euler: a leapfrog, its velocity belongs half a step before its
+/// position) or leads (explicit Euler) by this much; the others keep them in step.
+double velocityTimeOffset(Integrator integrator, double dt) {
+    switch (integrator) {
+        case Integrator::SemiImplicitEuler: return -0.5 * dt;
+        case Integrator::ExplicitEuler: return 0.5 * dt;
+        default: return 0.0;
+    }
+}
+
+// Blocks per worker for stages split among workers: enough to even out uneven blocks, few
+// enough that claiming stays cheap.
+constexpr int kBlocksPerWorker = 4;
+constexpr int kMinWideBlock = 4;    // wide constraints
+constexpr int kMinBodyBlock = 64;   // bodies
+
+}  // namespace
+
+void StepSolver::collect(NativeWorld& world) {
+    for (std::uint32_t body : bodyOrder_) solverIndex_[body] = kStaticBody;
+    lanes_.clear();
+    bodyOrder_.clear();
+    auto& bodies = world.bodies();
+    if (solverIndex_.size() < bodies.size()) solverIndex_.resize(bodies.size(), kStaticBody);
+    const auto enlist = [&](std::uint32_t index) {
+        NativeBody& body = bodies[index];
+        if (!body.moves() || !body.awake || body.constrained) return;
+        body.constrained = true;
+        solverIndex_[index] = static_cast<std::int32_t>(bodyOrder_.size());
+        bodyOrder_.push_back(index);
+    };
+    world.contactManager().forEach([&](Contact& contact) {
+        if (contact.trigger || contact.manifolds.empty()) return;
+        const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
+        if (!((a.isDynamic() && a.awake) || (b.isDynamic() && b.awake))) return;
+        for (ContactManifold& m : contact.manifolds)
+            if (m.pointCount > 0)
+                lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
+                                  contact.friction, contact.restitution});
+        enlist(contact.bodyA);
+        enlist(contact.bodyB);
+    });
+}
+
+void StepSolver::clear() {
+    for (std::uint32_t body : bodyOrder_) solverIndex_[body] = kStaticBody;
+    lanes_.clear();
+    bodyOrder_.clear();
+}
+
+std::vector<const char*> StepSolver::lastStageNames() const {
+    std::vector<const char*> names;
+    for (const StagePlan& p : plan_) {
+        switch (p.kind) {
+            case StageKind::PrepareContacts: names.push_back("prepare_contacts"); break;
+            case StageKind::ForceCallback: names.push_back("force_callback"); break;
+            case StageKind::IntegrateVelocities: names.push_back("integrate_velocities"); break;
+            case StageKind::WarmStart: names.push_back("warm_start"); break;
+            case StageKind::Solve: names.push_back("solve"); break;
+            case StageKind::IntegratePositions: names.push_back("integrate_positions"); break;
+            case StageKind::Relax: names.push_back("relax"); break;
+            case StageKind::Restitution: names.push_back("restitution"); break;
+            case StageKind::StoreImpulses: names.push_back("store_impulses"); break;
+            case StageKind::FinalizeBodies: names.push_back("finalize_bodies"); break;
+        }
+    }
+    return names;
+}
+
+void StepSolver::buildBodies(NativeWorld& world, const StepInfo& step) {
+    const WorldSettings& settings = world.settings();
+    const Effects effects = world.effects();
+    const Vec3 gravity = effects.has(Effect::Gravity) ? settings.gravity : Vec3::Zero();
+    const bool userForces = effects.has(Effect::UserForces);
+    const bool damping = effects.has(Effect::Damping);
+    // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
+    const bool gyroscopic = effects.has(Effect::Gyroscopic) && !settings.planar;
+    const std::size_t n = bodyOrder_.size();
+    bodies_.resize(n);
+    states_.resize(n);
+    auto& worldBodies = world.bodies();
+    for (std::size_t i = 0; i < n; ++i) {
+        const NativeBody& nb = worldBodies[bodyOrder_[i]];
+        SolverBody& sb = bodies_[i];
+        sb = SolverBody{};
+        sb.body = bodyOrder_[i];
+        sb.dynamic = nb.isDynamic();
+        sb.position0 = nb.state.position;
+        sb.orientation0 = nb.state.orientation;
+        if (sb.dynamic) {
+            sb.invMass = nb.invMass * nb.linearFreedom();
+            sb.invInertia = nb.worldInverseInertia();
+            sb.inertia = nb.inertia;
+            sb.linearAcceleration = nb.gravityScale * gravity;
+            if (userForces) {
+                sb.linearAcceleration += sb.invMass.cwiseProduct(nb.force);
+                sb.angularAcceleration = sb.invInertia * nb.torque;
+            }
+            if (damping) {  // exact decay of dv/dt = -c v over a substep: stable for any c
+                sb.linearDampingFactor = std::exp(-nb.linearDamping * h_);
+                sb.angularDampingFactor = std::exp(-nb.angularDamping * h_);
+            }
+            if (gyroscopic && gyroscopic::isAnisotropic(nb.inertia)) sb.gyroscopic = nb.gyroscopic;
+        }
+        SolverState& s = states_[i];
+        s = SolverState{};
+        for (int k = 0; k < 3; ++k) {
+            s.v[k] = nb.state.linearVelocity[k];
+            s.w[k] = nb.state.angularVelocity[k];
+        }
+    }
+    (void)step;
+}
+
+void StepSolver::buildConstraints() {
+    for (ContactLane& lane : lanes_) {
+        lane.bodyA = solverIndex_[static_cast<std::uint32_t>(lane.bodyA)];
+        lane.bodyB = solverIndex_[static_cast<std::uint32_t>(lane.bodyB)];
+    }
+    graph_.build(lanes_, bodies_);
+    const auto& colors = graph_.colors();
+    const std::size_t colorCount = colors.size();
+    colorFirstWide_.resize(colorCount);
+    colorWideCount_.resize(colorCount);
+    int total = 0;
+    for (std::size_t c = 0; c < colorCount; ++c) {
+        const bool overflow = graph_.hasOverflow() && c + 1 == colorCount;
+        colorFirstWide_[c] = total;
+        // Overflow constraints may share bodies: one to a WideContact, solved in order.
+        colorWideCount_[c] = overflow ? colors[c].laneCount : (colors[c].laneCount + wide::kLanes - 1) / wide::kLanes;
+        total += colorWideCount_[c];
+    }
+    wide_.resize(static_cast<std::size_t>(total));
+    wideSource_.resize(static_cast<std::size_t>(total));
+    for (std::size_t c = 0; c < colorCount; ++c) {
+        const bool overflow = graph_.hasOverflow() && c + 1 == colorCount;
+        const int perWide = overflow ? 1 : wide::kLanes;
+        for (int k = 0; k < colorWideCount_[c]; ++k) {
+            const int first = colors[c].firstLane + k * perWide;
+            wideSource_[colorFirstWide_[c] + k] = {first, std::min(perWide, colors[c].firstLane + colors[c].laneCount - first)};
+        }
+    }
+}
+
+void StepSolver::addStage(StageKind kind, int items, int color, int substep, bool endOfSubstep) {
+    const bool wideStage = kind != StageKind::IntegrateVelocities && kind != StageKind::IntegratePositions &&
+                           kind != StageKind::FinalizeBodies && kind != StageKind::ForceCallback;
+    const bool serial = wideStage && graph_.hasOverflow() && color + 1 == static_cast<int>(colorWideCount_.size()) &&
+                        kind != StageKind::PrepareContacts && kind != StageKind::StoreImpulses;
+    int blockSize = std::max(items, 1);
+    if (workers_ > 1 && !serial) {
+        const int minBlock = wideStage ? kMinWideBlock : kMinBodyBlock;
+        blockSize = std::max(minBlock, (items + workers_ * kBlocksPerWorker - 1) / (workers_ * kBlocksPerWorker));
+    }
+    const int blocks = kind == StageKind::ForceCallback ? 1 : (items + blockSize - 1) / blockSize;
+    plan_.push_back({kind, color, substep, endOfSubstep, items, blockSize});
+    stages_.push_back({blocks, kind == StageKind::ForceCallback});
+}
+
+void StepSolver::planStages(const NativeWorld& world) {
+    const WorldSettings& settings = world.settings();
+    const bool soft = *settings.solver != Solver::ProjectedGaussSeidel;
+    const int substeps = *settings.substeps, iterations = *settings.iterations;
+    const bool hook = world.forceHook() && world.effects().has(Effect::UserForces);
+    const int bodies = static_cast<int>(bodies_.size()), wide = static_cast<int>(wide_.size());
+    const int colors = static_cast<int>(colorWideCount_.size());
+    plan_.clear();
+    stages_.clear();
+    addStage(StageKind::PrepareContacts, wide);
+    // Colours in order: contacts with static bodies come last (ConstraintGraph). Passes do not
+    // alternate direction: measured on a 40-row pyramid, alternating let it slide apart.
+    const auto pass = [&](StageKind kind, int sub, bool last) {
+        for (int c = 0; c < colors; ++c) addStage(kind, colorWideCount_[c], c, sub, last);
+    };
+    for (int sub = 0; sub < substeps; ++sub) {
+        if (hook) addStage(StageKind::ForceCallback, 1, 0, sub);
+        addStage(StageKind::IntegrateVelocities, bodies);
+        for (int c = 0; c < colors; ++c) addStage(StageKind::WarmStart, colorWideCount_[c], c);
+        for (int it = 0; it < iterations; ++it) pass(StageKind::Solve, sub, !soft && it + 1 == iterations);
+        addStage(StageKind::IntegratePositions, bodies);
+        if (soft)
+            for (int it = 0; it < iterations; ++it) pass(StageKind::Relax, sub, it + 1 == iterations);
+    }
+    if (restitution_)
+        for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c);
+    addStage(StageKind::StoreImpulses, wide);
+    addStage(StageKind::FinalizeBodies, bodies);
+}
+
+void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
+    if (lanes_.empty()) return;
+    const WorldSettings& settings = world.settings();
+    const Effects effects = world.effects();
+    world_ = &world;
+    step_ = step;
+    const int substeps = *settings.substeps;
+    h_ = step.dt / substeps;
+    workers_ = world.taskSystem() ? world.taskSystem()->workerCount() : 1;
+
+    // Stiffness capped: a spring stiffer than a substep resolves makes unconverged Gauss-Seidel
+    // ring. The cap is a quarter of the substep rate (Box2D v3's bound), but not below half the
+    // step rate, where a single substep would leave stacks too soft to stand. Contacts with
+    // static bodies are twice as stiff (as Box2D v3), so piles do not sink into the ground.
+    const double stepRate = 1.0 / step.dt;
+    const double maxHertz = std::max(0.25 * substeps * stepRate, 0.5 * stepRate);
+    const double hertz = std::min(settings.contactHertz, maxHertz);
+    prepareParams_.dynamicSoftness = makeSoftness(hertz, settings.contactDampingRatio, h_);
+    prepareParams_.staticSoftness = makeSoftness(2.0 * hertz, settings.contactDampingRatio, h_);
+    prepareParams_.speculativeDistance = settings.speculativeDistance;
+    prepareParams_.velocityTimeOffset = velocityTimeOffset(settings.integrator, step.dt);
+    prepareParams_.warmStart = true;
+    solveParams_.invH = 1.0 / h_;
+    solveParams_.pushMaxVelocity = settings.contactPushMaxVelocity;
+    solveParams_.soft = *settings.solver != Solver::ProjectedGaussSeidel;
+    solveParams_.baumgarte = settings.baumgarte;
+    solveParams_.linearSlop = settings.linearSlop;
+    solveParams_.friction = effects.has(Effect::Friction);
+    solveParams_.restitutionThreshold = settings.restitutionThreshold;
+    restitution_ = effects.has(Effect::Restitution);
+
+    buildBodies(world, step);
+    buildConstraints();
+    planStages(world);
+    runner_.run(world.taskSystem(), stages_, *this);
+}
+
+void StepSolver::runBlock(int stage, int block, int worker) {
+    (void)worker;
+    const StagePlan& p = plan_[static_cast<std::size_t>(stage)];
+    const int begin = block * p.blockSize, end = std::min(p.items, begin + p.blockSize);
+    const int count = end - begin;
+    WideContact* colour = p.color < static_cast<int>(colorFirstWide_.size()) ? wide_.data() + colorFirstWide_[p.color] + begin
+                                                                            : nullptr;
+    switch (p.kind) {
+        case StageKind::PrepareContacts:
+            for (int w = begin; w < end; ++w) {
+                ContactLane lanes[wide::kLanes];
+                const WideSource& src = wideSource_[w];
+                for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[src.first + k]];
+                prepareContacts(wide_[w], lanes, src.count, bodies_.data(), states_.data(), prepareParams_);
+            }
+            break;
+        case StageKind::IntegrateVelocities: integrateVelocities(bodies_.data(), states_.data(), begin, end, h_); break;
+        case StageKind::WarmStart: warmStartContacts(colour, count, states_.data()); break;
+        case StageKind::Solve:
+            solveContacts(colour, count, states_.data(), solveParams_, true, p.endOfSubstep);
+            break;
+        case StageKind::IntegratePositions: integratePositions(states_.data(), begin, end, h_); break;
+        case StageKind::Relax:
+            solveContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep);
+            break;
+        case StageKind::Restitution: applyRestitution(colour, count, states_.data(), solveParams_); break;
+        case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, count); break;
+        case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
+        case StageKind::ForceCallback: break;  // main thread only
+    }
+}
+
+void StepSolver::runOnMain(int stage) {
+    const StagePlan& p = plan_[static_cast<std::size_t>(stage)];
+    if (p.kind == StageKind::ForceCallback) applyForceCallback(p.substep);
+}
+
+void StepSolver::finalizeBodies(int begin, int end) {
+    auto& worldBodies = world_->bodies();
+    for (int i = begin; i < end; ++i) {
+        const SolverBody& sb = bodies_[i];
+        const SolverState& s = states_[i];
+        BodyState& state = worldBodies[sb.body].state;
+        state.position = sb.position0 + Vec3(s.dp[0], s.dp[1], s.dp[2]);
+        state.orientation = (Quat(s.dq[0], s.dq[1], s.dq[2], s.dq[3]) * sb.orientation0).normalized();
+        state.linearVelocity = Vec3(s.v[0], s.v[1], s.v[2]);
+        state.angularVelocity = Vec3(s.w[0], s.w[1], s.w[2]);
+    }
+}
+
+void StepSolver::applyForceCallback(int substep) {
+    // The callback reads the bodies' current states: bring them up to date first.
+    finalizeBodies(0, static_cast<int>(bodies_.size()));
+    world_->evaluateForceHook(step_.time + substep * h_);
+    const Effects effects = world_->effects();
+    const Vec3 gravity = effects.has(Effect::Gravity) ? world_->settings().gravity : Vec3::Zero();
+    for (SolverBody& sb : bodies_) {
+        if (!sb.dynamic) continue;
+        const NativeBody& nb = world_->bodies()[sb.body];
+        sb.linearAcceleration = nb.gravityScale * gravity + sb.invMass.cwiseProduct(nb.force + world_->hookForce(sb.body));
+        sb.angularAcceleration = sb.invInertia * (nb.torque + world_->hookTorque(sb.body));
+    }
+}
+
+}  // namespace anyphys::native

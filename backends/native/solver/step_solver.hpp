@@ -1,0 +1,113 @@
+#pragma once
+// The native constraint solver: moves the bodies that have constraints this step. Two methods,
+// selected by WorldSettings::solver, share one set of staged functions over arrays:
+//  - soft step (default, after Box2D v3): per substep integrate velocities, warm start, solve
+//    soft contacts with bias, integrate positions, relax without bias;
+//  - projected Gauss-Seidel: per substep integrate velocities, warm start, solve with Baumgarte
+//    bias, integrate positions.
+// Both then apply restitution once and store the impulses for the next step's warm start.
+//
+// The stages of a step, in order (each a range function over arrays, run by StageRunner):
+//   prepare_contacts                      once: anchors, masses, warm-start impulses
+//   [force_callback]                      each substep, when the user set one (main thread)
+//   integrate_velocities                  each substep
+//   warm_start  (per colour)              each substep
+//   solve       (per colour)              each substep, `iterations` passes
+//   integrate_positions                   each substep
+//   relax       (per colour)              each substep, `iterations` passes (soft step only)
+//   restitution (per colour)              once
+//   store_impulses                        once
+//   finalize_bodies                       once: poses and velocities back to the bodies
+// Constraints are coloured (ConstraintGraph) and grouped four to a WideContact, so the colour
+// stages run in SIMD lanes and on several workers with identical results.
+#include <cstdint>
+#include <vector>
+
+#include "pipeline.hpp"
+#include "solver/constraint_graph.hpp"
+#include "solver/contact_constraint.hpp"
+#include "solver/solver_body.hpp"
+#include "solver/stage_runner.hpp"
+
+namespace anyphys::native {
+
+class NativeWorld;
+
+class StepSolver final : private StageRunner::Work {
+public:
+    /// Gathers this step's constraints (manifolds with points of non-trigger contacts with an
+    /// awake dynamic body) in contact order, and marks the awake bodies they move `constrained`
+    /// so the free-body integrator leaves them to the solver.
+    void collect(NativeWorld& world);
+    /// No constraints this step (nothing awake).
+    void clear();
+    bool empty() const { return lanes_.empty(); }
+    /// Advances the constrained bodies over the whole step.
+    void solve(NativeWorld& world, const StepInfo& step);
+
+    /// Stage names of the last solve, in order (tests, docs).
+    std::vector<const char*> lastStageNames() const;
+
+private:
+    enum class StageKind : std::uint8_t {
+        PrepareContacts,
+        ForceCallback,
+        IntegrateVelocities,
+        WarmStart,
+        Solve,
+        IntegratePositions,
+        Relax,
+        Restitution,
+        StoreImpulses,
+        FinalizeBodies,
+    };
+    struct StagePlan {
+        StageKind kind;
+        int color = 0;      // colour stages
+        int substep = 0;
+        bool endOfSubstep = false;  // the last pass of a substep (its impulses count for events)
+        int items = 0;      // bodies, or wide constraints
+        int blockSize = 1;
+    };
+
+    void buildBodies(NativeWorld& world, const StepInfo& step);
+    void buildConstraints();
+    void planStages(const NativeWorld& world);
+    void addStage(StageKind kind, int items, int color = 0, int substep = 0, bool endOfSubstep = false);
+
+    void runBlock(int stage, int block, int worker) override;
+    void runOnMain(int stage) override;
+    /// Writes solver poses and velocities back to the world's bodies.
+    void finalizeBodies(int begin, int end);
+    /// Solver-body forces from the user's callback at the current states.
+    void applyForceCallback(int substep);
+
+    // Per step, reused (no allocation once sizes are stable).
+    std::vector<ContactLane> lanes_;          // by contact order; bodies are world indices until solve
+    std::vector<std::uint32_t> bodyOrder_;    // world index of each solver body
+    std::vector<std::int32_t> solverIndex_;   // per world body: solver index or kStaticBody
+    std::vector<SolverBody> bodies_;
+    std::vector<SolverState> states_;
+    ConstraintGraph graph_;
+    std::vector<WideContact> wide_;
+    struct WideSource {
+        int first = 0;  // into graph_.lanes()
+        int count = 0;  // lanes used (1 to 4)
+    };
+    std::vector<WideSource> wideSource_;
+    std::vector<int> colorFirstWide_, colorWideCount_;
+    std::vector<StagePlan> plan_;
+    std::vector<StageRunner::Stage> stages_;
+    StageRunner runner_;
+    int workers_ = 1;
+
+    // What the current solve works with.
+    NativeWorld* world_ = nullptr;
+    StepInfo step_;
+    double h_ = 0.0;
+    ContactPrepareParams prepareParams_;
+    ContactSolveParams solveParams_;
+    bool restitution_ = false;
+};
+
+}  // namespace anyphys::native

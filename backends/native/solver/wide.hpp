@@ -1,0 +1,71 @@
+#pragma once
+// Four lanes of doubles, the unit of the wide contact solver: each lane holds one constraint of
+// a graph colour, so the four never share a dynamic body. Built on the compiler's vector
+// extension, which becomes one AVX register where the target has AVX and two SSE2 registers
+// otherwise; the lane count stays four either way, so every target groups constraints alike.
+// Only +, -, *, / and sqrt are used (no fused multiply-add): results are the same bits on every
+// x86-64 target and match the scalar code lane by lane.
+#include <cmath>
+#include <cstdint>
+
+namespace anyphys::native::wide {
+
+inline constexpr int kLanes = 4;
+
+using FloatW = double __attribute__((vector_size(32)));
+using MaskW = std::int64_t __attribute__((vector_size(32)));  // all bits set where true
+
+inline FloatW splat(double x) { return FloatW{x, x, x, x}; }
+inline FloatW zero() { return FloatW{0.0, 0.0, 0.0, 0.0}; }
+inline FloatW select(MaskW mask, FloatW ifTrue, FloatW ifFalse) { return mask ? ifTrue : ifFalse; }
+inline FloatW max(FloatW a, FloatW b) { return a > b ? a : b; }
+inline FloatW min(FloatW a, FloatW b) { return a < b ? a : b; }
+inline FloatW clamp(FloatW x, FloatW lo, FloatW hi) { return max(lo, min(x, hi)); }
+inline FloatW sqrt(FloatW x) {
+    return FloatW{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])};
+}
+inline bool allZero(FloatW x) { return x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0 && x[3] == 0.0; }
+
+struct Vec3W {
+    FloatW x, y, z;
+};
+
+inline Vec3W operator+(const Vec3W& a, const Vec3W& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3W operator-(const Vec3W& a, const Vec3W& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3W operator*(FloatW s, const Vec3W& a) { return {s * a.x, s * a.y, s * a.z}; }
+inline FloatW dot(const Vec3W& a, const Vec3W& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3W cross(const Vec3W& a, const Vec3W& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+/// Per-axis scale (a planar body's inverse mass is zero along Z).
+inline Vec3W scale(const Vec3W& s, const Vec3W& a) { return {s.x * a.x, s.y * a.y, s.z * a.z}; }
+
+/// Symmetric 3x3 matrix (world inverse inertia).
+struct SymMat3W {
+    FloatW xx, xy, xz, yy, yz, zz;
+};
+
+inline Vec3W operator*(const SymMat3W& m, const Vec3W& v) {
+    return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z,
+            m.xz * v.x + m.yz * v.y + m.zz * v.z};
+}
+
+/// Symmetric 2x2 matrix (the tangent-plane mass of central friction).
+struct SymMat2W {
+    FloatW xx, xy, yy;
+};
+
+/// A rotation as a unit quaternion (w, x, y, z).
+struct QuatW {
+    FloatW w, x, y, z;
+};
+
+/// q v q*, as v + 2 w (u x v) + 2 u x (u x v) with u the vector part.
+inline Vec3W rotate(const QuatW& q, const Vec3W& v) {
+    const Vec3W u{q.x, q.y, q.z};
+    const Vec3W t = cross(u, v);
+    const Vec3W t2{t.x + t.x, t.y + t.y, t.z + t.z};
+    return v + q.w * t2 + cross(u, t2);
+}
+
+}  // namespace anyphys::native::wide
