@@ -85,17 +85,25 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     if (ia == ib) return;
     const NativeBody &a = bodies[ia], &b = bodies[ib];
     if (!mayTouch(a, b)) return;
+    const std::pair key{keyA, keyB};
+    if (index_.contains(key)) return;  // already in contact
     std::uint32_t slot;
     if (!free_.empty()) {
         slot = free_.back();
+        free_.pop_back();
     } else {
         slot = static_cast<std::uint32_t>(slots_.size());
-    }
-    if (!index_.try_emplace({keyA, keyB}, slot).second) return;  // already in contact
-    if (slot == slots_.size())
         slots_.emplace_back();
-    else
-        free_.pop_back();
+    }
+    if (spareNodes_.empty()) {
+        index_.emplace(key, slot);
+    } else {
+        PairIndex::node_type node = std::move(spareNodes_.back());
+        spareNodes_.pop_back();
+        node.key() = key;
+        node.mapped() = slot;
+        index_.insert(std::move(node));
+    }
     Contact& c = slots_[slot];
     c.alive = true;
     c.bodyA = ia;
@@ -188,7 +196,7 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
 
 void ContactManager::destroy(std::uint32_t slot) {
     Contact& c = slots_[slot];
-    index_.erase({proxyKey(c.bodyA, c.shapeA), proxyKey(c.bodyB, c.shapeB)});
+    if (auto node = index_.extract({proxyKey(c.bodyA, c.shapeA), proxyKey(c.bodyB, c.shapeB)})) spareNodes_.push_back(std::move(node));
     c.alive = false;
     c.manifolds.clear();
     free_.push_back(slot);

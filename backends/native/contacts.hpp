@@ -97,8 +97,11 @@ private:
 
     std::vector<Contact> slots_;
     std::vector<std::uint32_t> free_;
-    // Finds a pair's slot. Only looked up, never iterated.
-    std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::uint32_t, PairHash> index_;
+    // Finds a pair's slot. Only looked up, never iterated. Nodes of destroyed pairs are kept
+    // and reused, so pairs that come and go cost no allocation once the pile is warm.
+    using PairIndex = std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::uint32_t, PairHash>;
+    PairIndex index_;
+    std::vector<PairIndex::node_type> spareNodes_;
     std::vector<Scratch> scratch_;
 };
 

@@ -41,7 +41,7 @@ void advance(std::span<const BodyState> base, std::span<const BodyState> d, doub
     }
 }
 
-void explicitEuler(double t, double h, std::span<BodyState> x, const AccelerationFn& f, IntegratorScratch& s) {
+void explicitEuler(double t, double h, std::span<BodyState> x, AccelerationFn f, IntegratorScratch& s) {
     f(t, x, s.k1);
     for (std::size_t i = 0; i < x.size(); ++i) {
         BodyState& b = x[i];
@@ -52,7 +52,7 @@ void explicitEuler(double t, double h, std::span<BodyState> x, const Acceleratio
     }
 }
 
-void semiImplicitEuler(double t, double h, std::span<BodyState> x, const AccelerationFn& f, IntegratorScratch& s) {
+void semiImplicitEuler(double t, double h, std::span<BodyState> x, AccelerationFn f, IntegratorScratch& s) {
     f(t, x, s.k1);
     for (std::size_t i = 0; i < x.size(); ++i) {
         BodyState& b = x[i];
@@ -67,7 +67,7 @@ void semiImplicitEuler(double t, double h, std::span<BodyState> x, const Acceler
 // acceleration is evaluated with predicted velocities v + h a(t), which keeps second order
 // for velocity-dependent forces (damping, gyroscopic) and is exact Verlet when forces depend
 // on positions only.
-void velocityVerlet(double t, double h, std::span<BodyState> x, const AccelerationFn& f, IntegratorScratch& s) {
+void velocityVerlet(double t, double h, std::span<BodyState> x, AccelerationFn f, IntegratorScratch& s) {
     f(t, x, s.k1);
     for (std::size_t i = 0; i < x.size(); ++i) {
         BodyState& b = x[i];
@@ -88,7 +88,7 @@ void velocityVerlet(double t, double h, std::span<BodyState> x, const Accelerati
     }
 }
 
-void midpoint(double t, double h, std::span<BodyState> x, const AccelerationFn& f, IntegratorScratch& s) {
+void midpoint(double t, double h, std::span<BodyState> x, AccelerationFn f, IntegratorScratch& s) {
     f(t, x, s.k1);
     derivative(x, s.k1, s.d1);
     advance(x, s.d1, 0.5 * h, s.stage);
@@ -97,7 +97,7 @@ void midpoint(double t, double h, std::span<BodyState> x, const AccelerationFn& 
     advance(x, s.d2, h, x);
 }
 
-void rungeKutta4(double t, double h, std::span<BodyState> x, const AccelerationFn& f, IntegratorScratch& s) {
+void rungeKutta4(double t, double h, std::span<BodyState> x, AccelerationFn f, IntegratorScratch& s) {
     f(t, x, s.k1);
     derivative(x, s.k1, s.d1);
     advance(x, s.d1, 0.5 * h, s.stage);
@@ -138,7 +138,7 @@ Quat rotateBy(const Quat& q, const Vec3& w, double h) {
     return (Quat(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
 }
 
-void integrate(Integrator method, double t, double h, std::span<BodyState> states, const AccelerationFn& accelerations,
+void integrate(Integrator method, double t, double h, std::span<BodyState> states, AccelerationFn accelerations,
                IntegratorScratch& scratch) {
     resize(scratch, states.size());
     switch (method) {

@@ -2,11 +2,11 @@
 // Time integrators for rigid-body states. Each integrator advances positions, orientations and
 // velocities of all moving bodies together, so a force that couples bodies (a user spring between
 // two of them) sees consistent intermediate states.
-#include <functional>
 #include <span>
 #include <vector>
 
 #include "anyphys/defs.hpp"
+#include "function_ref.hpp"
 
 namespace anyphys::native {
 
@@ -16,7 +16,7 @@ struct Acceleration {
 };
 
 /// Fills `out[i]` with the accelerations of body i in `states` at time t.
-using AccelerationFn = std::function<void(double t, std::span<const BodyState> states, std::span<Acceleration> out)>;
+using AccelerationFn = FunctionRef<void(double t, std::span<const BodyState> states, std::span<Acceleration> out)>;
 
 /// Reusable buffers, so a step allocates nothing once sizes are stable.
 struct IntegratorScratch {
@@ -26,7 +26,7 @@ struct IntegratorScratch {
 };
 
 /// Advances `states` from t to t + h with the given method.
-void integrate(Integrator method, double t, double h, std::span<BodyState> states, const AccelerationFn& accelerations,
+void integrate(Integrator method, double t, double h, std::span<BodyState> states, AccelerationFn accelerations,
                IntegratorScratch& scratch);
 
 /// dq/dt = 1/2 (0, w) q for a world-frame angular velocity, as quaternion coefficients.

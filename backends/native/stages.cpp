@@ -96,7 +96,7 @@ public:
         const Vec3 g = world.settings().gravity;
         auto& bodies = world.bodies();
 
-        const AccelerationFn accelerations = [&](double t, std::span<const BodyState> states, std::span<Acceleration> out) {
+        const auto accelerations = [&](double t, std::span<const BodyState> states, std::span<Acceleration> out) {
             if (hook) {
                 std::fill(hookForces_.begin(), hookForces_.end(), Vec3::Zero());
                 std::fill(hookTorques_.begin(), hookTorques_.end(), Vec3::Zero());

@@ -283,7 +283,7 @@ int DynamicTree::balance(int a) {
 // ---------------------------------------------------------------------------------------------
 // DynamicTree: traversal
 
-void DynamicTree::query(const Aabb& box, const std::function<bool(int)>& visit) const {
+void DynamicTree::query(const Aabb& box, FunctionRef<bool(int)> visit) const {
     if (root_ == kNull) return;
     NodeStack stack;
     stack.push(root_);
@@ -300,7 +300,7 @@ void DynamicTree::query(const Aabb& box, const std::function<bool(int)>& visit) 
 }
 
 void DynamicTree::rayCast(const Vec3& origin, const Vec3& dir, double maxDistance,
-                          const std::function<double(int, double)>& visit) const {
+                          FunctionRef<double(int, double)> visit) const {
     if (root_ == kNull || !(maxDistance > 0.0)) return;
     std::array<bool, 3> parallel{};
     Vec3 invDir = Vec3::Zero();
@@ -433,7 +433,7 @@ void BroadPhase::moveProxy(int id, const Aabb& tight, const Vec3& displacement) 
     markMoved(id);
 }
 
-void BroadPhase::updatePairs(const std::function<void(std::uint64_t, std::uint64_t)>& onPair) {
+void BroadPhase::updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onPair) {
     // A proxy destroyed and re-created in the same slot may be listed twice.
     std::sort(moveBuffer_.begin(), moveBuffer_.end());
     moveBuffer_.erase(std::unique(moveBuffer_.begin(), moveBuffer_.end()), moveBuffer_.end());
@@ -483,7 +483,7 @@ std::uint64_t BroadPhase::key(int id) const { return proxy(id).key; }
 
 bool BroadPhase::isStatic(int id) const { return proxy(id).isStatic; }
 
-void BroadPhase::query(const Aabb& box, const std::function<bool(std::uint64_t key)>& visit) const {
+void BroadPhase::query(const Aabb& box, FunctionRef<bool(std::uint64_t key)> visit) const {
     bool stopped = false;
     for (const DynamicTree* tree : {&staticTree_, &dynamicTree_}) {
         tree->query(box, [&](int treeProxy) {
@@ -495,7 +495,7 @@ void BroadPhase::query(const Aabb& box, const std::function<bool(std::uint64_t k
 }
 
 void BroadPhase::rayCast(const Vec3& origin, const Vec3& dir, double maxDistance,
-                         const std::function<double(std::uint64_t key, double maxDistance)>& visit) const {
+                         FunctionRef<double(std::uint64_t key, double maxDistance)> visit) const {
     double clip = maxDistance;
     bool stopped = false;
     for (const DynamicTree* tree : {&staticTree_, &dynamicTree_}) {

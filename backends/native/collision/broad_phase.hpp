@@ -3,11 +3,11 @@
 // fattened bounds, and pair finding for proxies that moved. Cost is O(n log n) per step for n
 // moving proxies, nothing for proxies at rest.
 #include <cstdint>
-#include <functional>
 #include <utility>
 #include <vector>
 
 #include "collision/shape.hpp"
+#include "function_ref.hpp"
 
 namespace anyphys::native {
 
@@ -27,11 +27,11 @@ public:
     std::uint64_t userData(int proxy) const;
 
     /// Calls visit(proxy) for each proxy whose fat box overlaps `box`; stop when visit returns false.
-    void query(const Aabb& box, const std::function<bool(int)>& visit) const;
+    void query(const Aabb& box, FunctionRef<bool(int)> visit) const;
     /// Ray origin + t dir, 0 <= t <= maxDistance. visit(proxy, maxDistance) returns the new
     /// clip distance (<= 0 stops, the same value continues, smaller clips).
     void rayCast(const Vec3& origin, const Vec3& dir, double maxDistance,
-                 const std::function<double(int, double)>& visit) const;
+                 FunctionRef<double(int, double)> visit) const;
 
     int height() const;
     int proxyCount() const;
@@ -94,13 +94,13 @@ public:
     void moveProxy(int proxy, const Aabb& tight, const Vec3& displacement);
     /// Calls onPair(keyA, keyB) once for each pair of overlapping fat boxes where at least one
     /// proxy moved since the last call (static-static pairs never), then clears the moved set.
-    void updatePairs(const std::function<void(std::uint64_t, std::uint64_t)>& onPair);
+    void updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onPair);
     bool testOverlap(int proxyA, int proxyB) const;
     const Aabb& fatAabb(int proxy) const;
 
-    void query(const Aabb& box, const std::function<bool(std::uint64_t key)>& visit) const;
+    void query(const Aabb& box, FunctionRef<bool(std::uint64_t key)> visit) const;
     void rayCast(const Vec3& origin, const Vec3& dir, double maxDistance,
-                 const std::function<double(std::uint64_t key, double maxDistance)>& visit) const;
+                 FunctionRef<double(std::uint64_t key, double maxDistance)> visit) const;
 
     std::uint64_t key(int proxy) const;
     bool isStatic(int proxy) const;

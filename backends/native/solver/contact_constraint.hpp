@@ -99,4 +99,10 @@ void solveContacts(WideContact* contacts, int count, SolverState* states, const 
 void applyRestitution(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params);
 void storeImpulses(const WideContact* contacts, int count);
 
+/// Whether the per-pass kernels run their AVX2 build (the CPU has AVX2, and no one turned it
+/// off). Both builds give the same bits; tests switch to compare them.
+bool contactKernelsUseAvx2();
+/// Chooses the AVX2 build when `enable` and the CPU has it; returns what is now in use.
+bool setContactKernelsAvx2(bool enable);
+
 }  // namespace anyphys::native

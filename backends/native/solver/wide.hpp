@@ -12,40 +12,50 @@ namespace anyphys::native::wide {
 
 inline constexpr int kLanes = 4;
 
-using FloatW = double __attribute__((vector_size(32)));
-using MaskW = std::int64_t __attribute__((vector_size(32)));  // all bits set where true
+// Aligned to 32 bytes explicitly: without AVX the compiler would align these to 16 only, and
+// the AVX2 kernels' aligned loads would fault on data laid out by the baseline code.
+using FloatW = double __attribute__((vector_size(32), aligned(32)));
+using MaskW = std::int64_t __attribute__((vector_size(32), aligned(32)));  // all bits set where true
 
-inline FloatW splat(double x) { return FloatW{x, x, x, x}; }
-inline FloatW zero() { return FloatW{0.0, 0.0, 0.0, 0.0}; }
-inline FloatW select(MaskW mask, FloatW ifTrue, FloatW ifFalse) { return mask ? ifTrue : ifFalse; }
-inline FloatW max(FloatW a, FloatW b) { return a > b ? a : b; }
-inline FloatW min(FloatW a, FloatW b) { return a < b ? a : b; }
-inline FloatW clamp(FloatW x, FloatW lo, FloatW hi) { return max(lo, min(x, hi)); }
-inline FloatW sqrt(FloatW x) {
-    return FloatW{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])};
+// Every function here is always inlined: the kernels are built once per instruction set
+// (contact_solve.cpp), and an inlined body takes its caller's instructions.
+#define ANYPHYS_WIDE [[gnu::always_inline]] inline
+
+ANYPHYS_WIDE FloatW splat(double x) { return FloatW{x, x, x, x}; }
+ANYPHYS_WIDE FloatW zero() { return FloatW{0.0, 0.0, 0.0, 0.0}; }
+/// Bitwise blend: a vector `?:` would be split into scalar compares on SSE2.
+ANYPHYS_WIDE FloatW select(MaskW mask, FloatW ifTrue, FloatW ifFalse) {
+    return reinterpret_cast<FloatW>((reinterpret_cast<MaskW>(ifTrue) & mask) | (reinterpret_cast<MaskW>(ifFalse) & ~mask));
 }
-inline bool allZero(FloatW x) { return x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0 && x[3] == 0.0; }
+ANYPHYS_WIDE FloatW max(FloatW a, FloatW b) { return select(a > b, a, b); }
+ANYPHYS_WIDE FloatW min(FloatW a, FloatW b) { return select(a < b, a, b); }
+ANYPHYS_WIDE FloatW clamp(FloatW x, FloatW lo, FloatW hi) { return max(lo, min(x, hi)); }
+/// Correctly rounded in every lane (IEEE), so every instruction set agrees.
+ANYPHYS_WIDE FloatW sqrt(FloatW x) {
+    return FloatW{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])};
+}
+ANYPHYS_WIDE bool allZero(FloatW x) { return x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0 && x[3] == 0.0; }
 
 struct Vec3W {
     FloatW x, y, z;
 };
 
-inline Vec3W operator+(const Vec3W& a, const Vec3W& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Vec3W operator-(const Vec3W& a, const Vec3W& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline Vec3W operator*(FloatW s, const Vec3W& a) { return {s * a.x, s * a.y, s * a.z}; }
-inline FloatW dot(const Vec3W& a, const Vec3W& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Vec3W cross(const Vec3W& a, const Vec3W& b) {
+ANYPHYS_WIDE Vec3W operator+(const Vec3W& a, const Vec3W& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+ANYPHYS_WIDE Vec3W operator-(const Vec3W& a, const Vec3W& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+ANYPHYS_WIDE Vec3W operator*(FloatW s, const Vec3W& a) { return {s * a.x, s * a.y, s * a.z}; }
+ANYPHYS_WIDE FloatW dot(const Vec3W& a, const Vec3W& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+ANYPHYS_WIDE Vec3W cross(const Vec3W& a, const Vec3W& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 /// Per-axis scale (a planar body's inverse mass is zero along Z).
-inline Vec3W scale(const Vec3W& s, const Vec3W& a) { return {s.x * a.x, s.y * a.y, s.z * a.z}; }
+ANYPHYS_WIDE Vec3W scale(const Vec3W& s, const Vec3W& a) { return {s.x * a.x, s.y * a.y, s.z * a.z}; }
 
 /// Symmetric 3x3 matrix (world inverse inertia).
 struct SymMat3W {
     FloatW xx, xy, xz, yy, yz, zz;
 };
 
-inline Vec3W operator*(const SymMat3W& m, const Vec3W& v) {
+ANYPHYS_WIDE Vec3W operator*(const SymMat3W& m, const Vec3W& v) {
     return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z,
             m.xz * v.x + m.yz * v.y + m.zz * v.z};
 }
@@ -61,7 +71,7 @@ struct QuatW {
 };
 
 /// q v q*, as v + 2 w (u x v) + 2 u x (u x v) with u the vector part.
-inline Vec3W rotate(const QuatW& q, const Vec3W& v) {
+ANYPHYS_WIDE Vec3W rotate(const QuatW& q, const Vec3W& v) {
     const Vec3W u{q.x, q.y, q.z};
     const Vec3W t = cross(u, v);
     const Vec3W t2{t.x + t.x, t.y + t.y, t.z + t.z};

@@ -7,6 +7,7 @@
 
 #include "anyphys/anyphys.hpp"
 #include "anyphys/thread_pool.hpp"
+#include "solver/contact_constraint.hpp"
 
 namespace anyphys {
 namespace {
@@ -109,6 +110,21 @@ TEST(NativeDeterminism, WorkerCountDoesNotChangeTheResult) {
 TEST(NativeDeterminism, LateAndReversedTasksGiveTheSameResult) {
     LateReverseTasks tasks(3);
     expectIdentical(runPile(1, nullptr, kSteps), runPile(1, &tasks, kSteps), "late, reversed task system");
+}
+
+// The per-pass kernels exist in a baseline (SSE2) and an AVX2 build, chosen by the CPU: both do
+// the same four-lane arithmetic in the same order without fused multiply-add.
+TEST(NativeDeterminism, InstructionSetDoesNotChangeTheResult) {
+    const bool initial = native::contactKernelsUseAvx2();
+    native::setContactKernelsAvx2(false);
+    const auto baseline = runPile(1, nullptr, kSteps);
+    if (!native::setContactKernelsAvx2(true)) {
+        native::setContactKernelsAvx2(initial);
+        GTEST_SKIP() << "this CPU has no AVX2: only the baseline kernels can run";
+    }
+    const auto avx2 = runPile(1, nullptr, kSteps);
+    native::setContactKernelsAvx2(initial);
+    expectIdentical(baseline, avx2, "AVX2 kernels");
 }
 
 }  // namespace

@@ -1,0 +1,278 @@
+// The contact kernels that run every pass: warm start, solve (and relax), restitution. Each is
+// built twice, for the x86-64 baseline (SSE2) and for AVX2, from one always-inlined body, and the
+// CPU picks at run time; both do the same four-lane arithmetic without fused multiply-add, so
+// they give the same bits (tested), and a binary built on one machine runs on any x86-64.
+#include <cmath>
+
+#include "solver/contact_constraint.hpp"
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define ANYPHYS_HAS_AVX2_KERNELS 1
+#endif
+
+// Inlined into each ISA's entry point, so each gets its own instructions.
+#define ANYPHYS_KERNEL [[gnu::always_inline]] inline
+
+namespace anyphys::native {
+
+using namespace wide;
+
+namespace {
+
+// ---- gathering the lanes' bodies ---------------------------------------------------------------
+
+struct BodyW {
+    Vec3W v, w, dp;
+    QuatW dq;
+};
+
+ANYPHYS_KERNEL BodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
+    BodyW b{};
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (index[lane] == kStaticBody) continue;
+        const SolverState& s = states[index[lane]];
+        b.v.x[lane] = s.v[0];
+        b.v.y[lane] = s.v[1];
+        b.v.z[lane] = s.v[2];
+        b.w.x[lane] = s.w[0];
+        b.w.y[lane] = s.w[1];
+        b.w.z[lane] = s.w[2];
+    }
+    return b;
+}
+
+ANYPHYS_KERNEL BodyW gatherMotion(const SolverState* states, const std::int32_t* index) {
+    BodyW b = gatherVelocities(states, index);
+    b.dq.w = splat(1.0);
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (index[lane] == kStaticBody) continue;
+        const SolverState& s = states[index[lane]];
+        b.dp.x[lane] = s.dp[0];
+        b.dp.y[lane] = s.dp[1];
+        b.dp.z[lane] = s.dp[2];
+        b.dq.w[lane] = s.dq[0];
+        b.dq.x[lane] = s.dq[1];
+        b.dq.y[lane] = s.dq[2];
+        b.dq.z[lane] = s.dq[3];
+    }
+    return b;
+}
+
+ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write, const BodyW& b) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (!write[lane]) continue;
+        SolverState& s = states[index[lane]];
+        s.v[0] = b.v.x[lane];
+        s.v[1] = b.v.y[lane];
+        s.v[2] = b.v.z[lane];
+        s.w[0] = b.w.x[lane];
+        s.w[1] = b.w.y[lane];
+        s.w[2] = b.w.z[lane];
+    }
+}
+
+// Applies impulse P at anchors rA (on A, negated) and rB.
+ANYPHYS_KERNEL void applyImpulse(BodyW& a, BodyW& b, const WideContact& c, const Vec3W& rA, const Vec3W& rB, const Vec3W& P) {
+    a.v = a.v - scale(c.invMassA, P);
+    a.w = a.w - c.invIA * cross(rA, P);
+    b.v = b.v + scale(c.invMassB, P);
+    b.w = b.w + c.invIB * cross(rB, P);
+}
+
+ANYPHYS_KERNEL Vec3W relativeVelocity(const BodyW& a, const BodyW& b, const Vec3W& rA, const Vec3W& rB) {
+    return (b.v + cross(b.w, rB)) - (a.v + cross(a.w, rA));
+}
+
+// Central friction (two tangents in a circle of mu * sum of normal impulses) and twist friction
+// (in mu * sum of lever arm x normal impulse).
+ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b) {
+    FloatW totalNormal = zero(), twistLimit = zero();
+    for (int j = 0; j < c.pointCount; ++j) {
+        totalNormal += c.points[j].normalImpulse;
+        twistLimit += c.points[j].leverArm * c.points[j].normalImpulse;
+    }
+    {
+        const FloatW twistSpeed = dot(c.normal, b.w - a.w);
+        const FloatW maxTwist = c.friction * twistLimit;
+        const FloatW old = c.twistImpulse;
+        c.twistImpulse = clamp(old - c.twistMass * twistSpeed, -maxTwist, maxTwist);
+        const Vec3W L = (c.twistImpulse - old) * c.normal;
+        a.w = a.w - c.invIA * L;
+        b.w = b.w + c.invIB * L;
+    }
+    const Vec3W vr = relativeVelocity(a, b, c.centerA, c.centerB);
+    const FloatW vt1 = dot(vr, c.tangent1), vt2 = dot(vr, c.tangent2);
+    FloatW f1 = c.frictionImpulse1 - (c.tangentMass.xx * vt1 + c.tangentMass.xy * vt2);
+    FloatW f2 = c.frictionImpulse2 - (c.tangentMass.xy * vt1 + c.tangentMass.yy * vt2);
+    const FloatW maxImpulse = c.friction * totalNormal;
+    const FloatW lengthSquared = f1 * f1 + f2 * f2;
+    const MaskW outside = lengthSquared > maxImpulse * maxImpulse;
+    // Outside the circle lengthSquared > 0, so the division is safe where it is used.
+    const FloatW factor = select(outside, maxImpulse / sqrt(select(outside, lengthSquared, splat(1.0))), splat(1.0));
+    f1 *= factor;
+    f2 *= factor;
+    const Vec3W P = (f1 - c.frictionImpulse1) * c.tangent1 + (f2 - c.frictionImpulse2) * c.tangent2;
+    c.frictionImpulse1 = f1;
+    c.frictionImpulse2 = f2;
+    applyImpulse(a, b, c, c.centerA, c.centerB, P);
+}
+
+
+ANYPHYS_KERNEL void warmStartImpl(WideContact* contacts, int count, SolverState* states) {
+    for (int i = 0; i < count; ++i) {
+        WideContact& c = contacts[i];
+        BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        for (int j = 0; j < c.pointCount; ++j) {
+            const WideContactPoint& cp = c.points[j];
+            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, cp.normalImpulse * c.normal);
+        }
+        applyImpulse(a, b, c, c.centerA, c.centerB, c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * c.tangent2);
+        const Vec3W L = c.twistImpulse * c.normal;
+        a.w = a.w - c.invIA * L;
+        b.w = b.w + c.invIB * L;
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
+                              bool useBias, bool endOfSubstep) {
+    const FloatW invH = splat(params.invH);
+    const FloatW maxPush = splat(-params.pushMaxVelocity);
+    const FloatW one = splat(1.0);
+    const FloatW baumgarte = splat(params.baumgarte * params.invH);
+    const FloatW slop = splat(params.linearSlop);
+    for (int i = 0; i < count; ++i) {
+        WideContact& c = contacts[i];
+        BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
+        // Friction first, against the last normal impulses; non-penetration matters more and so
+        // has the last word in each pass.
+        if (params.friction) solveFriction(c, a, b);
+
+        FloatW biasRate = zero(), massScale = one, impulseScale = zero();
+        if (useBias && params.soft) {
+            biasRate = c.biasRate;
+            massScale = c.massScale;
+            impulseScale = c.impulseScale;
+        }
+        const Vec3W dp = b.dp - a.dp;
+        for (int j = 0; j < c.pointCount; ++j) {
+            WideContactPoint& cp = c.points[j];
+            // Current separation from the bodies' motion since the step began (no new collision pass).
+            const Vec3W moved = dp + rotate(b.dq, cp.anchorB) - rotate(a.dq, cp.anchorA);
+            const FloatW s = dot(c.normal, moved) + cp.baseSeparation;
+            const MaskW speculative = s > zero();
+            FloatW bias;
+            if (!useBias) {
+                bias = zero();
+            } else if (params.soft) {
+                bias = max(biasRate * s, maxPush);
+            } else {  // Baumgarte: a fraction of the overlap beyond linearSlop per substep
+                bias = max(baumgarte * min(zero(), s + slop), maxPush);
+            }
+            // A speculative point allows the approach to close exactly the gap this substep.
+            bias = select(speculative, s * invH, bias);
+            const FloatW pointMassScale = select(speculative, one, massScale);
+            const FloatW pointImpulseScale = select(speculative, zero(), impulseScale);
+
+            const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
+            const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
+            const FloatW total = max(cp.normalImpulse + impulse, zero());
+            const FloatW applied = total - cp.normalImpulse;
+            cp.normalImpulse = total;
+            cp.maxImpulse = max(cp.maxImpulse, total);
+            if (endOfSubstep) cp.stepImpulse += total;
+            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
+        }
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+    const FloatW threshold = splat(-params.restitutionThreshold);
+    for (int i = 0; i < count; ++i) {
+        WideContact& c = contacts[i];
+        if (allZero(c.restitution)) continue;
+        BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        for (int j = 0; j < c.pointCount; ++j) {
+            WideContactPoint& cp = c.points[j];
+            // Only where the approach was fast and the contact pushed (not speculative points
+            // that never closed).
+            const MaskW bounces = (cp.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
+            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cp.restitutionTarget), zero());
+            const FloatW total = max(cp.normalImpulse + impulse, zero());
+            const FloatW applied = total - cp.normalImpulse;
+            cp.normalImpulse = total;
+            cp.stepImpulse += applied;
+            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
+        }
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+
+#if ANYPHYS_HAS_AVX2_KERNELS
+#define ANYPHYS_AVX2 __attribute__((target("avx2")))
+ANYPHYS_AVX2 void warmStartAvx2(WideContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
+ANYPHYS_AVX2 void solveAvx2(WideContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
+    solveImpl(c, n, s, p, bias, end);
+}
+ANYPHYS_AVX2 void restitutionAvx2(WideContact* c, int n, SolverState* s, const ContactSolveParams& p) {
+    restitutionImpl(c, n, s, p);
+}
+#endif
+
+void warmStartBase(WideContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
+void solveBase(WideContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
+    solveImpl(c, n, s, p, bias, end);
+}
+void restitutionBase(WideContact* c, int n, SolverState* s, const ContactSolveParams& p) { restitutionImpl(c, n, s, p); }
+
+bool detectAvx2() {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    return __builtin_cpu_supports("avx2");
+#else
+    return false;
+#endif
+}
+
+bool& avx2Enabled() {
+    static bool enabled = detectAvx2();
+    return enabled;
+}
+
+}  // namespace
+
+bool contactKernelsUseAvx2() { return avx2Enabled(); }
+
+bool setContactKernelsAvx2(bool enable) {
+    avx2Enabled() = enable && detectAvx2();
+    return avx2Enabled();
+}
+
+void warmStartContacts(WideContact* contacts, int count, SolverState* states) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (avx2Enabled()) return warmStartAvx2(contacts, count, states);
+#endif
+    warmStartBase(contacts, count, states);
+}
+
+void solveContacts(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params, bool useBias,
+                   bool endOfSubstep) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (avx2Enabled()) return solveAvx2(contacts, count, states, params, useBias, endOfSubstep);
+#endif
+    solveBase(contacts, count, states, params, useBias, endOfSubstep);
+}
+
+void applyRestitution(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (avx2Enabled()) return restitutionAvx2(contacts, count, states, params);
+#endif
+    restitutionBase(contacts, count, states, params);
+}
+
+}  // namespace anyphys::native
