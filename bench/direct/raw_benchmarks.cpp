@@ -1,0 +1,92 @@
+#include "raw_benchmarks.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "../bench_main.hpp"
+#include "../layer_simulation.hpp"
+
+namespace anyphys::bench {
+namespace {
+
+void rawRow(benchmark::State& state, const std::string& scene, const RawFactory& make) {
+    const ScenePlan plan = makeScene(scene);
+    for (auto _ : state) {
+        const std::unique_ptr<Simulation> simulation = make(plan);
+        const RunResult result = measure(*simulation, plan, tableRun(plan));
+        report(state, result, simulation->describe());
+    }
+}
+
+struct Best {
+    double cpuMs = std::numeric_limits<double>::infinity();
+    double wallMs = std::numeric_limits<double>::infinity();
+    RunResult last;
+
+    void add(const RunResult& r) {
+        cpuMs = std::min(cpuMs, r.cpuMs);
+        wallMs = std::min(wallMs, r.wallMs);
+        last = r;
+    }
+};
+
+void overhead(benchmark::State& state, const std::string& scene, const std::string& backend, const RawFactory& make) {
+    const ScenePlan plan = makeScene(scene);
+    const RunPlan run = tableRun(plan);
+    const int rounds = overheadRounds();
+    for (auto _ : state) {
+        Best layer, raw;
+        std::string described;
+        for (int round = 0; round < rounds; ++round) {
+            // Alternate which goes first, so neither always meets a warm or a cold cache.
+            for (int k = 0; k < 2; ++k) {
+                if ((k == 0) == (round % 2 == 0)) {
+                    LayerSimulation simulation(plan, backend);
+                    layer.add(measure(simulation, plan, run));
+                } else {
+                    const std::unique_ptr<Simulation> simulation = make(plan);
+                    raw.add(measure(*simulation, plan, run));
+                    described = simulation->describe();
+                }
+            }
+        }
+        state.SetIterationTime(layer.wallMs / 1e3);
+        auto& c = state.counters;
+        c["rounds"] = rounds;
+        c["steps"] = run.steps;
+        c["bodies"] = plan.count();
+        c["anyphys_cpu_ms"] = layer.cpuMs;
+        c["raw_cpu_ms"] = raw.cpuMs;
+        c["overhead_pct"] = 100.0 * (layer.cpuMs / raw.cpuMs - 1.0);
+        c["anyphys_wall_ms"] = layer.wallMs;
+        c["raw_wall_ms"] = raw.wallMs;
+        c["overhead_wall_pct"] = 100.0 * (layer.wallMs / raw.wallMs - 1.0);
+        c["anyphys_penetration_mm"] = 1e3 * layer.last.outcome.penetration;
+        c["raw_penetration_mm"] = 1e3 * raw.last.outcome.penetration;
+        c["anyphys_settled"] = layer.last.outcome.settled ? 1 : 0;
+        c["raw_settled"] = raw.last.outcome.settled ? 1 : 0;
+        c["anyphys_allocs_per_step"] = layer.last.allocsPerStep;
+        c["raw_allocs_per_step"] = raw.last.allocsPerStep;
+        state.SetLabel(described + ", best of " + std::to_string(rounds));
+    }
+}
+
+}  // namespace
+
+void registerRaw(const RawEngine& engine) {
+    for (const std::string& scene : engine.scenes)
+        benchmark::RegisterBenchmark(("raw/" + scene + "/" + engine.name).c_str(),
+                                     [scene, make = engine.make](benchmark::State& s) { rawRow(s, scene, make); })
+            ->UseManualTime()
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
+    for (const std::string& scene : engine.overheadScenes)
+        benchmark::RegisterBenchmark(
+            ("overhead/" + scene + "/" + engine.name).c_str(),
+            [scene, name = engine.name, make = engine.make](benchmark::State& s) { overhead(s, scene, name, make); })
+            ->UseManualTime()
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
+}
+
+}  // namespace anyphys::bench

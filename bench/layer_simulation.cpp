@@ -1,0 +1,56 @@
+#include "layer_simulation.hpp"
+
+namespace anyphys::bench {
+
+std::string cannotRun(const ScenePlan& plan, const BackendInfo& backend, int workers) {
+    const Capabilities& caps = backend.capabilities;
+    if (plan.planar && !caps.planar) return "backend " + backend.name + " has no planar worlds";
+    if (!plan.planar && caps.dimensions != 3) return "backend " + backend.name + " has no 3D worlds";
+    if (workers > 1 && !caps.parameters.contains("settings.workers"))
+        return "backend " + backend.name + " does not honour settings.workers";
+    return {};
+}
+
+LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers) {
+    WorldSettings settings;
+    settings.backend = backend;
+    settings.planar = plan.planar;
+    settings.gravity = Vec3(0, kGravity, 0);
+    settings.timeStep = kTimeStep;
+    settings.workers = workers;
+    world_ = std::make_unique<World>(settings);  // the default material: friction 0.6, restitution 0
+
+    BodyDef ground;
+    ground.type = BodyType::Static;
+    ground.shape = ShapeDef::box(plan.groundHalf);
+    ground.position = Vec3(0, -1, 0);
+    world_->createBody(ground);
+
+    BodyDef box;
+    box.shape = ScenePlan::box();
+    box.density = plan.density;
+    box.allowSleep = false;
+    boxes_.reserve(plan.starts.size());
+    for (const Vec3& start : plan.starts) {
+        box.position = start;
+        boxes_.push_back(world_->createBody(box));
+    }
+}
+
+void LayerSimulation::readBoxes(std::vector<BoxState>& out) const {
+    out.resize(boxes_.size());
+    for (std::size_t i = 0; i < boxes_.size(); ++i) {
+        const BodyState s = boxes_[i].state();
+        out[i] = {s.position, s.orientation, s.linearVelocity};
+    }
+}
+
+std::string LayerSimulation::describe() const {
+    const WorldSettings& s = world_->settings();  // solver knobs resolved to the backend's defaults
+    std::string text = std::string(toString(*s.solver)) + ", " + std::to_string(*s.substeps) + " substeps x " +
+                       std::to_string(*s.iterations) + " it";
+    if (s.workers > 1) text += ", " + std::to_string(s.workers) + " workers";
+    return text;
+}
+
+}  // namespace anyphys::bench

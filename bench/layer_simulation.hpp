@@ -1,0 +1,31 @@
+#pragma once
+// A benchmark scene through anyphys, as game code writes it: a World on one backend with its
+// defaults (solver, substeps, iterations; effects derived from content, so contact events are on),
+// a static ground box and the plan's boxes with allowSleep = false.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "anyphys/anyphys.hpp"
+#include "simulation.hpp"
+
+namespace anyphys::bench {
+
+/// Why `backend` cannot run the plan with `workers` threads (empty when it can): a planar scene
+/// needs planar worlds, a 3D scene 3D ones, and more than one worker the parameter
+/// "settings.workers" in the backend's capabilities.
+std::string cannotRun(const ScenePlan& plan, const BackendInfo& backend, int workers = 1);
+
+class LayerSimulation final : public Simulation {
+public:
+    LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers = 1);
+    void step() override { world_->step(); }
+    void readBoxes(std::vector<BoxState>& out) const override;
+    std::string describe() const override;
+
+private:
+    std::unique_ptr<World> world_;
+    std::vector<Body> boxes_;
+};
+
+}  // namespace anyphys::bench
