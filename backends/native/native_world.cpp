@@ -261,6 +261,34 @@ void NativeWorld::updateProxies(std::uint32_t index, const Vec3& displacement) {
     }
 }
 
+void NativeWorld::updateAllProxies(double dt) {
+    const int workers = tasks_ ? tasks_->workerCount() : 1;
+    if (static_cast<int>(proxyMoves_.size()) < workers) proxyMoves_.resize(static_cast<std::size_t>(workers));
+    for (auto& moves : proxyMoves_) moves.clear();
+    const auto findMoves = [&](int begin, int end, int worker) {
+        auto& moves = proxyMoves_[static_cast<std::size_t>(worker)];
+        for (int i = begin; i < end; ++i) {
+            const NativeBody& body = bodies_[static_cast<std::size_t>(i)];
+            if (!body.isActive()) continue;
+            const Vec3 displacement = dt * body.state.linearVelocity;
+            for (std::size_t s = 0; s < body.shapes.size(); ++s) {
+                // Cover where the shape will be by the end of the step (see updateProxies).
+                const Aabb now = computeAabb(body.shapes[s], shapeWorldPose(body.shapes[s], body.pose()));
+                const Aabb swept = now.merged({now.min + displacement, now.max + displacement});
+                Aabb fat;
+                if (broadPhase_.needsMove(body.proxies[s], swept, displacement, fat)) moves.push_back({body.proxies[s], fat});
+            }
+        }
+    };
+    constexpr int kMinBodiesPerRange = 256;
+    parallelFor(tasks_, static_cast<int>(bodies_.size()), kMinBodiesPerRange, findMoves);
+    // Moved in proxy order, whatever the workers: the tree comes out the same every run.
+    std::vector<ProxyMove>& all = proxyMoves_.front();
+    for (std::size_t w = 1; w < proxyMoves_.size(); ++w) all.insert(all.end(), proxyMoves_[w].begin(), proxyMoves_[w].end());
+    std::sort(all.begin(), all.end());
+    for (const ProxyMove& move : all) broadPhase_.setFatAabb(move.proxy, move.fat);
+}
+
 void NativeWorld::bodyTeleported(std::uint32_t index) {
     NativeBody& body = bodies_[index];
     if (body.type == BodyType::Static) {

@@ -54,7 +54,6 @@ public:
     std::vector<NativeBody>& bodies() { return bodies_; }
     const std::vector<NativeBody>& bodies() const { return bodies_; }
     const ForceHook& forceHook() const { return forceHook_; }
-    IntegratorScratch& integratorScratch() { return scratch_; }
     BroadPhase& broadPhase() { return broadPhase_; }
     ContactManager& contactManager() { return contacts_; }
     StepSolver& solver() { return solver_; }
@@ -75,6 +74,9 @@ public:
     void bodyTeleported(std::uint32_t body);
     /// Refreshes a body's broad-phase proxies from its pose, enlarged along `displacement`.
     void updateProxies(std::uint32_t body, const Vec3& displacement);
+    /// The same for every awake moving body, enlarged along its motion over `dt`: bounds are
+    /// computed on the workers, then the proxies that left their fat boxes move, in proxy order.
+    void updateAllProxies(double dt);
 
     /// Names of the stages the next step will run, in order (for tests and diagnostics).
     std::vector<std::string> activeStageNames();
@@ -91,13 +93,18 @@ private:
     std::vector<Stage*> active_;
     bool pipelineDirty_ = true;
     bool anyActive_ = true;
-    IntegratorScratch scratch_;
     BroadPhase broadPhase_;
     ContactManager contacts_;
     StepSolver solver_;
     TaskSystem* tasks_ = nullptr;
     MaterialTable materials_;
     std::vector<Vec3> hookForces_, hookTorques_;
+    struct ProxyMove {
+        int proxy;
+        Aabb fat;
+        bool operator<(const ProxyMove& o) const { return proxy < o.proxy; }
+    };
+    std::vector<std::vector<ProxyMove>> proxyMoves_;  // one list per worker
     std::unordered_map<int, std::vector<std::uint32_t>> sleepingIslands_;
     int nextIslandId_ = 0;
 };

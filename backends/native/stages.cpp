@@ -96,7 +96,9 @@ public:
         const Vec3 g = world.settings().gravity;
         auto& bodies = world.bodies();
 
-        const auto accelerations = [&](double t, std::span<const BodyState> states, std::span<Acceleration> out) {
+        // Accelerations of the bodies dynamic_[offset + i] at the integrator's states.
+        const auto accelerationsAt = [&](std::size_t offset, double t, std::span<const BodyState> states,
+                                         std::span<Acceleration> out) {
             if (hook) {
                 std::fill(hookForces_.begin(), hookForces_.end(), Vec3::Zero());
                 std::fill(hookTorques_.begin(), hookTorques_.end(), Vec3::Zero());
@@ -104,7 +106,7 @@ public:
                 world.forceHook()(stage);
             }
             for (std::size_t i = 0; i < states.size(); ++i) {
-                const NativeBody& b = bodies[dynamic_[i]];
+                const NativeBody& b = bodies[dynamic_[offset + i]];
                 Acceleration& a = out[i];
                 a = Acceleration{};
                 const BodyState& s = states[i];
@@ -135,8 +137,27 @@ public:
                 }
             }
         };
-
-        integrate(world.settings().integrator, step.time, step.dt, states_, accelerations, world.integratorScratch());
+        // Bodies in [begin, end) on one worker. Without a force callback every body's forces are
+        // its own, so ranges integrate independently; the callback sees all bodies at once (it
+        // may couple them, and runs on the calling thread), so then there is one range.
+        TaskSystem* tasks = world.taskSystem();
+        const int workers = tasks ? tasks->workerCount() : 1;
+        if (static_cast<int>(scratch_.size()) < workers) scratch_.resize(static_cast<std::size_t>(workers));
+        const auto integrateRange = [&](int begin, int end, int worker) {
+            const auto offset = static_cast<std::size_t>(begin);
+            const auto accelerations = [&](double t, std::span<const BodyState> states, std::span<Acceleration> out) {
+                accelerationsAt(offset, t, states, out);
+            };
+            integrate(world.settings().integrator, step.time, step.dt,
+                      std::span<BodyState>(states_).subspan(offset, static_cast<std::size_t>(end - begin)), accelerations,
+                      scratch_[static_cast<std::size_t>(worker)]);
+        };
+        const int count = static_cast<int>(states_.size());
+        constexpr int kMinBodiesPerRange = 256;
+        if (hook)
+            integrateRange(0, count, 0);
+        else
+            parallelFor(tasks, count, kMinBodiesPerRange, integrateRange);
         for (std::size_t i = 0; i < dynamic_.size(); ++i) bodies[dynamic_[i]].state = states_[i];
         for (NativeBody& b : bodies)
             if (b.type == BodyType::Kinematic && b.isActive() && !b.constrained) b.state = advanceKinematic(b.state, step.dt);
@@ -165,6 +186,7 @@ private:
     std::vector<BodyState> states_;
     std::vector<Vec3> hookForces_;
     std::vector<Vec3> hookTorques_;
+    std::vector<IntegratorScratch> scratch_;  // one per worker
 };
 
 class ClearForcesStage final : public Stage {
@@ -192,11 +214,10 @@ public:
             return;
         }
         auto& bodies = world.bodies();
-        for (std::uint32_t i = 0; i < bodies.size(); ++i)
-            if (bodies[i].isActive()) world.updateProxies(i, step.dt * bodies[i].state.linearVelocity);
-        world.broadPhase().updatePairs([&](std::uint64_t a, std::uint64_t b) {
-            world.contactManager().addPair(a, b, bodies, world.materials());
-        });
+        world.updateAllProxies(step.dt);
+        world.broadPhase().updatePairs(
+            [&](std::uint64_t a, std::uint64_t b) { world.contactManager().addPair(a, b, bodies, world.materials()); },
+            world.taskSystem());
         toWake_.clear();
         const WorldSettings& s = world.settings();
         world.contactManager().update(bodies, world.broadPhase(), s.speculativeDistance, s.linearSlop, step.dt, s.planar,

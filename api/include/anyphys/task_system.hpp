@@ -39,7 +39,7 @@ void parallelFor(TaskSystem* tasks, int count, int minRange, Fn& fn) {
     const TaskSystem::RangeFn call = [](int begin, int end, int worker, void* context) {
         (*static_cast<Fn*>(context))(begin, end, worker);
     };
-    tasks->finish(tasks->enqueue(count, minRange, call, &fn));
+    tasks->finish(tasks->enqueue(count, minRange, call, const_cast<void*>(static_cast<const void*>(&fn))));
 }
 
 }  // namespace anyphys

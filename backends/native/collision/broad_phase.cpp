@@ -411,9 +411,9 @@ void BroadPhase::destroyProxy(int id) {
     --proxyCount_;
 }
 
-void BroadPhase::moveProxy(int id, const Aabb& tight, const Vec3& displacement) {
+bool BroadPhase::needsMove(int id, const Aabb& tight, const Vec3& displacement, Aabb& fat) const {
     const Proxy& p = proxy(id);
-    Aabb fat = tight.fattened(margin_);
+    fat = tight.fattened(margin_);
     // Stretch along the predicted motion so a steadily moving proxy is re-inserted rarely.
     for (int i = 0; i < 3; ++i) {
         if (displacement[i] < 0.0) {
@@ -422,47 +422,64 @@ void BroadPhase::moveProxy(int id, const Aabb& tight, const Vec3& displacement) 
             fat.max[i] += displacement[i];
         }
     }
-    DynamicTree& tree = treeOf(p);
-    const Aabb& old = tree.fatAabb(p.treeProxy);
-    if (old.contains(tight)) {
-        // Still inside; keep the old box unless it is much larger than needed (after a fast
-        // move that stopped), which would report needless pairs.
-        if (fat.fattened(4.0 * margin_).contains(old)) return;
-    }
-    tree.moveProxy(p.treeProxy, fat);
+    const Aabb& old = treeOf(p).fatAabb(p.treeProxy);
+    // Still inside: keep the old box unless it is much larger than needed (after a fast move
+    // that stopped), which would report needless pairs.
+    return !(old.contains(tight) && fat.fattened(4.0 * margin_).contains(old));
+}
+
+void BroadPhase::setFatAabb(int id, const Aabb& fat) {
+    const Proxy& p = proxy(id);
+    treeOf(p).moveProxy(p.treeProxy, fat);
     markMoved(id);
 }
 
-void BroadPhase::updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onPair) {
+void BroadPhase::moveProxy(int id, const Aabb& tight, const Vec3& displacement) {
+    Aabb fat;
+    if (needsMove(id, tight, displacement, fat)) setFatAabb(id, fat);
+}
+
+void BroadPhase::updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onPair, TaskSystem* tasks) {
     // A proxy destroyed and re-created in the same slot may be listed twice.
     std::sort(moveBuffer_.begin(), moveBuffer_.end());
     moveBuffer_.erase(std::unique(moveBuffer_.begin(), moveBuffer_.end()), moveBuffer_.end());
-    pairBuffer_.clear();
 
-    for (const int id : moveBuffer_) {
-        const Proxy& p = proxies_[id];
-        if (p.treeProxy == DynamicTree::kNull || !p.moved) continue;  // destroyed since it moved
-        const Aabb& box = treeOf(p).fatAabb(p.treeProxy);
-        auto collect = [&](const DynamicTree& tree) {
-            tree.query(box, [&](int treeProxy) {
-                const int other = static_cast<int>(tree.userData(treeProxy));
-                if (other == id) return true;
-                const Proxy& q = proxies_[other];
-                // Both moved: both queries find the pair; only the larger id's query keeps it.
-                if (q.moved && other > id) return true;
-                if (q.key == p.key) return true;  // shapes sharing a key never pair with themselves
-                pairBuffer_.emplace_back(std::min(p.key, q.key), std::max(p.key, q.key));
-                return true;
-            });
-        };
-        collect(dynamicTree_);
-        if (!p.isStatic) collect(staticTree_);  // static-static pairs are never reported
-    }
+    const int workers = tasks ? tasks->workerCount() : 1;
+    if (static_cast<int>(workerPairs_.size()) < workers) workerPairs_.resize(static_cast<std::size_t>(workers));
+    for (auto& pairs : workerPairs_) pairs.clear();
+    // Each moved proxy's queries read the trees only; pairs go to the worker's own buffer.
+    const auto findPairs = [&](int begin, int end, int worker) {
+        auto& out = workerPairs_[static_cast<std::size_t>(worker)];
+        for (int k = begin; k < end; ++k) {
+            const int id = moveBuffer_[static_cast<std::size_t>(k)];
+            const Proxy& p = proxies_[id];
+            if (p.treeProxy == DynamicTree::kNull || !p.moved) continue;  // destroyed since it moved
+            const Aabb& box = treeOf(p).fatAabb(p.treeProxy);
+            const auto collect = [&](const DynamicTree& tree) {
+                tree.query(box, [&](int treeProxy) {
+                    const int other = static_cast<int>(tree.userData(treeProxy));
+                    if (other == id) return true;
+                    const Proxy& q = proxies_[other];
+                    // Both moved: both queries find the pair; only the larger id's query keeps it.
+                    if (q.moved && other > id) return true;
+                    if (q.key == p.key) return true;  // shapes sharing a key never pair with themselves
+                    out.emplace_back(std::min(p.key, q.key), std::max(p.key, q.key));
+                    return true;
+                });
+            };
+            collect(dynamicTree_);
+            if (!p.isStatic) collect(staticTree_);  // static-static pairs are never reported
+        }
+    };
+    constexpr int kMinProxiesPerRange = 64;
+    parallelFor(tasks, static_cast<int>(moveBuffer_.size()), kMinProxiesPerRange, findPairs);
     for (const int id : moveBuffer_) proxies_[id].moved = false;
     moveBuffer_.clear();
 
-    // Sorted: callers see a deterministic order; unique: two proxies with the same key pair
-    // (several proxies of one key) are reported once.
+    pairBuffer_.clear();
+    for (const auto& pairs : workerPairs_) pairBuffer_.insert(pairBuffer_.end(), pairs.begin(), pairs.end());
+    // Sorted: callers see a deterministic order whatever the workers did; unique: two proxies
+    // with the same key pair (several proxies of one key) are reported once.
     std::sort(pairBuffer_.begin(), pairBuffer_.end());
     pairBuffer_.erase(std::unique(pairBuffer_.begin(), pairBuffer_.end()), pairBuffer_.end());
     // Copy out first: the callback may create, move or destroy proxies.

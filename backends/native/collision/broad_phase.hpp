@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "anyphys/task_system.hpp"
 #include "collision/shape.hpp"
 #include "function_ref.hpp"
 
@@ -92,9 +93,15 @@ public:
     /// Updates a proxy's tight box; if it left its fat box the proxy is re-inserted, enlarged
     /// along `displacement` (predicted motion), and marked moved.
     void moveProxy(int proxy, const Aabb& tight, const Vec3& displacement);
+    /// moveProxy in two halves, so workers can share the first: the new fat box if the proxy
+    /// must move (reads only), then the move itself (changes the tree: one thread).
+    bool needsMove(int proxy, const Aabb& tight, const Vec3& displacement, Aabb& fat) const;
+    void setFatAabb(int proxy, const Aabb& fat);
     /// Calls onPair(keyA, keyB) once for each pair of overlapping fat boxes where at least one
     /// proxy moved since the last call (static-static pairs never), then clears the moved set.
-    void updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onPair);
+    /// The moved proxies' queries run on the workers of `tasks`; pairs come sorted, so the
+    /// order does not depend on the workers.
+    void updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onPair, TaskSystem* tasks = nullptr);
     bool testOverlap(int proxyA, int proxyB) const;
     const Aabb& fatAabb(int proxy) const;
 
@@ -134,6 +141,7 @@ private:
     int proxyCount_ = 0;
     std::vector<int> moveBuffer_;
     std::vector<std::pair<std::uint64_t, std::uint64_t>> pairBuffer_;  // (min key, max key), reused
+    std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> workerPairs_;  // one per worker
 };
 
 }  // namespace anyphys::native
