@@ -5,16 +5,35 @@
 
 namespace anyphys::native {
 
+namespace {
+
+// Bits of the order key to sort by: about one constraint per bucket, at most 64 Ki buckets.
+int keyBits(std::size_t count) {
+    int bits = 1;
+    while (bits < 16 && (std::size_t(1) << bits) < count) ++bits;
+    return bits;
+}
+
+}  // namespace
+
 void ConstraintGraph::build(std::span<const ContactLane> constraints, std::span<const SolverBody> bodies) {
     used_.assign(bodies.size(), 0u);
     colorOf_.resize(constraints.size());
+    // Visiting order: one counting-sort pass on the key's top bits (ties keep their order).
+    const int bits = keyBits(constraints.size());
+    bucketStart_.assign((std::size_t(1) << bits) + 1, 0);
+    for (const ContactLane& c : constraints) ++bucketStart_[(c.orderKey >> (32 - bits)) + 1];
+    for (std::size_t k = 1; k < bucketStart_.size(); ++k) bucketStart_[k] += bucketStart_[k - 1];
+    visit_.resize(constraints.size());
+    for (std::size_t i = 0; i < constraints.size(); ++i)
+        visit_[bucketStart_[constraints[i].orderKey >> (32 - bits)]++] = static_cast<int>(i);
     std::array<int, kMaxColors + 1> count{};
     static_assert(kMaxColors == 32);
     // Colours open to constraints between two dynamic bodies; the top ones stay free for
     // constraints with static bodies.
     constexpr std::uint32_t kDynamicColors = (1u << 28) - 1;
     const auto takesImpulses = [&](std::int32_t body) { return body != kStaticBody && bodies[body].dynamic; };
-    for (std::size_t i = 0; i < constraints.size(); ++i) {
+    for (const int i : visit_) {
         const ContactLane& c = constraints[i];
         const bool a = takesImpulses(c.bodyA), b = takesImpulses(c.bodyB);
         const std::uint32_t used = (a ? used_[c.bodyA] : 0u) | (b ? used_[c.bodyB] : 0u);
@@ -36,7 +55,7 @@ void ConstraintGraph::build(std::span<const ContactLane> constraints, std::span<
         colorOf_[i] = static_cast<std::int8_t>(color);
         ++count[color];
     }
-    // Counting sort by colour keeps the constraint order within each colour.
+    // Counting sort by colour keeps the visiting order within each colour.
     std::array<int, kMaxColors + 1> start{};
     colors_.clear();
     int next = 0;
@@ -47,7 +66,7 @@ void ConstraintGraph::build(std::span<const ContactLane> constraints, std::span<
     }
     hasOverflow_ = count[kMaxColors] > 0;
     order_.resize(constraints.size());
-    for (std::size_t i = 0; i < constraints.size(); ++i) order_[start[colorOf_[i]]++] = static_cast<int>(i);
+    for (const int i : visit_) order_[start[colorOf_[i]]++] = i;
 }
 
 }  // namespace anyphys::native

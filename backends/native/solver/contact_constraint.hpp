@@ -58,6 +58,7 @@ struct ContactLane {
     ContactManifold* manifold = nullptr;
     std::int32_t bodyA = kStaticBody, bodyB = kStaticBody;
     double friction = 0.0, restitution = 0.0;
+    std::uint32_t orderKey = 0;  // a hash of the pair and manifold: where the solver visits it (ConstraintGraph)
 };
 
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h

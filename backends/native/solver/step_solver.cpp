@@ -21,6 +21,21 @@ double velocityTimeOffset(Integrator integrator, double dt) {
     }
 }
 
+// Where a constraint comes in the solver's visiting order (ConstraintGraph): a hash of the
+// bodies, shapes and manifold, the same every step the constraint lives.
+std::uint32_t orderKey(const Contact& c, const ContactManifold& m) {
+    std::uint64_t x = (std::uint64_t(c.bodyA) << 32 | c.bodyB) ^
+                      ((std::uint64_t(std::uint32_t(c.shapeA)) << 40 | std::uint64_t(std::uint32_t(c.shapeB)) << 20 | m.key) *
+                       0x9E3779B97F4A7C15ull);
+    // A 64-bit finaliser (MurmurHash3's): every input bit moves every output bit.
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdull;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ull;
+    x ^= x >> 33;
+    return static_cast<std::uint32_t>(x >> 32);
+}
+
 // Blocks per worker for stages split among workers: enough to even out uneven blocks, few
 // enough that claiming stays cheap.
 constexpr int kBlocksPerWorker = 4;
@@ -49,7 +64,7 @@ void StepSolver::collect(NativeWorld& world) {
         for (ContactManifold& m : contact.manifolds)
             if (m.pointCount > 0)
                 lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
-                                  contact.friction, contact.restitution});
+                                  contact.friction, contact.restitution, orderKey(contact, m)});
         enlist(contact.bodyA);
         enlist(contact.bodyB);
     });
