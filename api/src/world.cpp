@@ -114,6 +114,11 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
         tasks = impl_->pool.get();
     }
     if (tasks) impl_->peer->setTaskSystem(tasks);
+    impl_->asleep = [this](BodyId id) {
+        if (!isValid(id)) return false;
+        const Slot& s = impl_->slots[id.index];
+        return s.def.type != BodyType::Static && !s.peer->isAwake();
+    };
     impl_->peer->setMaterialTable(buildMaterialTable());
     refreshEffects();
 }
@@ -336,29 +341,55 @@ void World::step(double dt) {
 
 void World::dispatchEvents() {
     Impl& i = *impl_;
-    i.peerContacts.clear();
-    i.peer->collectContacts(i.peerContacts);
+    // A listener of the last step's events stepped the world: its loop still reads them.
+    if (i.dispatching > 0) i.retiredEvents.push_back(std::move(i.lastEvents));
+    if (!i.peer->hasAwakeBodies()) {  // every contact has a sleeping body: none begins, stays or ends
+        i.tracker.recycle(i.lastEvents);
+        return;
+    }
+    i.contacts.clear();
+    i.peer->reportContacts(i.contacts);
     // The layer decides what touching means, identically for every backend: a collision pair
     // touches when some point is closer than linearSlop; a trigger pair when it overlaps.
-    std::vector<TouchingPair> touching;
-    touching.reserve(i.peerContacts.size());
-    for (PeerContact& c : i.peerContacts) {
+    const bool impulses = i.backend->capabilities.contactImpulses;
+    const double slop = settings_.linearSlop;
+    i.touching.clear();
+    for (const ContactReport::Pair& c : i.contacts.pairs) {
         bool touches = c.trigger;
-        for (const ContactPoint& p : c.points) touches = touches || p.depth > -settings_.linearSlop;
+        for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
+            touches = i.contacts.points[k].depth > -slop;
         if (!touches) continue;
-        const Capabilities& caps = i.backend->capabilities;
-        touching.push_back({unpackId(c.bodyA), unpackId(c.bodyB), c.trigger, caps.contactImpulses, c.normal,
-                            std::move(c.points)});
+        const BodyId a = unpackId(c.bodyA), b = unpackId(c.bodyB);
+        const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);
+        i.touching.push_back({a, b, c.trigger, impulses, asleep, c.normal, c.firstPoint, c.pointCount});
     }
-    i.lastEvents = i.tracker.update(std::move(touching), [this](BodyId id) {
-        if (!isValid(id)) return false;
-        const Slot& s = impl_->slots[id.index];
-        return s.def.type != BodyType::Static && !s.peer->isAwake();
-    });
-    if (i.listeners.empty()) return;
-    const std::vector<ContactEvent> events = i.lastEvents;  // listeners may step nothing but may destroy
-    const std::vector<ContactListener*> listeners = i.listeners;
-    for (const ContactEvent& e : events) {
+    i.tracker.update(i.touching, i.contacts.points, i.lastEvents, i.asleep);
+    if (!i.listeners.empty()) deliverEvents();
+}
+
+void World::deliverEvents() {
+    Impl& i = *impl_;
+    // Listeners may create and destroy bodies, add and remove listeners, even step: the events
+    // are read from their own storage (a step inside a callback retires it rather than reuse it),
+    // and go to the listeners registered when delivery began.
+    const ContactEvent* const events = i.lastEvents.data();
+    const std::size_t count = i.lastEvents.size();
+    std::vector<ContactListener*> nestedListeners;
+    std::vector<ContactListener*>& listeners = i.dispatching == 0 ? i.listenersNow : nestedListeners;
+    listeners.assign(i.listeners.begin(), i.listeners.end());
+    struct Delivering {
+        Impl& impl;
+        explicit Delivering(Impl& in) : impl(in) { ++impl.dispatching; }
+        ~Delivering() {
+            if (--impl.dispatching > 0) return;
+            for (std::vector<ContactEvent>& retired : impl.retiredEvents) impl.tracker.recycle(retired);
+            impl.retiredEvents.clear();
+        }
+        Delivering(const Delivering&) = delete;
+        Delivering& operator=(const Delivering&) = delete;
+    } delivering(i);
+    for (std::size_t k = 0; k < count; ++k) {
+        const ContactEvent& e = events[k];
         // A body destroyed by an earlier callback already had its exits delivered.
         if (e.phase != ContactPhase::Exit && (!isValid(e.bodyA) || !isValid(e.bodyB))) continue;
         for (ContactListener* l : listeners) {

@@ -63,8 +63,14 @@ struct World::Impl {
     bool anyFriction = false;
     bool anyRestitution = false;
 
-    std::vector<PeerContact> peerContacts;  // reused each step
+    // Events: buffers reused every step, so a steady step allocates nothing.
+    ContactReport contacts;                  // what the peer reported after the last step
+    std::vector<TouchingRange> touching;     // the pairs of it that touch
     std::vector<ContactEvent> lastEvents;
+    ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
+    std::vector<ContactListener*> listenersNow;  // the listeners one dispatch delivers to
+    int dispatching = 0;                     // listener callbacks running (a callback may step)
+    std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch
 
     ForceCallback forceCallback;
     std::vector<ContactListener*> listeners;

@@ -116,6 +116,10 @@ void Box2dBody::flushForces(bool apply) {
 
 void Box2dBody::updateBullet(bool continuous, double h) {
     if (!isDynamic()) return;
+    if (!body_->IsAwake()) {  // at rest (Box2D zeroes a sleeping body's velocity): not fast
+        if (body_->IsBullet()) body_->SetBullet(false);
+        return;
+    }
     const double travel = static_cast<double>(body_->GetLinearVelocity().Length()) * h;
     const bool fast = continuous && travel > 0.5 * innerRadius_;
     if (fast != body_->IsBullet()) body_->SetBullet(fast);

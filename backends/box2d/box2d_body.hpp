@@ -68,6 +68,8 @@ public:
     /// Velocity at the start of the current Box2D step: unchanged means its solve has not run yet.
     void markStepStart() { stepStartVelocity_ = body_->GetLinearVelocity(); }
     bool movedSinceStepStart() const { return !(body_->GetLinearVelocity() == stepStartVelocity_); }
+    /// Index in the world's body list (kept by the world).
+    std::size_t slot = 0;
 
 private:
     Box2dWorld* world_;

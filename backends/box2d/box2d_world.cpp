@@ -1,10 +1,11 @@
 #include "box2d_world.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
-#include <map>
 
 #include "anyphys/error.hpp"
+#include "box2d_manifold.hpp"
 
 namespace anyphys::box2d {
 namespace {
@@ -97,7 +98,9 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     bd.gravityScale = static_cast<float>(def.gravityScale);
     b2Body* body = world_->CreateBody(&bd);
     auto peer = std::make_unique<Box2dBody>(*this, body, peerDef, embedding);
-    bodies_.insert(peer.get());
+    peer->slot = bodies_.size();
+    bodies_.push_back(peer.get());
+    if (pieces.size() > 1) ++multiFixtureBodies_;
 
     double inner = std::numeric_limits<double>::infinity();
     for (Piece& piece : pieces) {
@@ -135,9 +138,14 @@ void Box2dWorld::forgetBody(Box2dBody& body) { removeBody(body); }
 void Box2dWorld::removeBody(Box2dBody& body) {
     b2Body* b = body.b2();
     wakeTouching(b);  // bodies resting on this one must not hang in the air
-    for (b2ContactEdge* e = b->GetContactList(); e; e = e->next) impulses_.erase(e->contact);
+    for (b2ContactEdge* e = b->GetContactList(); e; e = e->next)
+        if (const SummedImpulses* sum = summedImpulses(e->contact))
+            impulses_.erase(impulses_.begin() + (sum - impulses_.data()));
     world_->DestroyBody(b);
-    bodies_.erase(&body);
+    if (body.fixtures().size() > 1) --multiFixtureBodies_;
+    bodies_.back()->slot = body.slot;
+    bodies_[body.slot] = bodies_.back();
+    bodies_.pop_back();
     body.detach();
 }
 
@@ -191,43 +199,72 @@ void Box2dWorld::step(double time, double dt) {
         if (effects_.has(Effect::Restitution))
             for (Box2dBody* b : bodies_) b->markStepStart();
         world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
-        if (substeps_ == 1) continue;
-        for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
-            if (!c->IsTouching()) continue;
-            auto& sum = impulses_.try_emplace(c, std::array<float, b2_maxManifoldPoints>{}).first->second;
-            const b2Manifold* m = c->GetManifold();
-            for (int32 p = 0; p < m->pointCount; ++p) sum[static_cast<std::size_t>(p)] += m->points[p].normalImpulse;
-        }
+        if (substeps_ > 1) addImpulses();
     }
     world_->ClearForces();
 }
 
-void Box2dWorld::collectContacts(std::vector<PeerContact>& out) {
-    // Box2D keeps one contact per fixture pair; the layer wants one per body pair (a capsule has
-    // three fixtures): merge them, the first contact's body order and normal leading.
-    std::map<std::pair<std::uint64_t, std::uint64_t>, std::size_t> pairIndex;
+void Box2dWorld::addImpulses() {
+    const auto byContact = [](const SummedImpulses& s, const b2Contact* c) { return std::less<const b2Contact*>{}(s.contact, c); };
+    const std::size_t known = impulses_.size();
+    for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
+        if (!c->IsTouching()) continue;
+        const auto end = impulses_.begin() + static_cast<std::ptrdiff_t>(known);
+        auto it = std::lower_bound(impulses_.begin(), end, c, byContact);
+        SummedImpulses* sum = nullptr;
+        if (it != end && it->contact == c) {
+            sum = &*it;
+        } else {  // new this substep: appended, sorted in below
+            sum = &impulses_.emplace_back(SummedImpulses{c, {}});
+        }
+        const b2Manifold* m = c->GetManifold();
+        for (int32 p = 0; p < m->pointCount; ++p) sum->sum[static_cast<std::size_t>(p)] += m->points[p].normalImpulse;
+    }
+    if (impulses_.size() > known)
+        std::sort(impulses_.begin(), impulses_.end(), [](const SummedImpulses& x, const SummedImpulses& y) {
+            return std::less<const b2Contact*>{}(x.contact, y.contact);
+        });
+}
+
+const Box2dWorld::SummedImpulses* Box2dWorld::summedImpulses(const b2Contact* contact) const {
+    const auto it = std::lower_bound(impulses_.begin(), impulses_.end(), contact, [](const SummedImpulses& s, const b2Contact* c) {
+        return std::less<const b2Contact*>{}(s.contact, c);
+    });
+    return it != impulses_.end() && it->contact == contact ? &*it : nullptr;
+}
+
+bool Box2dWorld::hasAwakeBodies() const {
+    if (!effects_.has(Effect::Contacts)) return true;
+    return std::any_of(bodies_.begin(), bodies_.end(), [](const Box2dBody* b) { return b->b2()->IsAwake(); });
+}
+
+void Box2dWorld::reportContacts(ContactReport& out) {
+    const auto asleep = [](const b2Body* b) { return b->GetType() != b2_staticBody && !b->IsAwake(); };
     for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
         if (!c->IsTouching()) continue;
         const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
-        if (!fa->GetBody()->IsAwake() && !fb->GetBody()->IsAwake()) continue;  // asleep: the layer keeps the pair
+        const b2Body *ba = fa->GetBody(), *bb = fb->GetBody();
+        if (!ba->IsAwake() && !bb->IsAwake()) continue;  // asleep: the layer keeps the pair
         const std::uint64_t a = bodyOf(fa).userData(), b = bodyOf(fb).userData();
-        const bool sensor = fa->IsSensor() || fb->IsSensor();
-        const auto [it, added] = pairIndex.try_emplace(std::minmax(a, b), out.size());
-        if (added) out.push_back(PeerContact{a, b, sensor, Vec3::Zero(), {}});
-        PeerContact& pc = out[it->second];
-        if (sensor) continue;  // a trigger overlap has no points
-        b2WorldManifold wm;
-        c->GetWorldManifold(&wm);
-        const double sign = pc.bodyA == a ? 1.0 : -1.0;  // Box2D's normal points from fixture A to B
-        if (pc.points.empty()) pc.normal = sign * fromB2(wm.normal);
+        const bool sleeping = asleep(ba) || asleep(bb);
+        if (fa->IsSensor() || fb->IsSensor()) {  // a trigger overlap has no points
+            out.addPair(a, b, true, Vec3::Zero(), sleeping);
+            continue;
+        }
+        const WorldManifold wm = worldManifold(*c);
+        out.addPair(a, b, false, fromB2(wm.normal), sleeping);  // Box2D's normal points from fixture A to B
         const b2Manifold* m = c->GetManifold();
-        const auto summed = impulses_.find(c);
+        const SummedImpulses* summed = substeps_ > 1 ? summedImpulses(c) : nullptr;
         for (int32 p = 0; p < m->pointCount; ++p) {
-            const float impulse = summed != impulses_.end() ? summed->second[static_cast<std::size_t>(p)] : m->points[p].normalImpulse;
+            const float impulse = summed ? summed->sum[static_cast<std::size_t>(p)] : m->points[p].normalImpulse;
             // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.
-            pc.points.push_back({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulse});
+            out.addPoint({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulse});
         }
     }
+    out.sleepKnown = true;
+    // Box2D keeps one contact per fixture pair; the layer wants one per body pair (a capsule has
+    // three fixtures): merged, the first contact's body order and normal leading.
+    if (multiFixtureBodies_ > 0) out.mergeRepeatedPairs();
 }
 
 void* Box2dWorld::nativeObject(const std::type_info& pointerType) {

@@ -5,8 +5,7 @@
 
 #include <array>
 #include <memory>
-#include <unordered_map>
-#include <unordered_set>
+#include <vector>
 
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
@@ -33,7 +32,8 @@ public:
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
-    void collectContacts(std::vector<PeerContact>& out) override;
+    void reportContacts(ContactReport& out) override;
+    bool hasAwakeBodies() const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                     std::uint32_t mask) override;
     std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
@@ -59,11 +59,20 @@ private:
     ForceHook forceHook_;
     ContactRules rules_;
     std::unique_ptr<b2World> world_;
-    std::unordered_set<Box2dBody*> bodies_;
+    std::vector<Box2dBody*> bodies_;
+    std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
-    /// Per contact, the normal impulses summed over this step's substeps (substeps > 1 only;
-    /// with one substep the manifold's own impulses are the step's).
-    std::unordered_map<const b2Contact*, std::array<float, b2_maxManifoldPoints>> impulses_;
+
+    /// Per touching contact, the normal impulses summed over this step's substeps (substeps > 1
+    /// only; with one substep the manifold's own impulses are the step's). Sorted by contact, so
+    /// a step looks them up without allocating.
+    struct SummedImpulses {
+        const b2Contact* contact;
+        std::array<float, b2_maxManifoldPoints> sum;
+    };
+    std::vector<SummedImpulses> impulses_;
+    void addImpulses();  // after each substep
+    const SummedImpulses* summedImpulses(const b2Contact* contact) const;
 };
 
 }  // namespace anyphys::box2d

@@ -56,18 +56,25 @@ void AnyphysDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo) {
 // island to sleep once all its bodies want to, and wakes it together.
 void AnyphysDynamicsWorld::updateActivationState(btScalar timeStep) {
     const bool sleeping = effects_.has(Effect::Sleeping);
+    awakeBodies_ = 0;  // counted on the way: the last word on sleep in a step is here
     for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
         btRigidBody* body = m_nonStaticRigidBodies[i];
-        if (body->isKinematicObject()) continue;  // moved by anyphys, never put to sleep here
-        body->updateDeactivation(timeStep);       // accumulates rest time under the thresholds
+        if (body->isKinematicObject()) {  // moved by anyphys, never put to sleep here
+            if (body->isActive()) ++awakeBodies_;
+            continue;
+        }
+        body->updateDeactivation(timeStep);  // accumulates rest time under the thresholds
         const int state = body->getActivationState();
         if (state == DISABLE_DEACTIVATION || state == ISLAND_SLEEPING) {
             if (state == ISLAND_SLEEPING) {
                 body->setLinearVelocity(btVector3(0, 0, 0));
                 body->setAngularVelocity(btVector3(0, 0, 0));
+            } else {
+                ++awakeBodies_;
             }
             continue;
         }
+        ++awakeBodies_;
         if (sleeping && body->getDeactivationTime() >= timeToSleep_)
             body->setActivationState(WANTS_DEACTIVATION);
         else

@@ -32,6 +32,8 @@ public:
     /// Continuous collision's predictive contacts of the last step (they live in the dispatcher
     /// next to the ordinary manifolds, so one pair may have both).
     int predictiveManifoldCount() const { return m_predictiveManifolds.size(); }
+    /// Dynamic and kinematic bodies awake at the end of the last step.
+    int awakeBodyCount() const { return awakeBodies_; }
 
 protected:
     void solveConstraints(btContactSolverInfo& solverInfo) override;
@@ -43,6 +45,7 @@ private:
     Effects effects_;
     btScalar timeToSleep_ = 0.5f;
     btScalar restitutionThreshold_ = 1.0f;
+    int awakeBodies_ = 0;
 };
 
 }  // namespace anyphys::bullet

@@ -176,9 +176,15 @@ void BulletWorld::step(double time, double dt) {
     forced_.clear();
 }
 
-void BulletWorld::collectContacts(std::vector<PeerContact>& out) {
-    pairIndex_.clear();
-    const bool severalPerPair = world_->predictiveManifoldCount() > 0;
+bool BulletWorld::hasAwakeBodies() const {
+    return !effects_.has(Effect::Contacts) || world_->awakeBodyCount() > 0;
+}
+
+void BulletWorld::reportContacts(ContactReport& out) {
+    // Compound bodies (one manifold per child pair) and continuous collision's predictive
+    // contacts make several manifolds per body pair: merged at the end, only then.
+    bool repeats = world_->predictiveManifoldCount() > 0;
+    const auto asleep = [](const BulletBodyPeer& body) { return body.moves() && !body.isAwake(); };
     const int manifolds = dispatcher_->getNumManifolds();
     for (int m = 0; m < manifolds; ++m) {
         const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
@@ -188,38 +194,24 @@ void BulletWorld::collectContacts(std::vector<PeerContact>& out) {
         const auto* b = static_cast<const BulletBodyPeer*>(manifold->getBody1()->getUserPointer());
         if (a == nullptr || b == nullptr) continue;
         if (!a->activeMover() && !b->activeMover()) continue;  // asleep: the layer keeps the pair
-        // One PeerContact per body pair (a compound makes one manifold per child pair).
-        const bool swapped = a->userData() > b->userData();
-        const std::uint64_t low = swapped ? b->userData() : a->userData();
-        const std::uint64_t high = swapped ? a->userData() : b->userData();
+        repeats = repeats || a->compound() || b->compound();
+        const bool sleeping = asleep(*a) || asleep(*b);
         if (a->trigger() || b->trigger()) {
             bool overlapping = false;  // a sensor overlaps when some point touches or penetrates
             for (int i = 0; i < count && !overlapping; ++i) overlapping = manifold->getContactPoint(i).getDistance() <= 0;
-            if (overlapping && pairIndex_.try_emplace({low, high}, out.size()).second)
-                out.push_back({low, high, true, Vec3::Zero(), {}});
+            if (overlapping) out.addPair(a->userData(), b->userData(), true, Vec3::Zero(), sleeping);
             continue;
         }
-        // Only compound bodies and continuous collision's predictive contacts make several
-        // manifolds per pair: otherwise the lookup is skipped.
-        std::size_t index = out.size();
-        if (severalPerPair || a->compound() || b->compound()) {
-            const auto [it, fresh] = pairIndex_.try_emplace({low, high}, out.size());
-            index = it->second;
-            if (fresh) out.push_back({low, high, false, Vec3::Zero(), {}});
-        } else {
-            out.push_back({low, high, false, Vec3::Zero(), {}});
-        }
-        PeerContact& pc = out[index];
-        pc.points.reserve(pc.points.size() + static_cast<std::size_t>(count));
         // Bullet's normal points from body 1 to body 0; the layer wants it from A to B.
-        const double sign = swapped ? 1.0 : -1.0;
+        out.addPair(a->userData(), b->userData(), false, -fromBt(manifold->getContactPoint(0).m_normalWorldOnB), sleeping);
         for (int i = 0; i < count; ++i) {
             const btManifoldPoint& p = manifold->getContactPoint(i);
-            if (pc.points.empty()) pc.normal = sign * fromBt(p.m_normalWorldOnB);
             const Vec3 point = 0.5 * (fromBt(p.getPositionWorldOnA()) + fromBt(p.getPositionWorldOnB()));
-            pc.points.push_back({point, -static_cast<double>(p.getDistance()), static_cast<double>(p.getAppliedImpulse())});
+            out.addPoint({point, -static_cast<double>(p.getDistance()), static_cast<double>(p.getAppliedImpulse())});
         }
     }
+    out.sleepKnown = true;
+    if (repeats) out.mergeRepeatedPairs();
 }
 
 void* BulletWorld::nativeObject(const std::type_info& pointerType) {

@@ -4,7 +4,6 @@
 // configuration), plus what anyphys adds per world: the material table, the layer filter, the
 // effects, user forces and the force hook.
 #include <memory>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -38,7 +37,8 @@ public:
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
-    void collectContacts(std::vector<PeerContact>& out) override;
+    void reportContacts(ContactReport& out) override;
+    bool hasAwakeBodies() const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                     std::uint32_t mask) override;
     std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
@@ -64,13 +64,6 @@ private:
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
-    struct PairHash {
-        std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& p) const {
-            return std::hash<std::uint64_t>{}(p.first * 0x9E3779B97F4A7C15ull ^ p.second);
-        }
-    };
-    // collectContacts scratch: body pair -> its entry in the output
-    std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::size_t, PairHash> pairIndex_;
 
     // Destroyed in reverse order of declaration: world_ first.
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;

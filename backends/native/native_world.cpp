@@ -98,6 +98,8 @@ std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
     body.trigger = def.isTrigger;
     body.allowSleep = def.allowSleep;
     body.awake = def.type != BodyType::Static && def.isAwake;  // static bodies are never simulated
+    if (body.awake) ++awakeBodies_;
+    if (peerDef.shapes.size() > 1) ++multiShapeBodies_;
     body.stepStartPosition = body.state.position;
     body.stepStartOrientation = body.state.orientation;
     body.coreExtent = std::numeric_limits<double>::infinity();
@@ -125,6 +127,8 @@ void NativeWorld::destroyBody(BodyPeer& peer) {
     });
     contacts_.removeBody(index);
     for (int proxy : body.proxies) broadPhase_.destroyProxy(proxy);
+    if (body.awake && body.moves()) --awakeBodies_;
+    if (body.shapes.size() > 1) --multiShapeBodies_;
     if (body.sleepingIsland >= 0) {
         auto& members = sleepingIslands_[body.sleepingIsland];
         members.erase(std::remove(members.begin(), members.end(), index), members.end());
@@ -219,13 +223,13 @@ void NativeWorld::wakeBody(std::uint32_t index) {
             for (std::uint32_t m : members) {
                 bodies_[m].stepStartPosition = bodies_[m].state.position;
                 bodies_[m].stepStartOrientation = bodies_[m].state.orientation;
-                bodies_[m].awake = true;
+                setAwakeFlag(bodies_[m], true);
                 bodies_[m].sleepTime = 0.0;
                 bodies_[m].sleepingIsland = -1;
             }
         }
     }
-    body.awake = true;
+    setAwakeFlag(body, true);
     body.sleepingIsland = -1;
     body.stepStartPosition = body.state.position;  // woken mid-step: its motion starts now
     body.stepStartOrientation = body.state.orientation;
@@ -233,12 +237,18 @@ void NativeWorld::wakeBody(std::uint32_t index) {
 
 void NativeWorld::sleepBody(std::uint32_t index) { sleepIsland({index}); }
 
+void NativeWorld::setAwakeFlag(NativeBody& body, bool awake) {
+    if (body.awake == awake) return;
+    body.awake = awake;
+    if (body.moves()) awakeBodies_ += awake ? 1 : -1;
+}
+
 void NativeWorld::sleepIsland(const std::vector<std::uint32_t>& members) {
     const int id = nextIslandId_++;
     for (std::uint32_t m : members) {
         NativeBody& b = bodies_[m];
         if (!b.alive || b.type == BodyType::Static) continue;
-        b.awake = false;
+        setAwakeFlag(b, false);
         b.constrained = false;  // flags are reset each step only for awake bodies
         b.sleepingIsland = id;
         b.state.linearVelocity.setZero();
@@ -305,23 +315,27 @@ void NativeWorld::bodyTeleported(std::uint32_t index) {
     updateProxies(index, Vec3::Zero());
 }
 
-void NativeWorld::collectContacts(std::vector<PeerContact>& out) {
+void NativeWorld::reportContacts(ContactReport& out) {
     if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
+    const auto asleep = [](const NativeBody& b) { return b.moves() && !b.awake; };
     contacts_.forEach([&](const Contact& c) {
         const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
-        if (!a.isActive() && !b.isActive()) return;  // asleep: the layer keeps the pair
+        if (!a.isActive() && !b.isActive()) return;  // both at rest: the layer keeps the pair
+        const bool sleeping = asleep(a) || asleep(b);
         if (c.trigger) {
-            if (c.touching) out.push_back({a.userData, b.userData, true, Vec3::Zero(), {}});
+            if (c.touching) out.addPair(a.userData, b.userData, true, Vec3::Zero(), sleeping);
             return;
         }
         if (c.manifolds.empty()) return;
-        PeerContact pc{a.userData, b.userData, false, c.manifolds.front().normal, {}};
+        out.addPair(a.userData, b.userData, false, c.manifolds.front().normal, sleeping);
         // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
         for (const ContactManifold& m : c.manifolds)
             for (int i = 0; i < m.pointCount; ++i)
-                pc.points.push_back({m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].stepImpulse});
-        out.push_back(std::move(pc));
+                out.addPoint({m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].stepImpulse});
     });
+    out.sleepKnown = true;
+    // A body of several shapes meets another in several shape pairs: one report per body pair.
+    if (multiShapeBodies_ > 0) out.mergeRepeatedPairs();
 }
 
 std::vector<PeerRayHit> NativeWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,

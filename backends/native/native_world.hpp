@@ -39,7 +39,8 @@ public:
     void setTaskSystem(TaskSystem* tasks) override { tasks_ = tasks; }
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
-    void collectContacts(std::vector<PeerContact>& out) override;
+    void reportContacts(ContactReport& out) override;
+    bool hasAwakeBodies() const override { return awakeBodies_ > 0; }
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                     std::uint32_t mask) override;
     std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
@@ -71,6 +72,8 @@ public:
     void sleepBody(std::uint32_t body);
     /// Puts a set of resting bodies to sleep together; waking one wakes them all.
     void sleepIsland(const std::vector<std::uint32_t>& members);
+    /// Sets a body's awake flag, keeping the count of awake moving bodies.
+    void setAwakeFlag(NativeBody& body, bool awake);
     /// Moves the body's proxies after a teleport and wakes it.
     void bodyTeleported(std::uint32_t body);
     /// Refreshes a body's broad-phase proxies from its pose, enlarged along `displacement`.
@@ -94,6 +97,8 @@ private:
     std::vector<Stage*> active_;
     bool pipelineDirty_ = true;
     bool anyActive_ = true;
+    int awakeBodies_ = 0;       // dynamic and kinematic bodies awake
+    int multiShapeBodies_ = 0;  // bodies with several shapes (their contacts need merging per body pair)
     BroadPhase broadPhase_;
     ContactManager contacts_;
     StepSolver solver_;

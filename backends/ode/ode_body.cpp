@@ -200,8 +200,11 @@ void OdeBody::applyEffects(Effects effects, double h) {
     // Gyroscopic: ODE's own term is always off; the world applies the layer's implicit form
     // (anyphys/peers/gyroscopic.hpp) to bodies that need it.
     dBodySetGyroscopicMode(body_, 0);
-    // Sleeping: ODE's auto-disable, with the thresholds the world set as ODE's defaults.
+    // Sleeping: ODE's auto-disable, with the thresholds the world set as ODE's defaults. Turning
+    // it off also enables the body in ODE: a body asleep (e.g. created asleep) stays asleep.
+    const bool asleep = !dBodyIsEnabled(body_);
     dBodySetAutoDisableFlag(body_, effects.has(Effect::Sleeping) && allowSleep_ ? 1 : 0);
+    if (asleep) dBodyDisable(body_);
 }
 
 bool OdeBody::needsGyroscopic(Effects effects) const {

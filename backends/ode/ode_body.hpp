@@ -70,6 +70,8 @@ public:
     void clearForces();
     /// Index in the world's body list (kept by the world).
     std::size_t slot = 0;
+    /// Order among the awake bodies in the world's current collide pass (kept by the world).
+    std::size_t awakeRank = 0;
     /// Queued in the world's list of bodies with forces this step.
     bool forceQueued = false;
 

@@ -1,5 +1,5 @@
 #pragma once
-// Defaults of the ODE backend that are not WorldSettings fields. bench/direct/ode_grid.cpp
+// Defaults of the ODE backend that are not WorldSettings fields. bench/direct/ode_scenes.cpp
 // repeats them to drive raw ODE exactly like the backend does: change both together.
 
 namespace anyphys::ode {

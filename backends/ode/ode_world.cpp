@@ -100,6 +100,7 @@ std::unique_ptr<BodyPeer> OdeWorld::createBody(const BodyPeerDef& def) {
     bodies_.push_back(body.get());
     if (body->isDynamic() && body->gravityScale() != 0.0 && body->gravityScale() != 1.0) scaledGravity_.push_back(body.get());
     if (body->shapeCount() > 1) ++multiShapeBodies_;
+    geomCount_ += body->shapeCount();
     if (body->needsGyroscopic(effects_)) gyroscopic_.push_back(body.get());
     body->applyEffects(effects_, odeStep());
     return body;
@@ -109,6 +110,7 @@ void OdeWorld::destroyBody(BodyPeer& peer) {
     auto& body = static_cast<OdeBody&>(peer);
     wakeTouching(body);  // bodies resting on it (even asleep) must not hang in the air
     std::erase_if(pairs_, [&](const PairRecord& p) { return p.a == &body || p.b == &body; });
+    geomCount_ -= body.shapeCount();
     std::erase(forced_, &body);
     std::erase(scaledGravity_, &body);
     std::erase(gyroscopic_, &body);
@@ -170,13 +172,10 @@ void OdeWorld::step(double time, double dt) {
     dRandSetSeed(randomSeed_);
     if (!contacts) {
         pairs_.clear();
-        contacts_.clear();
+        points_.clear();
     }
     for (int s = 0; s < substeps; ++s) {
-        if (contacts) {
-            collide();
-            createContactJoints();
-        }
+        if (contacts) collide();
         for (const OdeBody* b : forced_) b->feedForces();
         if (effects_.has(Effect::Gravity))
             for (const OdeBody* b : scaledGravity_) {

@@ -1,8 +1,8 @@
 #pragma once
 // The ODE backend's world: a dWorld, one hash space holding every geom, and a joint group for
 // the contacts of one ODE step. Each step: force hook, then per substep collide (contact joints
-// with the layer's resolved materials), quickstep or dWorldStep, and the continuous-collision
-// clamp.
+// with the layer's resolved materials; only pairs with an awake body are visited), quickstep or
+// dWorldStep, and the continuous-collision clamp.
 #include <ode/ode.h>
 
 #include <cstdint>
@@ -27,7 +27,8 @@ public:
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
-    void collectContacts(std::vector<PeerContact>& out) override;
+    void reportContacts(ContactReport& out) override;
+    bool hasAwakeBodies() const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                     std::uint32_t mask) override;
     std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
@@ -44,25 +45,35 @@ public:
     /// ODE steps taken by dWorldStep (the direct solver) and by dWorldQuickStep.
     std::uint64_t directSteps() const { return directSteps_; }
     std::uint64_t quickSteps() const { return quickSteps_; }
+    /// How the last collide pass found its pairs (see collide()).
+    enum class CollidePass { Skipped, PerAwakeGeom, WholeSpace };
+    CollidePass lastCollidePass() const { return lastPass_; }
     /// Queues a body whose held forces must be fed to ODE this step.
     void queueForces(OdeBody& body);
     /// Wakes the moving bodies whose geoms touch `body`'s (after a static body moved).
     void wakeTouching(const OdeBody& body);
 
 private:
-    // One geom pair found touching in the last ODE step.
+    // One geom pair found touching in the last ODE step (recorded for events only).
     struct PairRecord {
         OdeBody* a;            // contact normals point into a (ODE's convention for geom 1)
         OdeBody* b;
         bool trigger;
-        std::uint32_t first;   // contacts_[first, first + count)
+        std::uint32_t first;   // points_[first, first + count)
         std::uint32_t count;
+    };
+    // One contact point of a recorded pair; its joint's feedback is feedback_ at the same index.
+    struct PointRecord {
+        Vec3 position;
+        Vec3 normal;  // ODE's: into body a
+        double depth;
     };
 
     static void nearCallback(void* self, dGeomID o1, dGeomID o2);
+    static void awakeGeomCallback(void* self, dGeomID o1, dGeomID o2);
     void collidePair(dGeomID o1, dGeomID o2);
     void collide();
-    void createContactJoints();
+    void createContactJoints(const OdeBody& a, const OdeBody& b, dContact* contacts, int count);
     void continuousCollision(const std::vector<Vec3>& before);
     void applyDampingStep(double h);
     double odeStep() const;  // s, the length of one ODE step
@@ -84,10 +95,20 @@ private:
     std::vector<OdeBody*> scaledGravity_;  // dynamic bodies with gravityScale other than 0 and 1
     std::vector<OdeBody*> gyroscopic_;     // bodies whose implicit gyroscopic term this backend applies
     std::size_t multiShapeBodies_ = 0;     // bodies with more than one geom (contacts then merge per body pair)
+    std::size_t geomCount_ = 0;            // geoms of every body
 
-    // Contacts of the last ODE step: the pairs, their points and the joints' feedback.
+    // The collide pass: geoms of awake bodies (in body order), the one being collided, and
+    // how many bodies were awake when it ran.
+    std::vector<dGeomID> awakeGeoms_;
+    dGeomID currentGeom_ = nullptr;
+    std::size_t awakeBodies_ = 0;
+    CollidePass lastPass_ = CollidePass::Skipped;
+
+    // Contacts of the last ODE step for events (recorded when events are on): the pairs, their
+    // points, the joints and the joints' feedback.
     std::vector<PairRecord> pairs_;
-    std::vector<dContact> contacts_;
+    std::vector<PointRecord> points_;
+    std::vector<dJointID> joints_;
     std::vector<dJointFeedback> feedback_;
     bool feedbackValid_ = false;    // feedback_ holds the last ODE step's joint forces
     double lastDt_ = 0.0;           // s, the last anyphys step (impulse = force x dt)

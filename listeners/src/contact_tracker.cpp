@@ -7,6 +7,13 @@ namespace anyphys {
 
 namespace {
 
+// Point storage handed to a new event holds a box face's manifold, so that in a steady step
+// the reused vectors rarely need to grow.
+constexpr std::size_t kPointsPerEvent = 4;
+
+std::uint64_t keyOf(BodyId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
+BodyId idOf(std::uint64_t key) { return BodyId{std::uint32_t(key >> 32), std::uint32_t(key)}; }
+
 ContactEvent exitEvent(BodyId a, BodyId b, bool trigger, bool removal) {
     ContactEvent e;
     e.bodyA = a;
@@ -17,75 +24,212 @@ ContactEvent exitEvent(BodyId a, BodyId b, bool trigger, bool removal) {
     return e;
 }
 
-ContactEvent touchEvent(TouchingPair&& p, ContactPhase phase) {
-    ContactEvent e;
-    e.bodyA = p.bodyA;
-    e.bodyB = p.bodyB;
-    e.phase = phase;
-    e.trigger = p.trigger;
-    e.hasImpulses = p.hasImpulses;
-    e.normal = p.normal;
-    if (!p.trigger) e.points = std::move(p.points);  // triggers carry no contact points
-    return e;
-}
-
 }  // namespace
 
 std::vector<ContactEvent> ContactTracker::update(std::vector<TouchingPair> touching, const AsleepQuery& asleep) {
-    // Normalise order (A < B, normal from A to B), sort, and keep the first report of each pair.
-    std::erase_if(touching, [](const TouchingPair& p) { return p.bodyA == p.bodyB; });  // never itself
-    for (TouchingPair& p : touching)
+    // The same diff over one shared point array; reported pairs are asked about sleep here.
+    std::vector<TouchingRange> ranges;
+    std::vector<ContactPoint> points;
+    ranges.reserve(touching.size());
+    for (const TouchingPair& p : touching) {
+        const bool sleeping = asleep && (asleep(p.bodyA) || asleep(p.bodyB));
+        ranges.push_back({p.bodyA, p.bodyB, p.trigger, p.hasImpulses, sleeping, p.normal,
+                          static_cast<std::uint32_t>(points.size()), static_cast<std::uint32_t>(p.points.size())});
+        points.insert(points.end(), p.points.begin(), p.points.end());
+    }
+    std::vector<ContactEvent> events;
+    update(ranges, points, events, asleep);
+    return events;
+}
+
+void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
+                            std::vector<ContactEvent>& events, const AsleepQuery& asleep) {
+    // Normalise order (A < B, normal from A to B), sort by pair then listing order, and keep the
+    // first listing of each pair.
+    listed_.clear();
+    for (std::uint32_t i = 0; i < touching.size(); ++i) {
+        TouchingRange& p = touching[i];
+        if (p.bodyA == p.bodyB) continue;  // never itself
         if (p.bodyB < p.bodyA) {
             std::swap(p.bodyA, p.bodyB);
             p.normal = -p.normal;
         }
-    const auto keyOf = [](const TouchingPair& p) { return PairKey{p.bodyA, p.bodyB}; };
-    std::stable_sort(touching.begin(), touching.end(),
-                     [&](const TouchingPair& x, const TouchingPair& y) { return keyOf(x) < keyOf(y); });
-    touching.erase(std::unique(touching.begin(), touching.end(),
-                               [&](const TouchingPair& x, const TouchingPair& y) { return keyOf(x) == keyOf(y); }),
-                   touching.end());
-    const auto sleeping = [&](const PairKey& key) { return asleep && (asleep(key.first) || asleep(key.second)); };
+        listed_.push_back({keyOf(p.bodyA), keyOf(p.bodyB), i});
+    }
+    bool sameListing = false;
+    const std::vector<Listed>& sorted = sortedListing(sameListing);
 
-    // Merge walk of the two sorted lists; each output list comes out in (bodyA, bodyB) order.
-    std::vector<ContactEvent> exits, enters, stays;
-    std::vector<Active> next;
-    next.reserve(touching.size() + active_.size());
+    decisions_.clear();
+    const bool unchanged = sameListing && activeIsLastListing_;
+    if (unchanged) {
+        // The pairs of the last step and no others: every pair stays (a resting pile, step
+        // after step), and the touching set is the same.
+        for (std::size_t k = 0; k < sorted.size(); ++k) {
+            const TouchingRange& p = touching[sorted[k].index];
+            active_[k].trigger = p.trigger;
+            if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, sorted[k].index});
+        }
+    } else {
+        walk(touching, sorted, asleep);
+    }
+
+    // Exits, then enters, then stays, each in pair order (the walk's), written over the last
+    // step's events so their point storage is reused.
+    std::size_t used = 0;
+    const auto nextEvent = [&]() -> ContactEvent& {
+        if (used < events.size()) return events[used++];
+        ++used;
+        return events.emplace_back();
+    };
+    for (const Decision& d : decisions_) {
+        if (d.outcome != Outcome::Exit) continue;
+        const Active& old = active_[d.ref];
+        ContactEvent& e = nextEvent();
+        e.bodyA = idOf(old.a);
+        e.bodyB = idOf(old.b);
+        e.phase = ContactPhase::Exit;
+        e.trigger = old.trigger;
+        e.removal = false;
+        e.hasImpulses = false;
+        e.normal = Vec3::Zero();
+        e.points.clear();
+    }
+    for (const Outcome phase : {Outcome::Enter, Outcome::Stay})
+        for (const Decision& d : decisions_) {
+            if (d.outcome != phase) continue;
+            const TouchingRange& p = touching[d.ref];
+            ContactEvent& e = nextEvent();
+            e.bodyA = p.bodyA;
+            e.bodyB = p.bodyB;
+            e.phase = phase == Outcome::Enter ? ContactPhase::Enter : ContactPhase::Stay;
+            e.trigger = p.trigger;
+            e.removal = false;
+            e.hasImpulses = p.hasImpulses;
+            e.normal = p.normal;
+            e.points.clear();
+            if (p.trigger) continue;  // triggers carry no contact points
+            if (e.points.capacity() == 0) e.points = takePointStorage();
+            const auto first = points.begin() + p.firstPoint;
+            e.points.assign(first, first + p.pointCount);
+        }
+    // Fewer events than last step: keep the storage of the rest.
+    for (std::size_t k = used; k < events.size(); ++k)
+        if (events[k].points.capacity() > 0) spare_.push_back(std::move(events[k].points));
+    events.resize(used);
+    if (!unchanged) active_.swap(next_);  // exits above read the old list
+}
+
+void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted,
+                          const AsleepQuery& asleep) {
+    // Merge walk of the two sorted lists: decide each pair's fate, and carry the touching ones over.
+    next_.clear();
+    const auto less = [](Key xa, Key xb, Key ya, Key yb) { return xa != ya ? xa < ya : xb < yb; };
     std::size_t i = 0, j = 0;
-    while (i < active_.size() || j < touching.size()) {
-        const bool takeOld = j == touching.size() || (i < active_.size() && active_[i].key < keyOf(touching[j]));
-        const bool takeNew = i == active_.size() || (j < touching.size() && keyOf(touching[j]) < active_[i].key);
+    while (i < active_.size() || j < sorted.size()) {
+        const bool takeOld =
+            j == sorted.size() || (i < active_.size() && less(active_[i].a, active_[i].b, sorted[j].a, sorted[j].b));
         if (takeOld) {  // touching before, not now: exit, unless asleep (the contact persists silently)
-            const Active& old = active_[i++];
-            if (sleeping(old.key)) next.push_back(old);
-            else exits.push_back(exitEvent(old.key.first, old.key.second, old.trigger, false));
-        } else if (takeNew) {
-            TouchingPair& p = touching[j++];
-            next.push_back({keyOf(p), p.trigger});
-            enters.push_back(touchEvent(std::move(p), ContactPhase::Enter));
-        } else {  // both: stay (triggers report only enter and exit; sleeping pairs nothing)
-            TouchingPair& p = touching[j++];
+            const Active& old = active_[i];
+            if (asleep && (asleep(idOf(old.a)) || asleep(idOf(old.b))))
+                next_.push_back(old);
+            else
+                decisions_.push_back({Outcome::Exit, static_cast<std::uint32_t>(i)});
             ++i;
-            next.push_back({keyOf(p), p.trigger});
-            if (!p.trigger && !sleeping(next.back().key)) stays.push_back(touchEvent(std::move(p), ContactPhase::Stay));
+            continue;
+        }
+        const Listed& now = sorted[j++];
+        const TouchingRange& p = touching[now.index];
+        next_.push_back({now.a, now.b, p.trigger});
+        const bool touchedBefore = i < active_.size() && active_[i].a == now.a && active_[i].b == now.b;
+        if (!touchedBefore) {
+            decisions_.push_back({Outcome::Enter, now.index});
+        } else {  // stay (triggers report only enter and exit; sleeping pairs nothing)
+            ++i;
+            if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, now.index});
         }
     }
-    active_ = std::move(next);
+    activeIsLastListing_ = next_.size() == sorted.size();  // no pair kept asleep besides
+}
 
-    std::vector<ContactEvent> events = std::move(exits);
-    events.reserve(events.size() + enters.size() + stays.size());
-    for (auto& e : enters) events.push_back(std::move(e));
-    for (auto& e : stays) events.push_back(std::move(e));
-    return events;
+const std::vector<ContactTracker::Listed>& ContactTracker::sortedListing(bool& same) {
+    const auto equal = [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.index == y.index; };
+    same = std::equal(listed_.begin(), listed_.end(), lastListing_.begin(), lastListing_.end(), equal);
+    if (same) return lastSorted_;
+    lastListing_.assign(listed_.begin(), listed_.end());
+    sortListed();
+    listed_.erase(std::unique(listed_.begin(), listed_.end(),
+                              [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b; }),
+                  listed_.end());
+    lastSorted_.swap(listed_);
+    return lastSorted_;
+}
+
+void ContactTracker::sortListed() {
+    const auto before = [](const Listed& x, const Listed& y) {
+        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.index < y.index;
+    };
+    if (std::is_sorted(listed_.begin(), listed_.end(), before)) return;
+    if (listed_.size() < 64) {  // a few pairs: a comparison sort beats the radix passes
+        std::sort(listed_.begin(), listed_.end(), before);
+        return;
+    }
+    // Piles report thousands of pairs every step: a stable radix sort (byte by byte, least
+    // significant first) over the 128 bits of (a, b), skipping the bytes in which every key
+    // agrees (body indices and generations use few of their bits). Stable: equal pairs keep
+    // their listing order.
+    Key orA = 0, andA = ~Key(0), orB = 0, andB = ~Key(0);
+    for (const Listed& l : listed_) {
+        orA |= l.a;
+        andA &= l.a;
+        orB |= l.b;
+        andB &= l.b;
+    }
+    sorting_.resize(listed_.size());
+    for (int digit = 0; digit < 16; ++digit) {
+        const bool high = digit >= 8;  // bytes of b first, then of a
+        const int shift = 8 * (digit % 8);
+        if ((((high ? orA ^ andA : orB ^ andB) >> shift) & 0xFF) == 0) continue;
+        const auto byteOf = [&](const Listed& l) { return static_cast<std::size_t>(((high ? l.a : l.b) >> shift) & 0xFF); };
+        std::uint32_t start[256] = {};
+        for (const Listed& l : listed_) ++start[byteOf(l)];
+        std::uint32_t sum = 0;
+        for (std::uint32_t& s : start) {
+            const std::uint32_t count = s;
+            s = sum;
+            sum += count;
+        }
+        for (const Listed& l : listed_) sorting_[start[byteOf(l)]++] = l;
+        listed_.swap(sorting_);
+    }
+}
+
+void ContactTracker::recycle(std::vector<ContactEvent>& events) {
+    for (ContactEvent& e : events)
+        if (e.points.capacity() > 0) spare_.push_back(std::move(e.points));
+    events.clear();
+}
+
+std::vector<ContactPoint> ContactTracker::takePointStorage() {
+    if (spare_.empty()) {
+        std::vector<ContactPoint> fresh;
+        fresh.reserve(kPointsPerEvent);
+        return fresh;
+    }
+    std::vector<ContactPoint> reused = std::move(spare_.back());
+    spare_.pop_back();
+    reused.clear();
+    return reused;
 }
 
 std::vector<ContactEvent> ContactTracker::removeBody(BodyId body) {
     std::vector<ContactEvent> events;
+    const Key key = keyOf(body);
     std::erase_if(active_, [&](const Active& a) {
-        const bool involved = a.key.first == body || a.key.second == body;
-        if (involved) events.push_back(exitEvent(a.key.first, a.key.second, a.trigger, true));
+        const bool involved = a.a == key || a.b == key;
+        if (involved) events.push_back(exitEvent(idOf(a.a), idOf(a.b), a.trigger, true));
         return involved;
     });
+    if (!events.empty()) activeIsLastListing_ = false;
     return events;
 }
 

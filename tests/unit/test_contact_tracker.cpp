@@ -1,5 +1,8 @@
+#include <algorithm>
 #include <map>
+#include <random>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -180,4 +183,214 @@ TEST(ContactTracker, ClearForgetsEverythingSilently) {
     t.clear();
     EXPECT_EQ(t.activePairs(), 0u);
     EXPECT_TRUE(t.update({}).empty());
+}
+
+// ---- the allocation-free update --------------------------------------------------------------
+
+namespace {
+
+// The rules of the tracker's header, written the plain way: a map of touching pairs.
+class ReferenceTracker {
+public:
+    std::vector<ContactEvent> update(std::vector<TouchingPair> touching, const ContactTracker::AsleepQuery& asleep) {
+        std::map<std::pair<BodyId, BodyId>, TouchingPair> now;  // first report of each pair
+        for (TouchingPair& p : touching) {
+            if (p.bodyA == p.bodyB) continue;
+            if (p.bodyB < p.bodyA) {
+                std::swap(p.bodyA, p.bodyB);
+                p.normal = -p.normal;
+            }
+            now.try_emplace({p.bodyA, p.bodyB}, p);
+        }
+        const auto sleeping = [&](const std::pair<BodyId, BodyId>& k) { return asleep(k.first) || asleep(k.second); };
+        std::vector<ContactEvent> exits, enters, stays;
+        std::map<std::pair<BodyId, BodyId>, bool> next;
+        for (const auto& [key, trigger] : active_) {
+            if (now.contains(key)) continue;
+            if (sleeping(key)) {
+                next[key] = trigger;
+                continue;
+            }
+            ContactEvent e;
+            e.bodyA = key.first;
+            e.bodyB = key.second;
+            e.phase = ContactPhase::Exit;
+            e.trigger = trigger;
+            exits.push_back(e);
+        }
+        for (const auto& [key, p] : now) {
+            next[key] = p.trigger;
+            const bool before = active_.contains(key);
+            if (before && (p.trigger || sleeping(key))) continue;
+            ContactEvent e;
+            e.bodyA = p.bodyA;
+            e.bodyB = p.bodyB;
+            e.phase = before ? ContactPhase::Stay : ContactPhase::Enter;
+            e.trigger = p.trigger;
+            e.hasImpulses = p.hasImpulses;
+            e.normal = p.normal;
+            if (!p.trigger) e.points = p.points;
+            (before ? stays : enters).push_back(e);
+        }
+        active_ = next;
+        exits.insert(exits.end(), enters.begin(), enters.end());
+        exits.insert(exits.end(), stays.begin(), stays.end());
+        return exits;
+    }
+
+    std::vector<ContactEvent> removeBody(BodyId body) {
+        std::vector<ContactEvent> exits;
+        for (auto it = active_.begin(); it != active_.end();) {
+            if (it->first.first != body && it->first.second != body) {
+                ++it;
+                continue;
+            }
+            ContactEvent e;
+            e.bodyA = it->first.first;
+            e.bodyB = it->first.second;
+            e.phase = ContactPhase::Exit;
+            e.trigger = it->second;
+            e.removal = true;
+            exits.push_back(e);
+            it = active_.erase(it);
+        }
+        return exits;
+    }
+
+private:
+    std::map<std::pair<BodyId, BodyId>, bool> active_;
+};
+
+void expectSameEvents(const std::vector<ContactEvent>& got, const std::vector<ContactEvent>& expected, int step) {
+    ASSERT_EQ(got.size(), expected.size()) << "step " << step;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        const ContactEvent& g = got[k];
+        const ContactEvent& e = expected[k];
+        SCOPED_TRACE("step " + std::to_string(step) + ", event " + std::to_string(k));
+        EXPECT_EQ(g.bodyA, e.bodyA);
+        EXPECT_EQ(g.bodyB, e.bodyB);
+        EXPECT_EQ(g.phase, e.phase);
+        EXPECT_EQ(g.trigger, e.trigger);
+        EXPECT_EQ(g.removal, e.removal);
+        EXPECT_EQ(g.hasImpulses, e.hasImpulses);
+        EXPECT_EQ(g.normal, e.normal);
+        ASSERT_EQ(g.points.size(), e.points.size());
+        for (std::size_t i = 0; i < g.points.size(); ++i) {
+            EXPECT_EQ(g.points[i].position, e.points[i].position);
+            EXPECT_EQ(g.points[i].depth, e.points[i].depth);
+            EXPECT_EQ(g.points[i].normalImpulse, e.points[i].normalImpulse);
+        }
+    }
+}
+
+// The flat form of a step's pairs, as World builds it: one shared point array.
+struct FlatStep {
+    std::vector<TouchingRange> ranges;
+    std::vector<ContactPoint> points;
+};
+FlatStep flatten(const std::vector<TouchingPair>& pairs, const ContactTracker::AsleepQuery& asleep) {
+    FlatStep flat;
+    for (const TouchingPair& p : pairs) {
+        flat.ranges.push_back({p.bodyA, p.bodyB, p.trigger, p.hasImpulses, asleep(p.bodyA) || asleep(p.bodyB), p.normal,
+                               static_cast<std::uint32_t>(flat.points.size()), static_cast<std::uint32_t>(p.points.size())});
+        flat.points.insert(flat.points.end(), p.points.begin(), p.points.end());
+    }
+    return flat;
+}
+
+}  // namespace
+
+// Random steps (pairs coming, staying and going, in any order, reported twice, triggers, sleeping
+// bodies, generations, piles large enough for the radix sort, repeated listings, removed bodies):
+// both forms of update give exactly the events of the reference.
+TEST(ContactTracker, FlatUpdateFollowsTheRulesOverRandomSteps) {
+    std::mt19937 random(12345);
+    constexpr std::uint32_t kBodies = 40;
+    std::vector<std::uint32_t> generation(kBodies);
+    for (auto& g : generation) g = random() % 3;
+    std::set<std::uint32_t> sleeping;
+    const ContactTracker::AsleepQuery asleep = [&](BodyId id) { return sleeping.contains(id.index); };
+    ReferenceTracker reference;
+    ContactTracker perPair, flat;
+    std::vector<ContactEvent> events;
+    std::vector<TouchingPair> pairs;
+    for (int step = 0; step < 300; ++step) {
+        if (step % 7 != 3) {  // otherwise the same listing as the last step (a resting pile)
+            const int keep = static_cast<int>(random() % 4);  // 0: all new; 3: mostly the same pairs
+            std::vector<TouchingPair> kept;
+            for (const TouchingPair& p : pairs)
+                if (static_cast<int>(random() % 4) < keep) kept.push_back(p);
+            pairs = kept;
+            const std::size_t fresh = step % 5 == 0 ? 150 : random() % 12;  // > 64 pairs: the radix sort
+            for (std::size_t k = 0; k < fresh; ++k) {
+                const std::uint32_t a = random() % kBodies, b = random() % kBodies;
+                const bool trigger = random() % 10 == 0;
+                TouchingPair p = touch(body(a, generation[a]), body(b, generation[b]),
+                                       Vec3(double(random() % 5), 1.0, double(step)), trigger);
+                p.hasImpulses = random() % 2 == 0;
+                if (!trigger)
+                    for (std::size_t i = random() % 4; i > 0; --i)
+                        p.points.push_back({Vec3(double(step), double(k), double(i)), 0.001 * double(i), double(random() % 9)});
+                pairs.insert(pairs.begin() + static_cast<std::ptrdiff_t>(random() % (pairs.size() + 1)), p);
+                if (random() % 8 == 0) pairs.push_back(p);  // reported twice
+            }
+            std::shuffle(pairs.begin(), pairs.end(), random);
+        }
+        sleeping.clear();
+        if (step % 3 == 0)
+            for (int k = 0; k < 4; ++k) sleeping.insert(random() % kBodies);
+
+        if (step % 7 == 2) {  // a body destroyed; the next step lists the same pairs (its own included)
+            const std::uint32_t gone = random() % kBodies;
+            const std::vector<ContactEvent> removed = reference.removeBody(body(gone, generation[gone]));
+            expectSameEvents(perPair.removeBody(body(gone, generation[gone])), removed, step);
+            expectSameEvents(flat.removeBody(body(gone, generation[gone])), removed, step);
+        }
+        const std::vector<ContactEvent> expected = reference.update(pairs, asleep);
+        expectSameEvents(perPair.update(pairs, asleep), expected, step);
+        FlatStep f = flatten(pairs, asleep);
+        flat.update(f.ranges, f.points, events, asleep);
+        expectSameEvents(events, expected, step);
+        if (::testing::Test::HasFatalFailure()) return;
+    }
+}
+
+// A steady step writes over the last step's events in place: neither the event array nor any
+// event's points move (no allocation), and a step with fewer events keeps the storage for later.
+TEST(ContactTracker, FlatUpdateReusesEventStorage) {
+    std::vector<TouchingPair> pairs;
+    for (std::uint32_t i = 0; i < 100; ++i) {
+        TouchingPair p = touch(body(i), body(i + 1));
+        p.points.assign(4, ContactPoint{Vec3(double(i), 0, 0), 0.001, 1.0});
+        pairs.push_back(p);
+    }
+    ContactTracker t;
+    std::vector<ContactEvent> events;
+    const auto run = [&](const std::vector<TouchingPair>& step) {
+        FlatStep f = flatten(step, [](BodyId) { return false; });
+        t.update(f.ranges, f.points, events);
+    };
+    run(pairs);
+    run(pairs);
+    ASSERT_EQ(events.size(), 100u);
+    const ContactEvent* array = events.data();
+    std::vector<const ContactPoint*> storage;
+    for (const ContactEvent& e : events) storage.push_back(e.points.data());
+    for (int step = 0; step < 5; ++step) {
+        run(pairs);
+        ASSERT_EQ(events.data(), array);
+        for (std::size_t k = 0; k < events.size(); ++k) EXPECT_EQ(events[k].points.data(), storage[k]) << k;
+    }
+    // Half the pairs part (50 exits, then 50 stays), then touch again (50 enters): the storage
+    // of the events dropped in between is handed back.
+    const std::vector<TouchingPair> half(pairs.begin(), pairs.begin() + 50);
+    run(half);
+    run(half);
+    EXPECT_EQ(events.size(), 50u);
+    run(pairs);
+    ASSERT_EQ(events.size(), 100u);
+    ASSERT_EQ(events.data(), array);
+    std::set<const ContactPoint*> before(storage.begin(), storage.end()), after;
+    for (const ContactEvent& e : events) after.insert(e.points.data());
+    EXPECT_EQ(after, before);
 }

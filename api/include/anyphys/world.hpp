@@ -133,6 +133,7 @@ private:
     void refreshEffects();
     void countBody(const BodyDef& def, int delta);  // effect-derivation counters
     void dispatchEvents();
+    void deliverEvents();  // the last step's events to the listeners
     struct MaterialTable buildMaterialTable();
     void noteForcesUsed();  // first force or torque: derive the userForces effect
     void warn(const std::string& message);

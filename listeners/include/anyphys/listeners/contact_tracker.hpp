@@ -7,7 +7,9 @@
 //  - a pair whose bodies are (either) asleep keeps its contact: no Exit, no Stay;
 //  - removing a body ends its pairs with an Exit flagged `removal`;
 //  - a pair reported twice in one step counts once (first report wins).
+#include <cstdint>
 #include <functional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -23,22 +25,62 @@ public:
     /// exits first, then enters, then stays.
     std::vector<ContactEvent> update(std::vector<TouchingPair> touching, const AsleepQuery& asleep = {});
 
+    /// The same diff without allocating once the buffers have grown (what World runs every
+    /// step). `touching` lists the step's pairs, their points ranges of `points`, each flagged
+    /// `asleep` where a body sleeps. `events` receives the events, overwriting the events it held
+    /// and reusing their storage (pass the last step's events back in). `asleep` is asked only
+    /// about pairs that touched before and are not listed now.
+    void update(std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
+                std::vector<ContactEvent>& events, const AsleepQuery& asleep = {});
+
+    /// Empties `events`, keeping their point storage for the next update (a step without events).
+    void recycle(std::vector<ContactEvent>& events);
+
     /// Ends every pair involving `body` (Exit with removal = true) and forgets them.
     std::vector<ContactEvent> removeBody(BodyId body);
 
     /// Number of pairs currently touching.
     std::size_t activePairs() const { return active_.size(); }
-    void clear() { active_.clear(); }
+    void clear() {
+        active_.clear();
+        activeIsLastListing_ = false;
+    }
 
 private:
-    using PairKey = std::pair<BodyId, BodyId>;
+    // A body id as one integer whose order is BodyId's (index, then generation).
+    using Key = std::uint64_t;
     struct Active {
-        PairKey key;
+        Key a, b;  // a < b
         bool trigger = false;
     };
-    // Sorted by key: a step is one sort of the new pairs and one merge walk, with no per-pair
-    // allocation (piles report thousands of pairs every step).
+    struct Listed {  // a listed pair, in (a, b, listing order) order
+        Key a, b;
+        std::uint32_t index;  // into `touching`
+    };
+    enum class Outcome : std::uint8_t { Exit, Enter, Stay };
+    struct Decision {
+        Outcome outcome;
+        std::uint32_t ref;  // exits: into active_; enters and stays: into `touching`
+    };
+
+    /// listed_ in pair order, deduplicated: the last sort's result when the listing is the same
+    /// (`same`; a resting pile lists the same pairs in the same order every step), else sorted anew.
+    const std::vector<Listed>& sortedListing(bool& same);
+    /// Merges the sorted listing with active_ into decisions_ and next_.
+    void walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted, const AsleepQuery& asleep);
+    void sortListed();
+    std::vector<ContactPoint> takePointStorage();
+
+    // Sorted by (a, b): a step is one sort of the listed pairs and one merge walk. The other
+    // vectors are scratch kept between steps, so a steady step allocates nothing.
     std::vector<Active> active_;
+    std::vector<Active> next_;
+    std::vector<Listed> listed_;
+    std::vector<Listed> sorting_;  // radix sort's second buffer
+    std::vector<Listed> lastListing_, lastSorted_;  // the last sort's input and output
+    bool activeIsLastListing_ = false;  // active_ holds exactly lastSorted_'s pairs
+    std::vector<Decision> decisions_;
+    std::vector<std::vector<ContactPoint>> spare_;  // point storage of past events, for reuse
 };
 
 }  // namespace anyphys

@@ -1,5 +1,6 @@
 #pragma once
 // Collision and trigger events: the same meaning on every backend.
+#include <cstdint>
 #include <vector>
 
 #include "anyphys/ids.hpp"
@@ -36,6 +37,19 @@ struct TouchingPair {
     bool hasImpulses = false;
     Vec3 normal = Vec3::Zero();
     std::vector<ContactPoint> points;
+};
+
+/// A touching pair whose points are a range of one array shared by the step's pairs, so that a
+/// step of thousands of pairs needs no allocation per pair (ContactTracker's allocation-free update).
+struct TouchingRange {
+    BodyId bodyA;
+    BodyId bodyB;
+    bool trigger = false;
+    bool hasImpulses = false;
+    bool asleep = false;          ///< a body of the pair is asleep: the contact persists silently (no Stay)
+    Vec3 normal = Vec3::Zero();   ///< from A to B
+    std::uint32_t firstPoint = 0; ///< points [firstPoint, firstPoint + pointCount) of the shared array
+    std::uint32_t pointCount = 0;
 };
 
 }  // namespace anyphys

@@ -1,8 +1,11 @@
 #pragma once
 // The backend side of one world.
+#include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <typeinfo>
+#include <vector>
 
 #include "anyphys/defs.hpp"
 #include "anyphys/effects.hpp"
@@ -37,15 +40,84 @@ struct MaterialTable {
     const ContactMaterial& get(std::uint32_t a, std::uint32_t b) const { return values[a * count + b]; }
 };
 
-/// One pair in contact (or overlapping, for triggers) after a step: points carry depth
-/// (-separation), so slightly separated speculative points have depth < 0; the layer decides
-/// what counts as touching.
-struct PeerContact {
-    std::uint64_t bodyA = 0;          ///< userData of the bodies
-    std::uint64_t bodyB = 0;
-    bool trigger = false;
-    Vec3 normal = Vec3::Zero();       ///< from A to B
-    std::vector<ContactPoint> points; ///< world frame
+/// Every pair in contact or overlap after a step, flat: a pair's points are a range of one array
+/// shared by all pairs, so a step of thousands of pairs allocates nothing once the buffers have
+/// grown (the layer keeps one report and hands it over cleared every step). One entry per body
+/// pair (touching or speculative, or overlapping for triggers), normal from A to B, points in
+/// the world frame with depth = -separation, so slightly separated speculative points have
+/// depth < 0: the layer decides what counts as touching.
+struct ContactReport {
+    struct Pair {
+        std::uint64_t bodyA = 0;        ///< userData of the bodies
+        std::uint64_t bodyB = 0;
+        bool trigger = false;
+        bool asleep = false;            ///< a body of the pair is asleep (see sleepKnown)
+        Vec3 normal = Vec3::Zero();     ///< from A to B
+        std::uint32_t firstPoint = 0;   ///< the pair's points: [firstPoint, firstPoint + pointCount)
+        std::uint32_t pointCount = 0;
+    };
+    std::vector<Pair> pairs;
+    std::vector<ContactPoint> points;   ///< world frame
+    /// The peer flagged each pair `asleep` when one of its bodies is a dynamic or kinematic body
+    /// that is not awake (BodyPeer::isAwake); otherwise the layer asks the bodies.
+    bool sleepKnown = false;
+
+    void clear() {
+        pairs.clear();
+        points.clear();
+        sleepKnown = false;
+    }
+    /// Starts a pair; the points added next are its points.
+    void addPair(std::uint64_t bodyA, std::uint64_t bodyB, bool trigger, const Vec3& normal, bool asleep = false) {
+        pairs.push_back({bodyA, bodyB, trigger, asleep, normal, static_cast<std::uint32_t>(points.size()), 0});
+    }
+    void addPoint(const ContactPoint& point) {
+        points.push_back(point);
+        ++pairs.back().pointCount;
+    }
+
+    /// For peers whose bodies may meet in several shape pairs: merges the entries of one body
+    /// pair (either order, same trigger flag) into the first, its points followed by the
+    /// others' in report order. Pairs come out ordered by body pair.
+    void mergeRepeatedPairs() {
+        order_.clear();
+        for (std::uint32_t i = 0; i < pairs.size(); ++i) {
+            const auto [low, high] = std::minmax(pairs[i].bodyA, pairs[i].bodyB);
+            order_.push_back({low, high, i});
+        }
+        std::sort(order_.begin(), order_.end(), [](const Order& x, const Order& y) {
+            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.index < y.index;
+        });
+        mergedPairs_.clear();
+        mergedPoints_.clear();
+        const Order* previous = nullptr;
+        for (const Order& o : order_) {
+            const Pair& p = pairs[o.index];
+            const bool repeat = previous && previous->low == o.low && previous->high == o.high &&
+                                mergedPairs_.back().trigger == p.trigger;
+            if (!repeat) {
+                mergedPairs_.push_back(p);
+                mergedPairs_.back().firstPoint = static_cast<std::uint32_t>(mergedPoints_.size());
+                mergedPairs_.back().pointCount = 0;
+            }
+            mergedPoints_.insert(mergedPoints_.end(), points.begin() + p.firstPoint,
+                                 points.begin() + p.firstPoint + p.pointCount);
+            mergedPairs_.back().pointCount += p.pointCount;
+            previous = &o;
+        }
+        pairs.swap(mergedPairs_);
+        points.swap(mergedPoints_);
+    }
+
+
+private:
+    struct Order {
+        std::uint64_t low, high;
+        std::uint32_t index;
+    };
+    std::vector<Order> order_;  // scratch of mergeRepeatedPairs, kept for reuse
+    std::vector<Pair> mergedPairs_;
+    std::vector<ContactPoint> mergedPoints_;
 };
 
 struct PeerRayHit {
@@ -91,8 +163,13 @@ public:
 
     /// Pair materials; called before any body is created and whenever the library changes.
     virtual void setMaterialTable(const MaterialTable& table) = 0;
-    /// Every pair in contact or overlap after the last step (touching or speculative).
-    virtual void collectContacts(std::vector<PeerContact>& out) = 0;
+    /// Every pair in contact or overlap after the last step, appended to `out` (the layer
+    /// clears it first), without a vector per pair.
+    virtual void reportContacts(ContactReport& out) = 0;
+    /// False only when no dynamic or kinematic body is awake after the last step: then no
+    /// contact can begin, stay or end (each has a sleeping body), and the layer skips the step's
+    /// events. True when the peer cannot tell cheaply (the default).
+    virtual bool hasAwakeBodies() const { return true; }
     /// Hits along origin + t direction (unit), 0 <= t <= maxDistance, on bodies whose layer is
     /// in `mask`; only the closest if closestOnly, otherwise all sorted by distance. Triggers are skipped.
     virtual std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance,

@@ -1,0 +1,80 @@
+// The Bullet backend's contact reports: steady steps with events on allocate nothing in the layer
+// or glue, and a world whose bodies all sleep reports nothing until they wake.
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <vector>
+
+#include "../step_allocations.hpp"
+#include "anyphys/anyphys.hpp"
+#include "bullet_dynamics_world.hpp"
+#include "contact_helpers.hpp"
+
+namespace anyphys::test {
+namespace {
+
+WorldSettings bulletSettings() {
+    WorldSettings s;
+    s.backend = "bullet";
+    return s;
+}
+
+const bullet::AnyphysDynamicsWorld& engineOf(World& world) {
+    return *static_cast<const bullet::AnyphysDynamicsWorld*>(world.native<btDiscreteDynamicsWorld>());
+}
+
+/// `columns` x `columns` stacks of `height` unit boxes resting on the ground, 1.2 m apart.
+void restingStacks(World& world, int columns, int height, bool allowSleep) {
+    for (int x = 0; x < columns; ++x)
+        for (int z = 0; z < columns; ++z)
+            for (int y = 0; y < height; ++y) {
+                BodyDef def = boxDef("", Vec3(0.5, 0.5, 0.5), Vec3(1.2 * x, 0.5 + y, 1.2 * z));
+                def.allowSleep = allowSleep;
+                world.createBody(def);
+            }
+}
+
+TEST(BulletContacts, SteadyStepsWithEventsAllocateNothing) {
+    World world(bulletSettings());
+    world.createBody(groundDef());
+    restingStacks(world, 4, 2, false);
+    ASSERT_TRUE(world.activeEffects().has(Effect::Events));
+    struct Counting : ContactListener {
+        int stays = 0;
+        void onCollisionStay(const ContactEvent&) override { ++stays; }
+    } listener;
+    for (bool listening : {false, true}) {
+        SCOPED_TRACE(listening ? "with a listener" : "without listeners");
+        if (listening) world.addListener(&listener);
+        for (int i = 0; i < 30; ++i) world.step();
+        StepAllocations::start();
+        for (int i = 0; i < 30; ++i) world.step();
+        EXPECT_EQ(StepAllocations::stop(), 0u);
+        EXPECT_GE(world.lastEvents().size(), 32u);  // every box touches the one below or the ground
+    }
+    EXPECT_GE(listener.stays, 30 * 32);
+}
+
+TEST(BulletContacts, AllAsleepReportsNoAwakeBodiesAndNoEvents) {
+    World world(bulletSettings());
+    world.createBody(groundDef());
+    restingStacks(world, 2, 1, true);
+    for (int i = 0; i < 180; ++i) {
+        world.step();
+        if (engineOf(world).awakeBodyCount() == 0) break;
+    }
+    ASSERT_EQ(engineOf(world).awakeBodyCount(), 0) << "the boxes never fell asleep";
+    for (const Body& b : world.bodies()) EXPECT_FALSE(b.isAwake());
+    world.step();
+    EXPECT_TRUE(world.lastEvents().empty());
+    // Woken, the boxes report their contacts again (stays: the pairs were kept while asleep).
+    for (Body b : world.bodies()) b.wake();
+    world.step();
+    EXPECT_GT(engineOf(world).awakeBodyCount(), 0);
+    ASSERT_FALSE(world.lastEvents().empty());
+    for (const ContactEvent& e : world.lastEvents()) EXPECT_EQ(e.phase, ContactPhase::Stay);
+}
+
+}  // namespace
+}  // namespace anyphys::test

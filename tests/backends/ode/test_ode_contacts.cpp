@@ -1,0 +1,117 @@
+// The ODE backend's collide pass and contact reports: only pairs with an awake body are
+// visited (none when everything sleeps, each awake geom alone when few are awake), bodies hit
+// while asleep still wake, and steady steps with events on allocate nothing in the layer or glue.
+#include <gtest/gtest.h>
+#include <ode/ode.h>
+
+#include <vector>
+
+#include "../step_allocations.hpp"
+#include "anyphys/anyphys.hpp"
+#include "contact_helpers.hpp"
+#include "ode_world.hpp"
+
+namespace anyphys {
+namespace {
+
+using Pass = ode::OdeWorld::CollidePass;
+
+WorldSettings odeSettings() {
+    WorldSettings s;
+    s.backend = "ode";
+    return s;
+}
+
+ode::OdeWorld& peerOf(World& world) { return *static_cast<ode::OdeWorld*>(dWorldGetData(world.native<dxWorld>())); }
+
+/// `columns` x `columns` stacks of `height` unit boxes resting on the ground (1.2 m apart, so
+/// stacks do not touch), created awake or asleep.
+std::vector<Body> restingStacks(World& world, int columns, int height, bool awake, bool allowSleep = true) {
+    std::vector<Body> boxes;
+    for (int x = 0; x < columns; ++x)
+        for (int z = 0; z < columns; ++z)
+            for (int y = 0; y < height; ++y) {
+                BodyDef def = test::boxDef("", Vec3(0.5, 0.5, 0.5), Vec3(1.2 * x, 0.5 + y, 1.2 * z));
+                def.isAwake = awake;
+                def.allowSleep = allowSleep;
+                boxes.push_back(world.createBody(def));
+            }
+    return boxes;
+}
+
+TEST(OdeContacts, SleepingPileSkipsTheCollidePassAndReportsNothing) {
+    World world(odeSettings());
+    world.createBody(test::groundDef());
+    restingStacks(world, 4, 3, true);
+    for (int i = 0; i < 600; ++i) {
+        world.step();
+        if (peerOf(world).lastCollidePass() == Pass::Skipped) break;
+    }
+    ASSERT_EQ(peerOf(world).lastCollidePass(), Pass::Skipped) << "the pile never fell asleep";
+    for (const Body& b : world.bodies()) EXPECT_FALSE(b.isAwake());
+    EXPECT_FALSE(peerOf(world).hasAwakeBodies());
+    world.step();
+    EXPECT_TRUE(world.lastEvents().empty());
+}
+
+// One box dropped onto a sleeping pile: the pass collides its geom alone against the space, and
+// the box it lands on wakes (through ODE's contact joint) and reports the enter.
+TEST(OdeContacts, BoxDroppedOnASleepingPileWakesWhatItHits) {
+    World world(odeSettings());
+    world.createBody(test::groundDef());
+    const std::vector<Body> pile = restingStacks(world, 4, 2, false);
+    const Body& below = pile[1];  // top of the first stack, at y = 1.5
+    BodyDef def = test::boxDef("dropped", Vec3(0.5, 0.5, 0.5), below.position() + Vec3(0, 1.5, 0));
+    Body dropped = world.createBody(def);
+
+    world.step();
+    EXPECT_EQ(peerOf(world).lastCollidePass(), Pass::PerAwakeGeom);
+    EXPECT_FALSE(below.isAwake());
+    bool entered = false;
+    for (int i = 0; i < 60 && !entered; ++i) {
+        world.step();
+        for (const ContactEvent& e : world.lastEvents())
+            entered = entered || (e.phase == ContactPhase::Enter && (e.bodyA == below.id() || e.bodyB == below.id()) &&
+                                  (e.bodyA == dropped.id() || e.bodyB == dropped.id()));
+    }
+    EXPECT_TRUE(entered) << "no enter between the dropped box and the box below";
+    EXPECT_TRUE(below.isAwake());
+    EXPECT_GT(dropped.position().y(), below.position().y() + 0.9) << "the dropped box passed through";
+}
+
+// With most bodies awake the whole space is collided at once, as before.
+TEST(OdeContacts, MostlyAwakeWorldCollidesTheWholeSpace) {
+    World world(odeSettings());
+    world.createBody(test::groundDef());
+    restingStacks(world, 3, 2, true);
+    world.step();
+    EXPECT_EQ(peerOf(world).lastCollidePass(), Pass::WholeSpace);
+    EXPECT_TRUE(peerOf(world).hasAwakeBodies());
+}
+
+// A resting, awake pile (sleeping off) reports the same stays every step: after the first steps
+// the layer and the backend reuse their buffers. With a listener too.
+TEST(OdeContacts, SteadyStepsWithEventsAllocateNothing) {
+    World world(odeSettings());
+    world.createBody(test::groundDef());
+    restingStacks(world, 4, 3, true, false);
+    ASSERT_TRUE(world.activeEffects().has(Effect::Events));
+    struct Counting : ContactListener {
+        int stays = 0;
+        void onCollisionStay(const ContactEvent&) override { ++stays; }
+    } listener;
+    for (bool listening : {false, true}) {
+        SCOPED_TRACE(listening ? "with a listener" : "without listeners");
+        if (listening) world.addListener(&listener);
+        for (int i = 0; i < 30; ++i) world.step();
+        test::StepAllocations::start();
+        for (int i = 0; i < 30; ++i) world.step();
+        EXPECT_EQ(test::StepAllocations::stop(), 0u);
+        EXPECT_EQ(peerOf(world).lastCollidePass(), Pass::WholeSpace);
+        EXPECT_GE(world.lastEvents().size(), 48u);  // every box touches the one below or the ground
+    }
+    EXPECT_GE(listener.stays, 30 * 48);
+}
+
+}  // namespace
+}  // namespace anyphys
