@@ -28,23 +28,30 @@ void* ThreadPool::enqueue(int count, int minRange, RangeFn fn, void* context) {
     const int size = std::max({minRange, 1, (count + 4 * workers - 1) / (4 * workers)});
     {
         std::lock_guard lock(mutex_);
-        Task& task = tasks_.emplace_back();
+        if (freeTasks_.empty()) {
+            tasks_.push_back(std::make_unique<Task>());
+            freeTasks_.push_back(tasks_.back().get());
+        }
+        Task& task = *freeTasks_.back();
+        freeTasks_.pop_back();
         task.fn = fn;
         task.context = context;
         for (int begin = 0; begin < count; begin += size) {
             queue_.push_back({&task, begin, std::min(count, begin + size)});
             ++task.pending;
         }
-        ++unfinishedTasks_;
         work_.notify_all();
         return &task;
     }
 }
 
 bool ThreadPool::runOne(std::unique_lock<std::mutex>& lock, int worker) {
-    if (queue_.empty()) return false;
-    const Range range = queue_.front();
-    queue_.pop_front();
+    if (head_ == queue_.size()) return false;
+    const Range range = queue_[head_++];
+    if (head_ == queue_.size()) {  // drained: start over at the front, keeping the storage
+        queue_.clear();
+        head_ = 0;
+    }
     lock.unlock();
     range.task->fn(range.begin, range.end, worker, range.task->context);
     lock.lock();
@@ -58,14 +65,14 @@ void ThreadPool::finish(void* handle) {
     std::unique_lock lock(mutex_);
     // Help while waiting: the calling thread is worker 0.
     while (task.pending > 0)
-        if (!runOne(lock, 0)) done_.wait(lock, [&] { return task.pending == 0 || !queue_.empty(); });
-    if (--unfinishedTasks_ == 0) tasks_.clear();
+        if (!runOne(lock, 0)) done_.wait(lock, [&] { return task.pending == 0 || head_ < queue_.size(); });
+    freeTasks_.push_back(&task);
 }
 
 void ThreadPool::workerLoop(int worker) {
     std::unique_lock lock(mutex_);
     while (true) {
-        work_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        work_.wait(lock, [&] { return stopping_ || head_ < queue_.size(); });
         if (stopping_) return;
         runOne(lock, worker);
     }

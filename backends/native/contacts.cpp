@@ -114,6 +114,7 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     c.touching = false;
     c.separated = false;
     c.manifolds.clear();
+    c.collideCache = {};
     const ContactMaterial& m = materials.get(a.material, b.material);
     c.friction = m.friction;
     c.restitution = m.restitution;
@@ -137,7 +138,17 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
     }
     scratch.found.clear();
     const double closing = (b.state.linearVelocity - a.state.linearVelocity).norm() * dt;
-    collide(sa, xfA, sb, xfB, speculativeDistance + closing, scratch.found);
+    const double margin = speculativeDistance + closing;
+    // Neighbours whose fat bounds overlap but whose tight bounds are farther apart than the
+    // margin cannot have a point: skip the narrow phase (planes and meshes have no useful box).
+    const bool boxed = sa.type != ShapeType::Plane && sb.type != ShapeType::Plane && sa.type != ShapeType::Mesh &&
+                       sb.type != ShapeType::Mesh;
+    if (boxed && !computeAabb(sa, xfA).fattened(margin).overlaps(computeAabb(sb, xfB))) {
+        c.manifolds.clear();
+        c.touching = false;
+        return;
+    }
+    collide(sa, xfA, sb, xfB, margin, scratch.found, &c.collideCache);
     if (planar)
         for (Manifold& m : scratch.found) mergePlanarPoints(m, 0.1 * linearSlop);
     // The new manifolds replace the old in place (no allocation once the capacity is there);

@@ -9,6 +9,7 @@
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/task_system.hpp"
 #include "collision/broad_phase.hpp"
+#include "collision/collide.hpp"
 #include "collision/shape.hpp"
 
 namespace anyphys::native {
@@ -41,6 +42,7 @@ struct Contact {
     double friction = 0.0;
     double restitution = 0.0;
     std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
+    CollideCache collideCache;      // the narrow phase's memory of this pair (last separating axis, ...)
 };
 
 /// Broad-phase proxy key of a body's shape.

@@ -2,7 +2,7 @@
 // The default task system: a pool of threads that a world with WorldSettings::workers > 1
 // creates for itself; a game may also create one and share it between worlds.
 #include <condition_variable>
-#include <deque>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -13,7 +13,8 @@ namespace anyphys {
 
 /// `workers - 1` threads of its own plus the thread that calls finish (worker 0). Ranges are
 /// queued in order and taken by whichever worker is free; idle threads sleep on a condition
-/// variable, so an idle pool costs nothing.
+/// variable, so an idle pool costs nothing. Queue and task records are reused: once warm, an
+/// enqueue allocates nothing. One thread at a time may enqueue and finish (the stepping thread).
 class ThreadPool final : public TaskSystem {
 public:
     /// workers >= 1; 1 runs everything on the calling thread.
@@ -45,9 +46,10 @@ private:
     std::mutex mutex_;
     std::condition_variable work_;  // a range was queued, or the pool stops
     std::condition_variable done_;  // a range finished
-    std::deque<Range> queue_;
-    std::deque<Task> tasks_;        // stable addresses while in use; cleared when none is pending
-    int unfinishedTasks_ = 0;
+    std::vector<Range> queue_;      // ranges not yet taken: [head_, end)
+    std::size_t head_ = 0;
+    std::vector<std::unique_ptr<Task>> tasks_;  // every task record made (stable addresses)
+    std::vector<Task*> freeTasks_;              // records not in use
     bool stopping_ = false;
 };
 

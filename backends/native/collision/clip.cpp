@@ -1,5 +1,7 @@
 #include "collision/clip.hpp"
 
+#include <utility>
+
 #include "collision/feature_id.hpp"
 
 namespace anyphys::native {
@@ -20,39 +22,32 @@ SidePlane sidePlane(const ReferenceFace& ref, std::size_t k) {
 
 }  // namespace
 
-std::vector<ClipVertex> incidentPolygon(const std::vector<Vec3>& corners, const std::vector<int>& loop) {
-    std::vector<ClipVertex> polygon;
-    polygon.reserve(loop.size());
-    for (int v : loop)
-        polygon.push_back({corners[v], feature::vertexTag(static_cast<std::uint32_t>(v)),
-                           feature::edgeTag(static_cast<std::uint32_t>(v))});
-    return polygon;
-}
-
-std::vector<ClipVertex> clipToFace(std::vector<ClipVertex> polygon, const ReferenceFace& ref) {
-    std::vector<ClipVertex> out;
-    for (std::size_t k = 0; k < ref.corners.size() && !polygon.empty(); ++k) {
+std::span<const ClipVertex> clipToFace(std::span<ClipVertex> polygon, int count, std::span<ClipVertex> spare,
+                                       const ReferenceFace& ref) {
+    std::span<ClipVertex> in = polygon, out = spare;
+    for (std::size_t k = 0; k < ref.corners.size() && count > 0; ++k) {
         const SidePlane plane = sidePlane(ref, k);
         const std::uint32_t tag = feature::planeTag(static_cast<std::uint32_t>(k));
-        out.clear();
-        for (std::size_t i = 0; i < polygon.size(); ++i) {
-            const ClipVertex& cur = polygon[i];
-            const ClipVertex& next = polygon[(i + 1) % polygon.size()];
+        int written = 0;
+        for (int i = 0; i < count; ++i) {
+            const ClipVertex& cur = in[static_cast<std::size_t>(i)];
+            const ClipVertex& next = in[static_cast<std::size_t>(i + 1 < count ? i + 1 : 0)];
             const double dc = plane.normal.dot(cur.point) - plane.offset;
             const double dn = plane.normal.dot(next.point) - plane.offset;
-            if (dc <= 0) out.push_back(cur);
+            if (dc <= 0) out[static_cast<std::size_t>(written++)] = cur;
             if ((dc <= 0) != (dn <= 0)) {
                 const Vec3 p = cur.point + (dc / (dc - dn)) * (next.point - cur.point);
                 // Leaving: the boundary now runs along the side plane. Entering: along the edge.
-                out.push_back({p, feature::combine(cur.edge, tag), dc <= 0 ? tag : cur.edge});
+                out[static_cast<std::size_t>(written++)] = {p, feature::combine(cur.edge, tag), dc <= 0 ? tag : cur.edge};
             }
         }
-        polygon.swap(out);
+        count = written;
+        std::swap(in, out);
     }
-    return polygon;
+    return in.first(static_cast<std::size_t>(count));
 }
 
-void addFacePoints(const std::vector<ClipVertex>& clipped, const ReferenceFace& ref, double radius, double speculative,
+void addFacePoints(std::span<const ClipVertex> clipped, const ReferenceFace& ref, double radius, double speculative,
                    std::uint32_t idSeed, ManifoldBuilder& out) {
     for (const ClipVertex& v : clipped) {
         const double height = ref.normal.dot(v.point) - ref.offset;
@@ -64,7 +59,7 @@ void addFacePoints(const std::vector<ClipVertex>& clipped, const ReferenceFace& 
     }
 }
 
-std::vector<ClipVertex> clipSegmentToFace(const Vec3& p0, const Vec3& p1, const ReferenceFace& ref) {
+ClippedSegment clipSegmentToFace(const Vec3& p0, const Vec3& p1, const ReferenceFace& ref) {
     double t0 = 0, t1 = 1;
     std::uint32_t f0 = feature::vertexTag(0), f1 = feature::vertexTag(1);
     for (std::size_t k = 0; k < ref.corners.size(); ++k) {
@@ -83,7 +78,11 @@ std::vector<ClipVertex> clipSegmentToFace(const Vec3& p0, const Vec3& p1, const 
         }
     }
     if (t0 > t1) return {};
-    return {{p0 + t0 * (p1 - p0), f0, 0}, {p0 + t1 * (p1 - p0), f1, 0}};
+    ClippedSegment s;
+    s.ends[0] = {p0 + t0 * (p1 - p0), f0, 0};
+    s.ends[1] = {p0 + t1 * (p1 - p0), f1, 0};
+    s.count = 2;
+    return s;
 }
 
 }  // namespace anyphys::native

@@ -1,7 +1,9 @@
 // collide(): places both shapes in the world and dispatches to the pair routine, with the pair
 // ordered sphere < capsule < box < convex < plane < mesh; a swapped pair gets its normals flipped
-// back so they always point from a to b.
+// back so they always point from a to b. Each shape's rotation matrix is made once here.
 #include "collision/collide.hpp"
+
+#include <array>
 
 #include "collision/narrow_phase.hpp"
 
@@ -33,33 +35,28 @@ BoxGeom boxOf(const Shape& s, const Transform& xf) { return {xf.position, xf.ori
 PlaneGeom planeOf(const Shape& s) { return {s.normal.normalized(), s.offset}; }
 
 Polytope polytopeOf(const Shape& s, const Transform& xf) {
-    return s.type == ShapeType::Box ? makeBoxPolytope(s.halfExtents, xf) : makeHullPolytope(*s.hull, xf);
+    const Mat3 r = xf.orientation.toRotationMatrix();
+    return s.type == ShapeType::Box ? makeBoxPolytope(s.halfExtents, r, xf.position)
+                                    : makeHullPolytope(*s.hull, r, xf.position);
 }
 
-// The points a plane sees: sphere centre, capsule ends, polyhedron vertices.
-std::vector<Vec3> planeProbes(const Shape& s, const Transform& xf) {
-    switch (s.type) {
-        case ShapeType::Sphere: return {xf.position};
+bool collideWithPlane(const Shape& a, const Transform& xfA, const PlaneGeom& plane, double speculative, Manifold& m) {
+    switch (a.type) {
+        case ShapeType::Sphere: return collidePointsPlane({&xfA.position, 1}, a.radius, plane, speculative, m);
         case ShapeType::Capsule: {
-            const CapsuleGeom c = capsuleOf(s, xf);
-            return {c.p0, c.p1};
+            const CapsuleGeom c = capsuleOf(a, xfA);
+            const std::array<Vec3, 2> ends{c.p0, c.p1};
+            return collidePointsPlane(ends, a.radius, plane, speculative, m);
         }
-        case ShapeType::Box: {
-            const Mat3 r = xf.orientation.toRotationMatrix();
-            std::vector<Vec3> corners;
-            corners.reserve(8);
-            for (int i = 0; i < 8; ++i)
-                corners.push_back(xf.position + r * s.halfExtents.cwiseProduct(Vec3((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1)));
-            return corners;
-        }
-        case ShapeType::Convex: return polytopeOf(s, xf).vertices;
-        default: return {};
+        case ShapeType::Box: return collideBoxPlane(boxOf(a, xfA), plane, speculative, m);
+        case ShapeType::Convex: return collidePolytopePlane(polytopeOf(a, xfA), plane, speculative, m);
+        default: return false;
     }
 }
 
 // a ranks no higher than b.
 void collideOrdered(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB, double speculative,
-                    std::vector<Manifold>& out) {
+                    std::vector<Manifold>& out, CollideCache* cache) {
     if (b.type == ShapeType::Mesh) {
         if (a.type != ShapeType::Plane && a.type != ShapeType::Mesh) collideConvexMesh(a, xfA, b, xfB, speculative, out);
         return;
@@ -67,9 +64,7 @@ void collideOrdered(const Shape& a, const Transform& xfA, const Shape& b, const 
     Manifold m;
     bool hit = false;
     if (b.type == ShapeType::Plane) {
-        if (a.type == ShapeType::Plane) return;
-        const double radius = (a.type == ShapeType::Sphere || a.type == ShapeType::Capsule) ? a.radius : 0.0;
-        hit = collidePointsPlane(planeProbes(a, xfA), radius, planeOf(b), speculative, m);
+        if (a.type != ShapeType::Plane) hit = collideWithPlane(a, xfA, planeOf(b), speculative, m);
     } else if (a.type == ShapeType::Sphere) {
         const SphereGeom s = sphereOf(a, xfA);
         switch (b.type) {
@@ -85,9 +80,10 @@ void collideOrdered(const Shape& a, const Transform& xfA, const Shape& b, const 
         else if (b.type == ShapeType::Box || b.type == ShapeType::Convex)
             hit = collideCapsulePolytope(c, polytopeOf(b, xfB), speculative, m);
     } else if (a.type == ShapeType::Box && b.type == ShapeType::Box) {
-        hit = collideBoxes(boxOf(a, xfA), boxOf(b, xfB), speculative, m);
+        if (cache && boxesStillApart(a.halfExtents, xfA, b.halfExtents, xfB, *cache, speculative)) return;
+        hit = collideBoxes(boxOf(a, xfA), boxOf(b, xfB), speculative, m, cache);
     } else if ((a.type == ShapeType::Box || a.type == ShapeType::Convex) && b.type == ShapeType::Convex) {
-        hit = collidePolytopes(polytopeOf(a, xfA), polytopeOf(b, xfB), speculative, m);
+        hit = collidePolytopes(polytopeOf(a, xfA), polytopeOf(b, xfB), speculative, m, cache);
     }
     if (hit) out.push_back(m);
 }
@@ -95,13 +91,13 @@ void collideOrdered(const Shape& a, const Transform& xfA, const Shape& b, const 
 }  // namespace
 
 void collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB, double speculativeDistance,
-             std::vector<Manifold>& out) {
+             std::vector<Manifold>& out, CollideCache* cache) {
     if (rank(a.type) <= rank(b.type)) {
-        collideOrdered(a, xfA, b, xfB, speculativeDistance, out);
+        collideOrdered(a, xfA, b, xfB, speculativeDistance, out, cache);
         return;
     }
     const std::size_t first = out.size();
-    collideOrdered(b, xfB, a, xfA, speculativeDistance, out);
+    collideOrdered(b, xfB, a, xfA, speculativeDistance, out, cache);
     for (std::size_t i = first; i < out.size(); ++i) out[i].normal = -out[i].normal;
 }
 

@@ -14,9 +14,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 
 #include "collision/mesh_data.hpp"
 #include "collision/narrow_phase.hpp"
+#include "collision/scratch.hpp"
 
 namespace anyphys::native {
 namespace {
@@ -54,31 +56,47 @@ Aabb boundsIn(const Shape& s, const Transform& rel) {
     }
 }
 
+// Per-thread buffers (see scratch.hpp): the triangles met and their neighbours.
+struct EdgeUse {
+    std::uint32_t lo, hi;
+    int local, k;
+    bool operator<(const EdgeUse& o) const { return lo != o.lo ? lo < o.lo : hi < o.hi; }
+};
+
+struct MeshScratch {
+    std::vector<int> candidates;
+    std::vector<EdgeUse> uses;
+    std::vector<std::array<int, 3>> across;
+};
+
+MeshScratch& meshScratch() {
+    thread_local MeshScratch s;
+    return s;
+}
+
 // For each candidate triangle and edge k (v[k] -> v[k+1]), the candidate across it, or -1. An
 // edge used by exactly two candidates joins them; otherwise it counts as an open boundary.
-std::vector<std::array<int, 3>> neighbours(const MeshData& mesh, const std::vector<int>& candidates) {
-    struct EdgeUse {
-        std::uint32_t lo, hi;
-        int local, k;
-        bool operator<(const EdgeUse& o) const { return lo != o.lo ? lo < o.lo : hi < o.hi; }
-    };
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * candidates.size());
+std::span<const std::array<int, 3>> neighbours(const MeshData& mesh, std::span<const int> candidates, MeshScratch& scratch) {
+    std::vector<EdgeUse>& uses = scratch.uses;
+    uses.clear();
     for (int i = 0; i < static_cast<int>(candidates.size()); ++i) {
-        const auto& tri = mesh.triangles[candidates[i]];
+        const auto& tri = mesh.triangles[static_cast<std::size_t>(candidates[static_cast<std::size_t>(i)])];
         for (int k = 0; k < 3; ++k) {
-            const std::uint32_t v = tri[k], w = tri[(k + 1) % 3];
+            const std::uint32_t v = tri[static_cast<std::size_t>(k)], w = tri[static_cast<std::size_t>((k + 1) % 3)];
             uses.push_back({std::min(v, w), std::max(v, w), i, k});
         }
     }
     std::sort(uses.begin(), uses.end());
-    std::vector<std::array<int, 3>> across(candidates.size(), {-1, -1, -1});
+    const std::span<std::array<int, 3>> across = firstOf(scratch.across, candidates.size());
+    std::fill(across.begin(), across.end(), std::array<int, 3>{-1, -1, -1});
     for (std::size_t i = 0; i < uses.size();) {
         std::size_t j = i;
         while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
         if (j - i == 2) {
-            across[uses[i].local][uses[i].k] = candidates[uses[i + 1].local];
-            across[uses[i + 1].local][uses[i + 1].k] = candidates[uses[i].local];
+            across[static_cast<std::size_t>(uses[i].local)][static_cast<std::size_t>(uses[i].k)] =
+                candidates[static_cast<std::size_t>(uses[i + 1].local)];
+            across[static_cast<std::size_t>(uses[i + 1].local)][static_cast<std::size_t>(uses[i + 1].k)] =
+                candidates[static_cast<std::size_t>(uses[i].local)];
         }
         i = j;
     }
@@ -102,6 +120,40 @@ bool normalOnSurface(const Vec3& t, const std::array<Vec3, 3>& corners, const Ve
     return true;
 }
 
+// Every candidate triangle against the shape placed in the world: `whole(triangle, m)` the shape
+// against the triangle, `front(triangle, m)` only against its front face.
+template <class Whole, class Front>
+void collideTriangles(const MeshData& mesh, const Transform& xfB, std::span<const int> candidates, const Vec3& center,
+                      MeshScratch& scratch, Whole whole, Front front, std::vector<Manifold>& out) {
+    const Mat3 rb = xfB.orientation.toRotationMatrix();
+    const std::span<const std::array<int, 3>> across = neighbours(mesh, candidates, scratch);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const int t = candidates[i];
+        const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
+        const std::array<Vec3, 3> corners{xfB.position + rb * mesh.vertices[tri[0]],
+                                          xfB.position + rb * mesh.vertices[tri[1]],
+                                          xfB.position + rb * mesh.vertices[tri[2]]};
+        const Vec3 normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        // One-sided: a shape whose centre is behind the triangle, or a degenerate triangle, is skipped.
+        if (!(normal.squaredNorm() > 0) || normal.dot(center - corners[0]) < 0) continue;
+        const Polytope triangle = makeTrianglePolytope(corners[0], corners[1], corners[2]);
+        Manifold m;
+        bool hit = whole(triangle, m);
+        if (!hit) continue;
+        std::array<Vec3, 3> neighbourNormal{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+        for (std::size_t k = 0; k < 3; ++k)
+            if (const int other = across[i][k]; other >= 0) neighbourNormal[k] = rb * mesh.normals[static_cast<std::size_t>(other)];
+        const Vec3 front0 = triangle.normal(0);
+        // A ghost edge: the triangle's own normal, for the part of the shape over it.
+        if (!normalOnSurface(-m.normal, corners, front0, neighbourNormal)) hit = front(triangle, m);
+        // Keep contacts that push the shape out of the front side (or along the triangle's plane).
+        if (hit && m.normal.dot(front0) <= 1e-9) {
+            m.key = static_cast<std::uint32_t>(t);
+            out.push_back(m);
+        }
+    }
+}
+
 }  // namespace
 
 void collideConvexMesh(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB, double speculative,
@@ -111,72 +163,47 @@ void collideConvexMesh(const Shape& a, const Transform& xfA, const Shape& b, con
     const Quat toMesh = xfB.orientation.conjugate();
     const Transform rel{toMesh * (xfA.position - xfB.position), toMesh * xfA.orientation};
     const Aabb query = boundsIn(a, rel).fattened(std::max(speculative, 0.0));
-    std::vector<int> candidates;
+    MeshScratch& scratch = meshScratch();
+    std::vector<int>& candidates = scratch.candidates;
+    candidates.clear();
     mesh.queryTriangles(query, [&](int t) {
         candidates.push_back(t);
         return true;
     });
     if (candidates.empty()) return;
 
-    // The shape in the world, built once for all triangles.
+    // The shape in the world, made once for all triangles.
     const Mat3 ra = xfA.orientation.toRotationMatrix();
-    SphereGeom sphere;
-    CapsuleGeom capsule;
-    Polytope polytope;
-    Vec3 center = xfA.position;
     switch (a.type) {
-        case ShapeType::Sphere:
-            sphere = {xfA.position, a.radius};
+        case ShapeType::Sphere: {
+            const SphereGeom sphere{xfA.position, a.radius};
+            collideTriangles(
+                mesh, xfB, candidates, xfA.position, scratch,
+                [&](const Polytope& tri, Manifold& m) { return collideSpherePolytope(sphere, tri, speculative, m); },
+                [&](const Polytope& tri, Manifold& m) { return collideSphereFace(sphere, tri, 0, speculative, m); }, out);
             break;
-        case ShapeType::Capsule:
-            capsule = {xfA.position - ra.col(1) * a.halfHeight, xfA.position + ra.col(1) * a.halfHeight, a.radius};
+        }
+        case ShapeType::Capsule: {
+            const Vec3 axis = ra.col(1) * a.halfHeight;
+            const CapsuleGeom capsule{xfA.position - axis, xfA.position + axis, a.radius};
+            collideTriangles(
+                mesh, xfB, candidates, xfA.position, scratch,
+                [&](const Polytope& tri, Manifold& m) { return collideCapsulePolytope(capsule, tri, speculative, m); },
+                [&](const Polytope& tri, Manifold& m) { return collideCapsuleFace(capsule, tri, 0, speculative, m); }, out);
             break;
+        }
         case ShapeType::Box:
-            polytope = makeBoxPolytope(a.halfExtents, xfA);
+        case ShapeType::Convex: {
+            const Polytope shape = a.type == ShapeType::Box ? makeBoxPolytope(a.halfExtents, ra, xfA.position)
+                                                            : makeHullPolytope(*a.hull, ra, xfA.position);
+            collideTriangles(
+                mesh, xfB, candidates, shape.center, scratch,
+                [&](const Polytope& tri, Manifold& m) { return collidePolytopes(shape, tri, speculative, m); },
+                [&](const Polytope& tri, Manifold& m) { return collidePolytopeFace(shape, tri, 0, speculative, m); }, out);
             break;
-        case ShapeType::Convex:
-            polytope = makeHullPolytope(*a.hull, xfA);
-            center = polytope.center;
-            break;
+        }
         default:
-            return;
-    }
-
-    const Mat3 rb = xfB.orientation.toRotationMatrix();
-    const std::vector<std::array<int, 3>> across = neighbours(mesh, candidates);
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-        const int t = candidates[i];
-        const auto& tri = mesh.triangles[t];
-        const std::array<Vec3, 3> corners{xfB.position + rb * mesh.vertices[tri[0]], xfB.position + rb * mesh.vertices[tri[1]],
-                                          xfB.position + rb * mesh.vertices[tri[2]]};
-        const Vec3 normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-        // One-sided: a shape whose centre is behind the triangle, or a degenerate triangle, is skipped.
-        if (!(normal.squaredNorm() > 0) || normal.dot(center - corners[0]) < 0) continue;
-        const Polytope triangle = makeTrianglePolytope(corners[0], corners[1], corners[2]);
-        Manifold m;
-        bool hit = false;
-        switch (a.type) {
-            case ShapeType::Sphere: hit = collideSpherePolytope(sphere, triangle, speculative, m); break;
-            case ShapeType::Capsule: hit = collideCapsulePolytope(capsule, triangle, speculative, m); break;
-            default: hit = collidePolytopes(polytope, triangle, speculative, m); break;
-        }
-        if (!hit) continue;
-        std::array<Vec3, 3> neighbourNormal{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-        for (int k = 0; k < 3; ++k)
-            if (across[i][k] >= 0) neighbourNormal[k] = rb * mesh.normals[across[i][k]];
-        if (!normalOnSurface(-m.normal, corners, triangle.normals[0], neighbourNormal)) {
-            // A ghost edge: the triangle's own normal, for the part of the shape over it.
-            switch (a.type) {
-                case ShapeType::Sphere: hit = collideSphereFace(sphere, triangle, 0, speculative, m); break;
-                case ShapeType::Capsule: hit = collideCapsuleFace(capsule, triangle, 0, speculative, m); break;
-                default: hit = collidePolytopeFace(polytope, triangle, 0, speculative, m); break;
-            }
-        }
-        // Keep contacts that push the shape out of the front side (or along the triangle's plane).
-        if (hit && m.normal.dot(triangle.normals[0]) <= 1e-9) {
-            m.key = static_cast<std::uint32_t>(t);
-            out.push_back(m);
-        }
+            break;
     }
 }
 

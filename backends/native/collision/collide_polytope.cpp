@@ -2,17 +2,21 @@
 // each other. Round shapes: the distance routine while apart (exact closest features), the
 // separating-axis test once their cores touch. Polyhedra: separating axes on face normals and
 // edge-pair directions, then reference-face clipping or the closest points of the edge pair.
+//
+// Polytopes keep their geometry in their own frames; each test turns the few directions it needs
+// into the frame of the shape it scans rather than moving every vertex into the world. Buffers
+// whose size follows a hull's come from a per-thread scratch set (no allocation once warm).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <span>
 
 #include "collision/clip.hpp"
 #include "collision/feature_id.hpp"
 #include "collision/gjk.hpp"
 #include "collision/manifold_builder.hpp"
 #include "collision/narrow_phase.hpp"
+#include "collision/scratch.hpp"
 #include "collision/segments.hpp"
 #include "collision/tolerances.hpp"
 
@@ -30,18 +34,74 @@ constexpr double kSupportTolerance = 1e-9;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// An edge's arc on the Gauss map: its faces' normals (b's negated), the normal of their great
+// circle and their sum (pointing into the arc). The arc lies in the cone of half angle h around
+// the unit `axis` (cosH, sinH): arcs whose cones miss each other cannot cross.
+struct Arc {
+    Vec3 n1, n2, circle, middle, axis;
+    double cosH, sinH;
+};
+
+// The arc of an edge between faces with normals n1 and n2 (in whatever frame they are).
+Arc makeArc(const Vec3& n1, const Vec3& n2) {
+    const Vec3 middle = n1 + n2;
+    const Vec3 axis = middle.normalized();
+    const double c = std::clamp(axis.dot(n1), -1.0, 1.0);
+    return {n1, n2, n1.cross(n2), middle, axis, c, std::sqrt(1 - c * c)};
+}
+
+// An edge in some frame: its start, its direction (to its end), its index and its arc.
+struct EdgeInFrame {
+    Vec3 start, direction;
+    int index;
+    Arc arc;
+};
+
+struct Scratch {
+    std::vector<Vec3> corners;  // a reference face's corners
+    std::vector<ClipVertex> polygon, spare;
+    std::vector<ManifoldBuilder::Candidate> candidates;
+    std::vector<Vec3> directionsA, directionsB;  // distinct edge directions
+    std::vector<Vec3> normalsB;                  // b's face normals in a's frame, negated
+    std::vector<EdgeInFrame> keptA, keptB;       // edges whose pairs may matter
+};
+
+Scratch& scratch() {
+    thread_local Scratch s;
+    return s;
+}
+
 std::uint32_t featureCode(const CoreFeature& indices) {
     std::uint32_t h = static_cast<std::uint32_t>(indices.size());
     for (int i : indices) h = feature::combine(h, static_cast<std::uint32_t>(i));
     return h;
 }
 
-ReferenceFace referenceFace(const Polytope& p, int f) {
+ConvexCore coreOf(const Polytope& p) { return ConvexCore::posedPoints(p.vertices, p.rotation, p.position); }
+
+// Face f of p in the world, its corners written to `corners` (room for the face's loop).
+ReferenceFace referenceFace(const Polytope& p, int f, std::span<Vec3> corners) {
+    const std::vector<int>& loop = p.face(f);
+    for (std::size_t i = 0; i < loop.size(); ++i) corners[i] = p.vertex(loop[i]);
     ReferenceFace ref;
-    for (int v : p.face(f)) ref.corners.push_back(p.vertices[v]);
-    ref.normal = p.normals[f];
-    ref.offset = p.offsets[f];
+    ref.corners = corners.first(loop.size());
+    ref.normal = p.normal(f);
+    ref.offset = p.offset(f, ref.normal);
     return ref;
+}
+
+// Most faces have few corners; larger ones go to the scratch set.
+using SmallCorners = std::array<Vec3, 8>;
+std::span<Vec3> cornerRoom(SmallCorners& small, const Polytope& p, int f) {
+    return room(small, scratch().corners, p.face(f).size());
+}
+
+// A builder with room for clipping a face of `inc` to face `refFace` of `ref`, plus inc's
+// deepest vertex (a face has at most all of inc's vertices).
+ManifoldBuilder faceContactBuilder(const Vec3& normal, const Polytope& ref, int refFace, const Polytope& inc) {
+    const std::size_t needed = ref.face(refFace).size() + inc.vertices.size() + 1;
+    if (needed <= static_cast<std::size_t>(ManifoldBuilder::kInlineCapacity)) return ManifoldBuilder(normal);
+    return ManifoldBuilder(normal, firstOf(scratch().candidates, needed));
 }
 
 struct FaceAxis {
@@ -49,40 +109,108 @@ struct FaceAxis {
     int face = -1;
 };
 
-// The face of `p` whose plane is farthest from `other` (its lowest vertex above the plane).
-// With `oneSided`, only axes that push a shape out of a one-sided triangle's front count: its
-// front face, and no face of the other shape facing the way that front does. (For deciding
-// whether the shapes are apart every axis counts; the restriction only picks the contact normal.)
-FaceAxis faceQuery(const Polytope& p, const Polytope& other, bool oneSided) {
+// p's faces seen from other's frame: p's normals turned by `turn`, p's position shifted.
+struct FacesInFrame {
+    Mat3 turn;
+    Vec3 shift;
+
+    FacesInFrame(const Polytope& p, const Polytope& other)
+        : turn(other.rotation.transpose() * p.rotation), shift(other.rotation.transpose() * (other.position - p.position)) {}
+
+    // Height of other's lowest vertex over the plane of p's face f (n: its normal in other's frame).
+    double separation(const Polytope& p, int f, const Polytope& other, const Vec3& n) const {
+        return other.localLowest(n) + n.dot(shift) - p.offsets[static_cast<std::size_t>(f)];
+    }
+    double separation(const Polytope& p, int f, const Polytope& other) const {
+        return separation(p, f, other, turn * p.normals[static_cast<std::size_t>(f)]);
+    }
+};
+
+// The face of `p` whose plane is farthest from `other` (its lowest vertex above the plane), or
+// the first found farther than `stopAbove`. With `oneSided`, only axes that push a shape out of
+// a one-sided triangle's front count: its front face, and no face of the other shape facing the
+// way that front does. (For deciding whether the shapes are apart every axis counts; the
+// restriction only picks the contact normal.)
+FaceAxis faceQuery(const Polytope& p, const Polytope& other, bool oneSided, double stopAbove = kInfinity) {
+    const FacesInFrame frame(p, other);
+    const bool skipFacing = oneSided && other.oneSided;
+    const Vec3 otherFront = skipFacing ? Vec3(other.normal(0)) : Vec3::Zero();
     FaceAxis best;
     const int count = oneSided ? p.axisFaceCount() : p.faceCount();
     for (int f = 0; f < count; ++f) {
-        if (oneSided && other.oneSided && p.normals[f].dot(other.normals[0]) > 1e-9) continue;
-        if (const double s = other.project(p.normals[f])[0] - p.offsets[f]; s > best.separation) best = {s, f};
+        if (skipFacing && p.normal(f).dot(otherFront) > 1e-9) continue;
+        if (const double s = frame.separation(p, f, other); s > best.separation) {
+            best = {s, f};
+            if (s > stopAbove) break;
+        }
     }
     return best;
 }
 
-// The distinct edge directions of p (unit; a box has three).
-std::vector<Vec3> edgeDirections(const Polytope& p) {
-    std::vector<Vec3> dirs;
-    for (const auto& [v, w] : p.edges()) {
-        const Vec3 u = (p.vertices[w] - p.vertices[v]).normalized();
-        if (std::none_of(dirs.begin(), dirs.end(), [&](const Vec3& d) { return std::abs(d.dot(u)) >= 1 - kSameDirection; }))
-            dirs.push_back(u);
+// Rounding allowance on the upper bounds below (they only skip work; a generous one costs little).
+double boundSlack(const Polytope& a, const Polytope& b) { return 1e-9 * (a.size() + b.size()); }
+
+// faceQuery (two-sided) without measuring every face. A face's separation is at most the height
+// of other's centre over it, so a face whose bound is below the best so far cannot win, and one
+// whose bound is at most `irrelevantAtOrBelow` cannot matter (see collidePolytopes): both are
+// skipped. `seed` (a face, or -1) is measured first: the last contact's reference face, else the
+// face turned most toward other, bounds the rest tightly. Ties go to the lowest index, as there.
+FaceAxis prunedFaceQuery(const Polytope& p, const Polytope& other, int seed, double irrelevantAtOrBelow, double stopAbove) {
+    const FacesInFrame frame(p, other);
+    const Vec3 centre = other.localCenter() + frame.shift;  // other's centre seen from p, in other's frame
+    const double slack = boundSlack(p, other);
+    if (seed < 0 || seed >= p.faceCount()) {
+        const Vec3 toward = p.rotation.transpose() * (other.center - p.center);
+        double most = -kInfinity;
+        for (int f = 0; f < p.faceCount(); ++f)
+            if (const double d = p.normals[static_cast<std::size_t>(f)].dot(toward); d > most) {
+                most = d;
+                seed = f;
+            }
     }
-    return dirs;
+    FaceAxis best{frame.separation(p, seed, other), seed};
+    if (best.separation > stopAbove) return best;
+    for (int f = 0; f < p.faceCount(); ++f) {
+        if (f == seed) continue;
+        const Vec3 n = frame.turn * p.normals[static_cast<std::size_t>(f)];
+        const double bound = n.dot(centre) - p.offsets[static_cast<std::size_t>(f)] + slack;
+        if (bound < best.separation || bound <= irrelevantAtOrBelow) continue;
+        const double s = frame.separation(p, f, other, n);
+        if (s > best.separation || (s == best.separation && f < best.face)) {
+            best = {s, f};
+            if (s > stopAbove) break;
+        }
+    }
+    return best;
 }
 
-// The edge of `p` parallel to `dir` that is farthest along `toward`.
+// The distinct edge directions of p (world, unit; a box has its three axes), kept in `out`.
+std::span<const Vec3> edgeDirections(const Polytope& p, std::vector<Vec3>& out) {
+    out.clear();
+    if (p.isBox) {
+        for (int k = 0; k < 3; ++k) out.push_back(p.rotation.col(k));
+        return out;
+    }
+    for (const auto& [v, w] : p.edges) {
+        const Vec3 u = (p.vertices[static_cast<std::size_t>(w)] - p.vertices[static_cast<std::size_t>(v)]).normalized();
+        if (std::none_of(out.begin(), out.end(), [&](const Vec3& d) { return std::abs(d.dot(u)) >= 1 - kSameDirection; }))
+            out.push_back(u);
+    }
+    for (Vec3& d : out) d = p.rotation * d;
+    return out;
+}
+
+// The edge of `p` parallel to `dir` that is farthest along `toward` (both world).
 int supportEdge(const Polytope& p, const Vec3& dir, const Vec3& toward) {
-    const auto& edges = p.edges();
+    const Vec3 d = p.rotation.transpose() * dir, t = p.rotation.transpose() * toward;
     int best = -1;
     double bestValue = -kInfinity;
-    for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
-        const Vec3 a = p.vertices[edges[e][0]], b = p.vertices[edges[e][1]];
-        if (std::abs((b - a).normalized().dot(dir)) < 1 - kSameDirection) continue;
-        if (const double v = toward.dot(a + b); v > bestValue) {
+    for (int e = 0; e < static_cast<int>(p.edges.size()); ++e) {
+        const auto& ends = p.edges[static_cast<std::size_t>(e)];
+        const Vec3& a = p.vertices[static_cast<std::size_t>(ends[0])];
+        const Vec3& b = p.vertices[static_cast<std::size_t>(ends[1])];
+        if (std::abs((b - a).normalized().dot(d)) < 1 - kSameDirection) continue;
+        if (const double v = t.dot(a + b); v > bestValue) {
             bestValue = v;
             best = e;
         }
@@ -92,7 +220,7 @@ int supportEdge(const Polytope& p, const Vec3& dir, const Vec3& toward) {
 
 struct EdgeAxis {
     double separation = -kInfinity;
-    Vec3 normal = Vec3::Zero();  // from a toward b
+    Vec3 normal = Vec3::Zero();  // world, from a toward b
     int edgeA = -1, edgeB = -1;  // the supporting edges along normal (a) and against it (b)
 };
 
@@ -101,58 +229,100 @@ struct EdgeAxis {
 // other edge pairs can tie with it (at a vertex touch) while their edges are far apart.
 bool isSupportEdge(const Polytope& p, int e, const Vec3& n, double tolerance) {
     if (e < 0) return false;
-    const double top = p.project(n)[1];
-    const auto& ends = p.edges()[e];
-    return n.dot(p.vertices[ends[0]]) >= top - tolerance && n.dot(p.vertices[ends[1]]) >= top - tolerance;
+    const Vec3 local = p.rotation.transpose() * n;
+    const double top = p.localProject(local)[1];
+    const auto& ends = p.edges[static_cast<std::size_t>(e)];
+    return local.dot(p.vertices[static_cast<std::size_t>(ends[0])]) >= top - tolerance &&
+           local.dot(p.vertices[static_cast<std::size_t>(ends[1])]) >= top - tolerance;
+}
+
+// An upper bound of L.w over the unit vectors L of the arc from n1 to n2 (less than a half
+// circle). L = (s n1 + t n2) / |s n1 + t n2| with s, t >= 0, and |s n1 + t n2| lies between
+// (s + t) |n1 + n2| / 2 and s + t, so L.w <= m / (|n1 + n2| / 2) if m = max(n1.w, n2.w) >= 0,
+// else L.w <= m.
+double arcMax(const Vec3& n1, const Vec3& n2, const Vec3& w) {
+    const double m = std::max(n1.dot(w), n2.dot(w));
+    return m < 0 ? m : 2 * m / (n1 + n2).norm();
 }
 
 // Edge pairs of two closed polytopes that are faces of their Minkowski difference: the arcs the
 // edges trace on the Gauss map (between their faces' normals; b's negated) cross. Only those can
-// realise the separation, and for them it is one dot product (Gregorius, GDC 2013).
-EdgeAxis minkowskiEdgeQuery(const Polytope& a, const Polytope& b) {
-    // An edge's arc: its faces' normals (b's negated), the normal of their great circle, their
-    // sum (pointing into the arc), and the edge itself. The arc lies in the cone of half angle h
-    // around the unit `axis` (cosH, sinH): arcs whose cones miss each other cannot cross.
-    struct Arc {
-        Vec3 n1, n2, circle, middle, p, d, axis;
-        double cosH, sinH;
+// realise the separation, and for them it is one dot product (Gregorius, GDC 2013). Worked in
+// a's frame; stops at the first pair farther apart than `stopAbove`.
+//
+// Only separations above `relevant` matter (see collidePolytopes). Along any normal L of a's arc
+// the separation is at most L.(b's centre - the edge), and along b's at most L.(the edge - a's
+// centre): an edge whose arc keeps that bound at or below `relevant` is skipped with all its
+// pairs. Separations are compared exactly, so the outcome is the full query's.
+EdgeAxis minkowskiEdgeQuery(const Polytope& a, const Polytope& b, double relevant, double stopAbove) {
+    Scratch& s = scratch();
+    const Mat3 turn = a.rotation.transpose() * b.rotation;  // b's frame -> a's
+    const Vec3 shift = a.rotation.transpose() * (b.position - a.position);
+    const std::span<Vec3> normalsB = firstOf(s.normalsB, b.normals.size());
+    for (std::size_t f = 0; f < normalsB.size(); ++f) normalsB[f] = -(turn * b.normals[f]);
+
+    // The edges that may matter, with their start, direction and arc in a's frame.
+    const double threshold = relevant - boundSlack(a, b);
+    const Vec3 centreA = a.localCenter(), centreB = a.rotation.transpose() * (b.center - a.position);
+    const auto keep = [threshold](const Polytope& p, std::span<const Vec3> normals, int e, const Vec3& start,
+                                  const Vec3& toCentre, std::vector<EdgeInFrame>& kept) {
+        const Vec3& n1 = normals[static_cast<std::size_t>(p.edgeFaces[static_cast<std::size_t>(e)][0])];
+        const Vec3& n2 = normals[static_cast<std::size_t>(p.edgeFaces[static_cast<std::size_t>(e)][1])];
+        if (arcMax(n1, n2, toCentre) <= threshold) return false;
+        kept.push_back({start, Vec3::Zero(), e, makeArc(n1, n2)});
+        return true;
     };
-    auto arcs = [](const Polytope& q, double sign) {
-        std::vector<Arc> out;
-        out.reserve(q.edges().size());
-        for (std::size_t e = 0; e < q.edges().size(); ++e) {
-            const Vec3 n1 = sign * q.normals[q.edgeFaces()[e][0]], n2 = sign * q.normals[q.edgeFaces()[e][1]];
-            const Vec3 p = q.vertices[q.edges()[e][0]];
-            const Vec3 axis = (n1 + n2).normalized();
-            const double c = std::clamp(axis.dot(n1), -1.0, 1.0);
-            out.push_back({n1, n2, n1.cross(n2), n1 + n2, p, q.vertices[q.edges()[e][1]] - p, axis, c, std::sqrt(1 - c * c)});
-        }
-        return out;
-    };
-    const std::vector<Arc> arcsA = arcs(a, 1.0), arcsB = arcs(b, -1.0);
+    std::vector<EdgeInFrame>& keptA = s.keptA;
+    std::vector<EdgeInFrame>& keptB = s.keptB;
+    keptA.clear();
+    keptB.clear();
+    for (int i = 0; i < static_cast<int>(a.edges.size()); ++i) {
+        const auto& ends = a.edges[static_cast<std::size_t>(i)];
+        const Vec3& p = a.vertices[static_cast<std::size_t>(ends[0])];
+        if (keep(a, a.normals, i, p, centreB - p, keptA))
+            keptA.back().direction = a.vertices[static_cast<std::size_t>(ends[1])] - p;
+    }
+    for (int j = 0; j < static_cast<int>(b.edges.size()); ++j) {
+        const auto& ends = b.edges[static_cast<std::size_t>(j)];
+        const Vec3& v0 = b.vertices[static_cast<std::size_t>(ends[0])];
+        const Vec3 p = turn * v0 + shift;
+        // Along L, b reaches down to L.p at this edge, a up to at least L.(a's centre).
+        if (keep(b, normalsB, j, p, p - centreA, keptB))
+            keptB.back().direction = turn * (b.vertices[static_cast<std::size_t>(ends[1])] - v0);
+    }
 
     EdgeAxis best;
-    for (int i = 0; i < static_cast<int>(arcsA.size()); ++i) {
-        const Arc& u = arcsA[i];
-        for (int j = 0; j < static_cast<int>(arcsB.size()); ++j) {
-            const Arc& w = arcsB[j];
-            // Cones apart: the angle between axes exceeds the sum of half angles (with slack).
-            if (u.axis.dot(w.axis) < u.cosH * w.cosH - u.sinH * w.sinH - 1e-9) continue;
-            // The arcs cross: each one's ends lie on both sides of the other's great circle, and
-            // the crossing is the same point of the sphere for both (not antipodal).
-            if (w.n1.dot(u.circle) * w.n2.dot(u.circle) >= 0) continue;
-            if (u.n1.dot(w.circle) * u.n2.dot(w.circle) >= 0) continue;
-            const Vec3 crossing = u.circle.cross(w.circle);
-            if (crossing.dot(u.middle) * crossing.dot(w.middle) <= 0) continue;
+    Vec3 bestNormal = Vec3::Zero();
+    const auto scan = [&] {
+        for (const EdgeInFrame& ea : keptA) {
+            const Arc& u = ea.arc;
+            for (const EdgeInFrame& eb : keptB) {
+                const Arc& w = eb.arc;
+                // Cones apart: the angle between axes exceeds the sum of half angles (with slack).
+                if (u.axis.dot(w.axis) < u.cosH * w.cosH - u.sinH * w.sinH - 1e-9) continue;
+                // The arcs cross: each one's ends lie on both sides of the other's great circle, and
+                // the crossing is the same point of the sphere for both (not antipodal).
+                if (w.n1.dot(u.circle) * w.n2.dot(u.circle) >= 0) continue;
+                if (u.n1.dot(w.circle) * u.n2.dot(w.circle) >= 0) continue;
+                const Vec3 crossing = u.circle.cross(w.circle);
+                if (crossing.dot(u.middle) * crossing.dot(w.middle) <= 0) continue;
 
-            Vec3 L = u.d.cross(w.d);
-            const double len = L.norm();
-            if (len < tolerance::kParallelEdges * u.d.norm() * w.d.norm()) continue;  // parallel: faces cover it
-            L /= len;
-            if (L.dot(u.middle) < 0) L = -L;  // outward from a at its edge
-            if (const double s = L.dot(w.p - u.p); s > best.separation) best = {s, L, i, j};
+                Vec3 L = ea.direction.cross(eb.direction);
+                const double len = L.norm();
+                // Parallel: the faces cover it.
+                if (len < tolerance::kParallelEdges * ea.direction.norm() * eb.direction.norm()) continue;
+                L /= len;
+                if (L.dot(u.middle) < 0) L = -L;  // outward from a at its edge
+                if (const double sep = L.dot(eb.start - ea.start); sep > best.separation) {
+                    best = {sep, Vec3::Zero(), ea.index, eb.index};
+                    bestNormal = L;
+                    if (sep > stopAbove) return;
+                }
+            }
         }
-    }
+    };
+    scan();
+    best.normal = a.rotation * bestNormal;
     return best;
 }
 
@@ -160,9 +330,11 @@ EdgeAxis minkowskiEdgeQuery(const Polytope& a, const Polytope& b) {
 // triangle, whose Gauss map is degenerate. Only pairs whose edges are the touching features count.
 // With `oneSided`, a one-sided b may only push a out of its front.
 EdgeAxis edgeQuery(const Polytope& a, const Polytope& b, bool oneSided) {
+    Scratch& s = scratch();
     EdgeAxis best;
-    const auto dirsB = edgeDirections(b);
-    for (const Vec3& dirA : edgeDirections(a))
+    const std::span<const Vec3> dirsA = edgeDirections(a, s.directionsA), dirsB = edgeDirections(b, s.directionsB);
+    const Vec3 frontB = b.oneSided ? Vec3(b.normal(0)) : Vec3::Zero();
+    for (const Vec3& dirA : dirsA)
         for (const Vec3& dirB : dirsB) {
             Vec3 L = dirA.cross(dirB);
             const double len = L.norm();
@@ -171,14 +343,14 @@ EdgeAxis edgeQuery(const Polytope& a, const Polytope& b, bool oneSided) {
             const auto [loA, hiA] = a.project(L);
             const auto [loB, hiB] = b.project(L);
             double along = loB - hiA, against = loA - hiB;  // b beyond a along +L, or along -L
-            if (oneSided && b.oneSided && L.dot(b.normals[0]) > 0) along = -kInfinity;
-            if (oneSided && b.oneSided && L.dot(b.normals[0]) < 0) against = -kInfinity;
-            const double s = std::max(along, against);
-            if (s <= best.separation) continue;
+            if (oneSided && b.oneSided && L.dot(frontB) > 0) along = -kInfinity;
+            if (oneSided && b.oneSided && L.dot(frontB) < 0) against = -kInfinity;
+            const double sep = std::max(along, against);
+            if (sep <= best.separation) continue;
             const Vec3 n = along >= against ? L : Vec3(-L);
             const int ea = supportEdge(a, dirA, n), eb = supportEdge(b, dirB, -n);
-            const double tolerance = kSupportTolerance * (a.size + b.size);
-            if (isSupportEdge(a, ea, n, tolerance) && isSupportEdge(b, eb, -n, tolerance)) best = {s, n, ea, eb};
+            const double tolerance = kSupportTolerance * (a.size() + b.size());
+            if (isSupportEdge(a, ea, n, tolerance) && isSupportEdge(b, eb, -n, tolerance)) best = {sep, n, ea, eb};
         }
     return best;
 }
@@ -187,31 +359,52 @@ EdgeAxis edgeQuery(const Polytope& a, const Polytope& b, bool oneSided) {
 // deepest vertex is added when the clip does not reach its depth (it lies beside the face).
 void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, feature::Kind kind, double speculative,
                          bool keepDeepest, ManifoldBuilder& out) {
-    const ReferenceFace face = referenceFace(ref, refFace);
+    Scratch& s = scratch();
+    SmallCorners small;
+    const ReferenceFace face = referenceFace(ref, refFace, cornerRoom(small, ref, refFace));
+    const Vec3 against = inc.rotation.transpose() * face.normal;
     int incFace = 0;
     double lowest = kInfinity;
     for (int f = 0; f < inc.faceCount(); ++f)
-        if (const double d = inc.normals[f].dot(face.normal); d < lowest) {
+        if (const double d = inc.normals[static_cast<std::size_t>(f)].dot(against); d < lowest) {
             lowest = d;
             incFace = f;
         }
-    const std::vector<ClipVertex> clipped = clipToFace(incidentPolygon(inc.vertices, inc.face(incFace)), face);
+    const std::vector<int>& loop = inc.face(incFace);
+    const std::size_t capacity = loop.size() + face.corners.size();
+    std::array<ClipVertex, 16> smallPolygon, smallSpare;
+    const std::span<ClipVertex> polygon = room(smallPolygon, s.polygon, capacity);
+    const std::span<ClipVertex> spare = room(smallSpare, s.spare, capacity);
+    for (std::size_t i = 0; i < loop.size(); ++i) polygon[i] = incidentVertex(inc.vertex(loop[i]), loop[i]);
+    const std::span<const ClipVertex> clipped = clipToFace(polygon, static_cast<int>(loop.size()), spare, face);
     const std::uint32_t seed = feature::id(kind, refFace, incFace);
     addFacePoints(clipped, face, 0.0, speculative, seed, out);
     if (!keepDeepest) return;
     const int v = inc.support(-face.normal);
-    const double depth = face.normal.dot(inc.vertices[v]) - face.offset;
-    if (out.deepest() > depth + tolerance::kDistanceSwitch * std::min(ref.size, inc.size))
-        addFacePoints({{inc.vertices[v], feature::vertexTag(static_cast<std::uint32_t>(v)), 0}}, face, 0.0, speculative, seed,
-                      out);
+    const Vec3 deepest = inc.vertex(v);
+    const double depth = face.normal.dot(deepest) - face.offset;
+    if (out.deepest() > depth + tolerance::kDistanceSwitch * std::min(ref.size(), inc.size())) {
+        const ClipVertex corner{deepest, feature::vertexTag(static_cast<std::uint32_t>(v)), 0};
+        addFacePoints({&corner, 1}, face, 0.0, speculative, seed, out);
+    }
 }
 
 // Index of the edge joining vertices v and w, or -1.
 int edgeIndex(const Polytope& p, int v, int w) {
-    const auto& edges = p.edges();
-    for (int e = 0; e < static_cast<int>(edges.size()); ++e)
-        if ((edges[e][0] == v && edges[e][1] == w) || (edges[e][0] == w && edges[e][1] == v)) return e;
+    for (int e = 0; e < static_cast<int>(p.edges.size()); ++e) {
+        const auto& ends = p.edges[static_cast<std::size_t>(e)];
+        if ((ends[0] == v && ends[1] == w) || (ends[0] == w && ends[1] == v)) return e;
+    }
     return -1;
+}
+
+// The face of p whose normal is closest to the world direction n, and that alignment (cosine).
+FaceAxis alignedFace(const Polytope& p, int count, const Vec3& n) {
+    const Vec3 local = p.rotation.transpose() * n;
+    FaceAxis best;
+    for (int f = 0; f < count; ++f)
+        if (const double d = p.normals[static_cast<std::size_t>(f)].dot(local); d > best.separation) best = {d, f};
+    return best;
 }
 
 // Polytopes apart by g.distance (> 0): the closest points are exact. If their direction is the
@@ -219,27 +412,18 @@ int edgeIndex(const Polytope& p, int v, int w) {
 // face is clipped to it; otherwise (edges or vertices closest) the closest points are the contact.
 bool separatedPolytopes(const Polytope& a, const Polytope& b, const GjkResult& g, double speculative, Manifold& m) {
     const Vec3 n = (g.pointB - g.pointA) / g.distance;
-    int faceA = 0, faceB = 0;
-    double alignA = -kInfinity, alignB = -kInfinity;
-    for (int f = 0; f < a.faceCount(); ++f)
-        if (const double d = a.normals[f].dot(n); d > alignA) {
-            alignA = d;
-            faceA = f;
-        }
-    for (int f = 0; f < b.axisFaceCount(); ++f)
-        if (const double d = -b.normals[f].dot(n); d > alignB) {
-            alignB = d;
-            faceB = f;
-        }
-    if (std::max(alignA, alignB) >= kFaceAlignment) {
+    const FaceAxis alignA = alignedFace(a, a.faceCount(), n), alignB = alignedFace(b, b.axisFaceCount(), -n);
+    if (std::max(alignA.separation, alignB.separation) >= kFaceAlignment) {
         // As in the overlapping case, a's face wins ties, so ids carry over when they meet.
-        const bool useB = alignB > alignA + 1e-9;
-        ManifoldBuilder builder(useB ? Vec3(-b.normals[faceB]) : a.normals[faceA]);
-        if (useB) polytopeFaceContact(b, faceB, a, feature::Kind::FaceOfB, speculative, false, builder);
-        else polytopeFaceContact(a, faceA, b, feature::Kind::FaceOfA, speculative, false, builder);
+        const bool useB = alignB.separation > alignA.separation + 1e-9;
+        const Vec3 normal = useB ? Vec3(-b.normal(alignB.face)) : a.normal(alignA.face);
+        ManifoldBuilder builder =
+            useB ? faceContactBuilder(normal, b, alignB.face, a) : faceContactBuilder(normal, a, alignA.face, b);
+        if (useB) polytopeFaceContact(b, alignB.face, a, feature::Kind::FaceOfB, speculative, false, builder);
+        else polytopeFaceContact(a, alignA.face, b, feature::Kind::FaceOfA, speculative, false, builder);
         // Only if the closest points lie over the face: heights over its plane then never
         // exceed the true distances (else the other shape hangs over an edge of the face).
-        if (builder.deepest() <= g.distance + tolerance::kDistanceSwitch * std::min(a.size, b.size))
+        if (builder.deepest() <= g.distance + tolerance::kDistanceSwitch * std::min(a.size(), b.size()))
             return builder.finish(m);
     }
     // Edge against edge gets the id the overlapping case gives that edge pair.
@@ -253,17 +437,51 @@ bool separatedPolytopes(const Polytope& a, const Polytope& b, const GjkResult& g
     return builder.finish(m);
 }
 
+// The separation along the axis a cache remembers (-infinity if it names none of these shapes').
+double cachedSeparation(const Polytope& a, const Polytope& b, const CollideCache& cache) {
+    if (!cache.separating) return -kInfinity;
+    const auto fits = [](int index, std::size_t count) { return index >= 0 && static_cast<std::size_t>(index) < count; };
+    switch (cache.axis) {
+        case CollideCache::FaceOfA:
+            if (fits(cache.indexA, a.faces.size())) return FacesInFrame(a, b).separation(a, cache.indexA, b);
+            break;
+        case CollideCache::FaceOfB:
+            if (fits(cache.indexB, b.faces.size())) return FacesInFrame(b, a).separation(b, cache.indexB, a);
+            break;
+        case CollideCache::EdgePair: {
+            if (!fits(cache.indexA, a.edges.size()) || !fits(cache.indexB, b.edges.size())) break;
+            const auto& ea = a.edges[static_cast<std::size_t>(cache.indexA)];
+            const auto& eb = b.edges[static_cast<std::size_t>(cache.indexB)];
+            const Vec3 da = a.vertex(ea[1]) - a.vertex(ea[0]), db = b.vertex(eb[1]) - b.vertex(eb[0]);
+            Vec3 L = da.cross(db);
+            const double len = L.norm();
+            if (len < tolerance::kParallelEdges * da.norm() * db.norm()) break;
+            L /= len;
+            // Any direction bounds the distance from below by the gap of the projections.
+            const auto [loA, hiA] = a.project(L);
+            const auto [loB, hiB] = b.project(L);
+            return std::max(loB - hiA, loA - hiB);
+        }
+        default:
+            break;
+    }
+    return -kInfinity;
+}
+
 }  // namespace
 
 bool collideSpherePolytope(const SphereGeom& a, const Polytope& b, double speculative, Manifold& m) {
     // Face planes bound the distance from below: a cheap rejection before the distance routine.
+    const Vec3 local = b.rotation.transpose() * (a.center - b.position);
     FaceAxis deepest;
     for (int f = 0; f < b.axisFaceCount(); ++f)
-        if (const double s = b.normals[f].dot(a.center) - b.offsets[f]; s > deepest.separation) deepest = {s, f};
+        if (const double s = b.normals[static_cast<std::size_t>(f)].dot(local) - b.offsets[static_cast<std::size_t>(f)];
+            s > deepest.separation)
+            deepest = {s, f};
     if (deepest.separation - a.radius >= speculative) return false;
 
-    const double tol = tolerance::kDistanceSwitch * b.size;
-    const GjkResult g = gjkFromFirstVertices(ConvexCore::points({&a.center, 1}), ConvexCore::points(b.vertices), tol);
+    const double tol = tolerance::kDistanceSwitch * b.size();
+    const GjkResult g = gjkFromFirstVertices(ConvexCore::points({&a.center, 1}), coreOf(b), tol);
     if (g.distance > tol) {
         const double separation = g.distance - a.radius;
         if (separation >= speculative) return false;
@@ -274,7 +492,7 @@ bool collideSpherePolytope(const SphereGeom& a, const Polytope& b, double specul
         return builder.finish(m);
     }
     // Centre inside (or on the surface): out through the face whose plane is nearest.
-    const Vec3& n = b.normals[deepest.face];
+    const Vec3 n = b.normal(deepest.face);
     const double separation = deepest.separation - a.radius;
     ManifoldBuilder builder(-n);
     // Surfaces at a.center - n deepest.separation (the plane) and a.center - n radius.
@@ -286,26 +504,27 @@ bool collideSpherePolytope(const SphereGeom& a, const Polytope& b, double specul
 bool collideCapsulePolytope(const CapsuleGeom& a, const Polytope& b, double speculative, Manifold& m) {
     const std::array<Vec3, 2> segment{a.p0, a.p1};
     const double r = a.radius;
+    const Vec3 q0 = b.rotation.transpose() * (a.p0 - b.position), q1 = b.rotation.transpose() * (a.p1 - b.position);
+    // Per face of b: the lower end's height over its plane, less the radius.
+    auto faceSeparation = [&](int f) {
+        const Vec3& n = b.normals[static_cast<std::size_t>(f)];
+        return std::min(n.dot(q0), n.dot(q1)) - b.offsets[static_cast<std::size_t>(f)] - r;
+    };
     for (int f = 0; f < b.axisFaceCount(); ++f)  // lower bounds of the distance, as for the sphere
-        if (std::min(b.normals[f].dot(a.p0), b.normals[f].dot(a.p1)) - b.offsets[f] - r >= speculative) return false;
+        if (faceSeparation(f) >= speculative) return false;
 
-    const double tol = tolerance::kDistanceSwitch * b.size;
-    const GjkResult g = gjkFromFirstVertices(ConvexCore::points(segment), ConvexCore::points(b.vertices), tol);
+    const double tol = tolerance::kDistanceSwitch * b.size();
+    const GjkResult g = gjkFromFirstVertices(ConvexCore::points(segment), coreOf(b), tol);
     if (g.distance > tol) {
         if (g.distance - r >= speculative) return false;
         const Vec3 n = (g.pointB - g.pointA) / g.distance;  // from the capsule to the polytope
-        int face = 0;
-        double alignment = -kInfinity;
-        for (int f = 0; f < b.axisFaceCount(); ++f)
-            if (const double d = -b.normals[f].dot(n); d > alignment) {
-                alignment = d;
-                face = f;
-            }
-        if (alignment >= kFaceAlignment) {  // lying on a face: the part of the segment over it
-            const ReferenceFace ref = referenceFace(b, face);
+        const FaceAxis aligned = alignedFace(b, b.axisFaceCount(), -n);
+        if (aligned.separation >= kFaceAlignment) {  // lying on a face: the part of the segment over it
+            SmallCorners small;
+            const ReferenceFace ref = referenceFace(b, aligned.face, cornerRoom(small, b, aligned.face));
             ManifoldBuilder builder(-ref.normal);
-            addFacePoints(clipSegmentToFace(a.p0, a.p1, ref), ref, r, speculative,
-                          feature::id(feature::Kind::FaceOfB, face), builder);
+            addFacePoints(clipSegmentToFace(a.p0, a.p1, ref).view(), ref, r, speculative,
+                          feature::id(feature::Kind::FaceOfB, aligned.face), builder);
             // Only if the closest points lie over the face (see separatedPolytopes).
             if (builder.deepest() <= g.distance - r + tol) return builder.finish(m);
         }
@@ -317,16 +536,15 @@ bool collideCapsulePolytope(const CapsuleGeom& a, const Polytope& b, double spec
 
     // Cores touch: separating axes are b's face normals and b's edges crossed with the segment.
     FaceAxis face;
-    for (int f = 0; f < b.axisFaceCount(); ++f) {
-        const double s = std::min(b.normals[f].dot(a.p0), b.normals[f].dot(a.p1)) - b.offsets[f] - r;
-        if (s > face.separation) face = {s, f};
-    }
+    for (int f = 0; f < b.axisFaceCount(); ++f)
+        if (const double s = faceSeparation(f); s > face.separation) face = {s, f};
     const Vec3 axis = a.p1 - a.p0;
     const double length = axis.norm();
     EdgeAxis edge;  // normal here points from b toward the capsule
     if (length > 0) {
         const Vec3 u = axis / length;
-        for (const Vec3& dir : edgeDirections(b)) {
+        const Vec3 frontB = b.oneSided ? Vec3(b.normal(0)) : Vec3::Zero();
+        for (const Vec3& dir : edgeDirections(b, scratch().directionsB)) {
             Vec3 L = dir.cross(u);
             const double len = L.norm();
             if (len < tolerance::kParallelEdges) continue;
@@ -335,53 +553,79 @@ bool collideCapsulePolytope(const CapsuleGeom& a, const Polytope& b, double spec
             const double segLo = std::min(L.dot(a.p0), L.dot(a.p1)), segHi = std::max(L.dot(a.p0), L.dot(a.p1));
             double above = segLo - hi - r, below = lo - segHi - r;
             // A one-sided b (a triangle) may only push the capsule out of its front.
-            if (b.oneSided && L.dot(b.normals[0]) < 0) above = -kInfinity;
-            if (b.oneSided && L.dot(b.normals[0]) > 0) below = -kInfinity;
+            if (b.oneSided && L.dot(frontB) < 0) above = -kInfinity;
+            if (b.oneSided && L.dot(frontB) > 0) below = -kInfinity;
             const double s = std::max(above, below);
             if (s >= speculative) return false;
             if (s > edge.separation) {
                 const Vec3 n = above >= below ? L : Vec3(-L);
                 const int e = supportEdge(b, dir, n);
-                if (isSupportEdge(b, e, n, kSupportTolerance * b.size)) edge = {s, n, e, -1};
+                if (isSupportEdge(b, e, n, kSupportTolerance * b.size())) edge = {s, n, e, -1};
             }
         }
     }
-    const double bias = tolerance::kAxisBias * std::min(b.size, r + 0.5 * length);
+    const double bias = tolerance::kAxisBias * std::min(b.size(), r + 0.5 * length);
     if (edge.separation > face.separation + bias) {
-        const int e = edge.edgeA;
-        const auto& ends = b.edges()[e];
-        const SegmentPair c = closestBetweenSegments(a.p0, a.p1, b.vertices[ends[0]], b.vertices[ends[1]]);
+        const auto& ends = b.edges[static_cast<std::size_t>(edge.edgeA)];
+        const SegmentPair c = closestBetweenSegments(a.p0, a.p1, b.vertex(ends[0]), b.vertex(ends[1]));
         ManifoldBuilder builder(-edge.normal);
         builder.add(0.5 * (c.onFirst - edge.normal * r + c.onSecond), edge.separation,
-                    feature::id(feature::Kind::EdgeEdge, e));
+                    feature::id(feature::Kind::EdgeEdge, edge.edgeA));
         return builder.finish(m);
     }
-    const ReferenceFace ref = referenceFace(b, face.face);
+    SmallCorners small;
+    const ReferenceFace ref = referenceFace(b, face.face, cornerRoom(small, b, face.face));
     ManifoldBuilder builder(-ref.normal);
-    addFacePoints(clipSegmentToFace(a.p0, a.p1, ref), ref, r, speculative, feature::id(feature::Kind::FaceOfB, face.face),
-                  builder);
+    addFacePoints(clipSegmentToFace(a.p0, a.p1, ref).view(), ref, r, speculative,
+                  feature::id(feature::Kind::FaceOfB, face.face), builder);
     if (builder.empty() && face.separation < speculative) {
         // The segment passes beside the face's prism: its deepest end still touches the face plane.
         const int end = ref.normal.dot(a.p0) <= ref.normal.dot(a.p1) ? 0 : 1;
-        addFacePoints({{segment[end], feature::vertexTag(end), 0}}, ref, r, speculative,
-                      feature::id(feature::Kind::FaceOfB, face.face), builder);
+        const ClipVertex v{segment[static_cast<std::size_t>(end)], feature::vertexTag(static_cast<std::uint32_t>(end)), 0};
+        addFacePoints({&v, 1}, ref, r, speculative, feature::id(feature::Kind::FaceOfB, face.face), builder);
     }
     return builder.finish(m);
 }
 
-bool collidePolytopes(const Polytope& a, const Polytope& b, double speculative, Manifold& m) {
-    FaceAxis faceA = faceQuery(a, b, false);
-    if (faceA.separation > speculative) return false;
-    FaceAxis faceB = faceQuery(b, a, false);
-    if (faceB.separation > speculative) return false;
-    EdgeAxis edge = a.closed() && b.closed() ? minkowskiEdgeQuery(a, b) : edgeQuery(a, b, false);
-    if (edge.separation > speculative) return false;
+bool collidePolytopes(const Polytope& a, const Polytope& b, double speculative, Manifold& m, CollideCache* cache) {
+    // Still apart along the axis that separated them last time: nothing else to do.
+    if (cache && cachedSeparation(a, b, *cache) > speculative) return false;
+    auto separated = [&](CollideCache::Axis axis, int indexA, int indexB) {
+        if (cache) *cache = {axis, true, indexA, indexB};
+        return false;
+    };
+    const double tol = tolerance::kDistanceSwitch * std::min(a.size(), b.size());
+    const double bias = tolerance::kAxisBias * std::min(a.size(), b.size());
+    const bool closed = a.closed() && b.closed();
+    FaceAxis faceA, faceB;
+    EdgeAxis edge;
+    if (closed) {
+        // Exact maxima, skipping what cannot matter: a's faces are all compared; b's face matters
+        // only if it ends the test, shows the shapes apart or beats a's face by the bias; an edge
+        // pair only if it ends the test, shows them apart or beats the chosen face.
+        const int seedA = cache && !cache->separating && cache->axis == CollideCache::FaceOfA ? cache->indexA : -1;
+        const int seedB = cache && !cache->separating && cache->axis == CollideCache::FaceOfB ? cache->indexB : -1;
+        faceA = prunedFaceQuery(a, b, seedA, -kInfinity, speculative);
+        if (faceA.separation > speculative) return separated(CollideCache::FaceOfA, faceA.face, 0);
+        faceB = prunedFaceQuery(b, a, seedB, std::min({speculative, tol, faceA.separation + bias}), speculative);
+        if (faceB.separation > speculative) return separated(CollideCache::FaceOfB, 0, faceB.face);
+        const double faceSeparation = faceB.separation > faceA.separation + bias ? faceB.separation : faceA.separation;
+        edge = minkowskiEdgeQuery(a, b, std::min({speculative, tol, faceSeparation + bias}), speculative);
+    } else {
+        faceA = faceQuery(a, b, false, speculative);
+        if (faceA.separation > speculative) return separated(CollideCache::FaceOfA, faceA.face, 0);
+        faceB = faceQuery(b, a, false, speculative);
+        if (faceB.separation > speculative) return separated(CollideCache::FaceOfB, 0, faceB.face);
+        edge = edgeQuery(a, b, false);
+    }
+    if (edge.separation > speculative) return separated(CollideCache::EdgePair, edge.edgeA, edge.edgeB);
+    if (cache) *cache = {};
 
     // Apart: the axes only bound the distance from below; the distance routine is exact.
-    const double tol = tolerance::kDistanceSwitch * std::min(a.size, b.size);
     if (std::max({faceA.separation, faceB.separation, edge.separation}) > tol) {
-        const GjkResult g = gjkFromFirstVertices(ConvexCore::points(a.vertices), ConvexCore::points(b.vertices), tol);
-        if (g.distance > tol) return g.distance < speculative && separatedPolytopes(a, b, g, speculative, m);
+        bool apart = false;
+        const bool hit = collideApartPolytopes(a, b, speculative, m, apart);
+        if (apart) return hit;
     }
     // Overlapping a one-sided triangle: the way out is through its front only.
     if (b.oneSided) {
@@ -390,15 +634,14 @@ bool collidePolytopes(const Polytope& a, const Polytope& b, double speculative, 
         edge = edgeQuery(a, b, true);
     }
 
-    const double bias = tolerance::kAxisBias * std::min(a.size, b.size);
     const bool useB = faceB.separation > faceA.separation + bias;
     const double faceSeparation = useB ? faceB.separation : faceA.separation;
 
     if (edge.separation > faceSeparation + bias) {
         const int ea = edge.edgeA, eb = edge.edgeB;
-        const auto &endsA = a.edges()[ea], &endsB = b.edges()[eb];
-        const SegmentPair c = closestBetweenSegments(a.vertices[endsA[0]], a.vertices[endsA[1]], b.vertices[endsB[0]],
-                                                     b.vertices[endsB[1]]);
+        const auto &endsA = a.edges[static_cast<std::size_t>(ea)], &endsB = b.edges[static_cast<std::size_t>(eb)];
+        const SegmentPair c = closestBetweenSegments(a.vertex(endsA[0]), a.vertex(endsA[1]), b.vertex(endsB[0]),
+                                                     b.vertex(endsB[1]));
         const double separation = (c.onSecond - c.onFirst).dot(edge.normal);
         if (separation >= speculative) return false;
         ManifoldBuilder builder(edge.normal);
@@ -406,33 +649,50 @@ bool collidePolytopes(const Polytope& a, const Polytope& b, double speculative, 
         return builder.finish(m);
     }
     if (useB) {
-        ManifoldBuilder builder(-b.normals[faceB.face]);
+        if (cache) *cache = {CollideCache::FaceOfB, false, 0, faceB.face};
+        ManifoldBuilder builder = faceContactBuilder(-b.normal(faceB.face), b, faceB.face, a);
         polytopeFaceContact(b, faceB.face, a, feature::Kind::FaceOfB, speculative, true, builder);
         return builder.finish(m);
     }
-    ManifoldBuilder builder(a.normals[faceA.face]);
+    if (cache) *cache = {CollideCache::FaceOfA, false, faceA.face, 0};
+    ManifoldBuilder builder = faceContactBuilder(a.normal(faceA.face), a, faceA.face, b);
     polytopeFaceContact(a, faceA.face, b, feature::Kind::FaceOfA, speculative, true, builder);
     return builder.finish(m);
 }
 
-bool collideSphereFace(const SphereGeom& a, const Polytope& b, int face, double speculative, Manifold& m) {
-    const ReferenceFace ref = referenceFace(b, face);
-    ManifoldBuilder builder(-ref.normal);
-    addFacePoints(clipToFace({{a.center, feature::vertexTag(0), feature::edgeTag(0)}}, ref), ref, a.radius, speculative,
-                  feature::id(feature::Kind::FaceOfB, face), builder);
-    return builder.finish(m);
+bool collideApartPolytopes(const Polytope& a, const Polytope& b, double speculative, Manifold& m, bool& apart) {
+    const double tol = tolerance::kDistanceSwitch * std::min(a.size(), b.size());
+    const GjkResult g = gjkFromFirstVertices(coreOf(a), coreOf(b), tol);
+    apart = g.distance > tol;
+    return apart && g.distance < speculative && separatedPolytopes(a, b, g, speculative, m);
 }
 
-bool collideCapsuleFace(const CapsuleGeom& a, const Polytope& b, int face, double speculative, Manifold& m) {
-    const ReferenceFace ref = referenceFace(b, face);
+bool collideSphereFace(const SphereGeom& a, const Polytope& b, int face, double speculative, Manifold& m) {
+    SmallCorners small;
+    const ReferenceFace ref = referenceFace(b, face, cornerRoom(small, b, face));
     ManifoldBuilder builder(-ref.normal);
-    addFacePoints(clipSegmentToFace(a.p0, a.p1, ref), ref, a.radius, speculative, feature::id(feature::Kind::FaceOfB, face),
+    // A one-vertex polygon: kept if the centre is over the face.
+    std::array<ClipVertex, 16> smallPolygon, smallSpare;
+    const std::size_t capacity = 1 + ref.corners.size();
+    const std::span<ClipVertex> polygon = room(smallPolygon, scratch().polygon, capacity);
+    const std::span<ClipVertex> spare = room(smallSpare, scratch().spare, capacity);
+    polygon[0] = {a.center, feature::vertexTag(0), feature::edgeTag(0)};
+    addFacePoints(clipToFace(polygon, 1, spare, ref), ref, a.radius, speculative, feature::id(feature::Kind::FaceOfB, face),
                   builder);
     return builder.finish(m);
 }
 
+bool collideCapsuleFace(const CapsuleGeom& a, const Polytope& b, int face, double speculative, Manifold& m) {
+    SmallCorners small;
+    const ReferenceFace ref = referenceFace(b, face, cornerRoom(small, b, face));
+    ManifoldBuilder builder(-ref.normal);
+    addFacePoints(clipSegmentToFace(a.p0, a.p1, ref).view(), ref, a.radius, speculative,
+                  feature::id(feature::Kind::FaceOfB, face), builder);
+    return builder.finish(m);
+}
+
 bool collidePolytopeFace(const Polytope& a, const Polytope& b, int face, double speculative, Manifold& m) {
-    ManifoldBuilder builder(-b.normals[face]);
+    ManifoldBuilder builder = faceContactBuilder(-b.normal(face), b, face, a);
     polytopeFaceContact(b, face, a, feature::Kind::FaceOfB, speculative, false, builder);
     return builder.finish(m);
 }

@@ -57,6 +57,14 @@ ConvexCore ConvexCore::points(std::span<const Vec3> world) {
     return c;
 }
 
+ConvexCore ConvexCore::posedPoints(std::span<const Vec3> local, const Mat3& rotation, const Vec3& position) {
+    ConvexCore c = points(local);
+    c.rotation_ = rotation;
+    c.position_ = position;
+    c.posed_ = true;
+    return c;
+}
+
 namespace {
 
 struct SimplexVertex {

@@ -23,6 +23,9 @@ public:
     /// The convex hull of world-space points (non-empty; referenced, not copied: they must
     /// outlive the core).
     static ConvexCore points(std::span<const Vec3> world);
+    /// The convex hull of points given in a frame placed at (rotation, position) in the world
+    /// (non-empty; referenced, not copied).
+    static ConvexCore posedPoints(std::span<const Vec3> local, const Mat3& rotation, const Vec3& position);
 
     /// Index of a vertex furthest along `dir` (world); the first such one on ties.
     int support(const Vec3& dir) const {

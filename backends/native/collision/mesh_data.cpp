@@ -29,7 +29,7 @@ std::shared_ptr<const MeshData> MeshData::build(const ShapeDef& def) {
     return mesh;
 }
 
-void MeshData::queryTriangles(const Aabb& box, const std::function<bool(int)>& visit) const {
+void MeshData::queryTriangles(const Aabb& box, FunctionRef<bool(int)> visit) const {
     tree.query(box, [&](int proxy) { return visit(static_cast<int>(tree.userData(proxy))); });
 }
 
@@ -39,7 +39,7 @@ std::array<Vec3, 3> MeshData::triangleVertices(int triangle) const {
 }
 
 void MeshData::rayCastTriangles(const Vec3& origin, const Vec3& dir, double maxDistance,
-                                const std::function<double(int, double)>& visit) const {
+                                FunctionRef<double(int, double)> visit) const {
     tree.rayCast(origin, dir, maxDistance,
                  [&](int proxy, double maxT) { return visit(static_cast<int>(tree.userData(proxy)), maxT); });
 }

@@ -3,7 +3,6 @@
 // hierarchy over them.
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,14 +21,14 @@ struct MeshData {
     static std::shared_ptr<const MeshData> build(const ShapeDef& def);
 
     /// Calls visit(triangle) for triangles whose bounds overlap `box` (mesh frame); stop on false.
-    void queryTriangles(const Aabb& box, const std::function<bool(int)>& visit) const;
+    void queryTriangles(const Aabb& box, FunctionRef<bool(int)> visit) const;
 
     /// The three corners of a triangle (mesh frame).
     std::array<Vec3, 3> triangleVertices(int triangle) const;
     /// Calls visit(triangle, maxDistance) for triangles whose bounds the ray meets (mesh frame);
     /// as DynamicTree::rayCast, visit returns the new clip distance (<= 0 stops).
     void rayCastTriangles(const Vec3& origin, const Vec3& dir, double maxDistance,
-                          const std::function<double(int, double)>& visit) const;
+                          FunctionRef<double(int, double)> visit) const;
 };
 
 }  // namespace anyphys::native

@@ -7,7 +7,7 @@
 namespace anyphys::native {
 namespace {
 
-double farthestFrom(const Vec3& c, const std::vector<Vec3>& vertices) {
+double farthestFrom(const Vec3& c, std::span<const Vec3> vertices) {
     double r = 0;
     for (const Vec3& v : vertices) r = std::max(r, (v - c).squaredNorm());
     return std::sqrt(r);
@@ -15,8 +15,8 @@ double farthestFrom(const Vec3& c, const std::vector<Vec3>& vertices) {
 
 // The faces on either side of each edge: the face whose loop walks the edge v0 -> v1 is on its
 // left, the face walking it back is on its right.
-std::vector<std::array<int, 2>> edgeFacesOf(const std::vector<std::vector<int>>& faces,
-                                            const std::vector<std::array<int, 2>>& edges) {
+std::vector<std::array<int, 2>> edgeFacesOf(std::span<const std::vector<int>> faces,
+                                            std::span<const std::array<int, 2>> edges) {
     struct Directed {
         int from, to, face;
         bool operator<(const Directed& o) const { return from != o.from ? from < o.from : to < o.to; }
@@ -36,27 +36,57 @@ std::vector<std::array<int, 2>> edgeFacesOf(const std::vector<std::vector<int>>&
     return result;
 }
 
+const std::array<Vec3, 6>& boxNormals() {
+    static const std::array<Vec3, 6> normals{Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
+                                             -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+    return normals;
+}
+
+const std::vector<std::array<int, 2>>& boxEdgeFaces() {
+    static const std::vector<std::array<int, 2>> edgeFaces = edgeFacesOf(boxFaces(), boxEdges());
+    return edgeFaces;
+}
+
 }  // namespace
 
-int Polytope::support(const Vec3& d) const {
+int Polytope::localSupport(const Vec3& d) const {
+    // A box's farthest corner has the signs of d; an exact tie keeps the bit clear, as the scan
+    // below keeps the lowest index.
+    if (isBox) return (d.x() > 0 ? 1 : 0) | (d.y() > 0 ? 2 : 0) | (d.z() > 0 ? 4 : 0);
     int best = 0;
     double bestValue = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < static_cast<int>(vertices.size()); ++i)
-        if (const double v = d.dot(vertices[i]); v > bestValue) {
+    for (int i = 0; i < vertexCount(); ++i)
+        if (const double v = d.dot(vertices[static_cast<std::size_t>(i)]); v > bestValue) {
             bestValue = v;
             best = i;
         }
     return best;
 }
 
-std::array<double, 2> Polytope::project(const Vec3& d) const {
-    std::array<double, 2> range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+std::array<double, 2> Polytope::localProject(const Vec3& d) const {
+    if (isBox) {
+        const double extent = d.cwiseAbs().dot(vertices[7]);  // corner 7 holds the half sizes
+        return {-extent, extent};
+    }
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const Vec3& v : vertices) {
         const double x = d.dot(v);
-        range[0] = std::min(range[0], x);
-        range[1] = std::max(range[1], x);
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
     }
-    return range;
+    return {lo, hi};
+}
+
+double Polytope::size() const {
+    if (size_ < 0) size_ = farthestFrom(localCentroid_, vertices);
+    return size_;
+}
+
+double Polytope::localLowest(const Vec3& d) const {
+    if (isBox) return -d.cwiseAbs().dot(vertices[7]);
+    double lo = std::numeric_limits<double>::infinity();
+    for (const Vec3& v : vertices) lo = std::min(lo, d.dot(v));
+    return lo;
 }
 
 const std::vector<std::array<int, 2>>& boxEdges() {
@@ -77,84 +107,79 @@ const std::vector<std::vector<int>>& boxFaces() {
     return faces;
 }
 
-namespace {
-const std::vector<std::array<int, 2>>& boxEdgeFaces() {
-    static const std::vector<std::array<int, 2>> edgeFaces = edgeFacesOf(boxFaces(), boxEdges());
-    return edgeFaces;
-}
-}  // namespace
-
-Polytope makeHullPolytope(const HullData& hull, const Transform& xf) {
-    Polytope p;
-    const Mat3 r = xf.orientation.toRotationMatrix();
-    p.vertices.reserve(hull.vertices.size());
-    for (const Vec3& v : hull.vertices) p.vertices.push_back(xf.position + r * v);
-    p.faces = &hull.faces;
-    p.normals.reserve(hull.faces.size());
-    p.offsets.reserve(hull.faces.size());
-    for (std::size_t f = 0; f < hull.faces.size(); ++f) {
-        const Vec3 n = r * hull.faceNormals[f];
-        p.normals.push_back(n);
-        p.offsets.push_back(hull.faceOffsets[f] + n.dot(xf.position));
-    }
+Polytope::Polytope(HullTag, const HullData& hull, const Mat3& r, const Vec3& p) {
+    rotation = r;
+    position = p;
+    vertices = hull.vertices;
+    faces = hull.faces;
+    normals = hull.faceNormals;
+    offsets = hull.faceOffsets;
     if (!hull.edges.empty() && hull.edgeFaces.size() == hull.edges.size()) {
-        p.sharedEdges = &hull.edges;
-        p.sharedEdgeFaces = &hull.edgeFaces;
+        edges = hull.edges;
+        edgeFaces = hull.edgeFaces;
     } else {
         // Not precomputed: each edge is walked once each way by its two faces; keep the increasing one.
         for (const std::vector<int>& loop : hull.faces)
             for (std::size_t i = 0; i < loop.size(); ++i) {
                 const int a = loop[i], b = loop[(i + 1) % loop.size()];
-                if (a < b) p.ownEdges.push_back({a, b});
+                if (a < b) ownEdges_.push_back({a, b});
             }
-        p.ownEdgeFaces = edgeFacesOf(hull.faces, p.ownEdges);
+        ownEdgeFaces_ = edgeFacesOf(hull.faces, ownEdges_);
+        edges = ownEdges_;
+        edgeFaces = ownEdgeFaces_;
     }
-    p.center = xf.position + r * hull.centroid;
-    p.size = farthestFrom(p.center, p.vertices);
-    return p;
+    center = p + r * hull.centroid;
+    localCentroid_ = hull.centroid;
 }
 
-Polytope makeBoxPolytope(const Vec3& halfExtents, const Transform& xf) {
-    return makeBoxPolytope(halfExtents, xf.position, xf.orientation.toRotationMatrix());
+Polytope::Polytope(BoxTag, const Vec3& h, const Mat3& r, const Vec3& c) {
+    rotation = r;
+    position = c;
+    for (int i = 0; i < 8; ++i)
+        ownVertices_[static_cast<std::size_t>(i)] =
+            Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+    for (std::size_t k = 0; k < 3; ++k) ownOffsets_[2 * k] = ownOffsets_[2 * k + 1] = h[static_cast<int>(k)];
+    vertices = ownVertices_;
+    faces = boxFaces();
+    normals = boxNormals();
+    offsets = ownOffsets_;
+    edges = boxEdges();
+    edgeFaces = boxEdgeFaces();
+    center = c;
+    size_ = h.norm();
+    isBox = true;
 }
 
-Polytope makeBoxPolytope(const Vec3& halfExtents, const Vec3& center, const Mat3& r) {
-    Polytope p;
-    p.vertices.reserve(8);
-    for (int i = 0; i < 8; ++i) {
-        const Vec3 local((i & 1) ? halfExtents.x() : -halfExtents.x(), (i & 2) ? halfExtents.y() : -halfExtents.y(),
-                         (i & 4) ? halfExtents.z() : -halfExtents.z());
-        p.vertices.push_back(center + r * local);
-    }
-    p.faces = &boxFaces();
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 axis = r.col(k);
-        p.normals.push_back(axis);
-        p.offsets.push_back(axis.dot(center) + halfExtents[k]);
-        p.normals.push_back(-axis);
-        p.offsets.push_back(-axis.dot(center) + halfExtents[k]);
-    }
-    p.sharedEdges = &boxEdges();
-    p.sharedEdgeFaces = &boxEdgeFaces();
-    p.center = center;
-    p.size = halfExtents.norm();
-    return p;
+Polytope::Polytope(TriangleTag, const Vec3& a, const Vec3& b, const Vec3& c) {
+    static const std::vector<std::vector<int>> triangleFaces{{0, 1, 2}, {0, 2, 1}};
+    static const std::vector<std::array<int, 2>> triangleEdges{{0, 1}, {1, 2}, {0, 2}};
+    ownVertices_[0] = a;
+    ownVertices_[1] = b;
+    ownVertices_[2] = c;
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    ownNormals_ = {n, -n};
+    ownOffsets_[0] = n.dot(a);
+    ownOffsets_[1] = -n.dot(a);
+    vertices = std::span<const Vec3>(ownVertices_.data(), 3);
+    faces = triangleFaces;
+    normals = ownNormals_;
+    offsets = std::span<const double>(ownOffsets_.data(), 2);
+    edges = triangleEdges;
+    oneSided = true;
+    center = (a + b + c) / 3.0;
+    localCentroid_ = center;
+}
+
+Polytope makeHullPolytope(const HullData& hull, const Mat3& rotation, const Vec3& position) {
+    return Polytope(Polytope::HullTag{}, hull, rotation, position);
+}
+
+Polytope makeBoxPolytope(const Vec3& halfExtents, const Mat3& rotation, const Vec3& center) {
+    return Polytope(Polytope::BoxTag{}, halfExtents, rotation, center);
 }
 
 Polytope makeTrianglePolytope(const Vec3& a, const Vec3& b, const Vec3& c) {
-    static const std::vector<std::vector<int>> faces{{0, 1, 2}, {0, 2, 1}};
-    static const std::vector<std::array<int, 2>> edges{{0, 1}, {1, 2}, {0, 2}};
-    Polytope p;
-    p.vertices = {a, b, c};
-    p.faces = &faces;
-    const Vec3 n = (b - a).cross(c - a).normalized();
-    p.normals = {n, -n};
-    p.offsets = {n.dot(a), -n.dot(a)};
-    p.sharedEdges = &edges;
-    p.oneSided = true;
-    p.center = (a + b + c) / 3.0;
-    p.size = farthestFrom(p.center, p.vertices);
-    return p;
+    return Polytope(Polytope::TriangleTag{}, a, b, c);
 }
 
 }  // namespace anyphys::native

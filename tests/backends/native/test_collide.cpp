@@ -496,6 +496,39 @@ TEST(Collide, MovingBySeparationAlongTheNormalJustTouches) {
             }
 }
 
+TEST(Collide, ManySidedHullsLyingOnEachOtherKeepFourPointsOfTheirOverlap) {
+    // Two 24-sided prisms, the upper one turned 7.5 degrees and sunk 0.01: their clipped faces
+    // give more candidates than any fixed buffer holds (the per-thread scratch takes them).
+    std::vector<Vec3> points;
+    for (int i = 0; i < 24; ++i) {
+        const double a = 2 * std::numbers::pi * i / 24;
+        points.emplace_back(0.5 * std::cos(a), -0.25, 0.5 * std::sin(a));
+        points.emplace_back(0.5 * std::cos(a), 0.25, 0.5 * std::sin(a));
+    }
+    const Shape prism = convex(points);
+    ASSERT_EQ(prism.hull->faces.size(), 26u);
+    const Manifold m = one(prism, at(Vec3(0.1, 0.49, 0)), prism, at(Vec3::Zero(), rotation(std::numbers::pi / 24, Vec3::UnitY())));
+    expectWellFormed(m);
+    ASSERT_EQ(m.pointCount, 4);
+    EXPECT_TRUE(m.normal.isApprox(Vec3(0, -1, 0), kTol));
+    for (int i = 0; i < 4; ++i) {
+        const Vec3& p = m.points[i].point;
+        EXPECT_NEAR(m.points[i].separation, -0.01, kTol);
+        EXPECT_NEAR(p.y(), 0.245, kTol);
+        EXPECT_LE(std::hypot(p.x(), p.z()), 0.5 + kTol);          // over the lower face
+        EXPECT_LE(std::hypot(p.x() - 0.1, p.z()), 0.5 + kTol);    // and under the upper one
+    }
+    // Spread over the overlap: the kept quad covers most of it (two discs 0.1 apart, about 0.66).
+    const std::vector<Vec3> p = sortedPoints(m);
+    std::vector<Vec3> ring = p;
+    std::sort(ring.begin(), ring.end(), [](const Vec3& a, const Vec3& b) {
+        return std::atan2(a.z(), a.x() - 0.05) < std::atan2(b.z(), b.x() - 0.05);
+    });
+    double area = 0;
+    for (int i = 0; i < 4; ++i) area += 0.5 * (ring[i].x() * ring[(i + 1) % 4].z() - ring[(i + 1) % 4].x() * ring[i].z());
+    EXPECT_GT(std::abs(area), 0.4);
+}
+
 TEST(Collide, TetrahedronTipIntoABoxFace) {
     // Apex down at y = -0.05 into the box top at y = 0: one point, depth 0.05.
     const Shape tetra = convex({Vec3(0, -0.5, 0), Vec3(-0.5, 0.5, -0.5), Vec3(0.5, 0.5, -0.5), Vec3(0, 0.5, 0.6)});
