@@ -44,6 +44,16 @@ enum class ShapeType {
     Compound,  ///< several child shapes (`shapes`), each placed by its position / orientation
 };
 
+enum class JointType {
+    Fixed,     ///< welds B to A: no relative motion
+    Ball,      ///< B turns freely about the anchor (ball and socket)
+    Hinge,     ///< B turns about `axis` through the anchor (revolute)
+    Slider,    ///< B slides along `axis`, no turning (prismatic)
+    Distance,  ///< keeps the distance between anchorA and anchorB: rigid, rope-like (min / max) or a spring
+    Cone,      ///< ball joint whose swing away from `axis` is limited to a cone, and twist about it to a range
+    Wheel,     ///< suspension along `axis` with spring and travel limits, free spin about `spinAxis`, drive motor
+};
+
 template <class E>
 struct EnumNames;  // specialised below: static constexpr std::array<std::pair<E, std::string_view>, N> values
 
@@ -82,6 +92,15 @@ struct EnumNames<ShapeType> {
         {ShapeType::Sphere, "sphere"}, {ShapeType::Box, "box"}, {ShapeType::Capsule, "capsule"},
         {ShapeType::Plane, "plane"}, {ShapeType::Convex, "convex"}, {ShapeType::Mesh, "mesh"},
         {ShapeType::Compound, "compound"}}};
+};
+
+template <>
+struct EnumNames<JointType> {
+    static constexpr std::string_view what = "joint type";
+    static constexpr std::array<std::pair<JointType, std::string_view>, 7> values{{
+        {JointType::Fixed, "fixed"}, {JointType::Ball, "ball"}, {JointType::Hinge, "hinge"},
+        {JointType::Slider, "slider"}, {JointType::Distance, "distance"}, {JointType::Cone, "cone"},
+        {JointType::Wheel, "wheel"}}};
 };
 
 template <class E>

@@ -18,6 +18,18 @@ struct BodyId {
     }
 };
 
+/// A joint's handle id: the same generational scheme as BodyId.
+struct JointId {
+    std::uint32_t index = std::numeric_limits<std::uint32_t>::max();
+    std::uint32_t generation = 0;
+
+    constexpr bool isNull() const { return index == std::numeric_limits<std::uint32_t>::max(); }
+    friend constexpr bool operator==(JointId a, JointId b) { return a.index == b.index && a.generation == b.generation; }
+    friend constexpr bool operator<(JointId a, JointId b) {
+        return a.index != b.index ? a.index < b.index : a.generation < b.generation;
+    }
+};
+
 }  // namespace anyphys
 
 template <>

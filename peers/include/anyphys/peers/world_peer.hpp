@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <typeinfo>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "anyphys/effects.hpp"
 #include "anyphys/listeners/events.hpp"
 #include "anyphys/peers/body_peer.hpp"
+#include "anyphys/peers/joint_peer.hpp"
 #include "anyphys/peers/shape_data.hpp"
 #include "anyphys/task_system.hpp"
 
@@ -147,6 +149,16 @@ public:
     virtual std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) = 0;
     /// The peer is destroyed by the caller right after this returns.
     virtual void destroyBody(BodyPeer& body) = 0;
+
+    /// A joint between live bodies of this world, of a type the backend's capabilities list, with
+    /// only the parameters it lists for that type (the layer checks both first). Joints are
+    /// destroyed before their bodies.
+    virtual std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) {
+        (void)def;
+        throw std::logic_error("this backend declares no joint types");
+    }
+    /// The peer is destroyed by the caller right after this returns.
+    virtual void destroyJoint(JointPeer& joint) { (void)joint; }
 
     /// The effects to simulate from now on (already intersected with the capabilities).
     virtual void setEffects(Effects effects) = 0;
