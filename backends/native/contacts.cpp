@@ -76,7 +76,24 @@ void mergePlanarPoints(Manifold& m, double tolerance) {
     m.pointCount = kept;
 }
 
+std::uint64_t bodyPairKey(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+}
+
 }  // namespace
+
+void ContactManager::excludePair(std::uint32_t a, std::uint32_t b) {
+    if (excluded_[bodyPairKey(a, b)]++ > 0) return;
+    for (std::uint32_t slot = 0; slot < slots_.size(); ++slot) {
+        const Contact& c = slots_[slot];
+        if (c.alive && bodyPairKey(c.bodyA, c.bodyB) == bodyPairKey(a, b)) destroy(slot);
+    }
+}
+
+void ContactManager::includePair(std::uint32_t a, std::uint32_t b) {
+    const auto it = excluded_.find(bodyPairKey(a, b));
+    if (it != excluded_.end() && --it->second == 0) excluded_.erase(it);
+}
 
 void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies,
                              const MaterialTable& materials) {
@@ -85,6 +102,7 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     if (ia == ib) return;
     const NativeBody &a = bodies[ia], &b = bodies[ib];
     if (!mayTouch(a, b)) return;
+    if (!excluded_.empty() && excluded_.contains(bodyPairKey(ia, ib))) return;
     const std::pair key{keyA, keyB};
     if (index_.contains(key)) return;  // already in contact
     std::uint32_t slot;

@@ -68,6 +68,10 @@ public:
                 double linearSlop, double dt, bool planar, std::vector<std::uint32_t>& toWake, TaskSystem* tasks);
     void removeBody(std::uint32_t body);
     void clear();
+    /// Bodies a and b never get contacts (a joint between them does not let them collide):
+    /// contacts they have are destroyed, new pairs refused. Counted: two joints need two includes.
+    void excludePair(std::uint32_t a, std::uint32_t b);
+    void includePair(std::uint32_t a, std::uint32_t b);
 
     /// Calls fn(contact) for every live contact, in slot order.
     template <class Fn>
@@ -105,6 +109,7 @@ private:
     PairIndex index_;
     std::vector<PairIndex::node_type> spareNodes_;
     std::vector<Scratch> scratch_;
+    std::unordered_map<std::uint64_t, int> excluded_;  // body pair (low << 32 | high) -> joints excluding it
 };
 
 }  // namespace anyphys::native

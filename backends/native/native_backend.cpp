@@ -16,7 +16,8 @@ Backend makeNativeBackend() {
     caps.shapes = {ShapeType::Sphere, ShapeType::Box,  ShapeType::Capsule, ShapeType::Plane,
                    ShapeType::Convex, ShapeType::Mesh, ShapeType::Compound};
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
-    caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
+    caps.effects = Effects::all();
+    caps.jointTypes = {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"};
     caps.solvers = {Solver::SoftStep, Solver::ProjectedGaussSeidel};
     caps.defaultSolver = native::NativeWorld::kDefaultSolver;
     caps.defaultSubsteps = native::NativeWorld::kDefaultSubsteps;
@@ -36,6 +37,17 @@ Backend makeNativeBackend() {
                        "settings.contactPushMaxVelocity", "settings.baumgarte", "settings.restitutionThreshold",
                        "settings.linearSlop", "settings.speculativeDistance", "settings.sleepLinearVelocity",
                        "settings.sleepAngularVelocity", "settings.timeToSleep", "settings.workers"};
+    // Every optional joint field of every type (api joint_capabilities.hpp names them).
+    const auto joint = [&](const char* type, std::initializer_list<const char*> fields) {
+        for (const char* field : fields) caps.parameters.insert(std::string("joint.") + type + "." + field);
+    };
+    for (const char* type : {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"})
+        joint(type, {"breakForce", "breakTorque", "collideConnected"});
+    joint("hinge", {"limits", "motor", "spring"});
+    joint("slider", {"limits", "motor", "spring"});
+    joint("distance", {"spring", "minLength", "maxLength"});
+    joint("cone", {"swingLimit", "twistLimits"});
+    joint("wheel", {"limits", "motor", "spring", "steering"});
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
     };

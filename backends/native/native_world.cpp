@@ -139,6 +139,47 @@ void NativeWorld::destroyBody(BodyPeer& peer) {
     pipelineDirty_ = true;
 }
 
+std::unique_ptr<JointPeer> NativeWorld::createJoint(const JointPeerDef& def) {
+    std::uint32_t index;
+    if (!freeJoints_.empty()) {
+        index = freeJoints_.back();
+        freeJoints_.pop_back();
+    } else {
+        index = static_cast<std::uint32_t>(joints_.size());
+        joints_.emplace_back();
+    }
+    NativeJoint& joint = joints_[index];
+    joint = NativeJoint{};
+    joint.alive = true;
+    joint.def = def;
+    joint.bodyA = def.bodyA ? static_cast<NativeBodyPeer*>(def.bodyA)->index() : kWorldBody;
+    joint.bodyB = static_cast<NativeBodyPeer*>(def.bodyB)->index();
+    if (!def.collideConnected && joint.bodyA != kWorldBody) contacts_.excludePair(joint.bodyA, joint.bodyB);
+    wakeJoint(index);
+    pipelineDirty_ = true;
+    return std::make_unique<NativeJointPeer>(*this, index);
+}
+
+void NativeWorld::destroyJoint(JointPeer& peer) {
+    const std::uint32_t index = static_cast<NativeJointPeer&>(peer).index();
+    NativeJoint& joint = joints_[index];
+    wakeJoint(index);  // the bodies it held must move again
+    if (!joint.def.collideConnected && joint.bodyA != kWorldBody) {
+        contacts_.includePair(joint.bodyA, joint.bodyB);
+        // Overlapping bodies must meet again although neither proxy moves.
+        for (int proxy : bodies_[joint.bodyB].proxies) broadPhase_.touchProxy(proxy);
+    }
+    joint = NativeJoint{};
+    freeJoints_.push_back(index);
+    pipelineDirty_ = true;
+}
+
+void NativeWorld::wakeJoint(std::uint32_t index) {
+    const NativeJoint& joint = joints_[index];
+    if (joint.bodyA != kWorldBody) wakeBody(joint.bodyA);
+    wakeBody(joint.bodyB);
+}
+
 void NativeWorld::setEffects(Effects effects) {
     effects_ = effects;
     pipelineDirty_ = true;

@@ -11,6 +11,7 @@
 #include "collision/broad_phase.hpp"
 #include "contacts.hpp"
 #include "integrators.hpp"
+#include "joints.hpp"
 #include "native_body.hpp"
 #include "pipeline.hpp"
 #include "solver/step_solver.hpp"
@@ -34,6 +35,8 @@ public:
 
     std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
     void destroyBody(BodyPeer& body) override;
+    std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
+    void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
     void setForceHook(ForceHook hook) override;
     void setTaskSystem(TaskSystem* tasks) override { tasks_ = tasks; }
@@ -52,6 +55,10 @@ public:
     /// move or touch anew, so the contact stages skip their walks: a sleeping pile costs ~nothing.
     bool anyActive() const { return anyActive_; }
     Effects effects() const { return effects_; }
+    /// Joint slots; a slot with alive == false is free.
+    std::vector<NativeJoint>& joints() { return joints_; }
+    /// Wakes the bodies of a joint (a changed motor, limit or spring).
+    void wakeJoint(std::uint32_t joint);
     /// Body slots; a slot with alive == false is free.
     std::vector<NativeBody>& bodies() { return bodies_; }
     const std::vector<NativeBody>& bodies() const { return bodies_; }
@@ -93,6 +100,8 @@ private:
     ForceHook forceHook_;
     std::vector<NativeBody> bodies_;
     std::vector<std::uint32_t> freeSlots_;
+    std::vector<NativeJoint> joints_;
+    std::vector<std::uint32_t> freeJoints_;
     std::vector<std::unique_ptr<Stage>> stages_;
     std::vector<Stage*> active_;
     bool pipelineDirty_ = true;

@@ -3,10 +3,10 @@
 // world runs only the stages that are needed, so an effect that is off costs nothing but the
 // one check made when the world's content or effects change.
 //
-// Order: collide (broad + narrow phase, constraint set-up); implicit gyroscopic and integrate
-// for free bodies (once per step: they have nothing to substep for); solve contacts (substeps,
-// for constrained bodies);
-// continuous collision; sleep; clear forces. Joints will plug in beside the contact solver.
+// Order: collide (broad + narrow phase); collect constraints (contacts and joints of the step);
+// implicit gyroscopic and integrate for free bodies (once per step: they have nothing to substep
+// for); solve constraints (substeps, for the bodies they hold); continuous collision; sleep;
+// clear forces.
 #include <string_view>
 
 namespace anyphys::native {

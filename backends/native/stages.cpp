@@ -203,16 +203,16 @@ public:
 
 bool hasContacts(const NativeWorld& world) { return world.effects().has(Effect::Contacts); }
 
-// Broad phase, narrow phase and constraint set-up, once per step.
+bool hasJoints(const NativeWorld& world) { return world.effects().has(Effect::Joints); }
+bool hasConstraints(const NativeWorld& world) { return hasContacts(world) || hasJoints(world); }
+
+// Broad phase and narrow phase, once per step.
 class CollideStage final : public Stage {
 public:
     std::string_view name() const override { return "collide"; }
     bool needed(const NativeWorld& world) const override { return hasContacts(world); }
     void run(NativeWorld& world, const StepInfo& step) override {
-        if (!world.anyActive()) {
-            world.solver().clear();
-            return;
-        }
+        if (!world.anyActive()) return;
         auto& bodies = world.bodies();
         world.updateAllProxies(step.dt);
         world.broadPhase().updatePairs(
@@ -223,17 +223,30 @@ public:
         world.contactManager().update(bodies, world.broadPhase(), s.speculativeDistance, s.linearSlop, step.dt, s.planar,
                                       toWake_, world.taskSystem());
         for (std::uint32_t i : toWake_) world.wakeBody(i);
-        world.solver().collect(world);
     }
 
 private:
     std::vector<std::uint32_t> toWake_;
 };
 
-class SolveContactsStage final : public Stage {
+// The step's constraints (contacts with points, joints with an awake body), before the free
+// bodies are integrated: the bodies they hold are the solver's to move.
+class CollectStage final : public Stage {
 public:
-    std::string_view name() const override { return "solve_contacts"; }
-    bool needed(const NativeWorld& world) const override { return hasContacts(world); }
+    std::string_view name() const override { return "collect_constraints"; }
+    bool needed(const NativeWorld& world) const override { return hasConstraints(world); }
+    void run(NativeWorld& world, const StepInfo&) override {
+        if (world.anyActive())
+            world.solver().collect(world);
+        else
+            world.solver().clear();
+    }
+};
+
+class SolveStage final : public Stage {
+public:
+    std::string_view name() const override { return "solve_constraints"; }
+    bool needed(const NativeWorld& world) const override { return hasConstraints(world); }
     void run(NativeWorld& world, const StepInfo& step) override { world.solver().solve(world, step); }
 };
 
@@ -307,6 +320,12 @@ public:
             if (da && isMovingKinematic(b)) a.sleepTime = 0.0;
             if (db && isMovingKinematic(a)) b.sleepTime = 0.0;
         });
+        // Jointed bodies sleep and wake together.
+        for (const NativeJoint& j : world.joints()) {
+            if (!j.alive || j.bodyA == kWorldBody) continue;
+            const NativeBody &a = bodies[j.bodyA], &b = bodies[j.bodyB];
+            if (a.isActive() && a.isDynamic() && b.isActive() && b.isDynamic()) unite(j.bodyA, j.bodyB);
+        }
         islandRest_.assign(bodies.size(), std::numeric_limits<double>::infinity());
         for (std::uint32_t i = 0; i < bodies.size(); ++i)
             if (bodies[i].isActive() && bodies[i].isDynamic())
@@ -343,9 +362,10 @@ std::unique_ptr<Stage> makeClearForcesStage() { return std::make_unique<ClearFor
 std::vector<std::unique_ptr<Stage>> makePipeline() {
     std::vector<std::unique_ptr<Stage>> stages;
     stages.push_back(std::make_unique<CollideStage>());
+    stages.push_back(std::make_unique<CollectStage>());
     stages.push_back(makeImplicitGyroscopicStage());
     stages.push_back(makeIntegrateStage());
-    stages.push_back(std::make_unique<SolveContactsStage>());
+    stages.push_back(std::make_unique<SolveStage>());
     stages.push_back(std::make_unique<ContinuousStage>());
     stages.push_back(std::make_unique<SleepStage>());
     stages.push_back(makeClearForcesStage());

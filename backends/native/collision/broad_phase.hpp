@@ -97,6 +97,8 @@ public:
     /// must move (reads only), then the move itself (changes the tree: one thread).
     bool needsMove(int proxy, const Aabb& tight, const Vec3& displacement, Aabb& fat) const;
     void setFatAabb(int proxy, const Aabb& fat);
+    /// Reports the proxy's pairs again at the next updatePairs (pairs that were refused before).
+    void touchProxy(int proxy) { markMoved(proxy); }
     /// Calls onPair(keyA, keyB) once for each pair of overlapping fat boxes where at least one
     /// proxy moved since the last call (static-static pairs never), then clears the moved set.
     /// The moved proxies' queries run on the workers of `tasks`; pairs come sorted, so the

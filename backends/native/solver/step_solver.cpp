@@ -42,6 +42,8 @@ constexpr int kBlocksPerWorker = 4;
 constexpr int kMinWideBlock = 4;    // wide constraints
 constexpr int kMinBodyBlock = 64;   // bodies
 
+constexpr double kJointDampingRatio = 2.0;
+
 }  // namespace
 
 void StepSolver::collect(NativeWorld& world) {
@@ -57,6 +59,20 @@ void StepSolver::collect(NativeWorld& world) {
         solverIndex_[index] = static_cast<std::int32_t>(bodyOrder_.size());
         bodyOrder_.push_back(index);
     };
+    jointList_.clear();
+    const bool joints = world.effects().has(Effect::Joints);
+    for (std::uint32_t j = 0; joints && j < world.joints().size(); ++j) {
+        const NativeJoint& joint = world.joints()[j];
+        if (!joint.alive) continue;
+        const auto awakeDynamic = [&](std::uint32_t body) {
+            return body != kWorldBody && bodies[body].isDynamic() && bodies[body].awake;
+        };
+        if (!awakeDynamic(joint.bodyA) && !awakeDynamic(joint.bodyB)) continue;
+        jointList_.push_back(j);
+        if (joint.bodyA != kWorldBody) enlist(joint.bodyA);
+        enlist(joint.bodyB);
+    }
+    if (!world.effects().has(Effect::Contacts)) return;
     world.contactManager().forEach([&](Contact& contact) {
         if (contact.trigger || contact.manifolds.empty()) return;
         const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
@@ -73,6 +89,7 @@ void StepSolver::collect(NativeWorld& world) {
 void StepSolver::clear() {
     for (std::uint32_t body : bodyOrder_) solverIndex_[body] = kStaticBody;
     lanes_.clear();
+    jointList_.clear();
     bodyOrder_.clear();
 }
 
@@ -81,6 +98,10 @@ std::vector<const char*> StepSolver::lastStageNames() const {
     for (const StagePlan& p : plan_) {
         switch (p.kind) {
             case StageKind::PrepareContacts: names.push_back("prepare_contacts"); break;
+            case StageKind::WarmStartJoints: names.push_back("warm_start_joints"); break;
+            case StageKind::SolveJoints: names.push_back("solve_joints"); break;
+            case StageKind::RelaxJoints: names.push_back("relax_joints"); break;
+            case StageKind::ReportJoints: names.push_back("report_joints"); break;
             case StageKind::ForceCallback: names.push_back("force_callback"); break;
             case StageKind::IntegrateVelocities: names.push_back("integrate_velocities"); break;
             case StageKind::WarmStart: names.push_back("warm_start"); break;
@@ -146,6 +167,20 @@ void StepSolver::buildConstraints() {
         lane.bodyB = solverIndex_[static_cast<std::uint32_t>(lane.bodyB)];
     }
     graph_.build(lanes_, bodies_);
+    joints_.clear();
+    for (std::uint32_t j : jointList_) {
+        NativeJoint& joint = world_->joints()[j];
+        JointConstraint c;
+        c.joint = &joint;
+        const auto side = [&](std::uint32_t body, std::int32_t& index, Transform& fixed) {
+            if (body == kWorldBody) return;  // identity pose
+            index = solverIndex_[body];
+            fixed = world_->bodies()[body].pose();  // used when the body is not a solver body (static)
+        };
+        side(joint.bodyA, c.a, c.fixedA);
+        side(joint.bodyB, c.b, c.fixedB);
+        joints_.push_back(c);
+    }
     const auto& colors = graph_.colors();
     const std::size_t colorCount = colors.size();
     colorFirstWide_.resize(colorCount);
@@ -171,6 +206,14 @@ void StepSolver::buildConstraints() {
 }
 
 void StepSolver::addStage(StageKind kind, int items, int color, int substep, bool endOfSubstep) {
+    // Joints are few and solved one after another: one block, on whichever worker takes it.
+    const bool jointStage = kind == StageKind::WarmStartJoints || kind == StageKind::SolveJoints ||
+                            kind == StageKind::RelaxJoints || kind == StageKind::ReportJoints;
+    if (jointStage) {
+        plan_.push_back({kind, color, substep, endOfSubstep, items, std::max(items, 1)});
+        stages_.push_back({items > 0 ? 1 : 0, false});
+        return;
+    }
     const bool wideStage = kind != StageKind::IntegrateVelocities && kind != StageKind::IntegratePositions &&
                            kind != StageKind::FinalizeBodies && kind != StageKind::ForceCallback;
     const bool serial = wideStage && graph_.hasOverflow() && color + 1 == static_cast<int>(colorWideCount_.size()) &&
@@ -197,12 +240,16 @@ void StepSolver::planStages(const NativeWorld& world) {
     addStage(StageKind::PrepareContacts, wide);
     // Colours in order: contacts with static bodies come last (ConstraintGraph). Passes do not
     // alternate direction: measured on a 40-row pyramid, alternating let it slide apart.
+    // Joints first in every pass: contacts then have the last word.
+    const int joints = static_cast<int>(joints_.size());
     const auto pass = [&](StageKind kind, int sub, bool last) {
+        if (joints > 0) addStage(kind == StageKind::Solve ? StageKind::SolveJoints : StageKind::RelaxJoints, joints, 0, sub, last);
         for (int c = 0; c < colors; ++c) addStage(kind, colorWideCount_[c], c, sub, last);
     };
     for (int sub = 0; sub < substeps; ++sub) {
         if (hook) addStage(StageKind::ForceCallback, 1, 0, sub);
         addStage(StageKind::IntegrateVelocities, bodies);
+        if (joints > 0) addStage(StageKind::WarmStartJoints, joints);
         for (int c = 0; c < colors; ++c) addStage(StageKind::WarmStart, colorWideCount_[c], c);
         for (int it = 0; it < iterations; ++it) pass(StageKind::Solve, sub, !soft && it + 1 == iterations);
         addStage(StageKind::IntegratePositions, bodies);
@@ -212,11 +259,12 @@ void StepSolver::planStages(const NativeWorld& world) {
     if (restitution_)
         for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c);
     addStage(StageKind::StoreImpulses, wide);
+    if (joints > 0) addStage(StageKind::ReportJoints, joints);
     addStage(StageKind::FinalizeBodies, bodies);
 }
 
 void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
-    if (lanes_.empty()) return;
+    if (empty()) return;
     const WorldSettings& settings = world.settings();
     const Effects effects = world.effects();
     world_ = &world;
@@ -245,6 +293,13 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     solveParams_.friction = effects.has(Effect::Friction);
     solveParams_.restitutionThreshold = settings.restitutionThreshold;
     restitution_ = effects.has(Effect::Restitution);
+    // Joints hold their position errors as stiffly as contacts with static bodies (Box2D v3's
+    // joint softness), damped a little more.
+    jointParams_.h = h_;
+    jointParams_.invH = 1.0 / h_;
+    jointParams_.soft = solveParams_.soft;
+    jointParams_.softness = makeSoftness(2.0 * hertz, kJointDampingRatio, h_);
+    jointParams_.baumgarte = settings.baumgarte;
 
     buildBodies(world, step);
     buildConstraints();
@@ -280,6 +335,20 @@ void StepSolver::runBlock(int stage, int block, int worker) {
         case StageKind::Restitution: applyRestitution(colour, count, states_.data(), solveParams_); break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
+        case StageKind::WarmStartJoints:
+            for (const JointConstraint& c : joints_) warmStartJoint(c, bodies_.data(), states_.data(), jointParams_);
+            break;
+        case StageKind::SolveJoints:
+            for (const JointConstraint& c : joints_)
+                solveJoint(c, bodies_.data(), states_.data(), jointParams_, true, p.endOfSubstep);
+            break;
+        case StageKind::RelaxJoints:
+            for (const JointConstraint& c : joints_)
+                solveJoint(c, bodies_.data(), states_.data(), jointParams_, false, p.endOfSubstep);
+            break;
+        case StageKind::ReportJoints:
+            for (const JointConstraint& c : joints_) reportJoint(c, bodies_.data(), states_.data(), step_.dt);
+            break;
         case StageKind::ForceCallback: break;  // main thread only
     }
 }

@@ -26,6 +26,7 @@
 #include "pipeline.hpp"
 #include "solver/constraint_graph.hpp"
 #include "solver/contact_constraint.hpp"
+#include "solver/joint_solver.hpp"
 #include "solver/solver_body.hpp"
 #include "solver/stage_runner.hpp"
 
@@ -41,7 +42,7 @@ public:
     void collect(NativeWorld& world);
     /// No constraints this step (nothing awake).
     void clear();
-    bool empty() const { return lanes_.empty(); }
+    bool empty() const { return lanes_.empty() && jointList_.empty(); }
     /// Advances the constrained bodies over the whole step.
     void solve(NativeWorld& world, const StepInfo& step);
 
@@ -53,12 +54,16 @@ private:
         PrepareContacts,
         ForceCallback,
         IntegrateVelocities,
+        WarmStartJoints,
         WarmStart,
+        SolveJoints,
         Solve,
         IntegratePositions,
+        RelaxJoints,
         Relax,
         Restitution,
         StoreImpulses,
+        ReportJoints,
         FinalizeBodies,
     };
     struct StagePlan {
@@ -84,6 +89,8 @@ private:
 
     // Per step, reused (no allocation once sizes are stable).
     std::vector<ContactLane> lanes_;          // by contact order; bodies are world indices until solve
+    std::vector<std::uint32_t> jointList_;    // joint slots with an awake dynamic body, in slot order
+    std::vector<JointConstraint> joints_;
     std::vector<std::uint32_t> bodyOrder_;    // world index of each solver body
     std::vector<std::int32_t> solverIndex_;   // per world body: solver index or kStaticBody
     std::vector<SolverBody> bodies_;
@@ -107,6 +114,7 @@ private:
     double h_ = 0.0;
     ContactPrepareParams prepareParams_;
     ContactSolveParams solveParams_;
+    JointSolveParams jointParams_;
     bool restitution_ = false;
 };
 

@@ -34,7 +34,8 @@ TEST(NativePipeline, OnlyNeededStagesRun) {
     world.setEffects(Effect::Gravity);
     EXPECT_EQ(world.activeStageNames(), Names{"integrate"});
     world.setEffects(Effect::Gravity | Effect::Contacts | Effect::Sleeping | Effect::ContinuousCollision);
-    EXPECT_EQ(world.activeStageNames(), (Names{"collide", "integrate", "solve_contacts", "continuous", "sleep"}));
+    EXPECT_EQ(world.activeStageNames(),
+              (Names{"collide", "collect_constraints", "integrate", "solve_constraints", "continuous", "sleep"}));
     world.setEffects(Effect::Gravity);
     world.destroyBody(*box);
     world.destroyBody(*sphere);

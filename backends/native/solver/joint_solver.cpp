@@ -1,0 +1,445 @@
+#include "solver/joint_solver.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Cholesky>
+
+namespace anyphys::native {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// One side of a joint during a pass: current pose and velocity, inverse mass and inertia.
+struct Side {
+    std::int32_t index = kStaticBody;
+    bool takesImpulses = false;
+    Vec3 invMass = Vec3::Zero();
+    Mat3 invI = Mat3::Zero();
+    Vec3 x = Vec3::Zero();
+    Quat q = Quat::Identity();
+    Vec3 v = Vec3::Zero(), w = Vec3::Zero();
+};
+
+Side load(std::int32_t index, const Transform& fixed, const SolverBody* bodies, const SolverState* states) {
+    Side s;
+    s.index = index;
+    if (index == kStaticBody) {
+        s.x = fixed.position;
+        s.q = fixed.orientation;
+        return s;
+    }
+    const SolverBody& b = bodies[index];
+    const SolverState& st = states[index];
+    s.takesImpulses = b.dynamic;
+    s.invMass = b.invMass;
+    s.invI = b.invInertia;
+    s.x = b.position0 + Vec3(st.dp[0], st.dp[1], st.dp[2]);
+    s.q = (Quat(st.dq[0], st.dq[1], st.dq[2], st.dq[3]) * b.orientation0).normalized();
+    s.v = Vec3(st.v[0], st.v[1], st.v[2]);
+    s.w = Vec3(st.w[0], st.w[1], st.w[2]);
+    return s;
+}
+
+void store(const Side& s, SolverState* states) {
+    if (!s.takesImpulses) return;
+    SolverState& st = states[s.index];
+    for (int k = 0; k < 3; ++k) {
+        st.v[k] = s.v[k];
+        st.w[k] = s.w[k];
+    }
+}
+
+// A scalar row: Cdot = J . (vA, wA, vB, wB).
+struct Jacobian {
+    Vec3 linA = Vec3::Zero(), angA = Vec3::Zero(), linB = Vec3::Zero(), angB = Vec3::Zero();
+};
+
+Jacobian linearRow(const Vec3& n, const Vec3& leverA, const Vec3& rB) {
+    return {-n, -leverA.cross(n), n, rB.cross(n)};
+}
+Jacobian angularRow(const Vec3& axis) { return {Vec3::Zero(), -axis, Vec3::Zero(), axis}; }
+
+double inverseMass(const Jacobian& j, const Side& a, const Side& b) {
+    return j.linA.dot(a.invMass.cwiseProduct(j.linA)) + j.angA.dot(a.invI * j.angA) +
+           j.linB.dot(b.invMass.cwiseProduct(j.linB)) + j.angB.dot(b.invI * j.angB);
+}
+double rate(const Jacobian& j, const Side& a, const Side& b) {
+    return j.linA.dot(a.v) + j.angA.dot(a.w) + j.linB.dot(b.v) + j.angB.dot(b.w);
+}
+void apply(const Jacobian& j, double impulse, Side& a, Side& b) {
+    a.v += a.invMass.cwiseProduct(impulse * j.linA);
+    a.w += a.invI * (impulse * j.angA);
+    b.v += b.invMass.cwiseProduct(impulse * j.linB);
+    b.w += b.invI * (impulse * j.angB);
+}
+
+// Angle in (-pi, pi].
+double wrap(double angle) {
+    angle = std::fmod(angle + kPi, 2.0 * kPi);
+    if (angle <= 0.0) angle += 2.0 * kPi;
+    return angle - kPi;
+}
+
+// What a pass does with each row.
+enum class Mode { WarmStart, Solve, Relax };
+
+// The geometry of one joint in the current pass, and the driver that solves, warm starts or
+// sums its rows.
+class JointPass {
+public:
+    JointPass(const JointConstraint& c, const SolverBody* bodies, const SolverState* states, const JointSolveParams& p,
+              Mode mode)
+        : joint_(*c.joint), def_(c.joint->def), p_(p), mode_(mode),
+          a_(load(c.a, c.fixedA, bodies, states)), b_(load(c.b, c.fixedB, bodies, states)) {
+        frameA_ = a_.q * def_.frameA.orientation;
+        frameB_ = b_.q * def_.frameB.orientation;
+        if (def_.type == JointType::Wheel && def_.steering)
+            frameA_ = frameA_ * Quat(Eigen::AngleAxisd(joint_.steeringAngle, Vec3::UnitX()));
+        const Vec3 localA = def_.type == JointType::Distance ? def_.anchorA : def_.frameA.position;
+        const Vec3 localB = def_.type == JointType::Distance ? def_.anchorB : def_.frameB.position;
+        rA_ = a_.q * localA;
+        rB_ = b_.q * localB;
+        d_ = (b_.x + rB_) - (a_.x + rA_);
+    }
+
+    void run(bool useBias, bool endOfSubstep) {
+        useBias_ = useBias;
+        endOfSubstep_ = endOfSubstep;
+        switch (def_.type) {
+            case JointType::Ball: point(); break;
+            case JointType::Fixed:
+                angularLock();
+                point();
+                break;
+            case JointType::Hinge:
+                axisRows(angularRow(axisX()), hingeAngle());
+                hingeLocks(axisX());
+                point();
+                break;
+            case JointType::Slider:
+                axisRows(linearRow(axisX(), rA_ + d_, rB_), d_.dot(axisX()));
+                angularLock();
+                slidingLocks();
+                break;
+            case JointType::Cone:
+                coneLimits();
+                point();
+                break;
+            case JointType::Distance: distance(); break;
+            case JointType::Wheel:
+                wheel();
+                break;
+        }
+        solveLocks();
+    }
+
+    void finish(SolverState* states) {
+        store(a_, states);
+        store(b_, states);
+    }
+
+    // For reports.
+    double hingeAngle() const {
+        const Quat rel = frameA_.conjugate() * frameB_;
+        const double raw = wrap(2.0 * std::atan2(rel.x(), rel.w()));
+        // Unwrapped: the turn nearest to the last reported angle, so the angle runs past +-pi.
+        return raw + 2.0 * kPi * std::round((joint_.position - raw) / (2.0 * kPi));
+    }
+    double swingAngle() const {
+        return std::acos(std::clamp(axisX().dot(frameB_ * Vec3::UnitX()), -1.0, 1.0));
+    }
+    Vec3 axisX() const { return frameA_ * Vec3::UnitX(); }
+    Vec3 axle() const { return frameA_ * Vec3::UnitY(); }
+    const Vec3& separation() const { return d_; }
+    const Side& a() const { return a_; }
+    const Side& b() const { return b_; }
+    const Vec3& rA() const { return rA_; }
+    const Vec3& rB() const { return rB_; }
+
+private:
+    // ---- bias of a position error -----------------------------------------------------------
+
+    // Velocity bias and softness of a rigid row with position error C (Cdot + bias -> 0).
+    struct Bias {
+        double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
+    };
+    Bias rigidBias(double C) const {
+        if (mode_ == Mode::Relax || !useBias_) return {};
+        if (p_.soft) return {p_.softness.biasRate * C, p_.softness.massScale, p_.softness.impulseScale};
+        return {p_.baumgarte * p_.invH * C, 1.0, 0.0};
+    }
+    // A limit row: C >= 0 is allowed; ahead of contact the row lets C close exactly this substep.
+    Bias limitBias(double C) const {
+        if (C > 0.0) return {C * p_.invH, 1.0, 0.0};
+        return rigidBias(C);
+    }
+
+    // ---- rows ---------------------------------------------------------------------------------
+
+    // Solves, warm starts or sums one scalar row. lower / upper bound the accumulated impulse.
+    void row(int slot, const Jacobian& j, const Bias& bias, double lower, double upper) {
+        double& acc = joint_.impulse[slot];
+        if (mode_ == Mode::WarmStart) {
+            apply(j, acc, a_, b_);
+            return;
+        }
+        const double k = inverseMass(j, a_, b_);
+        if (k > 0.0) {
+            const double delta = -bias.massScale / k * (rate(j, a_, b_) + bias.bias) - bias.impulseScale * acc;
+            const double total = std::clamp(acc + delta, lower, upper);
+            apply(j, total - acc, a_, b_);
+            acc = total;
+        }
+        sum(j, acc);
+    }
+    void limitRow(int slot, const Jacobian& j, double C) {
+        row(slot, j, limitBias(C), 0.0, std::numeric_limits<double>::infinity());
+    }
+    // Drives Cdot toward `speed` with at most maxForce per second.
+    void motorRow(int slot, const Jacobian& j, const JointMotor& motor) {
+        const double most = motor.maxForce * p_.h;
+        row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
+    }
+    // Implicit spring-damper toward C = 0.
+    void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
+        double& acc = joint_.impulse[slot];
+        if (mode_ == Mode::WarmStart) {
+            apply(j, acc, a_, b_);
+            return;
+        }
+        const double k = inverseMass(j, a_, b_);
+        const double springDamping = spring.damping + p_.h * spring.stiffness;
+        if (k > 0.0 && springDamping > 0.0) {
+            const double gamma = 1.0 / (p_.h * springDamping);
+            const double bias = C * p_.h * spring.stiffness * gamma;
+            const double delta = -(rate(j, a_, b_) + bias + gamma * acc) / (k + gamma);
+            apply(j, delta, a_, b_);
+            acc += delta;
+        }
+        sum(j, acc);
+    }
+    // The axis rows of hinge, slider: limits, motor and spring on position C along j.
+    void axisRows(const Jacobian& j, double position) {
+        if (def_.spring) springRow(kSpring, j, position, *def_.spring);
+        if (def_.motor) motorRow(kMotor, j, *def_.motor);
+        if (def_.limits) {
+            limitRow(kLower, j, position - def_.limits->lower);
+            limitRow(kUpper, negate(j), def_.limits->upper - position);
+        }
+    }
+    static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
+
+    // ---- the rigid rows, solved together ------------------------------------------------------
+    // Anchor points, rotation locks and sliding locks are gathered and solved as one block per
+    // pass (K = J M^-1 J^T, at most 6 x 6). Row by row, Gauss-Seidel converges slowly where a
+    // lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250), and PGS with
+    // Baumgarte then went unstable out of the hinge plane; the block is exact in one pass.
+    static constexpr int kMaxLocks = 6;
+    struct Lock {
+        Jacobian j;
+        double C = 0.0;
+        int slot = 0;
+    };
+    void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot}; }
+
+    void solveLocks() {
+        const int n = lockCount_;
+        lockCount_ = 0;
+        if (n == 0) return;
+        if (mode_ == Mode::WarmStart) {
+            for (int i = 0; i < n; ++i) apply(locks_[i].j, joint_.impulse[locks_[i].slot], a_, b_);
+            return;
+        }
+        using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLocks, kMaxLocks>;
+        using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLocks, 1>;
+        Block K(n, n);
+        Column rhs(n), acc(n);
+        const Bias bias = rigidBias(1.0);  // per unit error
+        for (int i = 0; i < n; ++i) {
+            const Jacobian& ji = locks_[i].j;
+            // M^-1 J_i^T, then its products with every row.
+            const Vec3 la = a_.invMass.cwiseProduct(ji.linA), aa = a_.invI * ji.angA;
+            const Vec3 lb = b_.invMass.cwiseProduct(ji.linB), ab = b_.invI * ji.angB;
+            for (int k = i; k < n; ++k) {
+                const Jacobian& jk = locks_[k].j;
+                K(k, i) = K(i, k) = jk.linA.dot(la) + jk.angA.dot(aa) + jk.linB.dot(lb) + jk.angB.dot(ab);
+            }
+            rhs[i] = rate(ji, a_, b_) + bias.bias * locks_[i].C;
+            acc[i] = joint_.impulse[locks_[i].slot];
+        }
+        // K is positive semi-definite; a row no body can answer (a planar body's tilt) has a zero
+        // pivot, which LDLT's solve leaves at 0.
+        const Column delta = -bias.massScale * K.ldlt().solve(rhs) - bias.impulseScale * acc;
+        for (int i = 0; i < n; ++i) {
+            if (!std::isfinite(delta[i])) continue;
+            apply(locks_[i].j, delta[i], a_, b_);
+            joint_.impulse[locks_[i].slot] += delta[i];
+        }
+        for (int i = 0; i < n; ++i) sum(locks_[i].j, joint_.impulse[locks_[i].slot]);
+    }
+
+    // Anchor coincidence: B's anchor on A's, along the world axes.
+    void point() {
+        for (int k = 0; k < 3; ++k) lock(kPointX + k, linearRow(Vec3::Unit(k), rA_, rB_), d_[k]);
+    }
+
+    // No relative rotation: the rotation error of B's frame against A's as a small rotation
+    // vector in the world, one row per world axis.
+    void angularLock() {
+        Quat rel = frameA_.conjugate() * frameB_;
+        if (rel.w() < 0.0) rel.coeffs() = -rel.coeffs();
+        const Vec3 error = frameA_ * (2.0 * rel.vec());
+        for (int k = 0; k < 3; ++k) lock(kAngle0 + k, angularRow(Vec3::Unit(k)), error[k]);
+    }
+
+    // B's frame axes Y and Z stay perpendicular to `axis` (A's): rotation only about it.
+    void hingeLocks(const Vec3& axis) {
+        const Vec3 yB = frameB_ * (def_.type == JointType::Wheel ? Vec3::UnitX() : Vec3::UnitY());
+        const Vec3 zB = frameB_ * Vec3::UnitZ();
+        lock(kAngle0, {Vec3::Zero(), -yB.cross(axis), Vec3::Zero(), yB.cross(axis)}, axis.dot(yB));
+        lock(kAngle1, {Vec3::Zero(), -zB.cross(axis), Vec3::Zero(), zB.cross(axis)}, axis.dot(zB));
+    }
+
+    // B's anchor stays on A's line along frame X (slider) or along the suspension (wheel).
+    void slidingLocks() {
+        const Vec3 y = frameA_ * Vec3::UnitY(), z = frameA_ * Vec3::UnitZ();
+        lock(kLinear0, linearRow(y, rA_ + d_, rB_), d_.dot(y));
+        lock(kLinear1, linearRow(z, rA_ + d_, rB_), d_.dot(z));
+    }
+
+    void coneLimits() {
+        const Vec3 xA = axisX(), xB = frameB_ * Vec3::UnitX();
+        if (def_.swingLimit < kPi) {
+            const Vec3 bend = xA.cross(xB);
+            const double sine = bend.norm();
+            if (sine > 1e-9) {
+                const Vec3 n = bend / sine;  // swing grows as B turns about n relative to A
+                const double swing = std::atan2(sine, xA.dot(xB));
+                limitRow(kLower, {Vec3::Zero(), n, Vec3::Zero(), -n}, def_.swingLimit - swing);
+            }
+        }
+        if (def_.twistLimits) {
+            Quat rel = frameA_.conjugate() * frameB_;
+            const double twist = wrap(2.0 * std::atan2(rel.x(), rel.w()));
+            limitRow(kTwistLower, angularRow(xA), twist - def_.twistLimits->lower);
+            limitRow(kTwistUpper, negate(angularRow(xA)), def_.twistLimits->upper - twist);
+        }
+    }
+
+    void distance() {
+        const double length = d_.norm();
+        if (length < 1e-9) return;  // no direction to push along
+        const Vec3 n = d_ / length;
+        const Jacobian j = linearRow(n, rA_, rB_);
+        const double C = length - def_.length;
+        const bool range = def_.minLength || def_.maxLength;
+        if (def_.spring) springRow(kSpring, j, C, *def_.spring);
+        else if (!range) lock(kLength, j, C);
+        if (def_.minLength) limitRow(kLower, j, length - *def_.minLength);
+        if (def_.maxLength) limitRow(kUpper, negate(j), *def_.maxLength - length);
+    }
+
+    void wheel() {
+        const Vec3 s = axisX();  // suspension
+        const Vec3 axle = this->axle();
+        const double travel = d_.dot(s);
+        const Jacobian along = linearRow(s, rA_ + d_, rB_);
+        if (def_.spring) springRow(kSpring, along, travel, *def_.spring);
+        if (def_.limits) {
+            limitRow(kLower, along, travel - def_.limits->lower);
+            limitRow(kUpper, negate(along), def_.limits->upper - travel);
+        }
+        if (def_.motor) motorRow(kMotor, angularRow(axle), *def_.motor);
+        hingeLocks(axle);
+        const Vec3 z = frameA_ * Vec3::UnitZ();
+        lock(kLinear0, linearRow(axle, rA_ + d_, rB_), d_.dot(axle));
+        lock(kLinear1, linearRow(z, rA_ + d_, rB_), d_.dot(z));
+    }
+
+    void sum(const Jacobian& j, double impulse) {
+        if (!endOfSubstep_) return;
+        joint_.stepLinear += impulse * j.linB;
+        joint_.stepAngular += impulse * j.angB;
+    }
+
+    NativeJoint& joint_;
+    const JointPeerDef& def_;
+    const JointSolveParams& p_;
+    Mode mode_;
+    Side a_, b_;
+    Quat frameA_, frameB_;
+    Vec3 rA_ = Vec3::Zero(), rB_ = Vec3::Zero(), d_ = Vec3::Zero();
+    bool useBias_ = false;
+    bool endOfSubstep_ = false;
+    std::array<Lock, kMaxLocks> locks_;
+    int lockCount_ = 0;
+};
+
+}  // namespace
+
+void warmStartJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p) {
+    JointPass pass(c, bodies, states, p, Mode::WarmStart);
+    pass.run(false, false);
+    pass.finish(states);
+}
+
+void solveJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p,
+                bool useBias, bool endOfSubstep) {
+    JointPass pass(c, bodies, states, p, useBias ? Mode::Solve : Mode::Relax);
+    pass.run(useBias, endOfSubstep);
+    pass.finish(states);
+}
+
+void reportJoint(const JointConstraint& c, const SolverBody* bodies, const SolverState* states, double dt) {
+    NativeJoint& j = *c.joint;
+    const JointSolveParams none;
+    const JointPass pass(c, bodies, states, none, Mode::Relax);
+    j.reactionForce = j.stepLinear / dt;
+    j.reactionTorque = (j.stepAngular - pass.rB().cross(j.stepLinear)) / dt;
+    j.stepLinear.setZero();
+    j.stepAngular.setZero();
+    const Vec3 relW = pass.b().w - pass.a().w;
+    switch (j.def.type) {
+        case JointType::Hinge:
+            j.position = pass.hingeAngle();
+            j.speed = relW.dot(pass.axisX());
+            break;
+        case JointType::Slider: {
+            const Vec3 x = pass.axisX();
+            j.position = pass.separation().dot(x);
+            // d/dt (d . x) with x turning with A: B's anchor against A's point under it.
+            const Vec3 vA = pass.a().v + pass.a().w.cross(pass.rA() + pass.separation());
+            const Vec3 vB = pass.b().v + pass.b().w.cross(pass.rB());
+            j.speed = (vB - vA).dot(x);
+            break;
+        }
+        case JointType::Wheel:
+            j.position = pass.separation().dot(pass.axisX());
+            j.speed = relW.dot(pass.axle());
+            break;
+        case JointType::Distance: {
+            const double length = pass.separation().norm();
+            j.position = length - j.def.length;
+            const Vec3 vB = pass.b().v + pass.b().w.cross(pass.rB());
+            const Vec3 vA = pass.a().v + pass.a().w.cross(pass.rA());
+            j.speed = length > 1e-12 ? (vB - vA).dot(pass.separation() / length) : 0.0;
+            break;
+        }
+        case JointType::Ball:
+        case JointType::Cone: {
+            const double previous = j.position;
+            j.position = pass.swingAngle();
+            j.speed = (j.position - previous) / dt;
+            break;
+        }
+        case JointType::Fixed:
+            j.position = 0.0;
+            j.speed = 0.0;
+            break;
+    }
+}
+
+}  // namespace anyphys::native

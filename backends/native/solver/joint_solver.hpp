@@ -1,0 +1,55 @@
+#pragma once
+// Joint constraints in the native solver, in the same stages as contacts (joints are solved
+// first in each pass, so contacts have the last word). Each pass rebuilds a joint's rows from the
+// bodies' current poses (the step-start pose moved by the solver's displacement and rotation),
+// so position errors are always current; impulses accumulate per row and warm start the next
+// substep and step. Soft step: rigid rows correct their position error softly in the solve pass
+// and hold velocity exactly in the relax pass; PGS: Baumgarte correction in every pass.
+//
+// The rigid rows of a joint (anchor point, rotation and sliding locks) are solved together as
+// one small block; limits, motors and springs row by row before them.
+// Rows by type (joints.hpp has the impulse slots):
+//   ball      anchor point (3 rows)
+//   hinge     anchor point, 2 rotation locks across the axis, limit / motor / spring on the angle
+//   slider    3 rotation locks (a block), 2 sliding locks across the axis, limit / motor / spring
+//   fixed     anchor point and 3 rotation locks
+//   cone      anchor point, swing limit (the cone), twist limits
+//   distance  length: rigid, or min / max limits, or a spring (with optional min / max)
+//   wheel     2 sliding locks across the suspension, 2 rotation locks about the (steered) axle,
+//             suspension limit and spring, drive motor on the spin
+// Motors clamp their impulse to maxForce x substep; springs are implicit (exact for a linear
+// spring-damper under implicit Euler), stiffness and damping in SI.
+#include <cstdint>
+
+#include "joints.hpp"
+#include "solver/contact_constraint.hpp"
+#include "solver/solver_body.hpp"
+
+namespace anyphys::native {
+
+/// A joint as the solver sees it this step.
+struct JointConstraint {
+    NativeJoint* joint = nullptr;
+    std::int32_t a = kStaticBody, b = kStaticBody;  // solver bodies, or kStaticBody
+    Transform fixedA, fixedB;  // pose of a side that is not a solver body (world: identity)
+};
+
+struct JointSolveParams {
+    double h = 0.0;             // s, substep
+    double invH = 0.0;
+    bool soft = true;           // soft step; false: PGS with Baumgarte
+    Softness softness;          // rigid rows' position correction (soft step)
+    double baumgarte = 0.0;     // PGS
+};
+
+/// Applies each row's accumulated impulse (start of a substep).
+void warmStartJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p);
+/// One Gauss-Seidel pass over the joint's rows. `endOfSubstep`: the impulses now in the rows are
+/// this substep's total and add to the step's reactions.
+void solveJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p,
+                bool useBias, bool endOfSubstep);
+/// After the step: the reactions (step sums / dt) and the joint's position and speed from the
+/// bodies' final poses and velocities.
+void reportJoint(const JointConstraint& c, const SolverBody* bodies, const SolverState* states, double dt);
+
+}  // namespace anyphys::native
