@@ -1,5 +1,6 @@
 #include "anyphys/backends.hpp"
 
+#include "anyphys/joint_capabilities.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "anyphys/world_settings.hpp"
 
@@ -34,6 +35,19 @@ std::vector<std::string> missingCapabilities(const Capabilities& caps, const Wor
         for (const auto& option : caps.options) known = known || option.first == name;
         if (!known) missing.push_back("backend option " + name);
     }
+    return missing;
+}
+
+std::vector<std::string> missingJointCapabilities(const Capabilities& caps, const JointDef& def, bool planar) {
+    std::vector<std::string> missing;
+    if (!caps.effects.has(Effect::Joints)) missing.push_back("effect joints");
+    const std::string type(toString(peerJointType(def.type, planar)));
+    if (!caps.jointTypes.contains(type)) {
+        missing.push_back("joint type " + type);
+        return missing;  // its parameters are missing with it
+    }
+    for (const auto& [field, parameter] : usedJointParameters(def, planar))
+        if (!caps.parameters.contains(parameter)) missing.push_back(parameter);
     return missing;
 }
 

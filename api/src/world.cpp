@@ -165,6 +165,7 @@ void World::refreshEffects() {
         if (impl_->dampedBodies > 0) wanted.add(Effect::Damping);
         if (impl_->gyroscopicBodies > 0) wanted.add(Effect::Gyroscopic);
         if (impl_->forcesUsed || impl_->forceCallback) wanted.add(Effect::UserForces);
+        if (impl_->simulatedJoints > 0) wanted.add(Effect::Joints);
         // Contacts need two bodies, one of which responds (or a sensor and something moving).
         const Impl& i = *impl_;
         const bool contacts = i.liveBodies >= 2 && (i.dynamicBodies > 0 || (i.triggerBodies > 0 && i.movingBodies > 0));
@@ -253,6 +254,8 @@ void World::destroyBody(Body body) {
     if (impl_->stepping) throw Error("World.destroyBody: not allowed while the world is stepping (inside a force callback)");
     if (body.world() != this) throw Error("World.destroyBody: the body belongs to another world");
     Slot& s = slot(body.id(), "World.destroyBody");
+    // Its joints first: a joint never outlives one of its bodies.
+    while (!s.joints.empty()) releaseJoint(s.joints.back());
     for (const ContactEvent& event : impl_->tracker.removeBody(body.id()))
         for (ContactListener* l : impl_->listeners)
             event.trigger ? l->onTriggerExit(event) : l->onCollisionExit(event);
@@ -336,7 +339,13 @@ void World::step(double dt) {
     timeCompensation_ = (t - time_) - y;
     time_ = t;
     ++stepCount_;
+    if (!impl_->breakableJoints.empty() || !impl_->lastJointEvents.empty()) breakJoints();
     if (activeEffects_.has(Effect::Events)) dispatchEvents();
+    if (!impl_->lastJointEvents.empty()) {
+        // A copy: a listener may step the world, which rewrites the list.
+        const std::vector<JointEvent> broken = impl_->lastJointEvents;
+        deliverJointBreaks(broken);
+    }
 }
 
 void World::dispatchEvents() {

@@ -1,5 +1,6 @@
 #pragma once
 // World internals shared by world.cpp and body.cpp.
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -18,6 +19,7 @@ struct World::Slot {
     BodyDef def;                     // as created (validated, orientation normalised)
     MassProperties mass;
     Transform peerFrame;             // the peer's frame (centre of mass, principal axes) in the body frame
+    std::vector<std::uint32_t> joints;  // slots of the live joints holding this body
 
     /// The user's view (body origin) of the peer's state (centre of mass frame).
     BodyState userState() const;
@@ -34,9 +36,27 @@ inline BodyState World::Slot::userState() const {
     return s;
 }
 
+/// One joint. A live joint without a peer is broken, or was never simulated (lenient policy,
+/// type missing on the backend).
+struct World::JointSlot {
+    std::unique_ptr<JointPeer> peer;
+    std::uint32_t generation = 1;    // bumped on destroy, so stale ids never match
+    bool live = false;
+    bool broken = false;
+    JointDef def;                    // as created (normalised), with the motor, limits and spring last set
+    JointType peerType = JointType::Ball;  // what the backend runs (a planar ball: a hinge)
+    // Thresholds the layer watches: the def's when the backend reports reactions for them
+    // (capabilities), else infinite.
+    double breakForce = std::numeric_limits<double>::infinity();
+    double breakTorque = std::numeric_limits<double>::infinity();
+    bool breakable() const { return breakForce < std::numeric_limits<double>::infinity() ||
+                                    breakTorque < std::numeric_limits<double>::infinity(); }
+};
+
 /// The key a peer echoes back for a body: its id packed in 64 bits.
 inline std::uint64_t packId(BodyId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
 inline BodyId unpackId(std::uint64_t key) { return BodyId{std::uint32_t(key >> 32), std::uint32_t(key)}; }
+inline std::uint64_t packId(JointId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
 
 struct World::Impl {
     const Backend* backend = nullptr;
@@ -45,6 +65,12 @@ struct World::Impl {
     std::vector<Slot> slots;
     std::vector<std::uint32_t> freeSlots;
     std::size_t liveBodies = 0;
+    std::vector<JointSlot> joints;    // after slots: joint peers die before body peers
+    std::vector<std::uint32_t> freeJoints;
+    std::size_t liveJoints = 0;
+    std::size_t simulatedJoints = 0;  // live joints with a peer: the joints effect
+    std::vector<std::uint32_t> breakableJoints;  // slots whose reactions are watched after each step
+    std::vector<JointEvent> lastJointEvents;
 
     // Content counters from which effects are derived without scanning the bodies.
     std::size_t gravityBodies = 0;

@@ -22,6 +22,7 @@
 #include "anyphys/effects.hpp"
 #include "anyphys/enums.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/joint_validation.hpp"
 #include "anyphys/validation.hpp"
 
 namespace anyphys {
@@ -374,6 +375,94 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     return b;
 }
 
+// ---- joints -----------------------------------------------------------------------------------
+
+JointLimits readLimits(const json& v, const std::string& path) {
+    requireObject(v, path, "an object {\"lower\": ..., \"upper\": ...}");
+    checkKeys(v, path, {"lower", "upper"});
+    JointLimits l;
+    if (!find(v, "lower") || !find(v, "upper")) missing(path, "limits need both \"lower\" and \"upper\"");
+    l.lower = readNumber(v["lower"], join(path, "lower"));
+    l.upper = readNumber(v["upper"], join(path, "upper"));
+    return l;
+}
+
+JointMotor readMotor(const json& v, const std::string& path) {
+    requireObject(v, path, "an object {\"speed\": ..., \"maxForce\": ...}");
+    checkKeys(v, path, {"speed", "maxForce"});
+    JointMotor m;
+    if (auto* x = find(v, "speed")) m.speed = readNumber(*x, join(path, "speed"));
+    if (auto* x = find(v, "maxForce")) m.maxForce = readNumber(*x, join(path, "maxForce"));
+    return m;
+}
+
+JointSpring readSpring(const json& v, const std::string& path) {
+    requireObject(v, path, "an object {\"stiffness\", \"damping\"} or {\"hertz\", \"dampingRatio\"}");
+    checkKeys(v, path, {"stiffness", "damping", "hertz", "dampingRatio"});
+    JointSpring sp;
+    if (auto* x = find(v, "stiffness")) sp.stiffness = readNumber(*x, join(path, "stiffness"));
+    if (auto* x = find(v, "damping")) sp.damping = readNumber(*x, join(path, "damping"));
+    if (auto* x = find(v, "hertz")) sp.hertz = readNumber(*x, join(path, "hertz"));
+    if (auto* x = find(v, "dampingRatio")) sp.dampingRatio = readNumber(*x, join(path, "dampingRatio"));
+    return sp;
+}
+
+/// One joint; its bodies must name bodies of the scene (`bodies`: name -> def).
+SceneJoint readJoint(const json& v, const std::string& path, const std::map<std::string, const BodyDef*>& bodies,
+                     bool planar) {
+    requireObject(v, path);
+    checkKeys(v, path, {"name", "type", "bodyA", "bodyB", "anchor", "axis", "anchorA", "anchorB", "length",
+                        "minLength", "maxLength", "swingLimit", "twistLimits", "spinAxis", "steering", "limits",
+                        "motor", "spring", "breakForce", "breakTorque", "collideConnected"});
+    SceneJoint out;
+    JointDef& d = out.def;
+    if (auto* x = find(v, "name")) d.name = readString(*x, join(path, "name"));
+    const auto* type = find(v, "type");
+    if (!type) missing(join(path, "type"), "every joint needs a type: " + allowedNames<JointType>());
+    d.type = readEnum<JointType>(*type, join(path, "type"));
+    const auto body = [&](std::string_view key, bool required) -> std::string {
+        const std::string field = join(path, key);
+        const auto* x = find(v, key);
+        if (!x) {
+            if (required) missing(field, "every joint needs the name of the body it holds");
+            return "";
+        }
+        const std::string name = readString(*x, field);
+        if (!required && name == "world") return "";
+        if (!bodies.contains(name)) throw Error(field + ": no body named \"" + name + "\"");
+        return name;
+    };
+    out.bodyA = body("bodyA", false);
+    out.bodyB = body("bodyB", true);
+    if (auto* x = find(v, "anchor")) d.anchor = readVec3(*x, join(path, "anchor"));
+    if (auto* x = find(v, "axis")) d.axis = readVec3(*x, join(path, "axis"));
+    if (auto* x = find(v, "anchorA")) d.anchorA = readVec3(*x, join(path, "anchorA"));
+    if (auto* x = find(v, "anchorB")) d.anchorB = readVec3(*x, join(path, "anchorB"));
+    if (auto* x = find(v, "length")) d.length = readNumber(*x, join(path, "length"));
+    if (auto* x = find(v, "minLength")) d.minLength = readNumber(*x, join(path, "minLength"));
+    if (auto* x = find(v, "maxLength")) d.maxLength = readNumber(*x, join(path, "maxLength"));
+    if (auto* x = find(v, "swingLimit")) d.swingLimit = readNumber(*x, join(path, "swingLimit"));
+    if (auto* x = find(v, "twistLimits")) d.twistLimits = readLimits(*x, join(path, "twistLimits"));
+    if (auto* x = find(v, "spinAxis")) d.spinAxis = readVec3(*x, join(path, "spinAxis"));
+    if (auto* x = find(v, "steering")) d.steering = readBool(*x, join(path, "steering"));
+    if (auto* x = find(v, "limits")) d.limits = readLimits(*x, join(path, "limits"));
+    if (auto* x = find(v, "motor")) d.motor = readMotor(*x, join(path, "motor"));
+    if (auto* x = find(v, "spring")) d.spring = readSpring(*x, join(path, "spring"));
+    if (auto* x = find(v, "breakForce")) d.breakForce = readNumber(*x, join(path, "breakForce"));
+    if (auto* x = find(v, "breakTorque")) d.breakTorque = readNumber(*x, join(path, "breakTorque"));
+    if (auto* x = find(v, "collideConnected")) d.collideConnected = readBool(*x, join(path, "collideConnected"));
+    // The same rules, in the same words, as World::createJoint.
+    validate(d, path);
+    if (planar) validatePlanar(d, path);
+    const auto view = [&bodies](const std::string& name) {
+        const BodyDef& b = *bodies.at(name);
+        return JointBodyView{b.name, b.type};
+    };
+    validateJointBodies(out.bodyA.empty() ? std::nullopt : std::optional<JointBodyView>(view(out.bodyA)),
+                        view(out.bodyB), out.bodyA == out.bodyB, path);
+    return out;
+}
+
 // nlohmann keeps the last of two equal keys silently; this callback refuses them instead,
 // naming the JSON path of the repeated key.
 class DuplicateKeyCheck {
@@ -502,6 +591,49 @@ ojson bodyJson(const BodyDef& b) {
     return j;
 }
 
+ojson limitsJson(const JointLimits& l) { return ojson{{"lower", l.lower}, {"upper", l.upper}}; }
+
+ojson jointJson(const SceneJoint& sj) {
+    const JointDef& d = sj.def;
+    const JointDef defaults;
+    const JointFields f = jointFields(d.type);
+    ojson j;
+    if (!d.name.empty()) j["name"] = d.name;
+    j["type"] = std::string(toString(d.type));
+    if (!sj.bodyA.empty()) j["bodyA"] = sj.bodyA;
+    j["bodyB"] = sj.bodyB;
+    if (f.anchor) j["anchor"] = vec(d.anchor);
+    if (f.axis) j["axis"] = vec(d.axis);
+    if (f.distance) {
+        j["anchorA"] = vec(d.anchorA);
+        j["anchorB"] = vec(d.anchorB);
+        if (d.length) j["length"] = *d.length;
+        if (d.minLength) j["minLength"] = *d.minLength;
+        if (d.maxLength) j["maxLength"] = *d.maxLength;
+    }
+    if (f.cone) {
+        j["swingLimit"] = d.swingLimit;
+        if (d.twistLimits) j["twistLimits"] = limitsJson(*d.twistLimits);
+    }
+    if (f.wheel) {
+        j["spinAxis"] = vec(d.spinAxis);
+        j["steering"] = d.steering;
+    }
+    if (d.limits) j["limits"] = limitsJson(*d.limits);
+    if (d.motor) j["motor"] = ojson{{"speed", d.motor->speed}, {"maxForce", d.motor->maxForce}};
+    if (d.spring) {
+        if (d.spring->hertz > 0)
+            j["spring"] = ojson{{"hertz", d.spring->hertz}, {"dampingRatio", d.spring->dampingRatio}};
+        else
+            j["spring"] = ojson{{"stiffness", d.spring->stiffness}, {"damping", d.spring->damping}};
+    }
+    // Infinite thresholds (never break) are the default and have no JSON spelling.
+    if (d.breakForce < defaults.breakForce) j["breakForce"] = d.breakForce;
+    if (d.breakTorque < defaults.breakTorque) j["breakTorque"] = d.breakTorque;
+    j["collideConnected"] = d.collideConnected;
+    return j;
+}
+
 ojson settingsJson(const WorldSettings& s) {
     ojson j;
     j["backend"] = s.backend;
@@ -584,10 +716,20 @@ Scene parseScene(const std::string& jsonText) {
         }
     }
     if (auto* v = find(doc, "joints")) {
-        if (!v->is_array()) fail("joints", *v, "must be an array (empty for now: joints are not supported yet)");
-        if (!v->empty())
-            throw Error::invalid("joints", std::to_string(v->size()) + (v->size() == 1 ? " entry" : " entries"),
-                                 "joints are not supported yet (they arrive in a later issue); must be empty");
+        if (!v->is_array()) fail("joints", *v, "must be an array of joint objects");
+        std::map<std::string, const BodyDef*> bodies;
+        for (const BodyDef& b : scene.bodies) bodies.emplace(b.name, &b);
+        std::map<std::string, std::size_t> names;
+        for (std::size_t i = 0; i < v->size(); ++i) {
+            SceneJoint j = readJoint((*v)[i], at("joints", i), bodies, scene.settings.planar);
+            if (!j.def.name.empty()) {
+                if (const auto it = names.find(j.def.name); it != names.end())
+                    fail(at("joints", i) + ".name", (*v)[i]["name"],
+                         "must be unique (already used by " + at("joints", it->second) + ")");
+                names.emplace(j.def.name, i);
+            }
+            scene.joints.push_back(std::move(j));
+        }
     }
     return scene;
 }
@@ -631,6 +773,7 @@ std::string sceneToJson(const Scene& scene) {
     doc["bodies"] = ojson::array();
     for (const auto& b : scene.bodies) doc["bodies"].push_back(bodyJson(b));
     doc["joints"] = ojson::array();
+    for (const auto& j : scene.joints) doc["joints"].push_back(jointJson(j));
 
     std::string out;
     write(out, doc, 0);

@@ -390,9 +390,88 @@ TEST(SceneJson, MaterialReferencesMustBeKnown) {
     EXPECT_EQ(s.materials.get("").friction, 0.2);
 }
 
-TEST(SceneJson, JointsMustBeEmptyForNow) {
-    EXPECT_NO_THROW((void)parseScene(R"({"joints": []})"));
-    expectParseError(R"({"joints": [{"type": "hinge"}, {"type": "ball"}]})", {"joints:", "not supported yet", "got 2 entries"});
+// Two bodies and one joint of every type, as the scene format names their fields.
+constexpr const char* kJointScene = R"({
+  "bodies": [
+    {"name": "arm", "position": [0, 1, 0], "shape": {"type": "box", "halfExtents": [0.5, 0.1, 0.1]}},
+    {"name": "hand", "position": [1, 1, 0], "shape": {"type": "sphere", "radius": 0.1}}],
+  "joints": [
+    {"name": "elbow", "type": "hinge", "bodyA": "arm", "bodyB": "hand", "anchor": [0.5, 1, 0], "axis": [0, 0, 1],
+     "collideConnected": true, "limits": {"lower": 0.0, "upper": 2.5}, "motor": {"speed": 1.0, "maxForce": 20.0},
+     "spring": {"stiffness": 50.0, "damping": 2.0}, "breakForce": 1e4, "breakTorque": 1e3},
+    {"type": "ball", "bodyA": "world", "bodyB": "arm", "anchor": [-0.5, 1, 0]},
+    {"name": "rope", "type": "distance", "bodyB": "hand", "anchorA": [1, 3, 0], "anchorB": [1, 1, 0],
+     "minLength": 0.5, "maxLength": 2.5, "spring": {"hertz": 2, "dampingRatio": 0.5}},
+    {"name": "hip", "type": "cone", "bodyA": "arm", "bodyB": "hand", "anchor": [1, 1, 0], "axis": [1, 0, 0],
+     "swingLimit": 0.7, "twistLimits": {"lower": -0.2, "upper": 0.3}},
+    {"name": "wheel", "type": "wheel", "bodyA": "arm", "bodyB": "hand", "anchor": [1, 1, 0], "axis": [0, 1, 0],
+     "spinAxis": [0, 0, 1], "steering": true, "limits": {"lower": -0.1, "upper": 0.1}},
+    {"name": "rail", "type": "slider", "bodyB": "hand", "anchor": [1, 1, 0], "axis": [1, 0, 0]},
+    {"name": "weld", "type": "fixed", "bodyA": "arm", "bodyB": "hand", "anchor": [0.5, 1, 0]}]
+})";
+
+TEST(SceneJson, JointsParseWithTheirFields) {
+    const Scene s = parseScene(kJointScene);
+    ASSERT_EQ(s.joints.size(), 7u);
+    const SceneJoint& elbow = s.joints[0];
+    EXPECT_EQ(elbow.def.name, "elbow");
+    EXPECT_EQ(elbow.def.type, JointType::Hinge);
+    EXPECT_EQ(elbow.bodyA, "arm");
+    EXPECT_EQ(elbow.bodyB, "hand");
+    EXPECT_EQ(elbow.def.anchor, Vec3(0.5, 1, 0));
+    ASSERT_TRUE(elbow.def.limits && elbow.def.motor && elbow.def.spring);
+    EXPECT_EQ(elbow.def.limits->upper, 2.5);
+    EXPECT_EQ(elbow.def.motor->maxForce, 20.0);
+    EXPECT_EQ(elbow.def.spring->damping, 2.0);
+    EXPECT_EQ(elbow.def.breakForce, 1e4);
+    EXPECT_TRUE(elbow.def.collideConnected);
+    EXPECT_EQ(s.joints[1].bodyA, "");  // "world"
+    EXPECT_EQ(s.joints[2].def.maxLength, 2.5);
+    EXPECT_EQ(s.joints[2].def.spring->hertz, 2.0);
+    EXPECT_EQ(s.joints[3].def.twistLimits->lower, -0.2);
+    EXPECT_TRUE(s.joints[4].def.steering);
+}
+
+TEST(SceneJson, JointsRoundTrip) {
+    const Scene s = parseScene(kJointScene);
+    const Scene back = parseScene(sceneToJson(s));
+    ASSERT_EQ(back.joints.size(), s.joints.size());
+    for (std::size_t i = 0; i < s.joints.size(); ++i) {
+        const JointDef &a = s.joints[i].def, &b = back.joints[i].def;
+        EXPECT_EQ(a.name, b.name);
+        EXPECT_EQ(a.type, b.type);
+        EXPECT_EQ(s.joints[i].bodyA, back.joints[i].bodyA);
+        EXPECT_EQ(s.joints[i].bodyB, back.joints[i].bodyB);
+        EXPECT_EQ(a.anchor, b.anchor);
+        EXPECT_EQ(a.axis, b.axis);
+        EXPECT_EQ(a.anchorA, b.anchorA);
+        EXPECT_EQ(a.minLength, b.minLength);
+        EXPECT_EQ(a.swingLimit, b.swingLimit);
+        EXPECT_EQ(a.limits.has_value(), b.limits.has_value());
+        EXPECT_EQ(a.motor.has_value(), b.motor.has_value());
+        EXPECT_EQ(a.spring.has_value(), b.spring.has_value());
+        EXPECT_EQ(a.breakForce, b.breakForce);
+        EXPECT_EQ(a.steering, b.steering);
+        EXPECT_EQ(a.collideConnected, b.collideConnected);
+    }
+}
+
+TEST(SceneJson, JointErrorsNameTheJsonPath) {
+    const std::string bodies = R"("bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}},
+                                             {"name": "b", "shape": {"type": "sphere", "radius": 1}}])";
+    const auto scene = [&](const std::string& joint) { return "{" + bodies + R"(, "joints": [)" + joint + "]}"; };
+    expectParseError(scene(R"({"type": "hinge", "bodyB": "shin"})"), {"joints[0].bodyB: no body named \"shin\""});
+    expectParseError(scene(R"({"type": "hinge", "bodyB": "a", "limits": {"lower": 1.2, "upper": 0.4}})"),
+                     {"joints[0].limits", "lower must be <= upper", "1.2", "0.4"});
+    expectParseError(scene(R"({"type": "screw", "bodyB": "a"})"), {"joints[0].type", "screw"});
+    expectParseError(scene(R"({"bodyB": "a"})"), {"joints[0].type"});
+    expectParseError(scene(R"({"type": "ball"})"), {"joints[0].bodyB"});
+    expectParseError(scene(R"({"type": "ball", "bodyA": "a", "bodyB": "a"})"), {"joints[0].bodyB", "must differ"});
+    expectParseError(scene(R"({"type": "ball", "bodyB": "a", "motor": {"speed": 1, "maxForce": 1}})"),
+                     {"joints[0].motor"});
+    expectParseError(scene(R"({"type": "ball", "bodyB": "a", "lenght": 1})"), {"joints[0]", "lenght"});
+    expectParseError(scene(R"({"name": "j", "type": "ball", "bodyB": "a"}, {"name": "j", "type": "ball", "bodyB": "b"})"),
+                     {"joints[1].name", "must be unique"});
     expectParseError(R"({"joints": {}})", {"joints: must be an array"});
 }
 

@@ -2,6 +2,7 @@
 #include "cli.hpp"
 
 #include <fstream>
+#include <map>
 
 namespace anyphys::cli {
 
@@ -31,6 +32,26 @@ std::vector<Body> createSceneBodies(World& world, const Scene& scene) {
         }
     }
     return bodies;
+}
+
+std::vector<Joint> createSceneJoints(World& world, const Scene& scene, const std::vector<Body>& bodies) {
+    std::map<std::string, Body> byName;
+    for (std::size_t i = 0; i < bodies.size(); ++i) byName.emplace(scene.bodies[i].name, bodies[i]);
+    std::vector<Joint> joints;
+    joints.reserve(scene.joints.size());
+    for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+        const SceneJoint& sj = scene.joints[i];
+        JointDef def = sj.def;
+        def.bodyA = sj.bodyA.empty() ? Body() : byName.at(sj.bodyA);  // the loader checked the names
+        def.bodyB = byName.at(sj.bodyB);
+        try {
+            joints.push_back(world.createJoint(def));
+        } catch (const Error& e) {
+            throw Error("joints[" + std::to_string(i) + "]" + (def.name.empty() ? "" : " \"" + def.name + "\"") +
+                        ": " + e.what());
+        }
+    }
+    return joints;
 }
 
 void writeFile(const std::string& path, const std::string& text) {

@@ -1,5 +1,5 @@
-// `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV, and with
-// --events the collision and trigger events of each step.
+// `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV, with
+// --events the collision and trigger events of each step, and with --joints every joint's state.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -20,6 +20,7 @@ struct RunOptions {
     std::string integrator;
     std::string out;
     std::string events;
+    std::string joints;
     // Set after parsing: which optional flags were given.
     const CLI::Option* backendOption = nullptr;
     const CLI::Option* stepsOption = nullptr;
@@ -27,10 +28,12 @@ struct RunOptions {
     const CLI::Option* integratorOption = nullptr;
     const CLI::Option* outOption = nullptr;
     const CLI::Option* eventsOption = nullptr;
+    const CLI::Option* jointsOption = nullptr;
 };
 
 constexpr const char* kCsvHeader = "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
 constexpr const char* kEventsHeader = "step,time,phase,bodyA,bodyB";
+constexpr const char* kJointsHeader = "step,time,joint,position,speed,fx,fy,fz,tx,ty,tz";
 
 /// A body name as one CSV field: quoted (RFC 4180) only if it holds a comma, quote or line break.
 std::string csvField(const std::string& text) {
@@ -92,6 +95,20 @@ void writeRows(std::ostream& out, long long step, double time, const std::vector
     }
 }
 
+/// One row per joint: position and speed (Joint::position, speed), the reaction on bodyB (world
+/// frame). A joint without a name is written as #index (its place in the scene's list).
+void writeJointRows(std::ostream& out, long long step, double time, const std::vector<Joint>& joints) {
+    const std::string head = prefix(step, time);
+    char buffer[512];
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+        const Joint& joint = joints[i];
+        const Vec3 f = joint.reactionForce(), t = joint.reactionTorque();
+        std::snprintf(buffer, sizeof buffer, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", joint.position(),
+                      joint.speed(), f.x(), f.y(), f.z(), t.x(), t.y(), t.z());
+        out << head << (joint.name().empty() ? "#" + std::to_string(i) : csvField(joint.name())) << buffer;
+    }
+}
+
 /// Applies the (already validated) command-line overrides to the scene settings.
 void applyOverrides(const RunOptions& o, Scene& scene) {
     if (o.backendOption->count()) scene.settings.backend = o.backend;
@@ -117,11 +134,12 @@ int run(const RunOptions& o) {
     EventRecorder recorder;  // before the world, so it outlives it
     World world(scene.settings, scene.materials);
     const std::vector<Body> bodies = createSceneBodies(world, scene);
+    const std::vector<Joint> joints = createSceneJoints(world, scene, bodies);
     // Names captured now: an exit flagged as removal names a body that no longer exists.
     std::map<BodyId, std::string> names;
     for (const Body& body : bodies) names[body.id()] = body.name();
 
-    std::ofstream file, eventFile;
+    std::ofstream file, eventFile, jointFile;
     if (o.outOption->count()) {
         file.open(o.out, std::ios::binary);
         if (!file) throw Error(o.out + ": cannot open for writing");
@@ -132,6 +150,12 @@ int run(const RunOptions& o) {
         eventFile << kEventsHeader << '\n';
         world.addListener(&recorder);
     }
+    if (o.jointsOption->count()) {
+        jointFile.open(o.joints, std::ios::binary);
+        if (!jointFile) throw Error(o.joints + ": cannot open for writing");
+        jointFile << kJointsHeader << '\n';
+        writeJointRows(jointFile, 0, world.time(), joints);
+    }
     std::ostream& out = o.outOption->count() ? static_cast<std::ostream&>(file) : std::cout;
     out << kCsvHeader << '\n';
     writeRows(out, 0, world.time(), bodies);
@@ -139,11 +163,14 @@ int run(const RunOptions& o) {
         world.step();
         writeRows(out, step, world.time(), bodies);
         if (eventFile.is_open()) recorder.writeRows(eventFile, step, world.time(), names);
+        if (jointFile.is_open()) writeJointRows(jointFile, step, world.time(), joints);
     }
     out.flush();
     if (!out) throw Error((o.outOption->count() ? o.out : std::string("stdout")) + ": write failed");
     eventFile.flush();
     if (eventFile.is_open() && !eventFile) throw Error(o.events + ": write failed");
+    jointFile.flush();
+    if (jointFile.is_open() && !jointFile) throw Error(o.joints + ": write failed");
     return 0;
 }
 
@@ -162,6 +189,10 @@ Command addRunCommand(CLI::App& parent) {
     o->eventsOption = app->add_option("--events", o->events,
                                       "Also write collision and trigger events as CSV (step,time,phase,bodyA,bodyB; "
                                       "phase enter, stay, exit, trigger_enter or trigger_exit)");
+    o->jointsOption = app->add_option("--joints", o->joints,
+                                      "Also write every joint per step as CSV (step,time,joint,position,speed,fx,fy,fz,"
+                                      "tx,ty,tz: angle in rad or offset in m, its rate, the reaction on bodyB in N and "
+                                      "N m, world frame)");
     return {app, [o] { return run(*o); }};
 }
 

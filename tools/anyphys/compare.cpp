@@ -91,6 +91,8 @@ std::vector<std::string> missingFor(const Capabilities& caps, const WorldSetting
         if (def.type == BodyType::Dynamic && !caps.gyroscopicModes.contains(def.gyroscopic))
             note("gyroscopic " + std::string(toString(def.gyroscopic)));
     }
+    for (const SceneJoint& joint : scene.joints)
+        for (std::string item : missingJointCapabilities(caps, joint.def, settings.planar)) note(std::move(item));
     return missing;
 }
 
@@ -119,6 +121,7 @@ ComboResult runCombo(const CatalogueScene& entry, const BackendInfo& backend, In
     try {
         world = std::make_unique<World>(settings, entry.scene.materials);
         bodies = createSceneBodies(*world, entry.scene);
+        createSceneJoints(*world, entry.scene, bodies);
     } catch (const Error& e) {
         return refuse(ComboResult::Status::Unsupported, e.what());
     }

@@ -5,6 +5,8 @@
 #include "anyphys/containers/scene.hpp"
 #include "anyphys/defs.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/joint.hpp"
+#include "anyphys/joint_def.hpp"
 #include "anyphys/listeners/contact_listener.hpp"
 #include "anyphys/world.hpp"
 #include "anyphys/world_settings.hpp"

@@ -21,5 +21,9 @@ BackendInfo backendInfo(const std::string& name);
 /// Names of what `settings` (plus content needing `effects`) asks for that the backend lacks,
 /// e.g. {"integrator rk4", "effect contacts"}. Empty when everything is honoured.
 std::vector<std::string> missingCapabilities(const Capabilities& caps, const struct WorldSettings& settings, Effects effects);
+/// What a joint asks for that the backend lacks: "joint type cone", "effect joints", or the
+/// parameters it uses by name ("joint.hinge.motor"; see joint_capabilities.hpp). `planar`: the
+/// world is planar (a ball joint then runs as a hinge). Empty when everything is honoured.
+std::vector<std::string> missingJointCapabilities(const Capabilities& caps, const struct JointDef& def, bool planar);
 
 }  // namespace anyphys

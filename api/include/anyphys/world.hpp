@@ -15,6 +15,8 @@
 #include "anyphys/effects.hpp"
 #include "anyphys/error.hpp"
 #include "anyphys/ids.hpp"
+#include "anyphys/joint.hpp"
+#include "anyphys/joint_def.hpp"
 #include "anyphys/listeners/contact_listener.hpp"
 #include "anyphys/world_settings.hpp"
 
@@ -58,6 +60,8 @@ public:
 
     // ---- bodies -------------------------------------------------------------------------
     Body createBody(const BodyDef& def);
+    /// Destroys a body: first its joints (their handles become stale, no break event), then the
+    /// body (its contacts end with exit events flagged `removal`). Not while stepping.
     void destroyBody(Body body);
     bool isValid(BodyId id) const;
     /// The handle of a live body id; throws if stale.
@@ -67,6 +71,25 @@ public:
     std::size_t bodyCount() const;
     /// The first live body with that name; throws anyphys::Error if there is none.
     Body findBody(const std::string& name);
+
+    // ---- joints -------------------------------------------------------------------------
+    /// Joins def.bodyB to def.bodyA, or to the static world when bodyA is null. The def is
+    /// validated (joint_validation.hpp: the same rules and words as scene files), the bodies must
+    /// be live bodies of this world, at least one dynamic, and the backend must honour the type
+    /// and every parameter used (strict policy: throws naming them; lenient: warns once and runs
+    /// without them, or without the joint if its type is missing). Anchors and axes are world
+    /// coordinates now; every position is measured from this pose. Not while stepping.
+    Joint createJoint(const JointDef& def);
+    /// Destroys a joint, broken or not; its handles become stale. Not while stepping.
+    void destroyJoint(Joint joint);
+    bool isValid(JointId id) const;
+    /// The handle of a live joint id; throws if stale.
+    Joint joint(JointId id);
+    /// Live joints (broken ones included) in creation-slot order.
+    std::vector<Joint> joints() const;
+    std::size_t jointCount() const;
+    /// The first live joint with that name; throws anyphys::Error if there is none.
+    Joint findJoint(const std::string& name);
 
     // ---- stepping -----------------------------------------------------------------------
     /// One step of settings().timeStep.
@@ -104,6 +127,11 @@ public:
     void removeListener(ContactListener* listener);
     /// The events of the last step (also what listeners received).
     const std::vector<ContactEvent>& lastEvents() const;
+    /// The joints that broke in the last step (also what listeners received through
+    /// onJointBreak). Breaking is the layer's, the same on every backend: after each step, a
+    /// joint whose reaction force exceeds breakForce, or whose reaction torque exceeds
+    /// breakTorque, loses its constraint and stays as a broken handle.
+    const std::vector<JointEvent>& lastJointEvents() const;
 
     // ---- configuration ------------------------------------------------------------------
     const WorldSettings& settings() const { return settings_; }
@@ -125,11 +153,22 @@ public:
 
 private:
     friend class Body;
+    friend class Joint;
     struct Impl;
     struct Slot;
+    struct JointSlot;
 
     Slot& slot(BodyId id, const char* operation);
     const Slot& slot(BodyId id, const char* operation) const;
+    JointSlot& jointSlot(JointId id, const char* operation);
+    const JointSlot& jointSlot(JointId id, const char* operation) const;
+    void releaseJoint(std::uint32_t index);  // destroys a live joint slot (peer first)
+    void breakJoints();                       // after a step: breaks overloaded joints
+    void deliverJointBreaks(const std::vector<JointEvent>& events);
+    // Joint setters: whether the backend honours `field` of the joint's type (strict: throws
+    // naming it; lenient: warns and returns false), and a spring in SI for the bodies as they are.
+    bool honoursJointField(const JointSlot& joint, const char* field, const char* operation);
+    JointSpringSI jointSpringSI(const JointSlot& joint, const JointSpring& spring) const;
     void refreshEffects();
     void countBody(const BodyDef& def, int delta);  // effect-derivation counters
     void dispatchEvents();

@@ -171,11 +171,6 @@ private:
         if (p_.soft) return {p_.softness.biasRate * C, p_.softness.massScale, p_.softness.impulseScale};
         return {p_.baumgarte * p_.invH * C, 1.0, 0.0};
     }
-    // A limit row: C >= 0 is allowed; ahead of contact the row lets C close exactly this substep.
-    Bias limitBias(double C) const {
-        if (C > 0.0) return {C * p_.invH, 1.0, 0.0};
-        return rigidBias(C);
-    }
 
     // ---- rows ---------------------------------------------------------------------------------
 
@@ -195,9 +190,9 @@ private:
         }
         sum(j, acc);
     }
-    void limitRow(int slot, const Jacobian& j, double C) {
-        row(slot, j, limitBias(C), 0.0, std::numeric_limits<double>::infinity());
-    }
+    // A limit (C >= 0 allowed, impulse >= 0) joins the rigid block, so a stop holds against a
+    // long lever too (a row of its own would only stop the small body's spin).
+    void limitRow(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, true}; }
     // Drives Cdot toward `speed` with at most maxForce per second.
     void motorRow(int slot, const Jacobian& j, const JointMotor& motor) {
         const double most = motor.maxForce * p_.h;
@@ -232,18 +227,21 @@ private:
     }
     static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
 
-    // ---- the rigid rows, solved together ------------------------------------------------------
-    // Anchor points, rotation locks and sliding locks are gathered and solved as one block per
-    // pass (K = J M^-1 J^T, at most 6 x 6). Row by row, Gauss-Seidel converges slowly where a
-    // lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250), and PGS with
-    // Baumgarte then went unstable out of the hinge plane; the block is exact in one pass.
-    static constexpr int kMaxLocks = 6;
+    // ---- the rigid rows and limits, solved together ---------------------------------------------
+    // Anchor points, rotation and sliding locks, and limits are gathered and solved as one block
+    // per pass (K = J M^-1 J^T, at most 8 x 8). Row by row, Gauss-Seidel converges slowly where a
+    // lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250): PGS with
+    // Baumgarte went unstable out of a hinge's plane, and a hinge limit let the bob through.
+    // Limits push only (impulse >= 0): a limit whose impulse would pull is fixed at 0 and the
+    // rest solved again (an active set; at most one round per limit).
+    static constexpr int kMaxLocks = 8;
     struct Lock {
         Jacobian j;
         double C = 0.0;
         int slot = 0;
+        bool limit = false;  // unilateral: C >= 0, impulse >= 0
     };
-    void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot}; }
+    void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, false}; }
 
     void solveLocks() {
         const int n = lockCount_;
@@ -257,28 +255,60 @@ private:
         using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLocks, 1>;
         Block K(n, n);
         Column rhs(n), acc(n);
-        const Bias bias = rigidBias(1.0);  // per unit error
+        // Softness is the block's (uniform); the velocity bias is each row's. A limit short of
+        // its stop lets the gap close exactly this substep (speculative), as contacts do.
+        const Bias soft = rigidBias(1.0);
         for (int i = 0; i < n; ++i) {
             const Jacobian& ji = locks_[i].j;
-            // M^-1 J_i^T, then its products with every row.
             const Vec3 la = a_.invMass.cwiseProduct(ji.linA), aa = a_.invI * ji.angA;
             const Vec3 lb = b_.invMass.cwiseProduct(ji.linB), ab = b_.invI * ji.angB;
             for (int k = i; k < n; ++k) {
                 const Jacobian& jk = locks_[k].j;
                 K(k, i) = K(i, k) = jk.linA.dot(la) + jk.angA.dot(aa) + jk.linB.dot(lb) + jk.angB.dot(ab);
             }
-            rhs[i] = rate(ji, a_, b_) + bias.bias * locks_[i].C;
+            const double C = locks_[i].C;
+            const double bias = locks_[i].limit && C > 0.0 ? C * p_.invH : soft.bias * C;
+            rhs[i] = rate(ji, a_, b_) + bias;
             acc[i] = joint_.impulse[locks_[i].slot];
         }
-        // K is positive semi-definite; a row no body can answer (a planar body's tilt) has a zero
-        // pivot, which LDLT's solve leaves at 0.
-        const Column delta = -bias.massScale * K.ldlt().solve(rhs) - bias.impulseScale * acc;
+        // Solve K (delta + t acc) = -s rhs over the free rows, with fixed rows' deltas moved to
+        // the right-hand side. A row no body can answer (a planar body's tilt or lift) has no
+        // diagonal: it is left out, at 0, rather than divided by a rounding residue.
+        Column delta = Column::Zero(n);
+        std::array<bool, kMaxLocks> fixed{};
+        const double largest = K.diagonal().maxCoeff();
+        for (int i = 0; i < n; ++i) fixed[i] = !(K(i, i) > 1e-12 * largest);
+        for (int round = 0; round <= n; ++round) {
+            int free[kMaxLocks], m = 0;
+            for (int i = 0; i < n; ++i)
+                if (!fixed[i]) free[m++] = i;
+            if (m == 0) break;
+            Block Kf(m, m);
+            Column r(m);
+            for (int a = 0; a < m; ++a) {
+                r[a] = -soft.massScale * rhs[free[a]];
+                for (int i = 0; i < n; ++i)
+                    if (fixed[i]) r[a] -= K(free[a], i) * (delta[i] + soft.impulseScale * acc[i]);
+                for (int b = 0; b < m; ++b) Kf(a, b) = K(free[a], free[b]);
+            }
+            const Column y = Kf.ldlt().solve(r);
+            bool clamped = false;
+            for (int a = 0; a < m; ++a) {
+                const int i = free[a];
+                delta[i] = std::isfinite(y[a]) ? y[a] - soft.impulseScale * acc[i] : 0.0;
+                if (locks_[i].limit && acc[i] + delta[i] < 0.0) {
+                    delta[i] = -acc[i];  // released: no pull
+                    fixed[i] = true;
+                    clamped = true;
+                }
+            }
+            if (!clamped) break;
+        }
         for (int i = 0; i < n; ++i) {
-            if (!std::isfinite(delta[i])) continue;
             apply(locks_[i].j, delta[i], a_, b_);
             joint_.impulse[locks_[i].slot] += delta[i];
+            sum(locks_[i].j, joint_.impulse[locks_[i].slot]);
         }
-        for (int i = 0; i < n; ++i) sum(locks_[i].j, joint_.impulse[locks_[i].slot]);
     }
 
     // Anchor coincidence: B's anchor on A's, along the world axes.

@@ -1,19 +1,29 @@
 #pragma once
-// A scene: settings, materials and bodies, as loaded from or saved to a JSON file.
+// A scene: settings, materials, bodies and joints, as loaded from or saved to a JSON file.
 #include <string>
 #include <vector>
 
 #include "anyphys/containers/material_library.hpp"
 #include "anyphys/defs.hpp"
+#include "anyphys/joint_def.hpp"
 #include "anyphys/world_settings.hpp"
 
 namespace anyphys {
+
+/// A joint of a scene: its def (with null body handles) and its bodies by name.
+struct SceneJoint {
+    JointDef def;
+    std::string bodyA;  ///< "" (written as omitted): the joint holds bodyB to the static world
+    std::string bodyB;
+};
 
 struct Scene {
     WorldSettings settings;
     MaterialLibrary materials;
     std::vector<BodyDef> bodies;  ///< each with a unique, non-empty name
+    std::vector<SceneJoint> joints;  ///< created after the bodies, in this order
 };
+
 
 /// Parses scene JSON text. Throws anyphys::Error whose message names the JSON path, the value
 /// and the rule, e.g. "bodies[3].shape.radius: must be > 0, got -1".

@@ -1,6 +1,7 @@
 #pragma once
 // Listener interface. Events are delivered after World::step returns its physics work, on the
-// caller's thread; a listener may create and destroy bodies from inside a callback.
+// caller's thread; a listener may create and destroy bodies (and joints) from inside a callback.
+// Per step: the contact and trigger events first, then the joints that broke.
 #include "anyphys/listeners/events.hpp"
 
 namespace anyphys {
@@ -13,6 +14,8 @@ public:
     virtual void onCollisionExit(const ContactEvent&) {}
     virtual void onTriggerEnter(const ContactEvent&) {}
     virtual void onTriggerExit(const ContactEvent&) {}
+    /// A joint broke in the last step (JointDef::breakForce / breakTorque exceeded).
+    virtual void onJointBreak(const JointEvent&) {}
 };
 
 }  // namespace anyphys

@@ -1,6 +1,7 @@
 #pragma once
 // Collision and trigger events: the same meaning on every backend.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "anyphys/ids.hpp"
@@ -50,6 +51,15 @@ struct TouchingRange {
     Vec3 normal = Vec3::Zero();   ///< from A to B
     std::uint32_t firstPoint = 0; ///< points [firstPoint, firstPoint + pointCount) of the shared array
     std::uint32_t pointCount = 0;
+};
+
+/// A joint broke: after a step, its reaction force or torque exceeded JointDef::breakForce or
+/// breakTorque. The joint's handle stays valid (Joint::isBroken); its constraint is gone.
+struct JointEvent {
+    JointId joint;
+    std::string name;             ///< the joint's name (JointDef::name), "" when it has none
+    Vec3 force = Vec3::Zero();    ///< N, world frame: the reaction on bodyB over the step it broke in
+    Vec3 torque = Vec3::Zero();   ///< N m, world frame, about B's anchor
 };
 
 }  // namespace anyphys
