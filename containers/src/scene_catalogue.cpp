@@ -427,6 +427,205 @@ CatalogueScene boxGrid1000Planar() {
     return c;
 }
 
+// ---- joint scenes --------------------------------------------------------------------------------
+
+/// Period of an oscillation: the mean time between downward crossings of `level` by one
+/// coordinate of one body (interpolated within the step). 0 until two crossings were seen.
+class PeriodProbe : public SceneProbe {
+public:
+    PeriodProbe(std::size_t body, int axis, double level) : body_(body), axis_(axis), level_(level) {}
+    void observe(double time, const std::vector<BodyState>& states) override {
+        const double x = states.at(body_).position[axis_] - level_;
+        if (previousTime_ >= 0.0 && previous_ > 0.0 && x <= 0.0) {
+            const double crossing = previousTime_ + (time - previousTime_) * previous_ / (previous_ - x);
+            if (count_ == 0) first_ = crossing;
+            last_ = crossing;
+            ++count_;
+        }
+        if (!std::isfinite(x)) broken_ = true;
+        previous_ = x;
+        previousTime_ = time;
+    }
+    double value() const override {
+        if (broken_) return std::numeric_limits<double>::quiet_NaN();
+        return count_ > 1 ? (last_ - first_) / (count_ - 1) : 0.0;
+    }
+
+private:
+    std::size_t body_;
+    int axis_;
+    double level_;
+    double previous_ = 0.0, previousTime_ = -1.0, first_ = 0.0, last_ = 0.0;
+    int count_ = 0;
+    bool broken_ = false;
+};
+
+/// Largest |distance - spacing| between consecutive bodies of a chain hung from `anchor`, over
+/// the whole run: how far the joints let the links apart (or together).
+class ChainGapProbe : public SceneProbe {
+public:
+    ChainGapProbe(std::vector<std::size_t> links, Vec3 anchor, double spacing)
+        : links_(std::move(links)), anchor_(anchor), spacing_(spacing) {}
+    void observe(double, const std::vector<BodyState>& states) override {
+        Vec3 previous = anchor_;
+        for (std::size_t i : links_) {
+            const double gap = std::abs((states.at(i).position - previous).norm() - spacing_);
+            if (!(gap <= worst_)) worst_ = gap;  // keeps a NaN visible
+            previous = states.at(i).position;
+        }
+    }
+    double value() const override { return worst_; }
+
+private:
+    std::vector<std::size_t> links_;
+    Vec3 anchor_;
+    double spacing_;
+    double worst_ = 0.0;
+};
+
+double ellipticK(double k) {  // complete elliptic integral of the first kind (AGM)
+    double a = 1.0, b = std::sqrt(1.0 - k * k);
+    for (int i = 0; i < 30; ++i) {
+        const double next = 0.5 * (a + b);
+        b = std::sqrt(a * b);
+        a = next;
+    }
+    return std::numbers::pi / (2.0 * a);
+}
+
+CatalogueScene hingePendulum() {
+    constexpr double kLength = 1.0, kRadius = 0.1, kAmplitude = 1.0, kG = 9.81;
+    const double inertia = 0.4 * kRadius * kRadius;  // a 1 kg ball
+    const double period = 4.0 * std::sqrt((inertia + kLength * kLength) / kLength / kG) * ellipticK(std::sin(0.5 * kAmplitude));
+    CatalogueScene c;
+    c.name = "hinge_pendulum";
+    c.description = "1 m pendulum (1 kg ball, r 0.1 m) on a hinge about Z, released at 1 rad: period "
+                    "4 sqrt(L'/g) K(sin(theta0/2)) = 2.143 s for the physical pendulum";
+    c.duration = 10.0 * period;
+    BodyDef bob = sphereBody("bob", kRadius, 1.0);
+    bob.position = Vec3(kLength * std::sin(kAmplitude), -kLength * std::cos(kAmplitude), 0.0);
+    bob.allowSleep = false;
+    c.scene.bodies.push_back(bob);
+    SceneJoint pivot;
+    pivot.def.name = "pivot";
+    pivot.def.type = JointType::Hinge;
+    pivot.def.axis = Vec3::UnitZ();
+    pivot.bodyB = "bob";
+    c.scene.joints.push_back(pivot);
+    c.conservesEnergy = true;
+    SceneCheck check{"period", "s", period, 0.01 * period,
+                     "1 %: a 60 Hz step resolves the swing in 128 steps; a stretching or slipping joint would not stay inside",
+                     {}, "joints.pendulum_period"};
+    check.makeProbe = [] { return std::make_unique<PeriodProbe>(0, 0, 0.0); };
+    c.check = check;
+    return c;
+}
+
+CatalogueScene hangingChain() {
+    constexpr int kLinks = 40;
+    constexpr double kSpacing = 0.1, kLinkMass = 0.1, kEndMass = 1.0;  // end mass 10x a link
+    CatalogueScene c;
+    c.name = "chain_40";
+    c.description = "40 ball-jointed links (0.1 kg, 10 cm apart) with a 1 kg end mass (10x a link), released "
+                    "horizontal: largest joint gap over the run";
+    c.duration = 5.0;
+    std::vector<std::size_t> links;
+    for (int i = 0; i < kLinks; ++i) {
+        const bool end = i + 1 == kLinks;
+        BodyDef link = sphereBody("link_" + std::to_string(i), 0.03, end ? kEndMass : kLinkMass);
+        link.position = Vec3(kSpacing * (i + 1), 0.0, 0.0);
+        link.allowSleep = false;
+        link.mask = 0;  // links pass through each other: the joints are measured, not the contacts
+        c.scene.bodies.push_back(link);
+        links.push_back(static_cast<std::size_t>(i));
+        SceneJoint joint;
+        joint.def.type = JointType::Ball;
+        joint.def.anchor = Vec3(kSpacing * i, 0.0, 0.0);
+        joint.bodyA = i == 0 ? "" : "link_" + std::to_string(i - 1);
+        joint.bodyB = link.name;
+        c.scene.joints.push_back(joint);
+    }
+    SceneCheck check{"max joint gap", "m", 0.0, 0.02,
+                     "2 cm, a fifth of a link: stretched but holding; iterative solvers stretch on heavy ends",
+                     {}, "joints.chain_gap"};
+    check.makeProbe = [links, spacing = kSpacing] { return std::make_unique<ChainGapProbe>(links, Vec3::Zero(), spacing); };
+    c.check = check;
+    return c;
+}
+
+CatalogueScene motorSpinUp() {
+    constexpr double kMass = 2.0, kRadius = 0.5, kTorque = 1.0, kTarget = 5.0;
+    const double inertia = 0.4 * kMass * kRadius * kRadius;  // 0.2 kg m^2: t* = I w / tau = 1 s
+    CatalogueScene c;
+    c.name = "motor_spinup";
+    c.description = "a flywheel (2 kg ball, r 0.5 m) on a hinge motor (5 rad/s, 1 N m), no gravity: w = tau t / I "
+                    "until t* = 1 s, then 5 rad/s";
+    c.duration = 2.0;
+    c.scene.settings.gravity = Vec3::Zero();
+    BodyDef wheel = sphereBody("wheel", kRadius, kMass);
+    wheel.allowSleep = false;
+    c.scene.bodies.push_back(wheel);
+    SceneJoint motor;
+    motor.def.name = "motor";
+    motor.def.type = JointType::Hinge;
+    motor.def.axis = Vec3::UnitZ();
+    motor.def.motor = JointMotor{kTarget, kTorque};
+    motor.bodyB = "wheel";
+    c.scene.joints.push_back(motor);
+    c.reference = [inertia, torque = kTorque, target = kTarget](const std::string& body, double t) -> std::optional<BodyState> {
+        if (body != "wheel") return std::nullopt;
+        BodyState s;  // the centre stays put; the spin is what the check measures
+        s.angularVelocity = Vec3(0, 0, std::min(torque * t / inertia, target));
+        return s;
+    };
+    c.check = endpointCheck({"final spin", "rad/s", kTarget, 0.01 * kTarget,
+                             "1 %: the motor holds its target speed once reached", {}, "joints.motor_speed"},
+                            [](const std::vector<BodyState>&, const std::vector<BodyState>& last, double) {
+                                return last[0].angularVelocity.z();
+                            });
+    return c;
+}
+
+CatalogueScene sliderSpring() {
+    constexpr double kStiffness = 40.0, kMass = 2.0, kSpeed = 0.5;
+    const double omega = std::sqrt(kStiffness / kMass);
+    CatalogueScene c;
+    c.name = "slider_spring";
+    c.description = "2 kg on a slider along X with a 40 N/m spring, started at 0.5 m/s, no gravity: "
+                    "x = (v0 / w) sin(w t), period 2 pi sqrt(m / k) = 1.405 s";
+    c.duration = 10.0;
+    c.scene.settings.gravity = Vec3::Zero();
+    BodyDef mass;
+    mass.name = "mass";
+    mass.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
+    mass.mass = kMass;
+    mass.linearVelocity = Vec3(kSpeed, 0, 0);
+    mass.allowSleep = false;
+    c.scene.bodies.push_back(mass);
+    SceneJoint slider;
+    slider.def.name = "rail";
+    slider.def.type = JointType::Slider;
+    slider.def.axis = Vec3::UnitX();
+    slider.def.spring = JointSpring{kStiffness, 0.0};
+    slider.bodyB = "mass";
+    c.scene.joints.push_back(slider);
+    c.reference = [omega](const std::string& body, double t) -> std::optional<BodyState> {
+        if (body != "mass") return std::nullopt;
+        BodyState s;
+        s.position = Vec3(kSpeed / omega * std::sin(omega * t), 0, 0);
+        s.linearVelocity = Vec3(kSpeed * std::cos(omega * t), 0, 0);
+        return s;
+    };
+    c.conservesEnergy = false;  // the spring's energy is not in the bodies' mechanical energy
+    const double period = 2.0 * std::numbers::pi / omega;
+    SceneCheck check{"period", "s", period, 0.01 * period,
+                     "1 %: (w dt)^2 = 3e-3 at 60 Hz bounds an explicit or implicit spring's period error", {},
+                     "joints.spring_period"};
+    check.makeProbe = [] { return std::make_unique<PeriodProbe>(0, 0, 0.0); };
+    c.check = check;
+    return c;
+}
+
 std::vector<CatalogueScene> buildCatalogue() {
     std::vector<CatalogueScene> all;
     all.push_back(projectile());
@@ -446,6 +645,10 @@ std::vector<CatalogueScene> buildCatalogue() {
     all.push_back(planar(boxStack10()));
     all.push_back(planar(pyramid20()));
     all.push_back(boxGrid1000Planar());
+    all.push_back(hingePendulum());
+    all.push_back(hangingChain());
+    all.push_back(motorSpinUp());
+    all.push_back(sliderSpring());
     return all;
 }
 
