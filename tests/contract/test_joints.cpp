@@ -82,7 +82,7 @@ protected:
 
     // A pendulum of length 1 m (a 1 kg ball of radius 0.1 m) released from `amplitude` about +Z
     // on a hinge or a ball joint: period against 4 sqrt(L'/g) K(sin(theta0/2)), L' = (I + m L^2)
-    // / (m L) for the physical pendulum; the gap and energy over 10 periods.
+    // / (m L) for the physical pendulum; the gap and energy over 20 periods.
     void pendulum(JointType type) {
         for (double amplitude : {0.3, 1.5}) {
             World world(jointSettings());
@@ -97,7 +97,7 @@ protected:
             Joint joint = world.createJoint(d);
             const double I = 0.4 * r * r;
             const double exact = 4.0 * std::sqrt((I + L * L) / L / kG) * ellipticK(std::sin(0.5 * amplitude));
-            const Swing s = swing(world, bob, L, 10.0 * exact);
+            const Swing s = swing(world, bob, L, 20.0 * exact);
             std::cout << "[ MEASURED ] " << backend() << " " << toString(type) << " pendulum, amplitude " << amplitude
                       << ": period " << s.period << " s (exact " << exact << "), max gap " << s.maxGap * 1e3
                       << " mm, energy drift " << 100.0 * s.energyDrift << " %\n";
@@ -107,7 +107,7 @@ protected:
             EXPECT_NEAR(s.period, exact, 0.01 * exact) << "amplitude " << amplitude;
             // 2 cm: the anchor is held (soft constraints sag by millimetres under the swing's tension).
             EXPECT_LT(s.maxGap, 0.02) << "amplitude " << amplitude;
-            // Energy within 10 % over 10 periods: engines that damp joints lose some; a joint that
+            // Energy within 10 % over 20 periods: engines that damp joints lose some; a joint that
             // pumped energy or dropped the bob would not stay inside.
             EXPECT_LT(s.energyDrift, 0.10) << "amplitude " << amplitude;
             EXPECT_TRUE(joint.isValid());
@@ -290,6 +290,142 @@ TEST_P(JointTest, DistanceRodAndRope) {
     }
 }
 
+// A conical pendulum on a ball joint: a bob (near a point mass) on a 1 m arm at 30 deg from the
+// vertical, circling at w^2 = g / (L cos a), keeps its cone angle and its period over 10 s.
+TEST_P(JointTest, ConicalPendulumKeepsItsCone) {
+    ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
+    World world(jointSettings());
+    const double L = 1.0, alpha = kPi / 6.0;
+    const double w = std::sqrt(kG / (L * std::cos(alpha)));
+    const Vec3 start(L * std::sin(alpha), -L * std::cos(alpha), 0.0);
+    Body bob = ball(world, start, 1.0, 0.02);  // I / (m L^2) = 1.6e-4: a point mass to that order
+    // The whole rigid pendulum turns about the vertical: the bob's spin matches its orbit.
+    bob.setAngularVelocity(Vec3(0, w, 0));
+    bob.setLinearVelocity(Vec3(0, w, 0).cross(start));
+    JointDef d;
+    d.type = JointType::Ball;
+    d.bodyB = bob;
+    world.createJoint(d);
+    double worstAngle = 0.0;
+    while (world.time() < 10.0) {
+        world.step();
+        const Vec3 p = bob.position();
+        worstAngle = std::max(worstAngle, std::abs(std::atan2(std::hypot(p.x(), p.z()), -p.y()) - alpha));
+    }
+    // Where it is after 10 s: the orbit's phase against w t.
+    const Vec3 p = bob.position();
+    const double phase = std::atan2(-p.z(), p.x());  // turning +Y carries +X toward -Z
+    const double expected = std::remainder(w * world.time(), 2.0 * kPi);
+    const double phaseError = std::abs(std::remainder(phase - expected, 2.0 * kPi));
+    std::cout << "[ MEASURED ] " << backend() << " conical pendulum: worst cone angle error " << worstAngle
+              << " rad, phase error after 10 s " << phaseError << " rad\n";
+    // 0.02 rad of cone angle (1 deg) and 0.1 rad of phase after 34 turns (0.05 %): a first-order
+    // step keeps a circular orbit to that; a drifting or damping joint would open or close it.
+    EXPECT_LT(worstAngle, 0.02);
+    EXPECT_LT(phaseError, 0.1);
+}
+
+// A double pendulum (two 1 kg bobs, 1 m arms, hinges about Z) started in each small-amplitude
+// normal mode, theta2 = +-sqrt(2) theta1: periods 2 pi / w with w^2 = (g / L)(2 -+ sqrt(2)).
+TEST_P(JointTest, DoublePendulumNormalModes) {
+    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+    for (double sign : {1.0, -1.0}) {
+        World world(jointSettings());
+        const double L = 1.0, theta1 = 0.05, theta2 = sign * std::sqrt(2.0) * theta1;
+        const Vec3 p1(L * std::sin(theta1), -L * std::cos(theta1), 0.0);
+        const Vec3 p2 = p1 + Vec3(L * std::sin(theta2), -L * std::cos(theta2), 0.0);
+        Body upper = ball(world, p1, 1.0, 0.02);
+        Body lower = ball(world, p2, 1.0, 0.02);
+        JointDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = upper;
+        world.createJoint(d);
+        d.bodyA = upper;
+        d.bodyB = lower;
+        d.anchor = p1;
+        world.createJoint(d);
+        const double w = std::sqrt(kG / L * (2.0 - sign * std::sqrt(2.0)));
+        const double exact = 2.0 * kPi / w;
+        Swing s = swing(world, upper, L, 20.0);
+        std::cout << "[ MEASURED ] " << backend() << " double pendulum mode " << (sign > 0 ? "slow" : "fast")
+                  << ": period " << s.period << " s (exact " << exact << ")\n";
+        // 1 %: the modes' small-amplitude form is exact to theta^2 / 16 ~ 2e-4 here; a joint that
+        // stretched or coupled the modes wrongly would shift the period by more.
+        EXPECT_NEAR(s.period, exact, 0.01 * exact) << (sign > 0 ? "slow" : "fast") << " mode";
+    }
+}
+
+// A hinge motor at zero speed holds a horizontal arm (a 1 m, 1 kg bar pinned at one end: 4.9 N m
+// of load) when its torque suffices (10 N m) and lets it fall when it does not (2 N m).
+TEST_P(JointTest, MotorHoldsALoadItCanCarry) {
+    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+    ANYPHYS_REQUIRE(hasParameter("joint.hinge.motor"), "joint.hinge.motor");
+    for (double torque : {10.0, 2.0}) {
+        World world(jointSettings());
+        BodyDef bar;
+        bar.shape = ShapeDef::box(Vec3(0.5, 0.05, 0.05));
+        bar.mass = 1.0;
+        bar.position = Vec3(0.5, 0, 0);
+        bar.allowSleep = false;
+        Body arm = world.createBody(bar);
+        JointDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = arm;
+        d.motor = JointMotor{0.0, torque};
+        Joint joint = world.createJoint(d);
+        double lowest = 0.0;
+        for (int i = 0; i < 120; ++i) {
+            world.step();
+            lowest = std::min(lowest, joint.position());
+        }
+        std::cout << "[ MEASURED ] " << backend() << " motor " << torque << " N m holding 4.9 N m: lowest angle "
+                  << lowest << " rad\n";
+        if (torque > 4.905)
+            EXPECT_GT(lowest, -0.01);  // a motor at speed 0 yields nothing but a step's sag
+        else
+            EXPECT_LT(lowest, -0.5);  // (4.9 - 2) N m net on I = 1/3 kg m^2: past half a radian in 2 s
+    }
+}
+
+// A slider down a frictionless 30 deg incline (gravity along the axis: g sin 30 = 4.905 m/s^2)
+// reaches its 1 m limit at t* = sqrt(2 / 4.905) = 0.639 s at v = 3.13 m/s, and stops there.
+TEST_P(JointTest, SliderOnInclineStopsAtItsLimit) {
+    ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
+    ANYPHYS_REQUIRE(hasParameter("joint.slider.limits"), "joint.slider.limits");
+    World world(jointSettings());
+    BodyDef bd;
+    bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
+    bd.mass = 1.0;
+    bd.allowSleep = false;
+    Body body = world.createBody(bd);
+    JointDef d;
+    d.type = JointType::Slider;
+    d.bodyB = body;
+    d.axis = Vec3(std::cos(kPi / 6.0), -std::sin(kPi / 6.0), 0.0);  // downhill
+    d.limits = JointLimits{-1.0, 1.0};
+    Joint joint = world.createJoint(d);
+    const double a = kG * 0.5, tStar = std::sqrt(2.0 / a), vStar = std::sqrt(2.0 * a);
+    double tStop = -1.0, vBefore = 0.0, deepest = 0.0;
+    while (world.time() < 1.5) {
+        const double v = joint.speed();
+        world.step();
+        if (tStop < 0.0 && joint.position() >= 0.999) {
+            tStop = world.time();
+            vBefore = v;
+        }
+        deepest = std::max(deepest, joint.position());
+    }
+    std::cout << "[ MEASURED ] " << backend() << " slider on incline: stop at " << tStop << " s (exact " << tStar
+              << "), speed before " << vBefore << " m/s (exact " << vStar << "), past the limit "
+              << (deepest - 1.0) * 1e3 << " mm\n";
+    const double dt = world.settings().timeStep;
+    EXPECT_NEAR(tStop, tStar, dt);              // within the step it happens in
+    EXPECT_NEAR(vBefore, vStar, 0.1 * vStar);   // sampled up to a step before: a dt of 4.9 m/s^2 (3 %)
+    EXPECT_LT(deepest - 1.0, 0.01);             // 1 cm past the stop at most
+    EXPECT_NEAR(joint.position(), 1.0, 0.005);  // and it rests on it
+    EXPECT_NEAR(joint.speed(), 0.0, 0.02);
+}
+
 // A joint breaks at its stated force, not below: a 2 kg body (load 19.6 N) hangs from a joint
 // rated 25 N, and from one rated 15 N that breaks, telling listeners and the handle.
 TEST_P(JointTest, BreaksAboveItsForceOnly) {
@@ -363,23 +499,24 @@ TEST_P(JointTest, FixedJointHoldsTheRelativePose) {
     EXPECT_LT(worstTurn, 0.02);
 }
 
-// A hanging chain of 20 links (0.1 kg, 10 cm apart) with an end mass 10x a link, held by ball
-// joints: the largest gap between joined anchors over 5 s, per backend and solver. Long chains
-// with heavy ends are where iterative solvers stretch.
+// A hanging chain of 40 links (0.1 kg, 10 cm apart) with an end mass 10x and 100x a link, held
+// by ball joints, released horizontal: the largest gap between joined anchors over 5 s, per
+// backend and solver. Long chains with heavy ends are where iterative solvers stretch.
 TEST_P(JointTest, HangingChainHoldsTogether) {
     ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
-    for (Solver solver : caps().solvers) {
+    for (Solver solver : caps().solvers)
+    for (double endRatio : {10.0, 100.0}) {
         WorldSettings s = jointSettings();
         s.solver = solver;
         World world(s);
-        const int links = 20;
+        const int links = 40;
         const double spacing = 0.1;
         std::vector<Body> bodies;
         Body previous;
         for (int i = 0; i < links; ++i) {
             const bool end = i + 1 == links;
             // Started off-vertical so the chain swings.
-            Body link = ball(world, Vec3(spacing * (i + 1), 0, 0), end ? 1.0 : 0.1, 0.03);
+            Body link = ball(world, Vec3(spacing * (i + 1), 0, 0), end ? 0.1 * endRatio : 0.1, 0.03);
             JointDef d;
             d.type = JointType::Ball;
             d.bodyA = previous;
@@ -398,12 +535,13 @@ TEST_P(JointTest, HangingChainHoldsTogether) {
                 last = b.position();
             }
         }
-        std::cout << "[ MEASURED ] " << backend() << " " << toString(solver) << " chain of 20, end 10x: worst gap "
-                  << worst * 1e3 << " mm\n";
-        // The backend's default solver: 2 cm (a fifth of a link), stretched but not torn. Other
-        // solvers (one substep of PGS) stretch more, as iterative solvers do on heavy ends
-        // (native PGS: 41 mm): 6 cm, the figure printed per solver.
-        EXPECT_LT(worst, solver == caps().defaultSolver ? 0.02 : 0.06) << toString(solver);
+        std::cout << "[ MEASURED ] " << backend() << " " << toString(solver) << " chain of 40, end " << endRatio
+                  << "x: worst gap " << worst * 1e3 << " mm\n";
+        // Stretched but not torn: a link's length (10 cm) at the default solver, 10x end; the
+        // figure is printed per solver and ratio, since iterative solvers (one substep of PGS)
+        // and a 100x end stretch further; for those, two links' length.
+        const bool hard = solver != caps().defaultSolver || endRatio > 10.0;
+        EXPECT_LT(worst, hard ? 0.2 : 0.1) << toString(solver) << ", end " << endRatio << "x";
     }
 }
 
