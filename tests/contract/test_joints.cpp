@@ -1,9 +1,11 @@
 // Joints on every backend that declares them: closed forms measured over the whole run, with
 // sleeping off. A backend without a joint type or parameter skips the test by capability.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
 
+#include "anyphys/joint_capabilities.hpp"
 #include "contract_fixture.hpp"
 
 namespace anyphys::test {
@@ -32,6 +34,20 @@ protected:
         WorldSettings s = settings();
         if (!gravity) s.gravity = Vec3::Zero();
         return s;
+    }
+
+    // Every "joint.*" parameter and joint type a backend declares is one the layer knows.
+    void checkDeclaredNames() const {
+        const auto known = allJointParameters();
+        for (const std::string& p : caps().parameters) {
+            if (p.starts_with("joint.")) {
+                EXPECT_NE(std::find(known.begin(), known.end(), p), known.end()) << "unknown joint parameter " << p;
+            }
+        }
+        for (const std::string& type : caps().jointTypes) {
+            EXPECT_TRUE(fromString<JointType>(type).has_value()) << "unknown joint type " << type;
+            EXPECT_TRUE(caps().effects.has(Effect::Joints)) << "joint types declared without the joints effect";
+        }
     }
 
     // A ball of radius r, never sleeping, at `at`.
@@ -612,6 +628,62 @@ TEST_P(JointTest, HandlesAndValidation) {
     EXPECT_LT(a.position().y(), -1.0);  // free now: falls
 }
 
+// What a backend declares of joints is spelled as the layer names it, so the layer's checks
+// (and `anyphys backends`) mean what they say.
+TEST_P(JointTest, DeclaredJointCapabilitiesUseTheLayersNames) { checkDeclaredNames(); }
+
+// A joint type or field the backend lacks: strict refuses naming the joint and what is missing,
+// and changes nothing; lenient warns once and runs without it.
+TEST_P(JointTest, StrictRefusesAndLenientWarnsForWhatIsMissing) {
+    // The first type this backend lacks, else the first parameter of a type it has.
+    std::optional<JointDef> lacking;
+    std::string missing;
+    JointDef probe;
+    probe.anchor = Vec3::Zero();
+    for (const auto& [type, name] : EnumNames<JointType>::values) {
+        if (!caps().jointTypes.contains(std::string(name))) {
+            probe.type = type;
+            if (type == JointType::Distance) probe.anchorB = Vec3(0, -1, 0);
+            lacking = probe;
+            missing = "joint type " + std::string(name);
+            break;
+        }
+    }
+    if (!lacking && !hasParameter("joint.hinge.spring")) {
+        probe.type = JointType::Hinge;
+        probe.spring = JointSpring{10.0, 0.0};
+        lacking = probe;
+        missing = "joint.hinge.spring";
+    }
+    if (!lacking) GTEST_SKIP() << "backend " << backend() << " declares every joint type and the hinge spring";
+    for (CapabilityPolicy policy : {CapabilityPolicy::Strict, CapabilityPolicy::Lenient}) {
+        WorldSettings s = jointSettings();
+        s.capabilityPolicy = policy;
+        World world(s);
+        std::vector<std::string> warnings;
+        world.setWarningHandler([&warnings](const std::string& w) { warnings.push_back(w); });
+        JointDef d = *lacking;
+        d.name = "probe";
+        d.bodyB = ball(world, Vec3(0, -1, 0), 1.0, 0.1);
+        if (policy == CapabilityPolicy::Strict) {
+            try {
+                world.createJoint(d);
+                ADD_FAILURE() << "strict policy accepted a missing " << missing;
+            } catch (const Error& e) {
+                EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+                EXPECT_NE(std::string(e.what()).find("probe"), std::string::npos) << e.what();
+            }
+            EXPECT_EQ(world.jointCount(), 0u);
+        } else {
+            Joint joint = world.createJoint(d);
+            EXPECT_TRUE(joint.isValid());
+            ASSERT_EQ(warnings.size(), 1u);
+            EXPECT_NE(warnings[0].find(missing), std::string::npos) << warnings[0];
+        }
+        world.step();  // the world stays usable either way
+    }
+}
+
 ANYPHYS_CONTRACT_SUITE(JointTest);
 
 // The planar versions: a hinge about Z in a planar world (Box2D's revolute joint).
@@ -636,6 +708,8 @@ TEST_P(PlanarJointTest, HangingBodyReactionIsItsWeight) {
     for (int i = 0; i < 120; ++i) world.step();
     EXPECT_NEAR(joint.reactionForce().y(), 3.0 * kG, 0.01 * 3.0 * kG);
 }
+
+TEST_P(PlanarJointTest, DeclaredJointCapabilitiesUseTheLayersNames) { checkDeclaredNames(); }
 
 ANYPHYS_CONTRACT_SUITE(PlanarJointTest);
 

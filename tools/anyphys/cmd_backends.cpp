@@ -1,5 +1,6 @@
 // `anyphys backends [--json]`: every built backend and what it honours.
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -46,6 +47,22 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
 
 std::string orNone(const std::vector<std::string>& items) { return items.empty() ? "-" : join(items); }
 
+/// The joint fields honoured per type, "hinge: limits, motor; slider: ..." from the
+/// "joint.<type>.<field>" parameters; the other parameters are returned in `rest`.
+std::string jointFieldsByType(const Capabilities& c, std::vector<std::string>& rest) {
+    std::map<std::string, std::vector<std::string>> byType;
+    for (const std::string& p : c.parameters) {
+        const auto dot = p.find('.', 6);
+        if (p.starts_with("joint.") && dot != std::string::npos)
+            byType[p.substr(6, dot - 6)].push_back(p.substr(dot + 1));
+        else
+            rest.push_back(p);
+    }
+    std::string out;
+    for (const auto& [type, fields] : byType) out += (out.empty() ? "" : "; ") + type + ": " + join(fields);
+    return out.empty() ? "-" : out;
+}
+
 
 void printText(const std::vector<BackendInfo>& backends) {
     for (const BackendInfo& b : backends) {
@@ -65,7 +82,10 @@ void printText(const std::vector<BackendInfo>& backends) {
                            " iterations)");
         row("gyroscopic modes", orNone(enumNames(c.gyroscopicModes)));
         row("force evaluation", std::string(forceEvaluationName(c.forceEvaluation)));
-        row("parameters", orNone({c.parameters.begin(), c.parameters.end()}));
+        std::vector<std::string> parameters;
+        const std::string jointFields = jointFieldsByType(c, parameters);
+        row("joint fields", jointFields);
+        row("parameters", orNone(parameters));
         std::vector<std::string> options;
         for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
         row("options", orNone(options));
