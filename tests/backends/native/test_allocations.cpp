@@ -79,6 +79,27 @@ void buildPile(World& world) {
         round.position = {x, 0.3, z - 12.0};
         world.createBody(round);
     }
+    // A chain hanging at rest beside the pile (hinge, ball, slider with a spring): the joint
+    // stages run every step too.
+    BodyDef link;
+    link.shape = ShapeDef::sphere(0.1);
+    Body previous;
+    const JointType types[] = {JointType::Hinge, JointType::Ball, JointType::Slider};
+    for (int i = 0; i < 3; ++i) {
+        link.position = {20, 5.0 - 0.5 * (i + 1), 0};
+        Body body = world.createBody(link);
+        JointDef j;
+        j.type = types[i];
+        j.bodyA = previous;
+        j.bodyB = body;
+        j.anchor = {20, 5.0 - 0.5 * i, 0};
+        if (j.type == JointType::Slider) {
+            j.axis = Vec3::UnitY();
+            j.spring = JointSpring{100.0, 5.0};
+        }
+        world.createJoint(j);
+        previous = body;
+    }
 }
 
 // Steps `world` `steps` times and returns how many allocations the steps made.
@@ -90,11 +111,11 @@ long allocationsDuring(World& world, int steps) {
     return allocations;
 }
 
-// A pile of boxes and spheres with everything a pile uses except events (the layer's).
+// A pile of boxes and spheres, and a chain, with everything they use except events (the layer's).
 std::unique_ptr<World> pileWorld(int workers, bool sleeping) {
     WorldSettings settings;
     settings.workers = workers;
-    settings.effects = Effect::Gravity | Effect::Contacts | Effect::Friction | Effect::ContinuousCollision;
+    settings.effects = Effect::Gravity | Effect::Contacts | Effect::Friction | Effect::ContinuousCollision | Effect::Joints;
     if (sleeping) settings.effects->add(Effect::Sleeping);
     auto world = std::make_unique<World>(settings);
     buildPile(*world);
