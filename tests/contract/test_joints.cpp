@@ -442,6 +442,95 @@ TEST_P(JointTest, SliderOnInclineStopsAtItsLimit) {
     EXPECT_NEAR(joint.speed(), 0.0, 0.02);
 }
 
+// A cone joint (swing limit 0.5 rad about -Y, the hanging direction) holds a bob that is swung
+// hard sideways: the swing never passes the cone; twist limits hold a spin about the axis.
+TEST_P(JointTest, ConeLimitsHoldSwingAndTwist) {
+    ANYPHYS_REQUIRE(hasJoint("cone"), "joint type cone");
+    ANYPHYS_REQUIRE(hasParameter("joint.cone.swingLimit"), "joint.cone.swingLimit");
+    ANYPHYS_REQUIRE(hasParameter("joint.cone.twistLimits"), "joint.cone.twistLimits");
+    World world(jointSettings());
+    BodyDef limb;  // a 1 m limb hanging from the shoulder at the origin
+    limb.shape = ShapeDef::box(Vec3(0.05, 0.5, 0.05));
+    limb.mass = 2.0;
+    limb.position = Vec3(0, -0.5, 0);
+    limb.allowSleep = false;
+    limb.linearVelocity = Vec3(4, 0, 2);   // thrown sideways: it would swing past 1 rad
+    limb.angularVelocity = Vec3(0, 6, 0);  // and twisted about its length
+    Body body = world.createBody(limb);
+    JointDef d;
+    d.type = JointType::Cone;
+    d.bodyB = body;
+    d.axis = Vec3(0, -1, 0);
+    d.swingLimit = 0.5;
+    d.twistLimits = JointLimits{-0.3, 0.3};
+    Joint joint = world.createJoint(d);
+    double worstSwing = 0.0, worstTwist = 0.0;
+    for (int i = 0; i < 180; ++i) {
+        world.step();
+        worstSwing = std::max(worstSwing, joint.position());
+        // Twist: B's X axis against A's about the limb's current direction.
+        const Quat q = body.orientation();
+        const Vec3 along = q * Vec3(0, -1, 0);
+        const Quat swingOnly = Quat::FromTwoVectors(Vec3(0, -1, 0), along);
+        const Quat twist = swingOnly.conjugate() * q;  // about -Y
+        worstTwist = std::max(worstTwist, std::abs(2.0 * std::atan2(-twist.y(), twist.w())));
+    }
+    std::cout << "[ MEASURED ] " << backend() << " cone 0.5 rad / twist 0.3 rad: worst swing " << worstSwing
+              << " rad, worst twist " << worstTwist << " rad\n";
+    // 0.05 rad: the limb arrives at about 4 rad/s, a 60 Hz step travels 0.07 rad of it; a
+    // speculative stop closes within the step, a reactive one within the next.
+    EXPECT_LT(worstSwing, 0.55);
+    EXPECT_LT(worstTwist, 0.35);
+}
+
+// A wheel on its suspension (spring along Y) under a static frame: it sags by m g / k, bounces
+// at sqrt(k / m), and its motor spins it up about the axle to the target speed.
+TEST_P(JointTest, WheelSuspensionAndDrive) {
+    ANYPHYS_REQUIRE(hasJoint("wheel"), "joint type wheel");
+    ANYPHYS_REQUIRE(hasParameter("joint.wheel.spring"), "joint.wheel.spring");
+    ANYPHYS_REQUIRE(hasParameter("joint.wheel.motor"), "joint.wheel.motor");
+    World world(jointSettings());
+    const double m = 2.0, k = 200.0, r = 0.3;
+    Body wheel = ball(world, Vec3::Zero(), m, r);
+    JointDef d;
+    d.type = JointType::Wheel;
+    d.bodyB = wheel;
+    d.axis = Vec3::UnitY();      // suspension
+    d.spinAxis = Vec3::UnitZ();  // axle
+    d.spring = JointSpring{k, 0.0};
+    d.motor = JointMotor{10.0, 5.0};
+    Joint joint = world.createJoint(d);
+    // Released at the unloaded length: it oscillates about -m g / k with amplitude m g / k.
+    const double sag = m * kG / k, omega = std::sqrt(k / m);
+    double lowest = 0.0, highest = -1.0, previous = 0.0, first = -1.0, last = -1.0;
+    int crossings = 0;
+    const double dt = world.settings().timeStep;
+    while (world.time() < 3.0) {
+        world.step();
+        const double y = joint.position() + sag;  // about the rest position
+        lowest = std::min(lowest, joint.position());
+        highest = std::max(highest, joint.position());
+        if (previous > 0.0 && y <= 0.0) {
+            const double t = world.time() - dt * y / (y - previous);
+            if (first < 0) first = t;
+            last = t;
+            ++crossings;
+        }
+        previous = y;
+    }
+    const double period = crossings > 1 ? (last - first) / (crossings - 1) : 0.0;
+    std::cout << "[ MEASURED ] " << backend() << " wheel: travel [" << lowest << ", " << highest << "] m (exact [" << -2 * sag
+              << ", 0]), period " << period << " s (exact " << 2 * kPi / omega << "), spin " << joint.speed()
+              << " rad/s (target 10)\n";
+    // 5 % of the 0.196 m swing and of the period: an undamped spring through a joint at 60 Hz
+    // ((omega dt)^2 = 0.028) keeps both to about 1 %.
+    EXPECT_NEAR(lowest, -2.0 * sag, 0.05 * 2.0 * sag);
+    EXPECT_NEAR(period, 2.0 * kPi / omega, 0.05 * 2.0 * kPi / omega);
+    // The drive: I = 0.4 m r^2 = 0.072 kg m^2 reaches 10 rad/s in 0.14 s at 5 N m.
+    EXPECT_NEAR(joint.speed(), 10.0, 0.1);
+    EXPECT_NEAR(wheel.angularVelocity().z(), 10.0, 0.1);  // about +axle
+}
+
 // A joint breaks at its stated force, not below: a 2 kg body (load 19.6 N) hangs from a joint
 // rated 25 N, and from one rated 15 N that breaks, telling listeners and the handle.
 TEST_P(JointTest, BreaksAboveItsForceOnly) {
