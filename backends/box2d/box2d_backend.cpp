@@ -49,8 +49,8 @@ Backend makeBox2dBackend() {
                        "body.inertia", "body.linearDamping", "body.angularDamping", "body.gravityScale",
                        "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",
                        "body.allowSleep", "body.isAwake"};
-    // Hinge and slider springs are applied by the backend (Box2D 2.4's revolute and prismatic
-    // joints have none); wheel and distance springs are Box2D's. Reactions are Box2D's joint
+    // Hinge and slider springs are Box2D's soft weld and wheel joints beside the revolute and
+    // prismatic ones (which have none); wheel and distance springs are their joints' own. Reactions are Box2D's joint
     // impulses summed over the substeps, so the layer can break joints by them.
     for (const char* field : {"limits", "motor", "spring"}) {
         caps.parameters.insert(std::string("joint.hinge.") + field);

@@ -18,12 +18,10 @@ constexpr double kAxisTolerance = 1e-3;
 bool alongZ(const Vec3& v) { return std::hypot(v.x(), v.y()) <= kAxisTolerance * v.norm(); }
 bool inPlane(const Vec3& v) { return std::abs(v.z()) <= kAxisTolerance * v.norm(); }
 
-double inverseMass(const b2Body* b) {
-    return b->GetType() == b2_dynamicBody && b->GetMass() > 0.0f ? 1.0 / b->GetMass() : 0.0;
-}
-double inverseInertia(const b2Body* b) {  // about the centre of mass (this backend's body origin)
-    return b->GetType() == b2_dynamicBody && b->GetInertia() > 0.0f ? 1.0 / b->GetInertia() : 0.0;
-}
+// Box2D's soft springs (weld, wheel, distance) switch off at stiffness 0 (a weld even turns
+// rigid): a damper without stiffness gets a stiffness too small to pull (1e-20 N/m or N m/rad
+// moves nothing in a lifetime) so its damping acts.
+float springStiffness(const JointSpringSI& s) { return std::max(static_cast<float>(s.stiffness), 1e-20f); }
 
 // Box2D's distance range for the peer's definition: a rigid rod without minLength / maxLength
 // (soft with a spring, free beyond the spring's pull), else the range (Box2D clamps the lower
@@ -107,6 +105,8 @@ b2Body* Box2dJoint::bodyA() const { return a_ ? a_->b2() : ground_; }
 void Box2dJoint::enable(b2World& world, bool on) {
     if (on == (joint_ != nullptr)) return;
     if (!on) {
+        if (spring_) world.DestroyJoint(spring_);
+        spring_ = nullptr;
         world.DestroyJoint(joint_);  // wakes both bodies
         joint_ = nullptr;
         return;
@@ -185,7 +185,7 @@ void Box2dJoint::enable(b2World& world, bool on) {
                 jd.maxMotorTorque = static_cast<float>(def_.motor->maxForce);
             }
             if (def_.spring) {
-                jd.stiffness = static_cast<float>(def_.spring->stiffness);
+                jd.stiffness = springStiffness(*def_.spring);
                 jd.damping = static_cast<float>(def_.spring->damping);
             }
             joint_ = world.CreateJoint(&jd);
@@ -199,7 +199,7 @@ void Box2dJoint::enable(b2World& world, bool on) {
             jd.length = static_cast<float>(def_.length);
             distanceRange(def_, jd.minLength, jd.maxLength);
             if (def_.spring) {
-                jd.stiffness = static_cast<float>(def_.spring->stiffness);
+                jd.stiffness = springStiffness(*def_.spring);
                 jd.damping = static_cast<float>(def_.spring->damping);
             }
             joint_ = world.CreateJoint(&jd);
@@ -207,7 +207,41 @@ void Box2dJoint::enable(b2World& world, bool on) {
         }
         case JointType::Cone: break;  // refused in the constructor
     }
+    if (def_.spring && springJoint()) spring_ = makeSpring(world);
     wake();
+}
+
+// Box2D 2.4's revolute and prismatic joints have no spring. Its soft weld joint is one about Z
+// (angular stiffness and damping toward the reference angle, the point held rigidly: what the
+// revolute joint holds anyway), and its wheel joint is one along an axis (the line held, what
+// the prismatic joint holds anyway). So a sprung hinge or slider is two Box2D joints on the same
+// anchors: the springs are solved in Box2D's solver, implicitly (soft constraints), with gravity
+// and contacts, like its own wheel and distance springs.
+b2Joint* Box2dJoint::makeSpring(b2World& world) const {
+    if (def_.type == JointType::Slider) {
+        b2WheelJointDef jd;
+        jd.bodyA = bodyA();
+        jd.bodyB = bodyB();
+        jd.collideConnected = def_.collideConnected;  // both must allow it for contacts
+        jd.userData.pointer = reinterpret_cast<uintptr_t>(this);
+        jd.localAnchorA = localAnchorA_;
+        jd.localAnchorB = localAnchorB_;
+        jd.localAxisA = localAxisA_;
+        jd.stiffness = springStiffness(*def_.spring);
+        jd.damping = static_cast<float>(def_.spring->damping);
+        return world.CreateJoint(&jd);
+    }
+    b2WeldJointDef jd;
+    jd.bodyA = bodyA();
+    jd.bodyB = bodyB();
+    jd.collideConnected = def_.collideConnected;
+    jd.userData.pointer = reinterpret_cast<uintptr_t>(this);
+    jd.localAnchorA = localAnchorA_;
+    jd.localAnchorB = localAnchorB_;
+    jd.referenceAngle = referenceAngle_;
+    jd.stiffness = springStiffness(*def_.spring);  // > 0: soft about Z (0 would be rigid)
+    jd.damping = static_cast<float>(def_.spring->damping);
+    return world.CreateJoint(&jd);
 }
 
 void Box2dJoint::wake() {
@@ -360,8 +394,15 @@ void Box2dJoint::applyLimits() {
 
 void Box2dJoint::applySpring() {
     if (!joint_) return;
-    const float k = def_.spring ? static_cast<float>(def_.spring->stiffness) : 0.0f;
+    const float k = def_.spring ? springStiffness(*def_.spring) : 0.0f;
     const float c = def_.spring ? static_cast<float>(def_.spring->damping) : 0.0f;
+    if (springJoint()) {  // hinge, slider: the spring's own joint comes and goes with it
+        b2World& world = *bodyB()->GetWorld();
+        if (spring_) world.DestroyJoint(spring_);
+        spring_ = def_.spring ? makeSpring(world) : nullptr;
+        wake();
+        return;
+    }
     switch (joint_->GetType()) {
         case e_wheelJoint: {
             auto* j = static_cast<b2WheelJoint*>(joint_);
@@ -383,62 +424,24 @@ void Box2dJoint::applySpring() {
             j->SetMinLength(lower);
             break;
         }
-        default: break;  // hinge and slider: emulated each step from def_.spring
+        default: break;
     }
     wake();
 }
 
 // ---- the step ----------------------------------------------------------------------------
 
-// Box2D 2.4's revolute and prismatic joints have no spring: one is applied here as an impulse
-// on the joint's row before each Box2D step, implicit in the way Box2D's own soft springs are
-// (wheel, distance): the impulse that makes v' = v - h (k x' + c v') / m_eff with x' = x + h v',
-//   lambda = -h (k x + (c + h k) v) / (1 + h w (c + h k)),   w = 1 / m_eff along the row,
-// so it is stable for any stiffness and step. w is the row's free inverse mass (the other rows
-// of the joint are solved after it by Box2D).
-void Box2dJoint::beforeSubstep(double h) {
-    if (!joint_ || !emulatedSpring()) return;
-    b2Body* a = bodyA();
-    b2Body* b = bodyB();
-    if (!a->IsAwake() && !b->IsAwake()) return;  // an island asleep is at rest: nothing to do
-    const double k = def_.spring->stiffness, c = def_.spring->damping;
-    const double x = position(), v = speed();
-    const bool angular = def_.type != JointType::Slider;
-    double w = 0.0;
-    b2Vec2 p(0.0f, 0.0f), n(0.0f, 0.0f);
-    if (angular) {
-        w = inverseInertia(a) + inverseInertia(b);
-    } else {
-        p = anchorB();
-        n = axis();
-        const double sA = b2Cross(p - a->GetWorldCenter(), n), sB = b2Cross(p - b->GetWorldCenter(), n);
-        w = inverseMass(a) + inverseMass(b) + inverseInertia(a) * sA * sA + inverseInertia(b) * sB * sB;
-    }
-    if (!(w > 0.0)) return;
-    const double soft = c + h * k;
-    const double lambda = -h * (k * x + soft * v) / (1.0 + h * w * soft);
-    if (angular) {
-        const double torque = sign_ * lambda;  // about +Z
-        b->ApplyAngularImpulse(static_cast<float>(torque), false);
-        a->ApplyAngularImpulse(static_cast<float>(-torque), false);
-        angularImpulse_ += torque;
-    } else {
-        const b2Vec2 P = static_cast<float>(lambda) * n;
-        b->ApplyLinearImpulse(P, p, false);   // at B's anchor: no torque about it
-        a->ApplyLinearImpulse(-P, p, false);  // A's material point under B's anchor
-        impulse_.x += P.x;
-        impulse_.y += P.y;
-    }
-}
-
 void Box2dJoint::afterSubstep() {
-    if (!joint_) return;
     // inv_dt = 1: the impulse of the Box2D step just taken (warm start included), applied to B
-    // at B's anchor, and the angular impulse on B (so the torque is about B's anchor).
-    const b2Vec2 impulse = joint_->GetReactionForce(1.0f);
-    impulse_.x += impulse.x;
-    impulse_.y += impulse.y;
-    angularImpulse_ += joint_->GetReactionTorque(1.0f);
+    // at B's anchor, and the angular impulse on B (so the torque is about B's anchor); the
+    // spring's joint acts at the same anchor.
+    for (const b2Joint* j : {joint_, spring_}) {
+        if (!j) continue;
+        const b2Vec2 impulse = j->GetReactionForce(1.0f);
+        impulse_.x += impulse.x;
+        impulse_.y += impulse.y;
+        angularImpulse_ += j->GetReactionTorque(1.0f);
+    }
 }
 
 void Box2dJoint::endStep(double dt) {

@@ -5,8 +5,9 @@
 //   fixed     b2WeldJoint (stiffness 0: rigid)
 //   hinge     b2RevoluteJoint about Z (frame X is +Z or -Z: angles, limits and motor speeds are
 //             turned to Box2D's +Z when it is -Z); a planar ball arrives as a hinge about +Z.
-//             Spring emulated (Box2D 2.4's revolute has none, see beforeSubstep).
-//   slider    b2PrismaticJoint along frame X (in the plane). Spring emulated as for the hinge.
+//             Spring: a soft b2WeldJoint on the same anchor (the revolute has none).
+//   slider    b2PrismaticJoint along frame X (in the plane). Spring: a b2WheelJoint on the same
+//             anchors and axis (the prismatic has none).
 //   distance  b2DistanceJoint: rigid rod (min = max = length), rope or range (minLength /
 //             maxLength), spring toward `length` (Box2D's own soft spring)
 //   wheel     b2WheelJoint: suspension along frame X with Box2D's spring and limits, free spin
@@ -14,7 +15,7 @@
 //   ball      (received directly, not through the layer) as the hinge about Z.
 // Position and speed are computed here from the bodies' poses and velocities (not from Box2D's
 // joint getters), so they mean what joint_peer.hpp says on every backend. Reactions are Box2D's
-// joint impulses (plus the emulated spring's) summed over the step's substeps, divided by dt.
+// joint impulses (the spring's joint's included) summed over the step's substeps, divided by dt.
 //
 // The b2Joint exists only while the world simulates joints (Effect::Joints); the peer keeps what
 // it needs to build it again (the definition with the setters' changes, the reference angle).
@@ -64,13 +65,11 @@ public:
     bool attached() const { return world_ != nullptr; }
     /// The joint holds this body.
     bool holds(const Box2dBody& body) const { return &body == a_ || &body == b_; }
-    /// Each step: begin, then around every Box2D step, then end with the whole step's duration.
+    /// Each step: begin, then after every Box2D step, then end with the whole step's duration.
     void beginStep() {
         impulse_ = {0.0, 0.0};
         angularImpulse_ = 0.0;
     }
-    /// The emulated spring of a hinge or slider, as an impulse before a Box2D step of h seconds.
-    void beforeSubstep(double h);
     /// Adds the Box2D step's joint impulses to the step's sums.
     void afterSubstep();
     void endStep(double dt);
@@ -85,10 +84,11 @@ private:
     b2Vec2 anchorB() const { return bodyB()->GetWorldPoint(localAnchorB_); }
     /// Frame X of A in the world (slider and wheel).
     b2Vec2 axis() const { return bodyA()->GetWorldVector(localAxisA_); }
-    bool emulatedSpring() const {
-        return def_.spring && (def_.type == JointType::Hinge || def_.type == JointType::Ball ||
-                               def_.type == JointType::Slider);
+    /// Hinges and sliders take their spring from a second Box2D joint (see makeSpring).
+    bool springJoint() const {
+        return def_.type == JointType::Hinge || def_.type == JointType::Ball || def_.type == JointType::Slider;
     }
+    b2Joint* makeSpring(b2World& world) const;
     void applyMotor();
     void applyLimits();
     void applySpring();
@@ -100,6 +100,7 @@ private:
     Box2dBody* b_;
     b2Body* ground_;
     b2Joint* joint_ = nullptr;
+    b2Joint* spring_ = nullptr;    // hinge, slider with a spring: a soft weld, a wheel joint
     b2Vec2 localAnchorA_{0.0f, 0.0f};  // in A's Box2D body frame (world frame for the world)
     b2Vec2 localAnchorB_{0.0f, 0.0f};
     b2Vec2 localAxisA_{1.0f, 0.0f};    // frame X in A's Box2D body frame (slider, wheel)

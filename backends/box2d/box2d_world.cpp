@@ -236,7 +236,6 @@ void Box2dWorld::step(double time, double dt) {
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
         if (effects_.has(Effect::Restitution))
             for (Box2dBody* b : bodies_) b->markStepStart();
-        for (Box2dJoint* j : joints_) j->beforeSubstep(h);
         world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
         if (substeps_ > 1) addImpulses();
         for (Box2dJoint* j : joints_) j->afterSubstep();

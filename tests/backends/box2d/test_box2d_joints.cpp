@@ -1,6 +1,7 @@
 // Box2D joints at the peer level, in the XY plane, against closed forms (the contract suite checks
 // every backend through World; these pin down what box2d_joints.cpp does with each Box2D joint:
-// frames, signs, emulated springs, reactions over substeps). Every tolerance says why it holds.
+// frames, signs, the springs of hinges and sliders (second Box2D joints), reactions over
+// substeps). Every tolerance says why it holds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -255,9 +256,10 @@ TEST(Box2dJoints, HingeLimitsHoldTheAngle) {
         }
 }
 
-// A torsion spring on a hinge (emulated: Box2D 2.4's revolute has none): a flywheel oscillates
-// at sqrt(k / I). Bound 0.5 %: the implicit spring turns by atan(omega h) a step instead of
-// omega h, a period longer by (omega h)^2 / 3 = 0.2 % here (omega = 6.3 rad/s).
+// A torsion spring on a hinge (a soft b2WeldJoint beside the revolute, which has none): a
+// flywheel oscillates at sqrt(k / I). Bound 0.5 %: Box2D's soft (implicit) spring turns by
+// atan(omega h) a step instead of omega h, a period longer by (omega h)^2 / 3 = 0.2 % here
+// (omega = 6.3 rad/s).
 TEST(Box2dJoints, HingeSpringFrequency) {
     for (const Quat& frame : {kXUp, kXDown}) {
         auto world = jointWorld(Effect::Joints);
@@ -271,6 +273,76 @@ TEST(Box2dJoints, HingeSpringFrequency) {
         const double period = measurePeriod(*world, [&] { return hinge->position() * (frame.isApprox(kXUp) ? 1.0 : -1.0); }, 10.0);
         report("hinge spring period (exact " + std::to_string(exact) + ")", period, "s");
         EXPECT_NEAR(period, exact, 0.005 * exact);
+    }
+}
+
+// A torsion spring between two free flywheels (I = 0.5 and 0.25 kg m^2, no world): they counter-
+// rotate at sqrt(k (1/I_A + 1/I_B)) = 5.5 rad/s (bound 0.5 %: (omega h)^2 / 3 = 0.3 %), and the
+// spring's torques are equal and opposite, so the angular momentum stays what it was (float: 1e-5).
+TEST(Box2dJoints, HingeSpringBetweenTwoBodies) {
+    auto world = jointWorld(Effect::Joints);
+    const double IA = 0.5, IB = 0.25, k = 5.0;
+    auto a = body(*world, Vec3::Zero(), 1.0, IA);
+    auto b = body(*world, Vec3::Zero(), 1.0, IB);
+    JointPeerDef d;
+    d.type = JointType::Hinge;
+    d.bodyA = a.get();
+    d.bodyB = b.get();
+    d.frameA = d.frameB = {Vec3::Zero(), kXUp};
+    d.spring = JointSpringSI{k, 0.0};
+    auto hinge = world->createJoint(d);
+    a->setAngularVelocity(Vec3(0, 0, 1.0));  // momentum 0.5: the pair turns at 2/3 rad/s on average
+    const double momentum = IA * 1.0;
+    double worst = 0.0;
+    const double period = measurePeriod(*world, [&] {
+        worst = std::max(worst, std::abs(IA * a->state().angularVelocity.z() + IB * b->state().angularVelocity.z() - momentum));
+        return -hinge->speed();  // B falls behind A first: the rate starts negative
+    }, 10.0);
+    const double exact = 2.0 * kPi / std::sqrt(k * (1.0 / IA + 1.0 / IB));
+    report("two-body hinge spring period (exact " + std::to_string(exact) + ")", period, "s");
+    EXPECT_NEAR(period, exact, 0.005 * exact);
+    EXPECT_LT(worst, 1e-5);
+}
+
+// A hinge damper (a spring of stiffness 0): a flywheel's spin decays as Box2D's implicit damper
+// gives it, w_n = w_0 / (1 + h c / I)^n (float: 1e-5 relative); it does not turn rigid (Box2D's
+// weld would at stiffness 0) nor spring back.
+TEST(Box2dJoints, HingeDamperWithoutStiffness) {
+    auto world = jointWorld(Effect::Joints);
+    const double I = 0.5, c = 0.4;
+    auto wheel = body(*world, Vec3::Zero(), 1.0, I);
+    JointPeerDef d = heldToWorld(JointType::Hinge, *wheel, Vec3::Zero(), Vec3::Zero());
+    d.spring = JointSpringSI{0.0, c};
+    auto hinge = world->createJoint(d);
+    wheel->setAngularVelocity(Vec3(0, 0, 2.0));
+    run(*world, 1.0);
+    const double expected = 2.0 / std::pow(1.0 + kDt * c / I, 60);
+    EXPECT_NEAR(hinge->speed(), expected, 1e-5 * 2.0);
+    EXPECT_GT(hinge->position(), 1.0);  // it kept turning: 1.6 rad in the second
+    // Reaction torque: the damper's -c w (N m, on B), a step's mean.
+    EXPECT_NEAR(hinge->reactionTorque().z(), -c * expected, 0.02 * c * expected);
+}
+
+// A vertical slider on a spring holds a 2 kg body under gravity at the static sag m g / k below
+// its start, and the joint carries its weight (the spring is solved with gravity in Box2D's
+// solver). k = 100 N/m, damping ratio 0.7, 5 s to settle (e^{-zeta omega t} = 1e-8): sag within
+// 1e-5 m (float), reaction within 1e-4 relative.
+TEST(Box2dJoints, SliderSpringHoldsAWeight) {
+    for (int substeps : {1, 4}) {
+        auto world = jointWorld(Effect::Gravity | Effect::Joints, substeps);
+        const double m = 2.0, k = 100.0, c = 2.0 * 0.7 * std::sqrt(k * m);
+        auto b = body(*world, Vec3::Zero(), m, 0.1);
+        JointPeerDef d = heldToWorld(JointType::Slider, *b, Vec3::Zero(), Vec3::Zero(), xAlong(0.5 * kPi));  // X = +Y
+        d.spring = JointSpringSI{k, c};
+        auto slider = world->createJoint(d);
+        run(*world, 5.0);
+        EXPECT_NEAR(slider->position(), -m * kG / k, 1e-5);
+        EXPECT_NEAR(slider->reactionForce().y(), m * kG, 1e-4 * m * kG);
+        EXPECT_NEAR(slider->reactionForce().x(), 0.0, 1e-4);
+        // Removing the spring lets it fall along the slider.
+        slider->setSpring(std::nullopt);
+        run(*world, 0.5);
+        EXPECT_LT(slider->position(), -1.0);
     }
 }
 
@@ -321,8 +393,8 @@ TEST(Box2dJoints, FixedJointReactionTorqueIsAboutTheAnchor) {
 
 // ---- slider ------------------------------------------------------------------------------------
 
-// A slider along a diagonal of the plane holds a mass on a spring (emulated: Box2D 2.4's
-// prismatic has none), no gravity: it oscillates at sqrt(k/m) / 2 pi along the axis and not
+// A slider along a diagonal of the plane holds a mass on a spring (a b2WheelJoint beside the
+// prismatic, which has none), no gravity: it oscillates at sqrt(k/m) / 2 pi along the axis and not
 // across it. Bound 0.5 %: the implicit spring's period is longer by (omega h)^2 / 3 = 0.2 %.
 TEST(Box2dJoints, SliderSpringFrequency) {
     auto world = jointWorld(Effect::Joints);
