@@ -502,6 +502,34 @@ TEST(Box2dJoints, RopeIsSlackInsideItsLength) {
     EXPECT_GT(longest, 0.99);        // it did become taut
 }
 
+// A distance range (minLength and maxLength) is free inside and stops at either end: a bob 0.75 m
+// from the anchor, no gravity, moving inward at 1 m/s, coasts freely for 0.25 s (float: 1e-5 m)
+// and stops at 0.5 m without going through (b2_linearSlop, 5 mm).
+TEST(Box2dJoints, DistanceRangeIsFreeInsideAndStopsAtItsEnds) {
+    auto world = jointWorld(Effect::Joints);
+    auto bob = body(*world, Vec3(0.75, 0, 0));
+    JointPeerDef d;
+    d.type = JointType::Distance;
+    d.bodyB = bob.get();
+    d.length = 0.75;
+    d.minLength = 0.5;
+    d.maxLength = 1.0;
+    auto range = world->createJoint(d);
+    bob->setLinearVelocity(Vec3(-1.0, 0, 0));
+    run(*world, 0.15);
+    EXPECT_NEAR(range->position(), -0.15, 1e-5);  // free: 0.6 m from the anchor
+    EXPECT_NEAR(range->speed(), -1.0, 1e-5);
+    double shortest = 1.0;
+    for (int i = 0; i < 60; ++i) {
+        world->step(i * kDt, kDt);
+        shortest = std::min(shortest, range->position() + 0.75);
+    }
+    report("distance range overshoot below minLength", 0.5 - shortest, "m");
+    EXPECT_GT(shortest, 0.5 - 5e-3);
+    EXPECT_NEAR(range->position() + 0.75, 0.5, 5e-3);  // it reached the stop and stays there
+    EXPECT_NEAR(range->speed(), 0.0, 1e-5);
+}
+
 // A distance spring (Box2D's own soft distance joint) with no gravity: the bob oscillates along
 // the line at sqrt(k/m) / 2 pi about `length`. Bound 0.5 %: implicit spring, (omega h)^2 / 3 = 0.2 %.
 TEST(Box2dJoints, DistanceSpringFrequency) {
@@ -645,7 +673,8 @@ TEST(Box2dJoints, DestroyLeavesTheWorldStepping) {
 }
 
 // Joints act only while the world simulates them (Effect::Joints): off, the body falls freely;
-// on again, the joint holds it where it is then.
+// on again, the joint pulls its anchor back together (Box2D's position correction, at most
+// b2_maxLinearCorrection = 0.2 m a step) and holds it.
 TEST(Box2dJoints, JointsFollowTheJointsEffect) {
     auto world = jointWorld(Effect::Gravity);
     const Vec3 start(0, -1, 0);
@@ -655,6 +684,7 @@ TEST(Box2dJoints, JointsFollowTheJointsEffect) {
     EXPECT_LT(b->state().position.y(), -1.1);  // not held: 0.2 m of fall
     world->setEffects(Effect::Gravity | Effect::Joints);
     run(*world, 1.0);
+    EXPECT_NEAR(b->state().position.y(), -1.0, 5e-3);  // back on its anchor (b2_linearSlop)
     EXPECT_NEAR(joint->reactionForce().y(), kG, 1e-3 * kG);  // holding it, at rest again
 }
 
