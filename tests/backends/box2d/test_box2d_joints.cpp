@@ -346,6 +346,42 @@ TEST(Box2dJoints, SliderSpringHoldsAWeight) {
     }
 }
 
+// Frames arrive in the bodies' peer frames, which need not be the Box2D body frames: a bob whose
+// peer frame is turned 0.7 rad about Z, and one whose principal axes put the peer frame's Z along
+// world -Y (kept by the backend as a constant embedding). The hinge reads 0 at creation and then
+// the bob's turn about the anchor (right-handed about +Z), as with an unturned bob (float: 1e-5).
+TEST(Box2dJoints, FramesInTurnedPeerFrames) {
+    for (const Quat& orientation : {Quat(Eigen::AngleAxisd(0.7, Vec3::UnitZ())),
+                                    Quat(Eigen::AngleAxisd(0.7, Vec3::UnitZ()) * Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitX()))}) {
+        auto world = jointWorld();
+        const double amplitude = 0.8;
+        const Vec3 start(std::sin(amplitude), -std::cos(amplitude), 0.0);
+        BodyPeerDef bd;
+        bd.def.position = start;
+        bd.def.orientation = orientation;
+        bd.def.allowSleep = false;
+        bd.mass = {1.0, Vec3::Constant(4e-3)};
+        auto bob = world->createBody(bd);
+        JointPeerDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = bob.get();
+        d.frameA = {Vec3::Zero(), kXUp};
+        d.frameB = {orientation.conjugate() * (Vec3::Zero() - start), (orientation.conjugate() * kXUp).normalized()};
+        auto hinge = world->createJoint(d);
+        EXPECT_NEAR(hinge->position(), 0.0, 1e-6);
+        double worst = 0.0, lowest = 0.0;
+        for (int i = 0; i < 90; ++i) {
+            world->step(i * kDt, kDt);
+            lowest = std::min(lowest, hinge->position());
+            const Vec3 p = bob->state().position;
+            worst = std::max(worst, std::abs(hinge->position() - (std::atan2(p.x(), -p.y()) - amplitude)));
+            EXPECT_NEAR(p.norm(), 1.0, 5e-3);  // the anchor holds at the right point of the bob
+        }
+        EXPECT_LT(worst, 1e-5);
+        EXPECT_LT(lowest, -1.4);  // it swung through the bottom to the other side (-1.6 undamped)
+    }
+}
+
 // ---- reactions ---------------------------------------------------------------------------------
 
 // A 3 kg body hanging still from a joint reports the joint's pull on it, m g upward (N), whatever
