@@ -50,8 +50,9 @@ Backend makeBox2dBackend() {
                        "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",
                        "body.allowSleep", "body.isAwake"};
     // Hinge and slider springs are Box2D's soft weld and wheel joints beside the revolute and
-    // prismatic ones (which have none); wheel and distance springs are their joints' own. Reactions are Box2D's joint
-    // impulses summed over the substeps, so the layer can break joints by them.
+    // prismatic ones (which have none); wheel and distance springs are their joints' own.
+    // Reactions are Box2D's joint impulses summed over the substeps, so the layer can break
+    // joints by them. Not declared: wheel steering (no planar meaning), cone (no cone type).
     for (const char* field : {"limits", "motor", "spring"}) {
         caps.parameters.insert(std::string("joint.hinge.") + field);
         caps.parameters.insert(std::string("joint.slider.") + field);
