@@ -647,6 +647,55 @@ TEST(Box2dJoints, WheelSuspensionLimitsHold) {
     EXPECT_NEAR(joint->reactionForce().y(), 2.0 * kG, 1e-3 * 2.0 * kG);
 }
 
+// Changes take effect from the next step: a hanging distance rod given a spring sags to m g / k
+// beyond its length, and without it is a rod again; a wheel's suspension sags m g / k for each
+// stiffness it is given, and its spin coasts once the motor is removed. Settled with damping
+// ratio 0.7 (e^{-zeta omega t} < 1e-6): sag within 1e-4 m (float positions), rod within
+// b2_linearSlop (5 mm).
+TEST(Box2dJoints, SpringAndMotorChangesTakeEffect) {
+    {
+        auto world = jointWorld();
+        const double m = 1.0, k = 200.0, c = 2.0 * 0.7 * std::sqrt(k * m);
+        auto bob = body(*world, Vec3(0, -1, 0), m);
+        JointPeerDef d;
+        d.type = JointType::Distance;
+        d.bodyB = bob.get();
+        d.length = 1.0;
+        auto rod = world->createJoint(d);
+        run(*world, 1.0);
+        EXPECT_NEAR(rod->position(), 0.0, 5e-3);
+        rod->setSpring(JointSpringSI{k, c});
+        run(*world, 3.0);
+        EXPECT_NEAR(rod->position(), m * kG / k, 1e-4);
+        EXPECT_NEAR(rod->reactionForce().y(), m * kG, 1e-3 * m * kG);
+        rod->setSpring(std::nullopt);
+        run(*world, 1.0);
+        EXPECT_NEAR(rod->position(), 0.0, 5e-3);
+    }
+    {
+        auto world = jointWorld();
+        const double m = 2.0;
+        auto wheel = body(*world, Vec3::Zero(), m, 0.2);
+        Mat3 r;
+        r.col(0) = Vec3::UnitY();
+        r.col(1) = Vec3::UnitZ();
+        r.col(2) = Vec3::UnitX();
+        JointPeerDef d = heldToWorld(JointType::Wheel, *wheel, Vec3::Zero(), Vec3::Zero(), Quat(r));
+        d.motor = JointMotor{3.0, 10.0};
+        auto joint = world->createJoint(d);
+        for (double k : {400.0, 100.0}) {
+            joint->setSpring(JointSpringSI{k, 2.0 * 0.7 * std::sqrt(k * m)});
+            run(*world, 3.0);
+            EXPECT_NEAR(joint->position(), -m * kG / k, 1e-4) << "k = " << k;
+        }
+        EXPECT_NEAR(joint->speed(), 3.0, 1e-5);
+        joint->setMotor(std::nullopt);
+        wheel->setAngularVelocity(Vec3(0, 0, 5.0));
+        run(*world, 1.0);
+        EXPECT_NEAR(joint->speed(), 5.0, 1e-5);  // free spin: nothing drives or brakes it
+    }
+}
+
 // ---- pairs, lifetime, effects, sleep --------------------------------------------------------
 
 // Two overlapping boxes joined by a hinge: without collideConnected Box2D makes no contact between
