@@ -22,7 +22,11 @@ Backend makeBox2dBackend() {
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
     // Gyroscopic: in planar motion w is along Z, so w x (I w) has no Z part and the plane takes
     // the rest; every mode gives the same (exact) motion.
-    caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
+    caps.effects = Effects::all();
+    // Joints (box2d_joints.hpp): weld, revolute, prismatic, distance and wheel joints. A ball
+    // joint reaches a planar world as a hinge about Z. No cone (its swing leaves the plane), no
+    // wheel steering (it would turn the axle out of Z).
+    caps.jointTypes = {"fixed", "ball", "hinge", "slider", "distance", "wheel"};
     caps.solvers = {Solver::ProjectedGaussSeidel};
     caps.defaultSolver = box2d::Box2dWorld::kDefaultSolver;
     caps.defaultSubsteps = box2d::Box2dWorld::kDefaultSubsteps;
@@ -45,6 +49,19 @@ Backend makeBox2dBackend() {
                        "body.inertia", "body.linearDamping", "body.angularDamping", "body.gravityScale",
                        "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",
                        "body.allowSleep", "body.isAwake"};
+    // Hinge and slider springs are Box2D's soft weld and wheel joints beside the revolute and
+    // prismatic ones (which have none); wheel and distance springs are their joints' own.
+    // Reactions are Box2D's joint impulses summed over the substeps, so the layer can break
+    // joints by them. Not declared: wheel steering (no planar meaning), cone (no cone type).
+    for (const char* field : {"limits", "motor", "spring"}) {
+        caps.parameters.insert(std::string("joint.hinge.") + field);
+        caps.parameters.insert(std::string("joint.slider.") + field);
+        caps.parameters.insert(std::string("joint.wheel.") + field);
+    }
+    for (const char* field : {"spring", "minLength", "maxLength"}) caps.parameters.insert(std::string("joint.distance.") + field);
+    for (const char* type : {"fixed", "ball", "hinge", "slider", "distance", "wheel"})
+        for (const char* field : {"breakForce", "breakTorque", "collideConnected"})
+            caps.parameters.insert(std::string("joint.") + type + "." + field);
     caps.options = {
         {"positionIterations", "Box2D position-correction iterations per Box2D step (b2World::Step); default 3"},
     };

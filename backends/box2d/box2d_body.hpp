@@ -50,6 +50,8 @@ public:
     void addFixture(std::unique_ptr<FixtureInfo> info) { fixtures_.push_back(std::move(info)); }
     const std::vector<std::unique_ptr<FixtureInfo>>& fixtures() const { return fixtures_; }
 
+    /// How the peer frame sits on the b2Body (joint frames are given in the peer frame).
+    const Embedding& embedding() const { return embedding_; }
     std::uint64_t userData() const { return userData_; }
     std::uint32_t material() const { return material_; }
     std::uint32_t layer() const { return layer_; }

@@ -64,6 +64,7 @@ Box2dWorld::Box2dWorld(const WorldSettings& settings)
 Box2dWorld::~Box2dWorld() {
     // Body peers may outlive the world: they must not touch the b2World after this.
     for (Box2dBody* b : bodies_) b->detach();
+    for (Box2dJoint* j : joints_) j->detach();
 }
 
 std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
@@ -133,11 +134,46 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
 
 void Box2dWorld::destroyBody(BodyPeer& body) { removeBody(static_cast<Box2dBody&>(body)); }
 
+std::unique_ptr<JointPeer> Box2dWorld::createJoint(const JointPeerDef& def) {
+    auto peer = std::make_unique<Box2dJoint>(*this, def, def.bodyA ? nullptr : ground());
+    peer->slot = joints_.size();
+    joints_.push_back(peer.get());
+    peer->enable(*world_, effects_.has(Effect::Joints));
+    return peer;
+}
+
+void Box2dWorld::destroyJoint(JointPeer& joint) {
+    auto& j = static_cast<Box2dJoint&>(joint);
+    if (j.attached()) removeJoint(j);  // else already let go with one of its bodies
+}
+
+void Box2dWorld::forgetJoint(Box2dJoint& joint) { removeJoint(joint); }
+
+void Box2dWorld::removeJoint(Box2dJoint& joint) {
+    joint.enable(*world_, false);  // wakes both bodies
+    joints_.back()->slot = joint.slot;
+    joints_[joint.slot] = joints_.back();
+    joints_.pop_back();
+    joint.detach();
+}
+
+b2Body* Box2dWorld::ground() {
+    if (!ground_) {
+        b2BodyDef bd;  // static at the origin
+        ground_ = world_->CreateBody(&bd);
+    }
+    return ground_;
+}
+
 void Box2dWorld::forgetBody(Box2dBody& body) { removeBody(body); }
 
 void Box2dWorld::removeBody(Box2dBody& body) {
     b2Body* b = body.b2();
     wakeTouching(b);  // bodies resting on this one must not hang in the air
+    // The layer destroys joints first; a body dropped without that takes its joints with it
+    // (Box2D would destroy their b2Joints behind the peers' backs).
+    for (std::size_t i = joints_.size(); i-- > 0;)
+        if (joints_[i]->holds(body)) removeJoint(*joints_[i]);
     for (b2ContactEdge* e = b->GetContactList(); e; e = e->next)
         if (const SummedImpulses* sum = summedImpulses(e->contact))
             impulses_.erase(impulses_.begin() + (sum - impulses_.data()));
@@ -171,6 +207,7 @@ void Box2dWorld::setEffects(Effects effects) {
         if (!effects.has(Effect::ContinuousCollision)) b->updateBullet(false, dampingStep_);
     }
     if (contactsChanged) refilterAll();
+    for (Box2dJoint* j : joints_) j->enable(*world_, effects.has(Effect::Joints));
 }
 
 void Box2dWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
@@ -194,14 +231,17 @@ void Box2dWorld::step(double time, double dt) {
         forceHook_(stage);
     }
     impulses_.clear();
+    for (Box2dJoint* j : joints_) j->beginStep();
     for (int i = 0; i < substeps_; ++i) {
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
         if (effects_.has(Effect::Restitution))
             for (Box2dBody* b : bodies_) b->markStepStart();
         world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
         if (substeps_ > 1) addImpulses();
+        for (Box2dJoint* j : joints_) j->afterSubstep();
     }
     world_->ClearForces();
+    for (Box2dJoint* j : joints_) j->endStep(dt);
 }
 
 void Box2dWorld::addImpulses() {

@@ -11,6 +11,7 @@
 #include "anyphys/world_settings.hpp"
 #include "box2d_body.hpp"
 #include "box2d_contacts.hpp"
+#include "box2d_joints.hpp"
 
 namespace anyphys::box2d {
 
@@ -28,6 +29,8 @@ public:
 
     std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
     void destroyBody(BodyPeer& body) override;
+    std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
+    void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
@@ -45,9 +48,15 @@ public:
     void forgetBody(Box2dBody& body);
     /// Wakes every body touching `body` (it moved, or is about to disappear).
     void wakeTouching(b2Body* body);
+    /// A joint peer destroyed without destroyJoint: drop its b2Joint.
+    void forgetJoint(Box2dJoint& joint);
 
 private:
     void removeBody(Box2dBody& body);
+    void removeJoint(Box2dJoint& joint);
+    /// The static body that joints held to the world hang from (origin, angle 0, no fixtures),
+    /// made at the first such joint.
+    b2Body* ground();
     /// Contacts on or off changes which pairs pass the filter: let Box2D ask again.
     void refilterAll();
 
@@ -60,6 +69,8 @@ private:
     ContactRules rules_;
     std::unique_ptr<b2World> world_;
     std::vector<Box2dBody*> bodies_;
+    std::vector<Box2dJoint*> joints_;
+    b2Body* ground_ = nullptr;
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
 

@@ -1,0 +1,456 @@
+#include "box2d_joints.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <string>
+
+#include "anyphys/error.hpp"
+#include "box2d_world.hpp"
+
+namespace anyphys::box2d {
+namespace {
+
+// Frames arrive validated by the layer (axes within 1e-4 of Z or of the plane); this only
+// refuses what the plane cannot hold at all, for peers used without the layer.
+constexpr double kAxisTolerance = 1e-3;
+
+bool alongZ(const Vec3& v) { return std::hypot(v.x(), v.y()) <= kAxisTolerance * v.norm(); }
+bool inPlane(const Vec3& v) { return std::abs(v.z()) <= kAxisTolerance * v.norm(); }
+
+// Box2D's soft springs (weld, wheel, distance) switch off at stiffness 0 (a weld even turns
+// rigid): a damper without stiffness gets a stiffness too small to pull (1e-20 N/m or N m/rad
+// moves nothing in a lifetime) so its damping acts.
+float springStiffness(const JointSpringSI& s) { return std::max(static_cast<float>(s.stiffness), 1e-20f); }
+
+// Box2D's distance range for the peer's definition: a rigid rod without minLength / maxLength
+// (soft with a spring, free beyond the spring's pull), else the range (Box2D clamps the lower
+// end to b2_linearSlop).
+void distanceRange(const JointPeerDef& d, float& lower, float& upper) {
+    if (!d.minLength && !d.maxLength) {
+        lower = d.spring ? 0.0f : static_cast<float>(d.length);
+        upper = d.spring ? FLT_MAX : static_cast<float>(d.length);
+        return;
+    }
+    lower = static_cast<float>(d.minLength.value_or(0.0));
+    upper = d.maxLength ? static_cast<float>(*d.maxLength) : FLT_MAX;
+}
+
+// A planar vector of X (in the XY plane) in a frame, normalised.
+b2Vec2 planarX(const Quat& frame) {
+    const Vec3 x = frame * Vec3::UnitX();
+    b2Vec2 v(static_cast<float>(x.x()), static_cast<float>(x.y()));
+    v.Normalize();
+    return v;
+}
+
+}  // namespace
+
+Box2dJoint::Box2dJoint(Box2dWorld& world, const JointPeerDef& def, b2Body* ground)
+    : world_(&world),
+      def_(def),
+      a_(static_cast<Box2dBody*>(def.bodyA)),
+      b_(static_cast<Box2dBody*>(def.bodyB)),
+      ground_(ground) {
+    if (!b_) throw Error("JointPeerDef.bodyB: is required, got null");
+    // The joint frames on the Box2D bodies (A's is in the world when A is the world; the ground
+    // body sits at the origin with angle 0, so world and ground coordinates agree).
+    const Transform frameA = a_ ? a_->embedding().toBody(def.frameA) : def.frameA;
+    const Transform frameB = b_->embedding().toBody(def.frameB);
+    const Vec3 x = frameA.orientation * Vec3::UnitX();
+    const Vec3 y = frameA.orientation * Vec3::UnitY();
+    switch (def.type) {
+        case JointType::Cone:
+            throw Error("JointPeerDef.type: box2d has no cone joint (its swing cone leaves the plane), got cone");
+        case JointType::Hinge:
+            if (!alongZ(x))
+                throw Error("JointPeerDef.frameA: a hinge axis (frame X) must be along Z in the plane (box2d)");
+            sign_ = x.z() > 0 ? 1.0 : -1.0;
+            break;
+        case JointType::Ball:  // turns about Z only in the plane: a hinge about Z
+            sign_ = 1.0;
+            ballAxisZ_ = std::clamp(x.z() / x.norm(), -1.0, 1.0);
+            break;
+        case JointType::Slider:
+        case JointType::Wheel:
+            if (!inPlane(x))
+                throw Error("JointPeerDef.frameA: a slider or wheel axis (frame X) must lie in the XY plane (box2d)");
+            localAxisA_ = planarX(frameA.orientation);
+            if (def.type == JointType::Wheel) {
+                if (!alongZ(y)) throw Error("JointPeerDef.frameA: a wheel axle (frame Y) must be along Z (box2d)");
+                sign_ = y.z() > 0 ? 1.0 : -1.0;
+            }
+            break;
+        case JointType::Fixed:
+        case JointType::Distance: break;
+    }
+    if (def.type == JointType::Distance) {
+        const Vec3 anchorA = a_ ? a_->embedding().toBody({def.anchorA, Quat::Identity()}).position : def.anchorA;
+        localAnchorA_ = toB2(anchorA);
+        localAnchorB_ = toB2(b_->embedding().toBody({def.anchorB, Quat::Identity()}).position);
+    } else {
+        localAnchorA_ = toB2(frameA.position);
+        localAnchorB_ = toB2(frameB.position);
+    }
+    // Frames coincide at creation: Box2D's angles count from the bodies' angles now.
+    referenceAngle_ = bodyB()->GetAngle() - bodyA()->GetAngle();
+}
+
+Box2dJoint::~Box2dJoint() {
+    if (world_) world_->forgetJoint(*this);
+}
+
+b2Body* Box2dJoint::bodyA() const { return a_ ? a_->b2() : ground_; }
+
+void Box2dJoint::enable(b2World& world, bool on) {
+    if (on == (joint_ != nullptr)) return;
+    if (!on) {
+        if (spring_) world.DestroyJoint(spring_);
+        spring_ = nullptr;
+        world.DestroyJoint(joint_);  // wakes both bodies
+        joint_ = nullptr;
+        return;
+    }
+    const auto common = [&](b2JointDef& jd) {
+        jd.bodyA = bodyA();
+        jd.bodyB = bodyB();
+        jd.collideConnected = def_.collideConnected;
+        jd.userData.pointer = reinterpret_cast<uintptr_t>(this);
+    };
+    const float sign = static_cast<float>(sign_);
+    switch (def_.type) {
+        case JointType::Fixed: {
+            b2WeldJointDef jd;
+            common(jd);
+            jd.localAnchorA = localAnchorA_;
+            jd.localAnchorB = localAnchorB_;
+            jd.referenceAngle = referenceAngle_;
+            joint_ = world.CreateJoint(&jd);
+            break;
+        }
+        case JointType::Ball:
+        case JointType::Hinge: {
+            b2RevoluteJointDef jd;
+            common(jd);
+            jd.localAnchorA = localAnchorA_;
+            jd.localAnchorB = localAnchorB_;
+            jd.referenceAngle = referenceAngle_;
+            if (def_.limits) {
+                jd.enableLimit = true;
+                jd.lowerAngle = static_cast<float>(sign_ > 0 ? def_.limits->lower : -def_.limits->upper);
+                jd.upperAngle = static_cast<float>(sign_ > 0 ? def_.limits->upper : -def_.limits->lower);
+            }
+            if (def_.motor) {
+                jd.enableMotor = true;
+                jd.motorSpeed = sign * static_cast<float>(def_.motor->speed);
+                jd.maxMotorTorque = static_cast<float>(def_.motor->maxForce);
+            }
+            joint_ = world.CreateJoint(&jd);
+            break;
+        }
+        case JointType::Slider: {
+            b2PrismaticJointDef jd;
+            common(jd);
+            jd.localAnchorA = localAnchorA_;
+            jd.localAnchorB = localAnchorB_;
+            jd.localAxisA = localAxisA_;
+            jd.referenceAngle = referenceAngle_;
+            if (def_.limits) {
+                jd.enableLimit = true;
+                jd.lowerTranslation = static_cast<float>(def_.limits->lower);
+                jd.upperTranslation = static_cast<float>(def_.limits->upper);
+            }
+            if (def_.motor) {
+                jd.enableMotor = true;
+                jd.motorSpeed = static_cast<float>(def_.motor->speed);
+                jd.maxMotorForce = static_cast<float>(def_.motor->maxForce);
+            }
+            joint_ = world.CreateJoint(&jd);
+            break;
+        }
+        case JointType::Wheel: {
+            b2WheelJointDef jd;
+            common(jd);
+            jd.localAnchorA = localAnchorA_;
+            jd.localAnchorB = localAnchorB_;
+            jd.localAxisA = localAxisA_;
+            if (def_.limits) {
+                jd.enableLimit = true;
+                jd.lowerTranslation = static_cast<float>(def_.limits->lower);
+                jd.upperTranslation = static_cast<float>(def_.limits->upper);
+            }
+            if (def_.motor) {
+                jd.enableMotor = true;
+                jd.motorSpeed = sign * static_cast<float>(def_.motor->speed);
+                jd.maxMotorTorque = static_cast<float>(def_.motor->maxForce);
+            }
+            if (def_.spring) {
+                jd.stiffness = springStiffness(*def_.spring);
+                jd.damping = static_cast<float>(def_.spring->damping);
+            }
+            joint_ = world.CreateJoint(&jd);
+            break;
+        }
+        case JointType::Distance: {
+            b2DistanceJointDef jd;
+            common(jd);
+            jd.localAnchorA = localAnchorA_;
+            jd.localAnchorB = localAnchorB_;
+            jd.length = static_cast<float>(def_.length);
+            distanceRange(def_, jd.minLength, jd.maxLength);
+            if (def_.spring) {
+                jd.stiffness = springStiffness(*def_.spring);
+                jd.damping = static_cast<float>(def_.spring->damping);
+            }
+            joint_ = world.CreateJoint(&jd);
+            break;
+        }
+        case JointType::Cone: break;  // refused in the constructor
+    }
+    if (def_.spring && springJoint()) spring_ = makeSpring(world);
+    wake();
+}
+
+// Box2D 2.4's revolute and prismatic joints have no spring. Its soft weld joint is one about Z
+// (angular stiffness and damping toward the reference angle, the point held rigidly: what the
+// revolute joint holds anyway), and its wheel joint is one along an axis (the line held, what
+// the prismatic joint holds anyway). So a sprung hinge or slider is two Box2D joints on the same
+// anchors: the springs are solved in Box2D's solver, implicitly (soft constraints), with gravity
+// and contacts, like its own wheel and distance springs.
+b2Joint* Box2dJoint::makeSpring(b2World& world) const {
+    if (def_.type == JointType::Slider) {
+        b2WheelJointDef jd;
+        jd.bodyA = bodyA();
+        jd.bodyB = bodyB();
+        jd.collideConnected = def_.collideConnected;  // both must allow it for contacts
+        jd.userData.pointer = reinterpret_cast<uintptr_t>(this);
+        jd.localAnchorA = localAnchorA_;
+        jd.localAnchorB = localAnchorB_;
+        jd.localAxisA = localAxisA_;
+        jd.stiffness = springStiffness(*def_.spring);
+        jd.damping = static_cast<float>(def_.spring->damping);
+        return world.CreateJoint(&jd);
+    }
+    b2WeldJointDef jd;
+    jd.bodyA = bodyA();
+    jd.bodyB = bodyB();
+    jd.collideConnected = def_.collideConnected;
+    jd.userData.pointer = reinterpret_cast<uintptr_t>(this);
+    jd.localAnchorA = localAnchorA_;
+    jd.localAnchorB = localAnchorB_;
+    jd.referenceAngle = referenceAngle_;
+    jd.stiffness = springStiffness(*def_.spring);  // > 0: soft about Z (0 would be rigid)
+    jd.damping = static_cast<float>(def_.spring->damping);
+    return world.CreateJoint(&jd);
+}
+
+void Box2dJoint::wake() {
+    // A joint is a constraint between both bodies: a change must reach a sleeping pair (Box2D
+    // keeps a joined pair in one island, so they sleep and wake together from then on).
+    bodyA()->SetAwake(true);  // no-op on static bodies
+    bodyB()->SetAwake(true);
+}
+
+// ---- what the joint reports ------------------------------------------------------------------
+
+double Box2dJoint::position() const {
+    if (!world_) return 0.0;
+    const b2Body* a = bodyA();
+    const b2Body* b = bodyB();
+    switch (def_.type) {
+        case JointType::Hinge:
+            // Box2D's angles are not wrapped: the angle runs past +-pi.
+            return sign_ * (static_cast<double>(b->GetAngle()) - a->GetAngle() - referenceAngle_);
+        case JointType::Ball: {
+            // The swing between the frames' X axes, as every backend reports a ball. The planar
+            // ball the layer sends has X along Z (no swing); a peer given X in the plane swings
+            // by the relative turn.
+            const double turn = static_cast<double>(b->GetAngle()) - a->GetAngle() - referenceAngle_;
+            const double z2 = ballAxisZ_ * ballAxisZ_;
+            return std::acos(std::clamp(z2 + (1.0 - z2) * std::cos(turn), -1.0, 1.0));
+        }
+        case JointType::Slider:
+        case JointType::Wheel: return b2Dot(anchorB() - anchorA(), axis());
+        case JointType::Distance: return static_cast<double>((anchorB() - anchorA()).Length()) - def_.length;
+        case JointType::Fixed:
+        case JointType::Cone: break;
+    }
+    return 0.0;
+}
+
+double Box2dJoint::speed() const {
+    if (!world_) return 0.0;
+    const b2Body* a = bodyA();
+    const b2Body* b = bodyB();
+    const double relativeSpin = static_cast<double>(b->GetAngularVelocity()) - a->GetAngularVelocity();
+    switch (def_.type) {
+        case JointType::Hinge:
+        case JointType::Wheel: return sign_ * relativeSpin;  // about frame X (hinge), frame Y (wheel axle)
+        case JointType::Ball: {
+            // d/dt acos(c) with c = z^2 + p^2 cos(turn): rate = p^2 sin(turn) turn' / sin(swing).
+            const double turn = static_cast<double>(b->GetAngle()) - a->GetAngle() - referenceAngle_;
+            const double p2 = 1.0 - ballAxisZ_ * ballAxisZ_;
+            const double swingSine = std::sin(position());
+            return swingSine > 1e-9 ? p2 * std::sin(turn) * relativeSpin / swingSine : 0.0;
+        }
+        case JointType::Slider: {
+            // d/dt (d . x) with x turning with A: B's anchor against A's material point under it.
+            const b2Vec2 p = anchorB();
+            return b2Dot(b->GetLinearVelocityFromWorldPoint(p) - a->GetLinearVelocityFromWorldPoint(p), axis());
+        }
+        case JointType::Distance: {
+            const b2Vec2 pa = anchorA(), pb = anchorB();
+            b2Vec2 u = pb - pa;
+            if (u.Normalize() < 1e-9f) return 0.0;
+            return b2Dot(b->GetLinearVelocityFromWorldPoint(pb) - a->GetLinearVelocityFromWorldPoint(pa), u);
+        }
+        case JointType::Fixed:
+        case JointType::Cone: break;
+    }
+    return 0.0;
+}
+
+// ---- changes ---------------------------------------------------------------------------------
+
+void Box2dJoint::setMotor(const std::optional<JointMotor>& motor) {
+    def_.motor = motor;
+    applyMotor();
+}
+
+void Box2dJoint::setLimits(const std::optional<JointLimits>& limits) {
+    def_.limits = limits;
+    applyLimits();
+}
+
+void Box2dJoint::setSpring(const std::optional<JointSpringSI>& spring) {
+    def_.spring = spring;
+    applySpring();
+}
+
+void Box2dJoint::applyMotor() {
+    if (!joint_) return;
+    const bool on = def_.motor.has_value();
+    const float speed = on ? static_cast<float>(def_.motor->speed) : 0.0f;
+    const float most = on ? static_cast<float>(def_.motor->maxForce) : 0.0f;
+    const float sign = static_cast<float>(sign_);
+    switch (joint_->GetType()) {
+        case e_revoluteJoint: {
+            auto* j = static_cast<b2RevoluteJoint*>(joint_);
+            j->SetMotorSpeed(sign * speed);
+            j->SetMaxMotorTorque(most);
+            j->EnableMotor(on);
+            break;
+        }
+        case e_prismaticJoint: {
+            auto* j = static_cast<b2PrismaticJoint*>(joint_);
+            j->SetMotorSpeed(speed);
+            j->SetMaxMotorForce(most);
+            j->EnableMotor(on);
+            break;
+        }
+        case e_wheelJoint: {
+            auto* j = static_cast<b2WheelJoint*>(joint_);
+            j->SetMotorSpeed(sign * speed);
+            j->SetMaxMotorTorque(most);
+            j->EnableMotor(on);
+            break;
+        }
+        default: break;
+    }
+    wake();
+}
+
+void Box2dJoint::applyLimits() {
+    if (!joint_) return;
+    const bool on = def_.limits.has_value();
+    const float lower = on ? static_cast<float>(def_.limits->lower) : 0.0f;
+    const float upper = on ? static_cast<float>(def_.limits->upper) : 0.0f;
+    switch (joint_->GetType()) {
+        case e_revoluteJoint: {
+            auto* j = static_cast<b2RevoluteJoint*>(joint_);
+            if (sign_ > 0)
+                j->SetLimits(lower, upper);
+            else
+                j->SetLimits(-upper, -lower);
+            j->EnableLimit(on);
+            break;
+        }
+        case e_prismaticJoint: {
+            auto* j = static_cast<b2PrismaticJoint*>(joint_);
+            j->SetLimits(lower, upper);
+            j->EnableLimit(on);
+            break;
+        }
+        case e_wheelJoint: {
+            auto* j = static_cast<b2WheelJoint*>(joint_);
+            j->SetLimits(lower, upper);
+            j->EnableLimit(on);
+            break;
+        }
+        default: break;
+    }
+    wake();
+}
+
+void Box2dJoint::applySpring() {
+    if (!joint_) return;
+    const float k = def_.spring ? springStiffness(*def_.spring) : 0.0f;
+    const float c = def_.spring ? static_cast<float>(def_.spring->damping) : 0.0f;
+    if (springJoint()) {  // hinge, slider: the spring's own joint comes and goes with it
+        b2World& world = *bodyB()->GetWorld();
+        if (spring_) world.DestroyJoint(spring_);
+        spring_ = def_.spring ? makeSpring(world) : nullptr;
+        wake();
+        return;
+    }
+    switch (joint_->GetType()) {
+        case e_wheelJoint: {
+            auto* j = static_cast<b2WheelJoint*>(joint_);
+            j->SetStiffness(k);
+            j->SetDamping(c);
+            break;
+        }
+        case e_distanceJoint: {
+            auto* j = static_cast<b2DistanceJoint*>(joint_);
+            j->SetStiffness(k);
+            j->SetDamping(c);
+            // With or without a spring a distance joint without a range changes between soft
+            // and rigid: the range goes with it (set wide first, as Box2D clamps each end to
+            // the other).
+            float lower = 0.0f, upper = 0.0f;
+            distanceRange(def_, lower, upper);
+            j->SetMinLength(0.0f);
+            j->SetMaxLength(upper);
+            j->SetMinLength(lower);
+            break;
+        }
+        default: break;
+    }
+    wake();
+}
+
+// ---- the step ----------------------------------------------------------------------------
+
+void Box2dJoint::afterSubstep() {
+    // inv_dt = 1: the impulse of the Box2D step just taken (warm start included), applied to B
+    // at B's anchor, and the angular impulse on B (so the torque is about B's anchor); the
+    // spring's joint acts at the same anchor.
+    for (const b2Joint* j : {joint_, spring_}) {
+        if (!j) continue;
+        const b2Vec2 impulse = j->GetReactionForce(1.0f);
+        impulse_.x += impulse.x;
+        impulse_.y += impulse.y;
+        angularImpulse_ += j->GetReactionTorque(1.0f);
+    }
+}
+
+void Box2dJoint::endStep(double dt) {
+    reactionForce_ = Vec3(impulse_.x / dt, impulse_.y / dt, 0.0);
+    reactionTorque_ = Vec3(0.0, 0.0, angularImpulse_ / dt);
+}
+
+void* Box2dJoint::nativeObject(const std::type_info& pointerType) {
+    return pointerType == typeid(b2Joint*) ? static_cast<void*>(joint_) : nullptr;
+}
+
+}  // namespace anyphys::box2d
