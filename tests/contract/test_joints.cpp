@@ -28,6 +28,9 @@ double ellipticK(double k) {
 class JointTest : public ContractTest {
 protected:
     bool hasJoint(const char* type) const { return caps().jointTypes.contains(type); }
+    /// A contract criterion id, "planar." + id in planar worlds (a backend may miss one and not
+    /// the other).
+    std::string criterion(const std::string& id) const { return planarTest() ? "planar." + id : id; }
     bool hasParameter(const std::string& name) const { return caps().parameters.contains(name); }
 
     WorldSettings jointSettings(bool gravity = true) const {
@@ -66,7 +69,9 @@ protected:
     struct Swing {
         double period = 0.0, maxGap = 0.0, energyDrift = 0.0;
     };
-    Swing swing(World& world, Body& bob, double length, double duration) {
+    // Energy is measured against `energyScale` (the swing's own energy, m g L (1 - cos theta0)):
+    // the total against the anchor's height can be near zero and would magnify any change.
+    Swing swing(World& world, Body& bob, double length, double duration, double energyScale) {
         Swing out;
         const auto energy = [&] {
             const BodyState s = bob.state();
@@ -90,7 +95,7 @@ protected:
             }
             previousX = x;
             out.maxGap = std::max(out.maxGap, std::abs(bob.position().norm() - length));
-            out.energyDrift = std::max(out.energyDrift, std::abs(energy() - e0) / std::abs(e0));
+            out.energyDrift = std::max(out.energyDrift, std::abs(energy() - e0) / energyScale);
         }
         out.period = crossings > 1 ? (last - first) / (crossings - 1) : 0.0;
         return out;
@@ -113,21 +118,488 @@ protected:
             Joint joint = world.createJoint(d);
             const double I = 0.4 * r * r;
             const double exact = 4.0 * std::sqrt((I + L * L) / L / kG) * ellipticK(std::sin(0.5 * amplitude));
-            const Swing s = swing(world, bob, L, 20.0 * exact);
+            const Swing s = swing(world, bob, L, 20.0 * exact, kG * L * (1.0 - std::cos(amplitude)));
             std::cout << "[ MEASURED ] " << backend() << " " << toString(type) << " pendulum, amplitude " << amplitude
                       << ": period " << s.period << " s (exact " << exact << "), max gap " << s.maxGap * 1e3
-                      << " mm, energy drift " << 100.0 * s.energyDrift << " %\n";
-            // 1 %: a step of 1/60 s resolves a 2 s swing in 120 steps; every engine's first-order
-            // integration and constraint softness move the period by well under that (native
-            // measures 0.03 %), while a joint that stretched or slipped would not.
-            EXPECT_NEAR(s.period, exact, 0.01 * exact) << "amplitude " << amplitude;
+                      << " mm, energy change " << 100.0 * s.energyDrift << " % of the swing\n";
             // 2 cm: the anchor is held (soft constraints sag by millimetres under the swing's tension).
             EXPECT_LT(s.maxGap, 0.02) << "amplitude " << amplitude;
-            // Energy within 10 % over 20 periods: engines that damp joints lose some; a joint that
-            // pumped energy or dropped the bob would not stay inside.
-            EXPECT_LT(s.energyDrift, 0.10) << "amplitude " << amplitude;
+            // Period 1 %: a step of 1/60 s resolves a 2 s swing in 120 steps; first-order
+            // integration and constraint softness move it by well under that (native: 0.05 %),
+            // while a joint that stretched, slipped or drained the swing would not.
+            // Energy 5 % of the swing over 20 periods: a symplectic step keeps it bounded (native:
+            // 0.4 %); a joint solved on velocity only drains (ωh)^2 of it per step.
+            // At 0.3 rad every engine must hold the period; energy, and both at 1.5 rad, a backend
+            // may declare a known deviation (measured, with its cause), reported instead of failing.
+            const bool periodOk = std::abs(s.period - exact) <= 0.01 * exact;
+            const bool energyOk = s.energyDrift <= 0.05;
+            const std::string where = std::string(toString(type)) + " at " + std::to_string(amplitude) + " rad: ";
+            const std::string energyText = where + "energy change " + std::to_string(100.0 * s.energyDrift) + " % of the swing";
+            if (amplitude < 1.0) {
+                EXPECT_TRUE(periodOk) << where << "period " << s.period << " s, exact " << exact;
+                expectCriterion(criterion("joints.pendulum_energy"), energyOk, energyText);
+            } else {
+                expectCriterion(criterion("joints.wide_pendulum_period"), periodOk,
+                                where + "period " + std::to_string(s.period) + " s, exact " + std::to_string(exact));
+                expectCriterion(criterion("joints.wide_pendulum_energy"), energyOk, energyText);
+            }
             EXPECT_TRUE(joint.isValid());
         }
+    }
+
+    // ---- cases run in 3D and in planar worlds (all in the XY plane, hinges about Z) ----
+
+    void HangingBodyReactionIsItsWeightCase() {
+        ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
+        World world(jointSettings());
+        const double m = 3.0;
+        Body body = ball(world, Vec3(0, -1, 0), m, 0.1);
+        JointDef d;
+        d.type = JointType::Ball;
+        d.bodyB = body;
+        Joint joint = world.createJoint(d);
+        for (int i = 0; i < 120; ++i) world.step();
+        // Mean over the next second: 1 % (a soft joint still settling moves it by far less).
+        Vec3 mean = Vec3::Zero();
+        for (int i = 0; i < 60; ++i) {
+            world.step();
+            mean += joint.reactionForce() / 60.0;
+        }
+        std::cout << "[ MEASURED ] " << backend() << " hanging reaction " << mean.transpose() << " N (m g = " << m * kG << ")\n";
+        EXPECT_NEAR(mean.y(), m * kG, 0.01 * m * kG);
+        EXPECT_NEAR(mean.x(), 0.0, 0.01 * m * kG);
+        EXPECT_NEAR(mean.z(), 0.0, 0.01 * m * kG);
+    }
+
+    void MotorReachesTargetSpeedAtTorqueLimitCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        ANYPHYS_REQUIRE(hasParameter("joint.hinge.motor"), "joint.hinge.motor");
+        World world(jointSettings(false));
+        const double m = 2.0, r = 0.5, I = 0.4 * m * r * r;  // 0.2 kg m^2
+        const double tau = 1.0, target = 5.0;                 // t* = 1 s
+        Body wheel = ball(world, Vec3::Zero(), m, r);
+        JointDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = wheel;
+        d.motor = JointMotor{target, tau};
+        Joint joint = world.createJoint(d);
+        const double tStar = I * target / tau;
+        double worstEarly = 0.0;
+        while (world.time() < 2.0 * tStar) {
+            world.step();
+            const double t = world.time(), w = joint.speed();
+            // Never faster than the torque allows (a motor that ignored maxForce would jump).
+            if (t < tStar) worstEarly = std::max(worstEarly, w - tau * t / I);
+        }
+        std::cout << "[ MEASURED ] " << backend() << " motor: speed " << joint.speed() << " rad/s at 2 t* (target " << target
+                  << "), most ahead of tau t / I: " << worstEarly << " rad/s\n";
+        // 2 %: one step of torque (tau dt / I = 0.08 rad/s at 60 Hz) is the resolution of an engine
+        // that applies the limit per step rather than per substep.
+        EXPECT_LT(worstEarly, 0.02 * target);
+        EXPECT_NEAR(joint.speed(), target, 0.01 * target);
+        EXPECT_NEAR(wheel.angularVelocity().z(), target, 0.01 * target);  // positive speed: +axis
+    }
+
+    void SliderSpringFrequencyCase() {
+        ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
+        ANYPHYS_REQUIRE(hasParameter("joint.slider.spring"), "joint.slider.spring");
+        World world(jointSettings(false));
+        const double k = 40.0, m = 2.0;
+        BodyDef bd;
+        bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
+        bd.mass = m;
+        bd.allowSleep = false;
+        bd.linearVelocity = Vec3(0.5, 0, 0);
+        Body body = world.createBody(bd);
+        JointDef d;
+        d.type = JointType::Slider;
+        d.bodyB = body;
+        d.axis = Vec3::UnitX();
+        d.spring = JointSpring{k, 0.0};
+        Joint joint = world.createJoint(d);
+        double previous = 0.0, first = -1, last = -1, offAxis = 0.0;
+        int crossings = 0;
+        const double dt = world.settings().timeStep;
+        while (world.time() < 10.0) {
+            world.step();
+            const double x = joint.position();
+            if (previous > 0.0 && x <= 0.0) {
+                const double t = world.time() - dt * x / (x - previous);
+                if (first < 0) first = t;
+                last = t;
+                ++crossings;
+            }
+            previous = x;
+            offAxis = std::max(offAxis, std::hypot(body.position().y(), body.position().z()));
+        }
+        const double exact = 2.0 * kPi * std::sqrt(m / k);
+        const double period = (last - first) / (crossings - 1);
+        std::cout << "[ MEASURED ] " << backend() << " slider spring period " << period << " s (exact " << exact << ")\n";
+        // 1 %: (omega dt)^2 = 3e-3 at 60 Hz bounds an implicit or explicit spring's period error.
+        EXPECT_NEAR(period, exact, 0.01 * exact);
+        EXPECT_LT(offAxis, 1e-3);  // the slider holds the body on its axis
+    }
+
+    void HingeLimitStopsThePendulumCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        ANYPHYS_REQUIRE(hasParameter("joint.hinge.limits"), "joint.hinge.limits");
+        World world(jointSettings());
+        Body bob = ball(world, Vec3(1, 0, 0), 1.0, 0.1);
+        JointDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = bob;
+        d.limits = JointLimits{-0.5, 0.5};
+        Joint joint = world.createJoint(d);
+        double lowest = 0.0;
+        for (int i = 0; i < 240; ++i) {
+            world.step();
+            lowest = std::min(lowest, joint.position());
+        }
+        std::cout << "[ MEASURED ] " << backend() << " hinge limit -0.5: deepest " << lowest << " rad, rests at "
+                  << joint.position() << " rad\n";
+        // 0.05 rad: the bob arrives at 3 rad/s, one step of 1/60 s is 0.05 rad of travel.
+        // A point-like bob on a 1 m arm (m L^2 / I = 250) is the hard case for a limit solved apart
+        // from the anchor: a backend that lets it through declares it.
+        const bool held = lowest > -0.55 && std::abs(joint.position() + 0.5) < 0.02 && std::abs(joint.speed()) < 0.05;
+        expectCriterion(criterion("joints.hinge_limit"), held,
+                        "deepest " + std::to_string(lowest) + " rad, rests at " + std::to_string(joint.position()) +
+                            " rad, speed " + std::to_string(joint.speed()) + " rad/s");
+    }
+
+    void DistanceRodAndRopeCase() {
+        ANYPHYS_REQUIRE(hasJoint("distance"), "joint type distance");
+        {
+            World world(jointSettings());
+            Body bob = ball(world, Vec3(1, 0, 0), 1.0, 0.1);
+            JointDef d;
+            d.type = JointType::Distance;
+            d.bodyB = bob;
+            d.anchorA = Vec3::Zero();
+            d.anchorB = Vec3(1, 0, 0);
+            Joint rod = world.createJoint(d);
+            double worst = 0.0;
+            for (int i = 0; i < 300; ++i) {
+                world.step();
+                worst = std::max(worst, std::abs(bob.position().norm() - 1.0));
+            }
+            std::cout << "[ MEASURED ] " << backend() << " distance rod: worst length error " << worst * 1e3 << " mm\n";
+            EXPECT_LT(worst, 0.01);  // 1 cm: the swing's tension sags a soft rod by millimetres
+            EXPECT_NEAR(rod.position(), bob.position().norm() - 1.0, 1e-6);
+        }
+        ANYPHYS_REQUIRE(hasParameter("joint.distance.maxLength"), "joint.distance.maxLength");
+        {
+            // Thrown upward from 1 m below the anchor, the rope goes slack: free flight, no pull.
+            World world(jointSettings());
+            Body bob = ball(world, Vec3(0, -1, 0), 1.0, 0.1);
+            bob.setLinearVelocity(Vec3(0, 2, 0));
+            JointDef d;
+            d.type = JointType::Distance;
+            d.bodyB = bob;
+            d.anchorA = Vec3::Zero();
+            d.anchorB = Vec3(0, -1, 0);
+            d.minLength = 0.0;
+            d.maxLength = 1.0;
+            world.createJoint(d);
+            for (int i = 0; i < 12; ++i) world.step();
+            const double t = world.time();
+            // Free flight: y = -1 + 2 t - g t^2 / 2. Semi-implicit Euler in steps of h falls g h t / 2
+            // further (1.6 cm at one 60 Hz substep after 0.2 s); 2 mm beyond that.
+            const double h = world.settings().timeStep / *world.settings().substeps;
+            EXPECT_NEAR(bob.position().y(), -1.0 + 2.0 * t - 0.5 * kG * t * t, 0.5 * kG * h * t + 0.002);
+            for (int i = 0; i < 120; ++i) world.step();
+            EXPECT_LT(bob.position().norm(), 1.0 + 0.01);  // and the rope catches it
+        }
+    }
+
+    void DoublePendulumNormalModesCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        for (double sign : {1.0, -1.0}) {
+            World world(jointSettings());
+            const double L = 1.0, theta1 = 0.05, theta2 = sign * std::sqrt(2.0) * theta1;
+            const Vec3 p1(L * std::sin(theta1), -L * std::cos(theta1), 0.0);
+            const Vec3 p2 = p1 + Vec3(L * std::sin(theta2), -L * std::cos(theta2), 0.0);
+            Body upper = ball(world, p1, 1.0, 0.02);
+            Body lower = ball(world, p2, 1.0, 0.02);
+            JointDef d;
+            d.type = JointType::Hinge;
+            d.bodyB = upper;
+            world.createJoint(d);
+            d.bodyA = upper;
+            d.bodyB = lower;
+            d.anchor = p1;
+            world.createJoint(d);
+            const double w = std::sqrt(kG / L * (2.0 - sign * std::sqrt(2.0)));
+            const double exact = 2.0 * kPi / w;
+            Swing s = swing(world, upper, L, 20.0, 2.0 * kG * L * (1.0 - std::cos(theta1)));
+            std::cout << "[ MEASURED ] " << backend() << " double pendulum mode " << (sign > 0 ? "slow" : "fast")
+                      << ": period " << s.period << " s (exact " << exact << ")\n";
+            // 1 %: the modes' small-amplitude form is exact to theta^2 / 16 ~ 2e-4 here; a joint that
+            // stretched or coupled the modes wrongly would shift the period by more.
+            EXPECT_NEAR(s.period, exact, 0.01 * exact) << (sign > 0 ? "slow" : "fast") << " mode";
+        }
+    }
+
+    void MotorHoldsALoadItCanCarryCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        ANYPHYS_REQUIRE(hasParameter("joint.hinge.motor"), "joint.hinge.motor");
+        for (double torque : {10.0, 2.0}) {
+            World world(jointSettings());
+            BodyDef bar;
+            bar.shape = ShapeDef::box(Vec3(0.5, 0.05, 0.05));
+            bar.mass = 1.0;
+            bar.position = Vec3(0.5, 0, 0);
+            bar.allowSleep = false;
+            Body arm = world.createBody(bar);
+            JointDef d;
+            d.type = JointType::Hinge;
+            d.bodyB = arm;
+            d.motor = JointMotor{0.0, torque};
+            Joint joint = world.createJoint(d);
+            double lowest = 0.0;
+            for (int i = 0; i < 120; ++i) {
+                world.step();
+                lowest = std::min(lowest, joint.position());
+            }
+            std::cout << "[ MEASURED ] " << backend() << " motor " << torque << " N m holding 4.9 N m: lowest angle "
+                      << lowest << " rad\n";
+            if (torque > 4.905)
+                EXPECT_GT(lowest, -0.01);  // a motor at speed 0 yields nothing but a step's sag
+            else
+                EXPECT_LT(lowest, -0.5);  // (4.9 - 2) N m net on I = 1/3 kg m^2: past half a radian in 2 s
+        }
+    }
+
+    void SliderOnInclineStopsAtItsLimitCase() {
+        ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
+        ANYPHYS_REQUIRE(hasParameter("joint.slider.limits"), "joint.slider.limits");
+        World world(jointSettings());
+        BodyDef bd;
+        bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
+        bd.mass = 1.0;
+        bd.allowSleep = false;
+        Body body = world.createBody(bd);
+        JointDef d;
+        d.type = JointType::Slider;
+        d.bodyB = body;
+        d.axis = Vec3(std::cos(kPi / 6.0), -std::sin(kPi / 6.0), 0.0);  // downhill
+        d.limits = JointLimits{-1.0, 1.0};
+        Joint joint = world.createJoint(d);
+        const double a = kG * 0.5, tStar = std::sqrt(2.0 / a), vStar = std::sqrt(2.0 * a);
+        double tStop = -1.0, vBefore = 0.0, deepest = 0.0;
+        while (world.time() < 1.5) {
+            const double v = joint.speed();
+            world.step();
+            if (tStop < 0.0 && joint.position() >= 0.999) {
+                tStop = world.time();
+                vBefore = v;
+            }
+            deepest = std::max(deepest, joint.position());
+        }
+        std::cout << "[ MEASURED ] " << backend() << " slider on incline: stop at " << tStop << " s (exact " << tStar
+                  << "), speed before " << vBefore << " m/s (exact " << vStar << "), past the limit "
+                  << (deepest - 1.0) * 1e3 << " mm\n";
+        const double dt = world.settings().timeStep;
+        EXPECT_NEAR(tStop, tStar, dt);              // within the step it happens in
+        EXPECT_NEAR(vBefore, vStar, 0.1 * vStar);   // sampled up to a step before: a dt of 4.9 m/s^2 (3 %)
+        EXPECT_LT(deepest - 1.0, 0.01);             // 1 cm past the stop at most
+        EXPECT_NEAR(joint.position(), 1.0, 0.005);  // and it rests on it
+        EXPECT_NEAR(joint.speed(), 0.0, 0.02);
+    }
+
+    void WheelSuspensionAndDriveCase() {
+        ANYPHYS_REQUIRE(hasJoint("wheel"), "joint type wheel");
+        ANYPHYS_REQUIRE(hasParameter("joint.wheel.spring"), "joint.wheel.spring");
+        ANYPHYS_REQUIRE(hasParameter("joint.wheel.motor"), "joint.wheel.motor");
+        World world(jointSettings());
+        const double m = 2.0, k = 200.0, r = 0.3;
+        Body wheel = ball(world, Vec3::Zero(), m, r);
+        JointDef d;
+        d.type = JointType::Wheel;
+        d.bodyB = wheel;
+        d.axis = Vec3::UnitY();      // suspension
+        d.spinAxis = Vec3::UnitZ();  // axle
+        d.spring = JointSpring{k, 0.0};
+        d.motor = JointMotor{10.0, 5.0};
+        Joint joint = world.createJoint(d);
+        // Released at the unloaded length: it oscillates about -m g / k with amplitude m g / k.
+        const double sag = m * kG / k, omega = std::sqrt(k / m);
+        double lowest = 0.0, highest = -1.0, previous = 0.0, first = -1.0, last = -1.0;
+        int crossings = 0;
+        const double dt = world.settings().timeStep;
+        while (world.time() < 3.0) {
+            world.step();
+            const double y = joint.position() + sag;  // about the rest position
+            lowest = std::min(lowest, joint.position());
+            highest = std::max(highest, joint.position());
+            if (previous > 0.0 && y <= 0.0) {
+                const double t = world.time() - dt * y / (y - previous);
+                if (first < 0) first = t;
+                last = t;
+                ++crossings;
+            }
+            previous = y;
+        }
+        const double period = crossings > 1 ? (last - first) / (crossings - 1) : 0.0;
+        std::cout << "[ MEASURED ] " << backend() << " wheel: travel [" << lowest << ", " << highest << "] m (exact [" << -2 * sag
+                  << ", 0]), period " << period << " s (exact " << 2 * kPi / omega << "), spin " << joint.speed()
+                  << " rad/s (target 10)\n";
+        // 5 % of the 0.196 m swing and of the period: an undamped spring through a joint at 60 Hz
+        // ((omega dt)^2 = 0.028) keeps both to about 1 %.
+        expectCriterion(criterion("joints.wheel_travel"), std::abs(lowest + 2.0 * sag) <= 0.05 * 2.0 * sag,
+                        "lowest " + std::to_string(lowest) + " m, exact " + std::to_string(-2.0 * sag));
+        EXPECT_NEAR(period, 2.0 * kPi / omega, 0.05 * 2.0 * kPi / omega);
+        // The drive: I = 0.4 m r^2 = 0.072 kg m^2 reaches 10 rad/s in 0.14 s at 5 N m.
+        EXPECT_NEAR(joint.speed(), 10.0, 0.1);
+        EXPECT_NEAR(wheel.angularVelocity().z(), 10.0, 0.1);  // about +axle
+    }
+
+    void BreaksAboveItsForceOnlyCase() {
+        ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
+        ANYPHYS_REQUIRE(hasParameter("joint.ball.breakForce"), "joint.ball.breakForce");
+        struct Recorder : ContactListener {
+            std::vector<JointEvent> broken;
+            void onJointBreak(const JointEvent& e) override { broken.push_back(e); }
+        } recorder;
+        World world(jointSettings());
+        world.addListener(&recorder);
+        Body strongBody = ball(world, Vec3(-1, -1, 0), 2.0, 0.1);
+        Body weakBody = ball(world, Vec3(1, -1, 0), 2.0, 0.1);
+        JointDef d;
+        d.type = JointType::Ball;
+        d.name = "strong";
+        d.bodyB = strongBody;
+        d.anchor = Vec3(-1, 0, 0);
+        d.breakForce = 25.0;
+        Joint strong = world.createJoint(d);
+        d.name = "weak";
+        d.bodyB = weakBody;
+        d.anchor = Vec3(1, 0, 0);
+        d.breakForce = 15.0;
+        Joint weak = world.createJoint(d);
+        for (int i = 0; i < 120; ++i) world.step();
+        EXPECT_FALSE(strong.isBroken());
+        EXPECT_TRUE(weak.isBroken());
+        ASSERT_EQ(recorder.broken.size(), 1u);
+        EXPECT_EQ(recorder.broken[0].name, "weak");
+        EXPECT_GT(recorder.broken[0].force.norm(), 15.0);
+        EXPECT_EQ(weak.reactionForce(), Vec3::Zero());
+        // The strong joint holds its body; the weak one's falls freely.
+        EXPECT_NEAR(strongBody.position().y(), -1.0, 0.01);
+        EXPECT_LT(weakBody.position().y(), -5.0);
+        world.removeListener(&recorder);
+    }
+
+    void HangingChainHoldsTogetherCase() {
+        ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
+        for (Solver solver : caps().solvers)
+        for (double endRatio : {10.0, 100.0}) {
+            WorldSettings s = jointSettings();
+            s.solver = solver;
+            World world(s);
+            const int links = 40;
+            const double spacing = 0.1;
+            std::vector<Body> bodies;
+            Body previous;
+            for (int i = 0; i < links; ++i) {
+                const bool end = i + 1 == links;
+                // Started off-vertical so the chain swings.
+                Body link = ball(world, Vec3(spacing * (i + 1), 0, 0), end ? 0.1 * endRatio : 0.1, 0.03);
+                JointDef d;
+                d.type = JointType::Ball;
+                d.bodyA = previous;
+                d.bodyB = link;
+                d.anchor = Vec3(spacing * i, 0, 0);
+                world.createJoint(d);
+                bodies.push_back(link);
+                previous = link;
+            }
+            double worst = 0.0;
+            for (int i = 0; i < 300; ++i) {
+                world.step();
+                Vec3 last = Vec3::Zero();
+                for (const Body& b : bodies) {
+                    worst = std::max(worst, std::abs((b.position() - last).norm() - spacing));
+                    last = b.position();
+                }
+            }
+            std::cout << "[ MEASURED ] " << backend() << " " << toString(solver) << " chain of 40, end " << endRatio
+                      << "x: worst gap " << worst * 1e3 << " mm\n";
+            // Stretched but not torn: a link's length (10 cm) at the default solver, 10x end; the
+            // figure is printed per solver and ratio, since iterative solvers (one substep of PGS)
+            // and a 100x end stretch further; for those, two links' length. At the default solver
+            // a backend that tears declares it (criteria joints.chain_gap, joints.chain_gap_heavy).
+            const std::string measured = std::string(toString(solver)) + ", end " + std::to_string(endRatio) +
+                                         "x: worst gap " + std::to_string(worst) + " m";
+            if (solver == caps().defaultSolver)
+                expectCriterion(criterion(endRatio > 10.0 ? "joints.chain_gap_heavy" : "joints.chain_gap"),
+                                worst < (endRatio > 10.0 ? 0.2 : 0.1), measured);
+            else
+                EXPECT_LT(worst, 0.2) << measured;
+        }
+    }
+
+    void CollideConnectedDecidesContactsCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        for (bool collide : {false, true}) {
+            if (collide && !hasParameter("joint.hinge.collideConnected")) continue;
+            World world(jointSettings(false));
+            BodyDef bd;
+            bd.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
+            bd.allowSleep = false;
+            bd.type = BodyType::Static;
+            Body base = world.createBody(bd);
+            bd.type = BodyType::Dynamic;
+            bd.position = Vec3(0.8, 0, 0);
+            Body arm = world.createBody(bd);
+            JointDef d;
+            d.type = JointType::Hinge;
+            d.bodyA = base;
+            d.bodyB = arm;
+            d.anchor = Vec3(0.4, 0, 0);
+            d.collideConnected = collide;
+            world.createJoint(d);
+            bool touched = false;
+            for (int i = 0; i < 10; ++i) {
+                world.step();
+                for (const ContactEvent& e : world.lastEvents()) touched = touched || e.phase == ContactPhase::Enter;
+            }
+            EXPECT_EQ(touched, collide) << "collideConnected " << collide;
+        }
+    }
+
+    void HandlesAndValidationCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        World world(jointSettings());
+        Body a = ball(world, Vec3(0, -1, 0), 1.0, 0.1, "a");
+        Body b = ball(world, Vec3(0, -2, 0), 1.0, 0.1, "b");
+        JointDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = a;
+        d.limits = JointLimits{1.2, 0.4};
+        try {
+            world.createJoint(d);
+            ADD_FAILURE() << "limits lower > upper accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("limits"), std::string::npos) << e.what();
+        }
+        d.limits.reset();
+        d.bodyA = a;  // the same body twice
+        EXPECT_THROW(world.createJoint(d), Error);
+        d.bodyA = Body();
+        Joint top = world.createJoint(d);
+        d.bodyA = a;
+        d.bodyB = b;
+        d.anchor = Vec3(0, -1, 0);
+        Joint lower = world.createJoint(d);
+        EXPECT_EQ(world.jointCount(), 2u);
+        world.destroyJoint(top);
+        EXPECT_FALSE(top.isValid());
+        EXPECT_THROW(top.position(), Error);
+        world.destroyBody(b);  // takes `lower` with it
+        EXPECT_FALSE(lower.isValid());
+        EXPECT_EQ(world.jointCount(), 0u);
+        for (int i = 0; i < 10; ++i) world.step();
+        EXPECT_LT(a.position().y(), -1.0);  // free now: falls
     }
 };
 
@@ -143,168 +615,21 @@ TEST_P(JointTest, BallPendulumPeriodMatchesEllipticIntegral) {
 
 // A body hanging still from a ball joint: the joint pulls it up with m g (N), whatever the
 // engine's substeps and units.
-TEST_P(JointTest, HangingBodyReactionIsItsWeight) {
-    ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
-    World world(jointSettings());
-    const double m = 3.0;
-    Body body = ball(world, Vec3(0, -1, 0), m, 0.1);
-    JointDef d;
-    d.type = JointType::Ball;
-    d.bodyB = body;
-    Joint joint = world.createJoint(d);
-    for (int i = 0; i < 120; ++i) world.step();
-    // Mean over the next second: 1 % (a soft joint still settling moves it by far less).
-    Vec3 mean = Vec3::Zero();
-    for (int i = 0; i < 60; ++i) {
-        world.step();
-        mean += joint.reactionForce() / 60.0;
-    }
-    std::cout << "[ MEASURED ] " << backend() << " hanging reaction " << mean.transpose() << " N (m g = " << m * kG << ")\n";
-    EXPECT_NEAR(mean.y(), m * kG, 0.01 * m * kG);
-    EXPECT_NEAR(mean.x(), 0.0, 0.01 * m * kG);
-    EXPECT_NEAR(mean.z(), 0.0, 0.01 * m * kG);
-}
+TEST_P(JointTest, HangingBodyReactionIsItsWeight) { HangingBodyReactionIsItsWeightCase(); }
 
 // A motor spins a flywheel (no gravity) at its maximum torque: w = tau t / I until the target,
 // reached at t* = I w / tau, not before; then it holds the target speed.
-TEST_P(JointTest, MotorReachesTargetSpeedAtTorqueLimit) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    ANYPHYS_REQUIRE(hasParameter("joint.hinge.motor"), "joint.hinge.motor");
-    World world(jointSettings(false));
-    const double m = 2.0, r = 0.5, I = 0.4 * m * r * r;  // 0.2 kg m^2
-    const double tau = 1.0, target = 5.0;                 // t* = 1 s
-    Body wheel = ball(world, Vec3::Zero(), m, r);
-    JointDef d;
-    d.type = JointType::Hinge;
-    d.bodyB = wheel;
-    d.motor = JointMotor{target, tau};
-    Joint joint = world.createJoint(d);
-    const double tStar = I * target / tau;
-    double worstEarly = 0.0;
-    while (world.time() < 2.0 * tStar) {
-        world.step();
-        const double t = world.time(), w = joint.speed();
-        // Never faster than the torque allows (a motor that ignored maxForce would jump).
-        if (t < tStar) worstEarly = std::max(worstEarly, w - tau * t / I);
-    }
-    std::cout << "[ MEASURED ] " << backend() << " motor: speed " << joint.speed() << " rad/s at 2 t* (target " << target
-              << "), most ahead of tau t / I: " << worstEarly << " rad/s\n";
-    // 2 %: one step of torque (tau dt / I = 0.08 rad/s at 60 Hz) is the resolution of an engine
-    // that applies the limit per step rather than per substep.
-    EXPECT_LT(worstEarly, 0.02 * target);
-    EXPECT_NEAR(joint.speed(), target, 0.01 * target);
-    EXPECT_NEAR(wheel.angularVelocity().z(), target, 0.01 * target);  // positive speed: +axis
-}
+TEST_P(JointTest, MotorReachesTargetSpeedAtTorqueLimit) { MotorReachesTargetSpeedAtTorqueLimitCase(); }
 
 // A slider with a spring holds a mass (no gravity) that oscillates at sqrt(k/m) / 2 pi.
-TEST_P(JointTest, SliderSpringFrequency) {
-    ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
-    ANYPHYS_REQUIRE(hasParameter("joint.slider.spring"), "joint.slider.spring");
-    World world(jointSettings(false));
-    const double k = 40.0, m = 2.0;
-    BodyDef bd;
-    bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
-    bd.mass = m;
-    bd.allowSleep = false;
-    bd.linearVelocity = Vec3(0.5, 0, 0);
-    Body body = world.createBody(bd);
-    JointDef d;
-    d.type = JointType::Slider;
-    d.bodyB = body;
-    d.axis = Vec3::UnitX();
-    d.spring = JointSpring{k, 0.0};
-    Joint joint = world.createJoint(d);
-    double previous = 0.0, first = -1, last = -1, offAxis = 0.0;
-    int crossings = 0;
-    const double dt = world.settings().timeStep;
-    while (world.time() < 10.0) {
-        world.step();
-        const double x = joint.position();
-        if (previous > 0.0 && x <= 0.0) {
-            const double t = world.time() - dt * x / (x - previous);
-            if (first < 0) first = t;
-            last = t;
-            ++crossings;
-        }
-        previous = x;
-        offAxis = std::max(offAxis, std::hypot(body.position().y(), body.position().z()));
-    }
-    const double exact = 2.0 * kPi * std::sqrt(m / k);
-    const double period = (last - first) / (crossings - 1);
-    std::cout << "[ MEASURED ] " << backend() << " slider spring period " << period << " s (exact " << exact << ")\n";
-    // 1 %: (omega dt)^2 = 3e-3 at 60 Hz bounds an implicit or explicit spring's period error.
-    EXPECT_NEAR(period, exact, 0.01 * exact);
-    EXPECT_LT(offAxis, 1e-3);  // the slider holds the body on its axis
-}
+TEST_P(JointTest, SliderSpringFrequency) { SliderSpringFrequencyCase(); }
 
 // A hinge limit stops a pendulum released horizontally at -0.5 rad, and holds it there against
 // gravity; the angle never passes the stop by more than a few hundredths of a radian.
-TEST_P(JointTest, HingeLimitStopsThePendulum) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    ANYPHYS_REQUIRE(hasParameter("joint.hinge.limits"), "joint.hinge.limits");
-    World world(jointSettings());
-    Body bob = ball(world, Vec3(1, 0, 0), 1.0, 0.1);
-    JointDef d;
-    d.type = JointType::Hinge;
-    d.bodyB = bob;
-    d.limits = JointLimits{-0.5, 0.5};
-    Joint joint = world.createJoint(d);
-    double lowest = 0.0;
-    for (int i = 0; i < 240; ++i) {
-        world.step();
-        lowest = std::min(lowest, joint.position());
-    }
-    std::cout << "[ MEASURED ] " << backend() << " hinge limit -0.5: deepest " << lowest << " rad, rests at "
-              << joint.position() << " rad\n";
-    // 0.05 rad: the bob arrives at 3 rad/s, one step of 1/60 s is 0.05 rad of travel.
-    EXPECT_GT(lowest, -0.55);
-    EXPECT_NEAR(joint.position(), -0.5, 0.02);
-    EXPECT_NEAR(joint.speed(), 0.0, 0.05);
-}
+TEST_P(JointTest, HingeLimitStopsThePendulum) { HingeLimitStopsThePendulumCase(); }
 
 // A rigid distance joint keeps its length; a rope (maxLength only) lets the body come closer.
-TEST_P(JointTest, DistanceRodAndRope) {
-    ANYPHYS_REQUIRE(hasJoint("distance"), "joint type distance");
-    {
-        World world(jointSettings());
-        Body bob = ball(world, Vec3(1, 0, 0), 1.0, 0.1);
-        JointDef d;
-        d.type = JointType::Distance;
-        d.bodyB = bob;
-        d.anchorA = Vec3::Zero();
-        d.anchorB = Vec3(1, 0, 0);
-        Joint rod = world.createJoint(d);
-        double worst = 0.0;
-        for (int i = 0; i < 300; ++i) {
-            world.step();
-            worst = std::max(worst, std::abs(bob.position().norm() - 1.0));
-        }
-        std::cout << "[ MEASURED ] " << backend() << " distance rod: worst length error " << worst * 1e3 << " mm\n";
-        EXPECT_LT(worst, 0.01);  // 1 cm: the swing's tension sags a soft rod by millimetres
-        EXPECT_NEAR(rod.position(), bob.position().norm() - 1.0, 1e-6);
-    }
-    ANYPHYS_REQUIRE(hasParameter("joint.distance.maxLength"), "joint.distance.maxLength");
-    {
-        // Thrown upward from 1 m below the anchor, the rope goes slack: free flight, no pull.
-        World world(jointSettings());
-        Body bob = ball(world, Vec3(0, -1, 0), 1.0, 0.1);
-        bob.setLinearVelocity(Vec3(0, 2, 0));
-        JointDef d;
-        d.type = JointType::Distance;
-        d.bodyB = bob;
-        d.anchorA = Vec3::Zero();
-        d.anchorB = Vec3(0, -1, 0);
-        d.minLength = 0.0;
-        d.maxLength = 1.0;
-        world.createJoint(d);
-        for (int i = 0; i < 12; ++i) world.step();
-        const double t = world.time();
-        // Free flight: y = -1 + 2 t - g t^2 / 2; 1 cm for the integrators' first-order error.
-        EXPECT_NEAR(bob.position().y(), -1.0 + 2.0 * t - 0.5 * kG * t * t, 0.01);
-        for (int i = 0; i < 120; ++i) world.step();
-        EXPECT_LT(bob.position().norm(), 1.0 + 0.01);  // and the rope catches it
-    }
-}
+TEST_P(JointTest, DistanceRodAndRope) { DistanceRodAndRopeCase(); }
 
 // A conical pendulum on a ball joint: a bob (near a point mass) on a 1 m arm at 30 deg from the
 // vertical, circling at w^2 = g / (L cos a), keeps its cone angle and its period over 10 s.
@@ -343,104 +668,15 @@ TEST_P(JointTest, ConicalPendulumKeepsItsCone) {
 
 // A double pendulum (two 1 kg bobs, 1 m arms, hinges about Z) started in each small-amplitude
 // normal mode, theta2 = +-sqrt(2) theta1: periods 2 pi / w with w^2 = (g / L)(2 -+ sqrt(2)).
-TEST_P(JointTest, DoublePendulumNormalModes) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    for (double sign : {1.0, -1.0}) {
-        World world(jointSettings());
-        const double L = 1.0, theta1 = 0.05, theta2 = sign * std::sqrt(2.0) * theta1;
-        const Vec3 p1(L * std::sin(theta1), -L * std::cos(theta1), 0.0);
-        const Vec3 p2 = p1 + Vec3(L * std::sin(theta2), -L * std::cos(theta2), 0.0);
-        Body upper = ball(world, p1, 1.0, 0.02);
-        Body lower = ball(world, p2, 1.0, 0.02);
-        JointDef d;
-        d.type = JointType::Hinge;
-        d.bodyB = upper;
-        world.createJoint(d);
-        d.bodyA = upper;
-        d.bodyB = lower;
-        d.anchor = p1;
-        world.createJoint(d);
-        const double w = std::sqrt(kG / L * (2.0 - sign * std::sqrt(2.0)));
-        const double exact = 2.0 * kPi / w;
-        Swing s = swing(world, upper, L, 20.0);
-        std::cout << "[ MEASURED ] " << backend() << " double pendulum mode " << (sign > 0 ? "slow" : "fast")
-                  << ": period " << s.period << " s (exact " << exact << ")\n";
-        // 1 %: the modes' small-amplitude form is exact to theta^2 / 16 ~ 2e-4 here; a joint that
-        // stretched or coupled the modes wrongly would shift the period by more.
-        EXPECT_NEAR(s.period, exact, 0.01 * exact) << (sign > 0 ? "slow" : "fast") << " mode";
-    }
-}
+TEST_P(JointTest, DoublePendulumNormalModes) { DoublePendulumNormalModesCase(); }
 
 // A hinge motor at zero speed holds a horizontal arm (a 1 m, 1 kg bar pinned at one end: 4.9 N m
 // of load) when its torque suffices (10 N m) and lets it fall when it does not (2 N m).
-TEST_P(JointTest, MotorHoldsALoadItCanCarry) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    ANYPHYS_REQUIRE(hasParameter("joint.hinge.motor"), "joint.hinge.motor");
-    for (double torque : {10.0, 2.0}) {
-        World world(jointSettings());
-        BodyDef bar;
-        bar.shape = ShapeDef::box(Vec3(0.5, 0.05, 0.05));
-        bar.mass = 1.0;
-        bar.position = Vec3(0.5, 0, 0);
-        bar.allowSleep = false;
-        Body arm = world.createBody(bar);
-        JointDef d;
-        d.type = JointType::Hinge;
-        d.bodyB = arm;
-        d.motor = JointMotor{0.0, torque};
-        Joint joint = world.createJoint(d);
-        double lowest = 0.0;
-        for (int i = 0; i < 120; ++i) {
-            world.step();
-            lowest = std::min(lowest, joint.position());
-        }
-        std::cout << "[ MEASURED ] " << backend() << " motor " << torque << " N m holding 4.9 N m: lowest angle "
-                  << lowest << " rad\n";
-        if (torque > 4.905)
-            EXPECT_GT(lowest, -0.01);  // a motor at speed 0 yields nothing but a step's sag
-        else
-            EXPECT_LT(lowest, -0.5);  // (4.9 - 2) N m net on I = 1/3 kg m^2: past half a radian in 2 s
-    }
-}
+TEST_P(JointTest, MotorHoldsALoadItCanCarry) { MotorHoldsALoadItCanCarryCase(); }
 
 // A slider down a frictionless 30 deg incline (gravity along the axis: g sin 30 = 4.905 m/s^2)
 // reaches its 1 m limit at t* = sqrt(2 / 4.905) = 0.639 s at v = 3.13 m/s, and stops there.
-TEST_P(JointTest, SliderOnInclineStopsAtItsLimit) {
-    ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
-    ANYPHYS_REQUIRE(hasParameter("joint.slider.limits"), "joint.slider.limits");
-    World world(jointSettings());
-    BodyDef bd;
-    bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
-    bd.mass = 1.0;
-    bd.allowSleep = false;
-    Body body = world.createBody(bd);
-    JointDef d;
-    d.type = JointType::Slider;
-    d.bodyB = body;
-    d.axis = Vec3(std::cos(kPi / 6.0), -std::sin(kPi / 6.0), 0.0);  // downhill
-    d.limits = JointLimits{-1.0, 1.0};
-    Joint joint = world.createJoint(d);
-    const double a = kG * 0.5, tStar = std::sqrt(2.0 / a), vStar = std::sqrt(2.0 * a);
-    double tStop = -1.0, vBefore = 0.0, deepest = 0.0;
-    while (world.time() < 1.5) {
-        const double v = joint.speed();
-        world.step();
-        if (tStop < 0.0 && joint.position() >= 0.999) {
-            tStop = world.time();
-            vBefore = v;
-        }
-        deepest = std::max(deepest, joint.position());
-    }
-    std::cout << "[ MEASURED ] " << backend() << " slider on incline: stop at " << tStop << " s (exact " << tStar
-              << "), speed before " << vBefore << " m/s (exact " << vStar << "), past the limit "
-              << (deepest - 1.0) * 1e3 << " mm\n";
-    const double dt = world.settings().timeStep;
-    EXPECT_NEAR(tStop, tStar, dt);              // within the step it happens in
-    EXPECT_NEAR(vBefore, vStar, 0.1 * vStar);   // sampled up to a step before: a dt of 4.9 m/s^2 (3 %)
-    EXPECT_LT(deepest - 1.0, 0.01);             // 1 cm past the stop at most
-    EXPECT_NEAR(joint.position(), 1.0, 0.005);  // and it rests on it
-    EXPECT_NEAR(joint.speed(), 0.0, 0.02);
-}
+TEST_P(JointTest, SliderOnInclineStopsAtItsLimit) { SliderOnInclineStopsAtItsLimitCase(); }
 
 // A cone joint (swing limit 0.5 rad about -Y, the hanging direction) holds a bob that is swung
 // hard sideways: the swing never passes the cone; twist limits hold a spin about the axis.
@@ -485,89 +721,11 @@ TEST_P(JointTest, ConeLimitsHoldSwingAndTwist) {
 
 // A wheel on its suspension (spring along Y) under a static frame: it sags by m g / k, bounces
 // at sqrt(k / m), and its motor spins it up about the axle to the target speed.
-TEST_P(JointTest, WheelSuspensionAndDrive) {
-    ANYPHYS_REQUIRE(hasJoint("wheel"), "joint type wheel");
-    ANYPHYS_REQUIRE(hasParameter("joint.wheel.spring"), "joint.wheel.spring");
-    ANYPHYS_REQUIRE(hasParameter("joint.wheel.motor"), "joint.wheel.motor");
-    World world(jointSettings());
-    const double m = 2.0, k = 200.0, r = 0.3;
-    Body wheel = ball(world, Vec3::Zero(), m, r);
-    JointDef d;
-    d.type = JointType::Wheel;
-    d.bodyB = wheel;
-    d.axis = Vec3::UnitY();      // suspension
-    d.spinAxis = Vec3::UnitZ();  // axle
-    d.spring = JointSpring{k, 0.0};
-    d.motor = JointMotor{10.0, 5.0};
-    Joint joint = world.createJoint(d);
-    // Released at the unloaded length: it oscillates about -m g / k with amplitude m g / k.
-    const double sag = m * kG / k, omega = std::sqrt(k / m);
-    double lowest = 0.0, highest = -1.0, previous = 0.0, first = -1.0, last = -1.0;
-    int crossings = 0;
-    const double dt = world.settings().timeStep;
-    while (world.time() < 3.0) {
-        world.step();
-        const double y = joint.position() + sag;  // about the rest position
-        lowest = std::min(lowest, joint.position());
-        highest = std::max(highest, joint.position());
-        if (previous > 0.0 && y <= 0.0) {
-            const double t = world.time() - dt * y / (y - previous);
-            if (first < 0) first = t;
-            last = t;
-            ++crossings;
-        }
-        previous = y;
-    }
-    const double period = crossings > 1 ? (last - first) / (crossings - 1) : 0.0;
-    std::cout << "[ MEASURED ] " << backend() << " wheel: travel [" << lowest << ", " << highest << "] m (exact [" << -2 * sag
-              << ", 0]), period " << period << " s (exact " << 2 * kPi / omega << "), spin " << joint.speed()
-              << " rad/s (target 10)\n";
-    // 5 % of the 0.196 m swing and of the period: an undamped spring through a joint at 60 Hz
-    // ((omega dt)^2 = 0.028) keeps both to about 1 %.
-    EXPECT_NEAR(lowest, -2.0 * sag, 0.05 * 2.0 * sag);
-    EXPECT_NEAR(period, 2.0 * kPi / omega, 0.05 * 2.0 * kPi / omega);
-    // The drive: I = 0.4 m r^2 = 0.072 kg m^2 reaches 10 rad/s in 0.14 s at 5 N m.
-    EXPECT_NEAR(joint.speed(), 10.0, 0.1);
-    EXPECT_NEAR(wheel.angularVelocity().z(), 10.0, 0.1);  // about +axle
-}
+TEST_P(JointTest, WheelSuspensionAndDrive) { WheelSuspensionAndDriveCase(); }
 
 // A joint breaks at its stated force, not below: a 2 kg body (load 19.6 N) hangs from a joint
 // rated 25 N, and from one rated 15 N that breaks, telling listeners and the handle.
-TEST_P(JointTest, BreaksAboveItsForceOnly) {
-    ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
-    ANYPHYS_REQUIRE(hasParameter("joint.ball.breakForce"), "joint.ball.breakForce");
-    struct Recorder : ContactListener {
-        std::vector<JointEvent> broken;
-        void onJointBreak(const JointEvent& e) override { broken.push_back(e); }
-    } recorder;
-    World world(jointSettings());
-    world.addListener(&recorder);
-    Body strongBody = ball(world, Vec3(-1, -1, 0), 2.0, 0.1);
-    Body weakBody = ball(world, Vec3(1, -1, 0), 2.0, 0.1);
-    JointDef d;
-    d.type = JointType::Ball;
-    d.name = "strong";
-    d.bodyB = strongBody;
-    d.anchor = Vec3(-1, 0, 0);
-    d.breakForce = 25.0;
-    Joint strong = world.createJoint(d);
-    d.name = "weak";
-    d.bodyB = weakBody;
-    d.anchor = Vec3(1, 0, 0);
-    d.breakForce = 15.0;
-    Joint weak = world.createJoint(d);
-    for (int i = 0; i < 120; ++i) world.step();
-    EXPECT_FALSE(strong.isBroken());
-    EXPECT_TRUE(weak.isBroken());
-    ASSERT_EQ(recorder.broken.size(), 1u);
-    EXPECT_EQ(recorder.broken[0].name, "weak");
-    EXPECT_GT(recorder.broken[0].force.norm(), 15.0);
-    EXPECT_EQ(weak.reactionForce(), Vec3::Zero());
-    // The strong joint holds its body; the weak one's falls freely.
-    EXPECT_NEAR(strongBody.position().y(), -1.0, 0.01);
-    EXPECT_LT(weakBody.position().y(), -5.0);
-    world.removeListener(&recorder);
-}
+TEST_P(JointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase(); }
 
 // Two boxes welded by a fixed joint, tossed and spun without gravity, keep their relative pose.
 TEST_P(JointTest, FixedJointHoldsTheRelativePose) {
@@ -607,115 +765,14 @@ TEST_P(JointTest, FixedJointHoldsTheRelativePose) {
 // A hanging chain of 40 links (0.1 kg, 10 cm apart) with an end mass 10x and 100x a link, held
 // by ball joints, released horizontal: the largest gap between joined anchors over 5 s, per
 // backend and solver. Long chains with heavy ends are where iterative solvers stretch.
-TEST_P(JointTest, HangingChainHoldsTogether) {
-    ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
-    for (Solver solver : caps().solvers)
-    for (double endRatio : {10.0, 100.0}) {
-        WorldSettings s = jointSettings();
-        s.solver = solver;
-        World world(s);
-        const int links = 40;
-        const double spacing = 0.1;
-        std::vector<Body> bodies;
-        Body previous;
-        for (int i = 0; i < links; ++i) {
-            const bool end = i + 1 == links;
-            // Started off-vertical so the chain swings.
-            Body link = ball(world, Vec3(spacing * (i + 1), 0, 0), end ? 0.1 * endRatio : 0.1, 0.03);
-            JointDef d;
-            d.type = JointType::Ball;
-            d.bodyA = previous;
-            d.bodyB = link;
-            d.anchor = Vec3(spacing * i, 0, 0);
-            world.createJoint(d);
-            bodies.push_back(link);
-            previous = link;
-        }
-        double worst = 0.0;
-        for (int i = 0; i < 300; ++i) {
-            world.step();
-            Vec3 last = Vec3::Zero();
-            for (const Body& b : bodies) {
-                worst = std::max(worst, std::abs((b.position() - last).norm() - spacing));
-                last = b.position();
-            }
-        }
-        std::cout << "[ MEASURED ] " << backend() << " " << toString(solver) << " chain of 40, end " << endRatio
-                  << "x: worst gap " << worst * 1e3 << " mm\n";
-        // Stretched but not torn: a link's length (10 cm) at the default solver, 10x end; the
-        // figure is printed per solver and ratio, since iterative solvers (one substep of PGS)
-        // and a 100x end stretch further; for those, two links' length.
-        const bool hard = solver != caps().defaultSolver || endRatio > 10.0;
-        EXPECT_LT(worst, hard ? 0.2 : 0.1) << toString(solver) << ", end " << endRatio << "x";
-    }
-}
+TEST_P(JointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
 
 // collideConnected false (the default): two jointed, overlapping boxes never touch; true: they do.
-TEST_P(JointTest, CollideConnectedDecidesContacts) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    for (bool collide : {false, true}) {
-        if (collide && !hasParameter("joint.hinge.collideConnected")) continue;
-        World world(jointSettings(false));
-        BodyDef bd;
-        bd.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
-        bd.allowSleep = false;
-        bd.type = BodyType::Static;
-        Body base = world.createBody(bd);
-        bd.type = BodyType::Dynamic;
-        bd.position = Vec3(0.8, 0, 0);
-        Body arm = world.createBody(bd);
-        JointDef d;
-        d.type = JointType::Hinge;
-        d.bodyA = base;
-        d.bodyB = arm;
-        d.anchor = Vec3(0.4, 0, 0);
-        d.collideConnected = collide;
-        world.createJoint(d);
-        bool touched = false;
-        for (int i = 0; i < 10; ++i) {
-            world.step();
-            for (const ContactEvent& e : world.lastEvents()) touched = touched || e.phase == ContactPhase::Enter;
-        }
-        EXPECT_EQ(touched, collide) << "collideConnected " << collide;
-    }
-}
+TEST_P(JointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
 
 // The layer's rules, the same on every backend: stale handles, a body's joints die with it,
 // bad defs are refused naming the field, and the world stays usable.
-TEST_P(JointTest, HandlesAndValidation) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    World world(jointSettings());
-    Body a = ball(world, Vec3(0, -1, 0), 1.0, 0.1, "a");
-    Body b = ball(world, Vec3(0, -2, 0), 1.0, 0.1, "b");
-    JointDef d;
-    d.type = JointType::Hinge;
-    d.bodyB = a;
-    d.limits = JointLimits{1.2, 0.4};
-    try {
-        world.createJoint(d);
-        ADD_FAILURE() << "limits lower > upper accepted";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("limits"), std::string::npos) << e.what();
-    }
-    d.limits.reset();
-    d.bodyA = a;  // the same body twice
-    EXPECT_THROW(world.createJoint(d), Error);
-    d.bodyA = Body();
-    Joint top = world.createJoint(d);
-    d.bodyA = a;
-    d.bodyB = b;
-    d.anchor = Vec3(0, -1, 0);
-    Joint lower = world.createJoint(d);
-    EXPECT_EQ(world.jointCount(), 2u);
-    world.destroyJoint(top);
-    EXPECT_FALSE(top.isValid());
-    EXPECT_THROW(top.position(), Error);
-    world.destroyBody(b);  // takes `lower` with it
-    EXPECT_FALSE(lower.isValid());
-    EXPECT_EQ(world.jointCount(), 0u);
-    for (int i = 0; i < 10; ++i) world.step();
-    EXPECT_LT(a.position().y(), -1.0);  // free now: falls
-}
+TEST_P(JointTest, HandlesAndValidation) { HandlesAndValidationCase(); }
 
 // What a backend declares of joints is spelled as the layer names it, so the layer's checks
 // (and `anyphys backends`) mean what they say.
@@ -775,7 +832,8 @@ TEST_P(JointTest, StrictRefusesAndLenientWarnsForWhatIsMissing) {
 
 ANYPHYS_CONTRACT_SUITE(JointTest);
 
-// The planar versions: a hinge about Z in a planar world (Box2D's revolute joint).
+// The planar versions: every case whose motion stays in the XY plane, in a planar world (Box2D's
+// revolute, prismatic, distance, weld and wheel joints; a ball joint there is a hinge about Z).
 class PlanarJointTest : public JointTest {
 protected:
     bool planarTest() const override { return true; }
@@ -785,20 +843,20 @@ TEST_P(PlanarJointTest, HingePendulumPeriodMatchesEllipticIntegral) {
     ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
     pendulum(JointType::Hinge);
 }
-
-TEST_P(PlanarJointTest, HangingBodyReactionIsItsWeight) {
-    ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
-    World world(jointSettings());
-    Body body = ball(world, Vec3(0, -1, 0), 3.0, 0.1);
-    JointDef d;
-    d.type = JointType::Hinge;
-    d.bodyB = body;
-    Joint joint = world.createJoint(d);
-    for (int i = 0; i < 120; ++i) world.step();
-    EXPECT_NEAR(joint.reactionForce().y(), 3.0 * kG, 0.01 * 3.0 * kG);
-}
-
 TEST_P(PlanarJointTest, DeclaredJointCapabilitiesUseTheLayersNames) { checkDeclaredNames(); }
+TEST_P(PlanarJointTest, HangingBodyReactionIsItsWeight) { HangingBodyReactionIsItsWeightCase(); }
+TEST_P(PlanarJointTest, MotorReachesTargetSpeedAtTorqueLimit) { MotorReachesTargetSpeedAtTorqueLimitCase(); }
+TEST_P(PlanarJointTest, SliderSpringFrequency) { SliderSpringFrequencyCase(); }
+TEST_P(PlanarJointTest, HingeLimitStopsThePendulum) { HingeLimitStopsThePendulumCase(); }
+TEST_P(PlanarJointTest, DistanceRodAndRope) { DistanceRodAndRopeCase(); }
+TEST_P(PlanarJointTest, DoublePendulumNormalModes) { DoublePendulumNormalModesCase(); }
+TEST_P(PlanarJointTest, MotorHoldsALoadItCanCarry) { MotorHoldsALoadItCanCarryCase(); }
+TEST_P(PlanarJointTest, SliderOnInclineStopsAtItsLimit) { SliderOnInclineStopsAtItsLimitCase(); }
+TEST_P(PlanarJointTest, WheelSuspensionAndDrive) { WheelSuspensionAndDriveCase(); }
+TEST_P(PlanarJointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase(); }
+TEST_P(PlanarJointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
+TEST_P(PlanarJointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
+TEST_P(PlanarJointTest, HandlesAndValidation) { HandlesAndValidationCase(); }
 
 ANYPHYS_CONTRACT_SUITE(PlanarJointTest);
 
