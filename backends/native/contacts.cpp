@@ -161,7 +161,8 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
     // margin cannot have a point: skip the narrow phase (planes and meshes have no useful box).
     const bool boxed = sa.type != ShapeType::Plane && sb.type != ShapeType::Plane && sa.type != ShapeType::Mesh &&
                        sb.type != ShapeType::Mesh;
-    if (boxed && !computeAabb(sa, xfA).fattened(margin).overlaps(computeAabb(sb, xfB))) {
+    // The bodies' tight bounds were computed at these poses by the broad-phase update this step.
+    if (boxed && !a.bounds[c.shapeA].fattened(margin).overlaps(b.bounds[c.shapeB])) {
         c.manifolds.clear();
         c.touching = false;
         return;

@@ -31,6 +31,7 @@ struct NativeBody {
     // ---- collision ----
     std::vector<Shape> shapes;
     std::vector<int> proxies;    // broad-phase proxy per shape
+    std::vector<Aabb> bounds;    // tight bounds per shape at the pose of the last proxy update
     std::uint64_t userData = 0;
     std::uint32_t material = 0;
     std::uint32_t layer = 1;

@@ -108,8 +108,9 @@ std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
         body.coreExtent = std::min(body.coreExtent, coreExtent(body.shapes.back()));
         const Shape& s = body.shapes.back();
         const int shapeIndex = static_cast<int>(body.shapes.size()) - 1;
-        body.proxies.push_back(broadPhase_.createProxy(computeAabb(s, shapeWorldPose(s, body.pose())),
-                                                       proxyKey(index, shapeIndex), def.type == BodyType::Static));
+        body.bounds.push_back(computeAabb(s, shapeWorldPose(s, body.pose())));
+        body.proxies.push_back(broadPhase_.createProxy(body.bounds.back(), proxyKey(index, shapeIndex),
+                                                       def.type == BodyType::Static));
     }
     auto peer = std::make_unique<NativeBodyPeer>(*this, index);
     body.peer = peer.get();
@@ -307,6 +308,7 @@ void NativeWorld::updateProxies(std::uint32_t index, const Vec3& displacement) {
     // phase has paired them.
     for (std::size_t i = 0; i < body.shapes.size(); ++i) {
         const Aabb now = computeAabb(body.shapes[i], shapeWorldPose(body.shapes[i], body.pose()));
+        body.bounds[i] = now;
         const Aabb swept = now.merged({now.min + displacement, now.max + displacement});
         broadPhase_.moveProxy(body.proxies[i], swept, displacement);
     }
@@ -319,12 +321,14 @@ void NativeWorld::updateAllProxies(double dt) {
     const auto findMoves = [&](int begin, int end, int worker) {
         auto& moves = proxyMoves_[static_cast<std::size_t>(worker)];
         for (int i = begin; i < end; ++i) {
-            const NativeBody& body = bodies_[static_cast<std::size_t>(i)];
+            NativeBody& body = bodies_[static_cast<std::size_t>(i)];  // this worker's bodies only
             if (!body.isActive()) continue;
             const Vec3 displacement = dt * body.state.linearVelocity;
             for (std::size_t s = 0; s < body.shapes.size(); ++s) {
-                // Cover where the shape will be by the end of the step (see updateProxies).
+                // Cover where the shape will be by the end of the step (see updateProxies); the
+                // tight bounds are kept for the narrow phase's early-out.
                 const Aabb now = computeAabb(body.shapes[s], shapeWorldPose(body.shapes[s], body.pose()));
+                body.bounds[s] = now;
                 const Aabb swept = now.merged({now.min + displacement, now.max + displacement});
                 Aabb fat;
                 if (broadPhase_.needsMove(body.proxies[s], swept, displacement, fat)) moves.push_back({body.proxies[s], fat});
