@@ -193,6 +193,21 @@ private:
     // A limit (C >= 0 allowed, impulse >= 0) joins the rigid block, so a stop holds against a
     // long lever too (a row of its own would only stop the small body's spin).
     void limitRow(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, true}; }
+    // A range [lower, upper] on `position` along j: only the nearer stop joins the block. Both
+    // would be two rows with opposite Jacobians, a singular K whose rounding-sized pivot blew a
+    // ragdoll pile up; the far stop cannot act this substep anyway. A range of zero width is a lock.
+    void limitPair(int lowerSlot, int upperSlot, const Jacobian& j, double position, double lower, double upper) {
+        if (upper - lower <= 1e-12) {
+            lock(lowerSlot, j, position - lower);
+            joint_.impulse[upperSlot] = 0.0;
+        } else if (position - lower <= upper - position) {
+            limitRow(lowerSlot, j, position - lower);
+            joint_.impulse[upperSlot] = 0.0;
+        } else {
+            limitRow(upperSlot, negate(j), upper - position);
+            joint_.impulse[lowerSlot] = 0.0;
+        }
+    }
     // Drives Cdot toward `speed` with at most maxForce per second.
     void motorRow(int slot, const Jacobian& j, const JointMotor& motor) {
         const double most = motor.maxForce * p_.h;
@@ -221,8 +236,7 @@ private:
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
         if (def_.motor) motorRow(kMotor, j, *def_.motor);
         if (def_.limits) {
-            limitRow(kLower, j, position - def_.limits->lower);
-            limitRow(kUpper, negate(j), def_.limits->upper - position);
+            limitPair(kLower, kUpper, j, position, def_.limits->lower, def_.limits->upper);
         }
     }
     static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
@@ -354,8 +368,7 @@ private:
         if (def_.twistLimits) {
             Quat rel = frameA_.conjugate() * frameB_;
             const double twist = wrap(2.0 * std::atan2(rel.x(), rel.w()));
-            limitRow(kTwistLower, angularRow(xA), twist - def_.twistLimits->lower);
-            limitRow(kTwistUpper, negate(angularRow(xA)), def_.twistLimits->upper - twist);
+            limitPair(kTwistLower, kTwistUpper, angularRow(xA), twist, def_.twistLimits->lower, def_.twistLimits->upper);
         }
     }
 
@@ -368,8 +381,12 @@ private:
         const bool range = def_.minLength || def_.maxLength;
         if (def_.spring) springRow(kSpring, j, C, *def_.spring);
         else if (!range) lock(kLength, j, C);
-        if (def_.minLength) limitRow(kLower, j, length - *def_.minLength);
-        if (def_.maxLength) limitRow(kUpper, negate(j), *def_.maxLength - length);
+        if (def_.minLength && def_.maxLength)
+            limitPair(kLower, kUpper, j, length, *def_.minLength, *def_.maxLength);
+        else if (def_.minLength)
+            limitRow(kLower, j, length - *def_.minLength);
+        else if (def_.maxLength)
+            limitRow(kUpper, negate(j), *def_.maxLength - length);
     }
 
     void wheel() {
@@ -379,8 +396,7 @@ private:
         const Jacobian along = linearRow(s, rA_ + d_, rB_);
         if (def_.spring) springRow(kSpring, along, travel, *def_.spring);
         if (def_.limits) {
-            limitRow(kLower, along, travel - def_.limits->lower);
-            limitRow(kUpper, negate(along), def_.limits->upper - travel);
+            limitPair(kLower, kUpper, along, travel, def_.limits->lower, def_.limits->upper);
         }
         if (def_.motor) motorRow(kMotor, angularRow(axle), *def_.motor);
         hingeLocks(axle);
