@@ -47,12 +47,11 @@ Backend makeOdeBackend() {
                        "body.material", "body.isTrigger", "body.layer", "body.mask", "body.allowSleep",
                        "body.isAwake",
                        // Joints: only what ode_joints.cpp honours and tests/backends/ode/test_ode_joints.cpp
-                       // checks. Not declared: distance minLength / maxLength (ODE's double ball is
-                       // two-sided), wheel limits (hinge2 has no suspension stops).
+                       // checks. Not declared: wheel limits (hinge2 has no suspension stops).
                        "joint.hinge.limits", "joint.hinge.motor", "joint.hinge.spring",
                        "joint.slider.limits", "joint.slider.motor", "joint.slider.spring",
                        "joint.wheel.motor", "joint.wheel.spring", "joint.wheel.steering",
-                       "joint.distance.spring",
+                       "joint.distance.spring", "joint.distance.minLength", "joint.distance.maxLength",
                        "joint.cone.swingLimit", "joint.cone.twistLimits"};
     // Every type: collideConnected (the near callback skips joined pairs), and breaking, which the
     // layer does from the reactions (ODE's joint feedback, in N and N m).

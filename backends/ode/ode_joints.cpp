@@ -134,6 +134,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             dJointSetDBallAnchor2(main_, pa.x(), pa.y(), pa.z());
             dJointSetDBallDistance(main_, def_.length);
             addPart(main_, true);
+            if (def_.minLength || def_.maxLength) ropeGroup_ = dJointGroupCreate(0);
             break;
         }
         case JointType::Wheel: {
@@ -161,13 +162,15 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             break;
         }
     }
+    enabled_ = world.effects().has(Effect::Joints);
     configureMotors();
-    setEnabled(world.effects().has(Effect::Joints));
+    setEnabled(enabled_);
     wakeBodies();
 }
 
 OdeJoint::~OdeJoint() {
     for (std::size_t i = 0; i < partCount_; ++i) dJointDestroy(parts_[i].id);
+    if (ropeGroup_) dJointGroupDestroy(ropeGroup_);
     if (anchorBody_) dBodyDestroy(anchorBody_);
 }
 
@@ -184,8 +187,9 @@ void OdeJoint::addPart(dJointID id, bool bIsBody1) {
 }
 
 void OdeJoint::setEnabled(bool enabled) {
+    enabled_ = enabled;
     for (std::size_t i = 0; i < partCount_; ++i) {
-        if (enabled)
+        if (enabled && (parts_[i].id != main_ || rod_))
             dJointEnable(parts_[i].id);
         else
             dJointDisable(parts_[i].id);
@@ -226,6 +230,9 @@ void OdeJoint::configureMotors() {
                 dJointSetDBallParam(main_, dParamERP, world_.erp());
                 dJointSetDBallParam(main_, dParamCFM, world_.cfm());
             }
+            // A range without a spring is free inside: the double ball is off.
+            rod_ = def_.spring || !(def_.minLength || def_.maxLength);
+            setEnabled(enabled_);
             break;
         case JointType::Wheel:
             // The spin motor on axis 2; ODE's rate there is w1 - w2 = A's spin relative to B.
@@ -369,6 +376,7 @@ void OdeJoint::beforeOdeStep(double h) {
                 dJointSetDBallParam(main_, dParamERP, erp);
                 dJointSetDBallParam(main_, dParamCFM, cfm);
             }
+            if (ropeGroup_) ropeRows(h);
             break;
         case JointType::Cone: {
             // Swing: about n = xA x xB (the swing grows as B turns about n relative to A), the
@@ -403,11 +411,54 @@ void OdeJoint::beforeOdeStep(double h) {
     }
 }
 
+void OdeJoint::ropeRows(double h) {
+    // maxLength pulls B toward A, minLength pushes it away; each is a frictionless ODE contact
+    // at B's anchor with its normal along the line of the anchors. Its force acts along that
+    // line, so the one contact point serves both bodies' lever arms exactly. Present every step
+    // and speculative: ahead of the bound the contact's surface "moves" (dContactMotionN) so the
+    // row lets the length close the remaining gap this step and acts only if it would go
+    // further; past the bound, its depth is corrected with the world's ERP like a contact's.
+    const Vec3 pa = anchorAWorld(), pb = anchorBWorld();
+    const Vec3 d = pb - pa;
+    const double length = d.norm();
+    if (length < 1e-9) return;  // no direction to act along
+    const Vec3 n = d / length;
+    if (def_.maxLength) addRopeRow(pb, -n, *def_.maxLength - length, h);
+    if (def_.minLength) addRopeRow(pb, n, length - *def_.minLength, h);
+}
+
+void OdeJoint::addRopeRow(const Vec3& at, const Vec3& normal, double gap, double h) {
+    dContact contact{};
+    contact.surface.mode = dContactMotionN;  // frictionless (mu 0): the normal row only
+    contact.surface.mu = 0.0;
+    // ODE's row: B's speed along the normal relative to A >= ERP/h (depth - surface layer) + motionN.
+    const double layer = dWorldGetContactSurfaceLayer(world_.id());
+    contact.surface.motionN = gap > 0.0 ? -gap / h : 0.0;
+    contact.geom.depth = (gap > 0.0 ? 0.0 : -gap) + layer;
+    for (int k = 0; k < 3; ++k) {
+        contact.geom.pos[k] = at[k];
+        contact.geom.normal[k] = normal[k];  // ODE pushes body 1 (B) along the normal
+    }
+    const dJointID row = dJointCreateContact(world_.id(), ropeGroup_, &contact);
+    dJointAttach(row, b_->id(), a_ ? a_->id() : nullptr);
+    ropeFeedback_[ropeRows_] = dJointFeedback{};
+    dJointSetFeedback(row, &ropeFeedback_[ropeRows_++]);
+}
+
 void OdeJoint::afterOdeStep() {
     // ODE's feedback is the constraint force held over the step (N, N m about B's centre). A
     // joint between sleeping bodies was not stepped: it keeps the reactions it had.
     const bool awake = dBodyIsEnabled(b_->id()) || (a_ && a_->id() && dBodyIsEnabled(a_->id()));
-    if (!awake || !dJointIsEnabled(main_)) return;
+    if (ropeGroup_) {
+        if (awake)
+            for (int i = 0; i < ropeRows_; ++i) {
+                sumForce_ += toVec3(ropeFeedback_[i].f1);
+                sumTorque_ += toVec3(ropeFeedback_[i].t1);
+            }
+        dJointGroupEmpty(ropeGroup_);
+        ropeRows_ = 0;
+    }
+    if (!awake || !enabled_) return;
     ++stepped_;
     for (std::size_t i = 0; i < partCount_; ++i) {
         const dJointFeedback& f = parts_[i].feedback;
@@ -421,7 +472,7 @@ void OdeJoint::finishStep(double dt, int substeps) {
     // did not simulate the joint, all bodies asleep, counts as the others).
     const BodyState sa = stateA(), sb = b_->state();
     const Vec3 rB = anchorBWorld() - sb.position;
-    if (stepped_ > 0 || !dJointIsEnabled(main_)) {
+    if (stepped_ > 0 || !enabled_) {
         const double n = stepped_ > 0 ? stepped_ : substeps;
         const Vec3 force = sumForce_ / n, torqueAtCentre = sumTorque_ / n;
         reactionForce_ = force;

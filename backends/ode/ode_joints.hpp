@@ -6,7 +6,9 @@
 //   ball      dJointBall
 //   hinge     dJointHinge, plus two AMotors (user mode): motor and spring, lower and upper stop
 //   slider    dJointSlider (its own stops are the limits), plus an LMotor for motor and spring
-//   distance  dJointDBall (rigid, or soft with the spring's ERP / CFM)
+//   distance  dJointDBall (rigid, or soft with the spring's ERP / CFM); minLength / maxLength are
+//             one-sided speculative rows made as ODE contact joints along the line of the
+//             anchors, remade every ODE step (see ropeRows)
 //   cone      dJointBall, plus an AMotor whose rows are the swing cone and the twist limits
 //   wheel     dJointHinge2 (ODE's car wheel: A is body 1 there, see ode_joints.cpp)
 // Springs are ODE constraint rows softened with ERP = h k / (h k + c), CFM = 1 / (h k + c)
@@ -82,6 +84,8 @@ private:
     void attach(dJointID id) const;
     void configureMotors();   // the static parameters of the motor parts (after a setter)
     void wakeBodies() const;
+    void ropeRows(double h);  // distance min / max: the contact rows of the next ODE step
+    void addRopeRow(const Vec3& at, const Vec3& normal, double gap, double h);
 
     OdeWorld& world_;
     JointPeerDef def_;
@@ -94,6 +98,11 @@ private:
     dJointID amotor_ = nullptr;  // hinge (motor, spring), cone (swing and twist stops)
     dJointID stops_ = nullptr;   // hinge: the AMotor holding the lower and upper stops
     dJointID lmotor_ = nullptr;  // slider
+    dJointGroupID ropeGroup_ = nullptr;  // distance with min / max: this step's contact rows
+    std::array<dJointFeedback, 2> ropeFeedback_{};
+    int ropeRows_ = 0;
+    bool enabled_ = true;        // Effect::Joints
+    bool rod_ = true;            // distance: the double ball is on (no range, or a spring)
     double steering_ = 0.0;
     double lastAngle_ = 0.0;     // hinge: unwrapped angle at the last measurement
 

@@ -385,6 +385,116 @@ TEST(OdeJoints, DistanceRodKeepsLengthAndSpringOscillates) {
     }
 }
 
+// A rope (maxLength only): slack inside, the body falls freely; taut, the length never passes
+// maxLength by more than the solver's residual; a range's minLength stops a body pushed inward.
+TEST(OdeJoints, RopeAllowsSlackAndHoldsItsMaximum) {
+    for (const Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
+        auto world = jointWorld(Effect::Gravity | Effect::Joints, solver);
+        const Vec3 start(0.5, 0, 0);
+        auto bob = body(*world, start, 1.0, 4e-3);
+        JointPeerDef d;
+        d.type = JointType::Distance;
+        d.bodyB = bob.get();
+        d.anchorA = Vec3::Zero();
+        d.length = 0.5;
+        d.maxLength = 1.0;
+        auto rope = world->createJoint(d);
+        // Slack until the bob is 1 m from the anchor: y = -sqrt(1 - 0.25) = -0.866 m, reached
+        // after t = sqrt(2 0.866 / g) = 0.42 s. Until 0.35 s, exactly free fall (1e-9: rounding).
+        run(*world, 0.35);
+        EXPECT_NEAR(bob->state().linearVelocity.y(), -kG * 0.35, 1e-9) << toString(solver);
+        EXPECT_NEAR(rope->reactionForce().norm(), 0.0, 1e-9);
+        double longest = 0.0;
+        run(*world, 6.0, [&](double) { longest = std::max(longest, rope->position() + d.length); });
+        std::cout << "[ MEASURED ] ode " << toString(solver) << " rope: longest " << longest << " m (max 1)\n";
+        // Speculative row: the rope goes taut exactly at 1 m (the drift of the swing at 4 m/s,
+        // radialDrift, ~1 cm, bounds what follows).
+        EXPECT_LT(longest, 1.0 + 2.0 * radialDrift(std::sqrt(2.0 * kG), 1.0, kDt)) << toString(solver);
+        EXPECT_GT(longest, 0.99) << toString(solver);  // it went taut
+    }
+    // A range [0.6, 0.8] without a spring: a body thrown toward the anchor stops at 0.6 m.
+    auto world = jointWorld(Effect::Joints, Solver::Direct);
+    auto b = body(*world, Vec3(0.7, 0, 0));
+    JointPeerDef d;
+    d.type = JointType::Distance;
+    d.bodyB = b.get();
+    d.length = 0.7;
+    d.minLength = 0.6;
+    d.maxLength = 0.8;
+    auto range = world->createJoint(d);
+    b->setLinearVelocity({-1.0, 0, 0});
+    double shortest = 1.0, longest = 0.0;
+    run(*world, 3.0, [&](double) {
+        shortest = std::min(shortest, range->position() + d.length);
+        longest = std::max(longest, range->position() + d.length);
+    });
+    // Without restitution the body stops at the bound (1e-3 m: ERP's residual) and stays.
+    EXPECT_NEAR(shortest, 0.6, 1e-3);
+    EXPECT_LT(longest, 0.7 + 1e-9);
+    EXPECT_NEAR(range->position() + d.length, 0.6, 1e-3);
+    // The hold pushed the body away from the anchor: +x on B while stopping it.
+    b->setLinearVelocity({2.0, 0, 0});
+    run(*world, 1.0);
+    EXPECT_NEAR(range->position() + d.length, 0.8, 1e-3);  // and the maximum stops it
+}
+
+// Joints wake what they hold: creating a joint on a sleeping body, or changing its motor, wakes
+// it; bodies joined by a joint sleep and wake together.
+TEST(OdeJoints, JointsWakeTheirBodies) {
+    auto world = jointWorld(Effect::Gravity | Effect::Joints | Effect::Sleeping, Solver::Direct);
+    auto b = body(*world, Vec3(0, -1, 0));
+    b->setAwake(false);
+    ASSERT_FALSE(b->isAwake());
+    JointPeerDef d = heldToWorld(JointType::Hinge, *b, Vec3(0, -1, 0), Vec3::Zero(), kXAlongZ);
+    auto hinge = world->createJoint(d);
+    EXPECT_TRUE(b->isAwake());
+    b->setAwake(false);
+    hinge->setMotor(JointMotor{1.0, 10.0});
+    EXPECT_TRUE(b->isAwake());
+    run(*world, 0.5);
+    EXPECT_GT(hinge->position(), 0.4);  // the motor turned it (1 rad/s for 0.5 s, less the spin-up)
+    // Two bodies chained to the world: waking the far one wakes the near one (one ODE island).
+    auto c = body(*world, Vec3(0, -2, 0));
+    JointPeerDef e;
+    e.type = JointType::Ball;
+    e.bodyA = b.get();
+    e.bodyB = c.get();
+    e.frameA = {Vec3(0, -0.5, 0), Quat::Identity()};
+    e.frameB = {Vec3(0, 0.5, 0), Quat::Identity()};
+    auto ball = world->createJoint(e);
+    hinge->setMotor(std::nullopt);
+    b->setAwake(false);
+    c->setAwake(false);
+    c->setLinearVelocity({1, 0, 0});
+    run(*world, kDt);
+    EXPECT_TRUE(b->isAwake());
+    EXPECT_TRUE(c->isAwake());
+}
+
+// Between two free bodies a hinge motor turns B positively about X relative to A, and A the
+// other way (the motor's torque is internal: total angular momentum stays 0).
+TEST(OdeJoints, HingeMotorBetweenTwoBodiesSign) {
+    auto world = jointWorld(Effect::Joints);
+    auto a = body(*world, Vec3(0, 0, 0), 1.0, 0.2);
+    auto b = body(*world, Vec3(0, 0, 1), 1.0, 0.1);
+    JointPeerDef d;
+    d.type = JointType::Hinge;
+    d.bodyA = a.get();
+    d.bodyB = b.get();
+    d.frameA = {Vec3(0, 0, 0.5), kXAlongZ};   // axis +Z through both centres
+    d.frameB = {Vec3(0, 0, -0.5), kXAlongZ};
+    d.motor = JointMotor{3.0, 0.6};
+    auto hinge = world->createJoint(d);
+    run(*world, 0.5);
+    // tau t / I_rel with 1/I_rel = 1/0.2 + 1/0.1: relative spin 0.6 x 0.5 x 15 = 4.5 rad/s is
+    // past 3: the motor reached its target and holds it.
+    EXPECT_NEAR(hinge->speed(), 3.0, 1e-6);
+    EXPECT_GT(b->state().angularVelocity.z(), 0.0);
+    EXPECT_LT(a->state().angularVelocity.z(), 0.0);
+    EXPECT_NEAR(0.2 * a->state().angularVelocity.z() + 0.1 * b->state().angularVelocity.z(), 0.0, 1e-9);
+    EXPECT_GT(hinge->position(), 0.0);
+}
+
 // ---- cone -------------------------------------------------------------------------------------
 
 // A cone joint: a bob thrown sideways stays within the swing limit; B spun about X stays within
