@@ -47,10 +47,10 @@ Backend makeOdeBackend() {
                        "body.material", "body.isTrigger", "body.layer", "body.mask", "body.allowSleep",
                        "body.isAwake",
                        // Joints: only what ode_joints.cpp honours and tests/backends/ode/test_ode_joints.cpp
-                       // checks. Not declared: wheel limits (hinge2 has no suspension stops).
+                       // checks.
                        "joint.hinge.limits", "joint.hinge.motor", "joint.hinge.spring",
                        "joint.slider.limits", "joint.slider.motor", "joint.slider.spring",
-                       "joint.wheel.motor", "joint.wheel.spring", "joint.wheel.steering",
+                       "joint.wheel.limits", "joint.wheel.motor", "joint.wheel.spring", "joint.wheel.steering",
                        "joint.distance.spring", "joint.distance.minLength", "joint.distance.maxLength",
                        "joint.cone.swingLimit", "joint.cone.twistLimits"};
     // Every type: collideConnected (the near callback skips joined pairs), and breaking, which the

@@ -159,6 +159,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             const dReal axis1[3] = {x.x(), x.y(), x.z()}, axis2[3] = {axle.x(), axle.y(), axle.z()};
             dJointSetHinge2Axes(main_, axis1, axis2);
             addPart(main_, false);
+            ropeGroup_ = dJointGroupCreate(0);  // suspension travel stops (limits may come later)
             break;
         }
     }
@@ -397,6 +398,13 @@ void OdeJoint::beforeOdeStep(double h) {
             break;
         }
         case JointType::Wheel:
+            if (def_.limits) {
+                // Travel stops: the same one-sided rows as a rope's, along the suspension axis at
+                // B's anchor (where the suspension acts on both bodies).
+                const double travel = (fb.position - fa.position).dot(x);
+                addRopeRow(fb.position, -x, def_.limits->upper - travel, h);
+                addRopeRow(fb.position, x, travel - def_.limits->lower, h);
+            }
             if (spring) {
                 dJointSetHinge2Param(main_, dParamSuspensionERP, erp);
                 dJointSetHinge2Param(main_, dParamSuspensionCFM, cfm);

@@ -10,7 +10,8 @@
 //             one-sided speculative rows made as ODE contact joints along the line of the
 //             anchors, remade every ODE step (see ropeRows)
 //   cone      dJointBall, plus an AMotor whose rows are the swing cone and the twist limits
-//   wheel     dJointHinge2 (ODE's car wheel: A is body 1 there, see ode_joints.cpp)
+//   wheel     dJointHinge2 (ODE's car wheel: A is body 1 there, see ode_joints.cpp); travel
+//             limits are one-sided rows like a distance's minLength / maxLength
 // Springs are ODE constraint rows softened with ERP = h k / (h k + c), CFM = 1 / (h k + c)
 // (ODE manual, "Joint error and the ERP"), recomputed every ODE step for its length h: an
 // implicit spring-damper, stable at any stiffness. Where the row is a motor row (AMotor, LMotor)
@@ -98,7 +99,7 @@ private:
     dJointID amotor_ = nullptr;  // hinge (motor, spring), cone (swing and twist stops)
     dJointID stops_ = nullptr;   // hinge: the AMotor holding the lower and upper stops
     dJointID lmotor_ = nullptr;  // slider
-    dJointGroupID ropeGroup_ = nullptr;  // distance with min / max: this step's contact rows
+    dJointGroupID ropeGroup_ = nullptr;  // distance min / max, wheel travel: this step's contact rows
     std::array<dJointFeedback, 2> ropeFeedback_{};
     int ropeRows_ = 0;
     bool enabled_ = true;        // Effect::Joints

@@ -568,6 +568,39 @@ TEST(OdeJoints, WheelSuspensionSpinAndSteering) {
     EXPECT_NEAR(joint->speed(), 6.0, 1e-3);            // spinning about the steered axle
 }
 
+// A wheel hanging on its suspension under gravity: at rest it sags m g / k and the joint holds
+// its weight (reaction m g up); its travel limits stop a wheel thrown along the suspension.
+TEST(OdeJoints, WheelSagReactionAndTravelLimits) {
+    for (const Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
+        auto world = jointWorld(Effect::Gravity | Effect::Joints, solver);
+        const double k = 400.0, m = 2.0;
+        auto wheel = body(*world, Vec3::Zero(), m, 0.05);
+        JointPeerDef d = heldToWorld(JointType::Wheel, *wheel, Vec3::Zero(), Vec3::Zero(),
+                                     Quat(Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitZ())));  // X up, axle -X
+        d.spring = JointSpringSI{k, 2.0 * std::sqrt(k * m)};  // critically damped
+        d.limits = JointLimits{-0.1, 0.1};
+        auto joint = world->createJoint(d);
+        run(*world, 3.0);
+        // Sag m g / k = 4.9 cm (1e-4 m: the spring row's CFM and ERP at rest are exact; the
+        // residual is the settling of the damped motion); reaction m g (0.1 %).
+        EXPECT_NEAR(joint->position(), -m * kG / k, 1e-4) << toString(solver);
+        EXPECT_NEAR(joint->reactionForce().y(), m * kG, 1e-3 * m * kG) << toString(solver);
+        EXPECT_NEAR(joint->reactionForce().x(), 0.0, 1e-6) << toString(solver);
+        // Without the spring, thrown up at 5 m/s: the upper stop holds at +0.1 m (speculative
+        // row: 1e-3, the ERP residual), then down at 5 m/s: the lower stop.
+        joint->setSpring(std::nullopt);
+        double highest = -1.0, lowest = 1.0;
+        wheel->setLinearVelocity({0, 5.0, 0});
+        run(*world, 0.3, [&](double) { highest = std::max(highest, joint->position()); });
+        wheel->setLinearVelocity({0, -5.0, 0});
+        run(*world, 0.3, [&](double) { lowest = std::min(lowest, joint->position()); });
+        std::cout << "[ MEASURED ] ode " << toString(solver) << " wheel travel [-0.1, 0.1]: [" << lowest << ", "
+                  << highest << "]\n";
+        EXPECT_NEAR(highest, 0.1, 1e-3) << toString(solver);
+        EXPECT_NEAR(lowest, -0.1, 1e-3) << toString(solver);
+    }
+}
+
 // ---- contacts, lifetime -----------------------------------------------------------------------
 
 // Two overlapping boxes joined by a ball joint: with collideConnected false they produce no
