@@ -125,6 +125,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             dJointSetLMotorNumAxes(lmotor_, 2);
             for (int i = 0; i < 2; ++i) dJointSetLMotorAxis(lmotor_, i, 0, x.x(), x.y(), x.z());
             addPart(lmotor_, true);
+            ropeGroup_ = dJointGroupCreate(0);  // the stops (limits may come later)
             break;
         case JointType::Distance: {
             main_ = dJointCreateDBall(w, nullptr);
@@ -205,7 +206,6 @@ void OdeJoint::wakeBodies() const {
 void OdeJoint::configureMotors() {
     // What does not follow the bodies: motor speeds and limits. Rows without a value get no
     // force bound (fmax 0: no row) and open stops.
-    const double inf = dInfinity;
     switch (def_.type) {
         case JointType::Hinge:
             dJointSetAMotorParam(amotor_, group(kMotorAxis) + dParamVel, def_.motor ? def_.motor->speed : 0.0);
@@ -218,8 +218,6 @@ void OdeJoint::configureMotors() {
             dJointSetLMotorParam(lmotor_, group(kMotorAxis) + dParamVel, def_.motor ? def_.motor->speed : 0.0);
             dJointSetLMotorParam(lmotor_, group(kMotorAxis) + dParamFMax, def_.motor ? def_.motor->maxForce : 0.0);
             if (!def_.spring) dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamFMax, 0.0);
-            dJointSetSliderParam(main_, dParamLoStop, def_.limits ? def_.limits->lower : -inf);
-            dJointSetSliderParam(main_, dParamHiStop, def_.limits ? def_.limits->upper : inf);
             break;
         case JointType::Cone:
             declareStop(amotor_, kSwingAxis, true, def_.swingLimit < kPi);
@@ -364,8 +362,13 @@ void OdeJoint::beforeOdeStep(double h) {
         }
         case JointType::Slider: {
             for (int i = 0; i < 2; ++i) dJointSetLMotorAxis(lmotor_, i, 0, x.x(), x.y(), x.z());
+            const double offset = (fb.position - fa.position).dot(x);
+            if (def_.limits) {
+                // Stops: one-sided speculative rows along the axis at B's anchor, as a wheel's.
+                addRopeRow(fb.position, -x, def_.limits->upper - offset, h);
+                addRopeRow(fb.position, x, offset - def_.limits->lower, h);
+            }
             if (spring) {
-                const double offset = (fb.position - fa.position).dot(x);
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamVel, -erp / h * offset);
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamCFM, cfm);
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamFMax, dInfinity);

@@ -5,7 +5,8 @@
 //   fixed     dJointFixed
 //   ball      dJointBall
 //   hinge     dJointHinge, plus two AMotors (user mode): motor and spring, lower and upper stop
-//   slider    dJointSlider (its own stops are the limits), plus an LMotor for motor and spring
+//   slider    dJointSlider, plus an LMotor for motor and spring; limits are one-sided rows like
+//             a distance's minLength / maxLength
 //   distance  dJointDBall (rigid, or soft with the spring's ERP / CFM); minLength / maxLength are
 //             one-sided speculative rows made as ODE contact joints along the line of the
 //             anchors, remade every ODE step (see ropeRows)
@@ -99,7 +100,7 @@ private:
     dJointID amotor_ = nullptr;  // hinge (motor, spring), cone (swing and twist stops)
     dJointID stops_ = nullptr;   // hinge: the AMotor holding the lower and upper stops
     dJointID lmotor_ = nullptr;  // slider
-    dJointGroupID ropeGroup_ = nullptr;  // distance min / max, wheel travel: this step's contact rows
+    dJointGroupID ropeGroup_ = nullptr;  // distance min / max, slider and wheel stops: this step's contact rows
     std::array<dJointFeedback, 2> ropeFeedback_{};
     int ropeRows_ = 0;
     bool enabled_ = true;        // Effect::Joints
