@@ -74,6 +74,12 @@ constexpr double kFreeCfm = 1e9;
 OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
     : world_(world), def_(def), a_(static_cast<OdeBody*>(def.bodyA)), b_(static_cast<OdeBody*>(def.bodyB)) {
     const dWorldID w = world.id();
+    // A static B (held by a dynamic A) has no dBody: a kinematic stand-in at its pose is body 1.
+    idB_ = b_->id();
+    if (!idB_) {
+        bStandIn_ = standIn(b_->state());
+        idB_ = bStandIn_;
+    }
     const Transform fb = frameInB();
     const Vec3 anchor = fb.position;
     const Vec3 x = fb.orientation * Vec3::UnitX();
@@ -125,7 +131,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             dJointSetLMotorNumAxes(lmotor_, 2);
             for (int i = 0; i < 2; ++i) dJointSetLMotorAxis(lmotor_, i, 0, x.x(), x.y(), x.z());
             addPart(lmotor_, true);
-            ropeGroup_ = dJointGroupCreate(0);  // the stops (limits may come later)
+            stopGroup_ = dJointGroupCreate(0);  // the stops (limits may come later)
             break;
         case JointType::Distance: {
             main_ = dJointCreateDBall(w, nullptr);
@@ -135,7 +141,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             dJointSetDBallAnchor2(main_, pa.x(), pa.y(), pa.z());
             dJointSetDBallDistance(main_, def_.length);
             addPart(main_, true);
-            if (def_.minLength || def_.maxLength) ropeGroup_ = dJointGroupCreate(0);
+            if (def_.minLength || def_.maxLength) stopGroup_ = dJointGroupCreate(0);
             break;
         }
         case JointType::Wheel: {
@@ -145,22 +151,16 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             main_ = dJointCreateHinge2(w, nullptr);
             dBodyID chassis = a_ ? a_->id() : nullptr;
             if (!chassis) {
-                const BodyState sa = stateA();
-                anchorBody_ = dBodyCreate(w);
-                dBodySetPosition(anchorBody_, sa.position.x(), sa.position.y(), sa.position.z());
-                dQuaternion q;
-                toOde(sa.orientation, q);
-                dBodySetQuaternion(anchorBody_, q);
-                dBodySetKinematic(anchorBody_);
+                anchorBody_ = standIn(stateA());
                 chassis = anchorBody_;
             }
-            dJointAttach(main_, chassis, b_->id());
+            dJointAttach(main_, chassis, idB_);
             dJointSetHinge2Anchor(main_, anchor.x(), anchor.y(), anchor.z());
             const Vec3 axle = fb.orientation * Vec3::UnitY();
             const dReal axis1[3] = {x.x(), x.y(), x.z()}, axis2[3] = {axle.x(), axle.y(), axle.z()};
             dJointSetHinge2Axes(main_, axis1, axis2);
             addPart(main_, false);
-            ropeGroup_ = dJointGroupCreate(0);  // suspension travel stops (limits may come later)
+            stopGroup_ = dJointGroupCreate(0);  // suspension travel stops (limits may come later)
             break;
         }
     }
@@ -172,13 +172,27 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
 
 OdeJoint::~OdeJoint() {
     for (std::size_t i = 0; i < partCount_; ++i) dJointDestroy(parts_[i].id);
-    if (ropeGroup_) dJointGroupDestroy(ropeGroup_);
+    if (stopGroup_) dJointGroupDestroy(stopGroup_);
     if (anchorBody_) dBodyDestroy(anchorBody_);
+    if (bStandIn_) dBodyDestroy(bStandIn_);
+}
+
+dBodyID OdeJoint::standIn(const BodyState& pose) const {
+    // Kinematic: infinite mass to the solver, never moved. With ODE's auto-disable on (it is at
+    // rest), so it sleeps with the island it is in instead of keeping the joined body awake.
+    const dBodyID body = dBodyCreate(world_.id());
+    dBodySetPosition(body, pose.position.x(), pose.position.y(), pose.position.z());
+    dQuaternion q;
+    toOde(pose.orientation, q);
+    dBodySetQuaternion(body, q);
+    dBodySetKinematic(body);
+    dBodySetAutoDisableFlag(body, 1);
+    return body;
 }
 
 void OdeJoint::attach(dJointID id) const {
     // B is body 1; A body 2, or the world (null) when A is the world or a static body.
-    dJointAttach(id, b_->id(), a_ ? a_->id() : nullptr);
+    dJointAttach(id, idB_, a_ ? a_->id() : nullptr);
 }
 
 void OdeJoint::addPart(dJointID id, bool bIsBody1) {
@@ -365,8 +379,8 @@ void OdeJoint::beforeOdeStep(double h) {
             const double offset = (fb.position - fa.position).dot(x);
             if (def_.limits) {
                 // Stops: one-sided speculative rows along the axis at B's anchor, as a wheel's.
-                addRopeRow(fb.position, -x, def_.limits->upper - offset, h);
-                addRopeRow(fb.position, x, offset - def_.limits->lower, h);
+                addStopRow(fb.position, -x, def_.limits->upper - offset, h);
+                addStopRow(fb.position, x, offset - def_.limits->lower, h);
             }
             if (spring) {
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamVel, -erp / h * offset);
@@ -380,7 +394,7 @@ void OdeJoint::beforeOdeStep(double h) {
                 dJointSetDBallParam(main_, dParamERP, erp);
                 dJointSetDBallParam(main_, dParamCFM, cfm);
             }
-            if (ropeGroup_) ropeRows(h);
+            if (stopGroup_) ropeRows(h);
             break;
         case JointType::Cone: {
             // Swing: about n = xA x xB (the swing grows as B turns about n relative to A), the
@@ -405,8 +419,8 @@ void OdeJoint::beforeOdeStep(double h) {
                 // Travel stops: the same one-sided rows as a rope's, along the suspension axis at
                 // B's anchor (where the suspension acts on both bodies).
                 const double travel = (fb.position - fa.position).dot(x);
-                addRopeRow(fb.position, -x, def_.limits->upper - travel, h);
-                addRopeRow(fb.position, x, travel - def_.limits->lower, h);
+                addStopRow(fb.position, -x, def_.limits->upper - travel, h);
+                addStopRow(fb.position, x, travel - def_.limits->lower, h);
             }
             if (spring) {
                 dJointSetHinge2Param(main_, dParamSuspensionERP, erp);
@@ -434,11 +448,11 @@ void OdeJoint::ropeRows(double h) {
     const double length = d.norm();
     if (length < 1e-9) return;  // no direction to act along
     const Vec3 n = d / length;
-    if (def_.maxLength) addRopeRow(pb, -n, *def_.maxLength - length, h);
-    if (def_.minLength) addRopeRow(pb, n, length - *def_.minLength, h);
+    if (def_.maxLength) addStopRow(pb, -n, *def_.maxLength - length, h);
+    if (def_.minLength) addStopRow(pb, n, length - *def_.minLength, h);
 }
 
-void OdeJoint::addRopeRow(const Vec3& at, const Vec3& normal, double gap, double h) {
+void OdeJoint::addStopRow(const Vec3& at, const Vec3& normal, double gap, double h) {
     dContact contact{};
     contact.surface.mode = dContactMotionN;  // frictionless (mu 0): the normal row only
     contact.surface.mu = 0.0;
@@ -450,24 +464,24 @@ void OdeJoint::addRopeRow(const Vec3& at, const Vec3& normal, double gap, double
         contact.geom.pos[k] = at[k];
         contact.geom.normal[k] = normal[k];  // ODE pushes body 1 (B) along the normal
     }
-    const dJointID row = dJointCreateContact(world_.id(), ropeGroup_, &contact);
-    dJointAttach(row, b_->id(), a_ ? a_->id() : nullptr);
-    ropeFeedback_[ropeRows_] = dJointFeedback{};
-    dJointSetFeedback(row, &ropeFeedback_[ropeRows_++]);
+    const dJointID row = dJointCreateContact(world_.id(), stopGroup_, &contact);
+    dJointAttach(row, idB_, a_ ? a_->id() : nullptr);
+    stopFeedback_[stopRows_] = dJointFeedback{};
+    dJointSetFeedback(row, &stopFeedback_[stopRows_++]);
 }
 
 void OdeJoint::afterOdeStep() {
     // ODE's feedback is the constraint force held over the step (N, N m about B's centre). A
     // joint between sleeping bodies was not stepped: it keeps the reactions it had.
-    const bool awake = dBodyIsEnabled(b_->id()) || (a_ && a_->id() && dBodyIsEnabled(a_->id()));
-    if (ropeGroup_) {
+    const bool awake = (b_->id() && dBodyIsEnabled(b_->id())) || (a_ && a_->id() && dBodyIsEnabled(a_->id()));
+    if (stopGroup_) {
         if (awake)
-            for (int i = 0; i < ropeRows_; ++i) {
-                sumForce_ += toVec3(ropeFeedback_[i].f1);
-                sumTorque_ += toVec3(ropeFeedback_[i].t1);
+            for (int i = 0; i < stopRows_; ++i) {
+                sumForce_ += toVec3(stopFeedback_[i].f1);
+                sumTorque_ += toVec3(stopFeedback_[i].t1);
             }
-        dJointGroupEmpty(ropeGroup_);
-        ropeRows_ = 0;
+        dJointGroupEmpty(stopGroup_);
+        stopRows_ = 0;
     }
     if (!awake || !enabled_) return;
     ++stepped_;

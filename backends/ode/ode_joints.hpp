@@ -84,25 +84,28 @@ private:
     double measurePosition() const;
     void addPart(dJointID id, bool bIsBody1);
     void attach(dJointID id) const;
+    dBodyID standIn(const BodyState& pose) const;
     void configureMotors();   // the static parameters of the motor parts (after a setter)
     void wakeBodies() const;
     void ropeRows(double h);  // distance min / max: the contact rows of the next ODE step
-    void addRopeRow(const Vec3& at, const Vec3& normal, double gap, double h);
+    void addStopRow(const Vec3& at, const Vec3& normal, double gap, double h);
 
     OdeWorld& world_;
     JointPeerDef def_;
     OdeBody* a_;
     OdeBody* b_;
     dBodyID anchorBody_ = nullptr;  // wheel held to the world / a static body: a kinematic stand-in for A
+    dBodyID bStandIn_ = nullptr;    // static B: a kinematic stand-in
+    dBodyID idB_ = nullptr;         // ODE's body 1: B's dBody or its stand-in
     std::array<Part, 3> parts_{};
     std::size_t partCount_ = 0;
     dJointID main_ = nullptr;    // the type's ODE joint
     dJointID amotor_ = nullptr;  // hinge (motor, spring), cone (swing and twist stops)
     dJointID stops_ = nullptr;   // hinge: the AMotor holding the lower and upper stops
     dJointID lmotor_ = nullptr;  // slider
-    dJointGroupID ropeGroup_ = nullptr;  // distance min / max, slider and wheel stops: this step's contact rows
-    std::array<dJointFeedback, 2> ropeFeedback_{};
-    int ropeRows_ = 0;
+    dJointGroupID stopGroup_ = nullptr;  // distance min / max, slider and wheel stops: this step's contact rows
+    std::array<dJointFeedback, 2> stopFeedback_{};
+    int stopRows_ = 0;
     bool enabled_ = true;        // Effect::Joints
     bool rod_ = true;            // distance: the double ball is on (no range, or a spring)
     double steering_ = 0.0;

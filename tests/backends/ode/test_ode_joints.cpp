@@ -472,6 +472,47 @@ TEST(OdeJoints, JointsWakeTheirBodies) {
     EXPECT_TRUE(c->isAwake());
 }
 
+// A static bodyB held by a dynamic bodyA (the layer allows either to be the dynamic one): the
+// joint holds, reports B's side (the weight of A pulls B down: reaction -m g on B), and the
+// pendulum, and a wheel held to the world, fall asleep like any body once at rest.
+TEST(OdeJoints, StaticBodyBAndSleepingWithStandIns) {
+    auto world = jointWorld(Effect::Gravity | Effect::Joints | Effect::Sleeping, Solver::Direct);
+    BodyPeerDef fixedDef;
+    fixedDef.def.type = BodyType::Static;
+    fixedDef.def.position = Vec3(0, 1, 0);
+    auto ceiling = world->createBody(fixedDef);
+    BodyPeerDef bobDef;
+    bobDef.def.position = Vec3(0, 0, 0);
+    bobDef.mass = {2.0, Vec3::Constant(0.01)};
+    auto bob = world->createBody(bobDef);  // allowSleep true
+    JointPeerDef d;
+    d.type = JointType::Ball;
+    d.bodyA = bob.get();
+    d.bodyB = ceiling.get();
+    d.frameA = {Vec3(0, 1, 0), Quat::Identity()};
+    d.frameB = {Vec3(0, 0, 0), Quat::Identity()};
+    auto ball = world->createJoint(d);
+    run(*world, 1.0);
+    EXPECT_NEAR(bob->state().position.y(), 0.0, 1e-3);  // held
+    EXPECT_NEAR(ball->reactionForce().y(), -2.0 * kG, 1e-3 * 2.0 * kG);  // what the joint applies to B
+    // A wheel held to the world on a damped spring.
+    auto wheel = world->createBody(bobDef);
+    JointPeerDef w = heldToWorld(JointType::Wheel, *wheel, Vec3::Zero(), Vec3::Zero(),
+                                 Quat(Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitZ())));
+    w.spring = JointSpringSI{400.0, 60.0};
+    auto wheelJoint = world->createJoint(w);
+    run(*world, 10.0);
+    EXPECT_FALSE(bob->isAwake());
+    EXPECT_FALSE(wheel->isAwake());
+    EXPECT_NEAR(wheelJoint->position(), -2.0 * kG / 400.0, 1e-3);  // asleep where the spring holds it
+    // Woken, the joints still hold.
+    bob->setLinearVelocity({1, 0, 0});
+    wheel->setAwake(true);
+    run(*world, 1.0);
+    EXPECT_NEAR((bob->state().position - Vec3(0, 1, 0)).norm(), 1.0, 1e-2);
+    EXPECT_NEAR(wheelJoint->position(), -2.0 * kG / 400.0, 1e-3);
+}
+
 // Between two free bodies a hinge motor turns B positively about X relative to A, and A the
 // other way (the motor's torque is internal: total angular momentum stays 0).
 TEST(OdeJoints, HingeMotorBetweenTwoBodiesSign) {
@@ -600,6 +641,29 @@ TEST(OdeJoints, WheelSagReactionAndTravelLimits) {
         EXPECT_NEAR(highest, 0.1, 1e-3) << toString(solver);
         EXPECT_NEAR(lowest, -0.1, 1e-3) << toString(solver);
     }
+}
+
+// A planar world (each body on ODE's plane-2D joint): a hinge about Z is a pendulum in the
+// plane, with the small-amplitude period 2 pi sqrt(L'/g) and the bob kept in z = 0.
+TEST(OdeJoints, PlanarHingePendulum) {
+    WorldSettings s;
+    s.planar = true;
+    OdeWorld world(s);
+    world.setEffects(Effect::Gravity | Effect::Joints);
+    const double L = 1.0, I = 4e-3, amplitude = 0.1;
+    const Vec3 start(L * std::sin(amplitude), -L * std::cos(amplitude), 0.0);
+    auto bob = body(world, start, 1.0, I);
+    auto hinge = world.createJoint(heldToWorld(JointType::Hinge, *bob, start, Vec3::Zero(), kXAlongZ));
+    PeriodMeter meter;
+    double lowest = 0.0;
+    run(world, 10.0, [&](double t) {
+        meter.add(t, bob->state().position.x());
+        lowest = std::min(lowest, hinge->position());
+    });
+    const double exact = 4.0 * std::sqrt((I + L * L) / L / kG) * ellipticK(std::sin(0.5 * amplitude));
+    EXPECT_NEAR(meter.period(), exact, 0.005 * exact);  // as the 3D pendulum's bound
+    EXPECT_NEAR(bob->state().position.z(), 0.0, 1e-12);
+    EXPECT_NEAR(lowest, -2.0 * amplitude, 0.01 * amplitude);  // through the bottom to the other side
 }
 
 // ---- contacts, lifetime -----------------------------------------------------------------------
