@@ -666,6 +666,51 @@ TEST(OdeJoints, PlanarHingePendulum) {
     EXPECT_NEAR(lowest, -2.0 * amplitude, 0.01 * amplitude);  // through the bottom to the other side
 }
 
+// A hanging chain of 20 ball-jointed links (0.1 m, 0.1 kg each) with an end mass of 10 kg (100
+// links' worth): the gap that opens at the joints under the load, per solver. ODE's direct
+// solver is exact per step (gaps from the CFM only: 1e-6 m/N under ~100 N); quickstep's 50
+// iterations cannot carry the end load up 20 links (the figure issue 10 asks for).
+TEST(OdeJoints, HangingChainWithHeavyEndGap) {
+    for (const SolverCase& c : kStopSolvers) {
+        auto world = jointWorld(Effect::Gravity | Effect::Joints, c.solver, 1, c.iterations);
+        constexpr int kLinks = 20;
+        const double link = 0.1;
+        std::vector<std::unique_ptr<BodyPeer>> bodies;
+        std::vector<std::unique_ptr<JointPeer>> joints;
+        for (int i = 0; i < kLinks; ++i) {
+            const bool end = i == kLinks - 1;
+            const Vec3 at(0, -(i + 0.5) * link, 0);
+            bodies.push_back(body(*world, at, end ? 10.0 : 0.1, end ? 1e-2 : 1e-4));
+            JointPeerDef d;
+            d.type = JointType::Ball;
+            d.bodyB = bodies.back().get();
+            d.frameB = {Vec3(0, 0.5 * link, 0), Quat::Identity()};
+            if (i == 0) {
+                d.frameA = {Vec3::Zero(), Quat::Identity()};
+            } else {
+                d.bodyA = bodies[i - 1].get();
+                d.frameA = {Vec3(0, -0.5 * link, 0), Quat::Identity()};
+            }
+            joints.push_back(world->createJoint(d));
+        }
+        run(*world, 5.0);
+        const double length = -bodies.back()->state().position.y() + 0.5 * link;
+        const double stretch = length - kLinks * link;
+        std::cout << "[ MEASURED ] ode " << c.name() << " chain of 20 links, end 100x: stretch " << stretch
+                  << " m over " << kLinks * link << " m; top joint pulls " << joints[0]->reactionForce().y()
+                  << " N (weight " << (10.0 + 1.9) * kG << " N)\n";
+        // Bounds: direct 1 mm (measured 0.18 mm). Quickstep, measured: 32 cm at 50 iterations,
+        // 7.4 cm at 200, a known weakness of PGS on a 100:1 mass ratio (what issue 10 asks to
+        // report), bounded at 1.5 times that so a regression shows: 0.5 m and 0.12 m.
+        const double bound = c.solver == Solver::Direct ? 1e-3 : c.iterations < 100 ? 0.5 : 0.12;
+        EXPECT_LT(std::abs(stretch), bound) << c.name();
+        if (c.solver == Solver::Direct) {
+            // The top joint carries everything below it (0.1 %).
+            EXPECT_NEAR(joints[0]->reactionForce().y(), 11.9 * kG, 1e-3 * 11.9 * kG);
+        }
+    }
+}
+
 // ---- contacts, lifetime -----------------------------------------------------------------------
 
 // Two overlapping boxes joined by a ball joint: with collideConnected false they produce no
