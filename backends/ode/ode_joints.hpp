@@ -19,10 +19,12 @@
 // its target speed carries the position error: vel = -ERP / h x.
 // Angles, offsets and their rates are measured here from the bodies' poses, never read from ODE,
 // so every backend reports the same numbers; the user-mode AMotor rows are fed those angles.
-// Angular stops (hinge limits, cone swing and twist) are one-sided rows present in every step,
-// speculative like the native solver's: ahead of the stop the row lets the angle close exactly
-// the remaining gap this step (ODE's own stops only start once the angle is past them, so a
-// fast joint overshoots by a step's motion); past it, the row pushes back with the world's ERP.
+// Stops (hinge limits, cone swing and twist, slider and wheel travel, distance range) are
+// one-sided rows present in every step, speculative like the native solver's: ahead of the stop
+// the row lets the joint close exactly the remaining gap this step (ODE's own stops only start
+// once past them, so a fast joint overshoots by a step's motion); past it, the row pushes back
+// with the world's ERP. Angular ones are AMotor rows, or contact rows at B's centre where B
+// swings on an arm (centreStop); linear ones are frictionless contact joints.
 #include <ode/ode.h>
 
 #include <array>
@@ -87,6 +89,7 @@ private:
     dBodyID standIn(const BodyState& pose) const;
     void configureMotors();   // the static parameters of the motor parts (after a setter)
     void wakeBodies() const;
+    bool centreStop(const Vec3& axis, const Vec3& anchor, Vec3& t, double& lever) const;
     void ropeRows(double h);  // distance min / max: the contact rows of the next ODE step
     void addStopRow(const Vec3& at, const Vec3& normal, double gap, double h);
 
