@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "ode_math.hpp"
+#include "ode_tuning.hpp"
 #include "ode_world.hpp"
 
 namespace anyphys::ode {
@@ -88,6 +89,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             main_ = dJointCreateFixed(w, nullptr);
             attach(main_);
             dJointSetFixed(main_);
+            dJointSetFixedParam(main_, dParamERP, kJointErp);
             addPart(main_, true);
             break;
         case JointType::Ball:
@@ -95,6 +97,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             main_ = dJointCreateBall(w, nullptr);
             attach(main_);
             dJointSetBallAnchor(main_, anchor.x(), anchor.y(), anchor.z());
+            dJointSetBallParam(main_, dParamERP, kJointErp);
             addPart(main_, true);
             if (def_.type == JointType::Cone) {
                 amotor_ = dJointCreateAMotor(w, nullptr);
@@ -106,12 +109,29 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
                 stopGroup_ = dJointGroupCreate(0);  // swing stop at B's centre (see centreStop)
             }
             break;
-        case JointType::Hinge:
-            main_ = dJointCreateHinge(w, nullptr);
+        case JointType::Hinge: {
+            // A ball joint (its own ERP) and an AMotor whose two rows keep B's axis on A's: the
+            // rows of ODE's hinge, with the joints' ERP instead of the world's (see kJointErp).
+            main_ = dJointCreateBall(w, nullptr);
             attach(main_);
-            dJointSetHingeAnchor(main_, anchor.x(), anchor.y(), anchor.z());
-            dJointSetHingeAxis(main_, x.x(), x.y(), x.z());
+            dJointSetBallAnchor(main_, anchor.x(), anchor.y(), anchor.z());
+            dJointSetBallParam(main_, dParamERP, kJointErp);
             addPart(main_, true);
+            align_ = dJointCreateAMotor(w, nullptr);
+            attach(align_);
+            dJointSetAMotorMode(align_, dAMotorUser);
+            dJointSetAMotorNumAxes(align_, 2);
+            const Vec3 y = fb.orientation * Vec3::UnitY(), z = fb.orientation * Vec3::UnitZ();
+            dJointSetAMotorAxis(align_, 0, 0, y.x(), y.y(), y.z());
+            dJointSetAMotorAxis(align_, 1, 0, z.x(), z.y(), z.z());
+            for (int i = 0; i < 2; ++i) {
+                // lo = hi = 0: a two-sided row toward angle 0 at the stop's ERP.
+                dJointSetAMotorParam(align_, group(i) + dParamLoStop, 0.0);
+                dJointSetAMotorParam(align_, group(i) + dParamHiStop, 0.0);
+                dJointSetAMotorParam(align_, group(i) + dParamStopERP, kJointErp);
+                dJointSetAMotorParam(align_, group(i) + dParamStopCFM, world.cfm());
+            }
+            addPart(align_, true);
             amotor_ = dJointCreateAMotor(w, nullptr);
             stops_ = dJointCreateAMotor(w, nullptr);
             for (dJointID motor : {amotor_, stops_}) {
@@ -123,6 +143,7 @@ OdeJoint::OdeJoint(OdeWorld& world, const JointPeerDef& def)
             }
             stopGroup_ = dJointGroupCreate(0);  // stops at B's centre (see beforeOdeStep)
             break;
+        }
         case JointType::Slider:
             main_ = dJointCreateSlider(w, nullptr);
             attach(main_);
@@ -242,7 +263,7 @@ void OdeJoint::configureMotors() {
             break;
         case JointType::Distance:
             if (!def_.spring) {
-                dJointSetDBallParam(main_, dParamERP, world_.erp());
+                dJointSetDBallParam(main_, dParamERP, kJointErp);
                 dJointSetDBallParam(main_, dParamCFM, world_.cfm());
             }
             // A range without a spring is free inside: the double ball is off.
@@ -362,6 +383,16 @@ void OdeJoint::beforeOdeStep(double h) {
         case JointType::Hinge: {
             const double angle = hingeAngle(fa, fb);
             lastAngle_ = angle;
+            {
+                // Alignment: B's axis turned off A's by b = xA x xB; about A's Y and Z, the
+                // components of b are the small angles to undo (each grows with (wB - wA) along it).
+                const Vec3 y = fa.orientation * Vec3::UnitY(), z = fa.orientation * Vec3::UnitZ();
+                const Vec3 bend = x.cross(fb.orientation * Vec3::UnitX());
+                dJointSetAMotorAxis(align_, 0, 0, y.x(), y.y(), y.z());
+                dJointSetAMotorAxis(align_, 1, 0, z.x(), z.y(), z.z());
+                dJointSetAMotorAngle(align_, 0, bend.dot(y));
+                dJointSetAMotorAngle(align_, 1, bend.dot(z));
+            }
             for (dJointID motor : {amotor_, stops_})
                 for (int i = 0; i < 2; ++i) dJointSetAMotorAxis(motor, i, 0, x.x(), x.y(), x.z());
             if (def_.limits) {

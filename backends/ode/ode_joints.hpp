@@ -1,10 +1,11 @@
 #pragma once
-// Joints of the ODE backend. Each anyphys joint is one to three ODE joints ("parts") between the
+// Joints of the ODE backend. Each anyphys joint is one to four ODE joints ("parts") between the
 // same bodies, always with B as ODE's body 1 and A (or the world) as body 2, so ODE's rates
 // (w1 - w2, v1 - v2) are B's motion relative to A, the sign anyphys reports:
 //   fixed     dJointFixed
 //   ball      dJointBall
-//   hinge     dJointHinge, plus two AMotors (user mode): motor and spring, lower and upper stop
+//   hinge     dJointBall plus AMotors (user mode): axis alignment (ODE's hinge rows, with the
+//             joints' own ERP), motor and spring, lower and upper stop
 //   slider    dJointSlider, plus an LMotor for motor and spring; limits are one-sided rows like
 //             a distance's minLength / maxLength
 //   distance  dJointDBall (rigid, or soft with the spring's ERP / CFM); minLength / maxLength are
@@ -100,11 +101,12 @@ private:
     dBodyID anchorBody_ = nullptr;  // wheel held to the world / a static body: a kinematic stand-in for A
     dBodyID bStandIn_ = nullptr;    // static B: a kinematic stand-in
     dBodyID idB_ = nullptr;         // ODE's body 1: B's dBody or its stand-in
-    std::array<Part, 3> parts_{};
+    std::array<Part, 4> parts_{};
     std::size_t partCount_ = 0;
     dJointID main_ = nullptr;    // the type's ODE joint
     dJointID amotor_ = nullptr;  // hinge (motor, spring), cone (swing and twist stops)
     dJointID stops_ = nullptr;   // hinge: the AMotor holding the lower and upper stops
+    dJointID align_ = nullptr;   // hinge: the AMotor keeping B's axis on A's
     dJointID lmotor_ = nullptr;  // slider
     dJointGroupID stopGroup_ = nullptr;  // distance min / max, slider and wheel stops: this step's contact rows
     std::array<dJointFeedback, 2> stopFeedback_{};
