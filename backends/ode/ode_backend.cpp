@@ -22,8 +22,8 @@ Backend makeOdeBackend() {
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
     // Continuous collision is the backend's approximation (ode_continuous.cpp): ODE itself has none.
     caps.effects = Effects::all();
-    // Joints (ode_joints.hpp): ODE's fixed, ball, hinge, slider, double-ball (distance), ball with
-    // angular-motor stops (cone) and hinge2 (wheel).
+    // Joints (ode_joints.hpp): ODE's fixed, ball, slider, double ball (distance) and hinge2
+    // (wheel) joints, ball joints with angular-motor rows (hinge, cone), and speculative stops.
     caps.jointTypes = {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"};
     caps.integrators = {Integrator::SemiImplicitEuler};  // ODE's own
     caps.solvers = {Solver::ProjectedGaussSeidel, Solver::Direct};
@@ -59,8 +59,9 @@ Backend makeOdeBackend() {
         for (const char* field : {"breakForce", "breakTorque", "collideConnected"})
             caps.parameters.insert(std::string("joint.") + type + "." + field);
     caps.options = {
-        {"erp", "error reduction parameter: fraction of contact overlap corrected per step, in [0, 1]; "
-                "default settings.baumgarte (0.2)"},
+        {"erp", "error reduction parameter: fraction of contact overlap (and of slider and wheel joint drift) "
+                "corrected per step, in [0, 1]; default settings.baumgarte (0.2). Ball, hinge, cone, fixed and "
+                "distance joints use their own 0.8"},
         {"cfm", "constraint force mixing: softness of resting contacts, >= 0; default 1e-6 (bouncing contacts "
                 "use 1e-10 so softness does not absorb the rebound)"},
     };
