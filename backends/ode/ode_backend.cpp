@@ -1,5 +1,6 @@
 // Registration record of the ODE backend: its name, capabilities and world factory.
 #include <memory>
+#include <string>
 
 #include "anyphys/peers/backend.hpp"
 #include "ode_tuning.hpp"
@@ -19,9 +20,11 @@ Backend makeOdeBackend() {
     caps.shapes = {ShapeType::Sphere, ShapeType::Box,  ShapeType::Capsule, ShapeType::Plane,
                    ShapeType::Convex, ShapeType::Mesh, ShapeType::Compound};
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
-    // Joints arrive with their own issue; continuous collision is the backend's approximation
-    // (ode_continuous.cpp): ODE itself has none.
-    caps.effects = Effects::all().remove(Effect::Joints);
+    // Continuous collision is the backend's approximation (ode_continuous.cpp): ODE itself has none.
+    caps.effects = Effects::all();
+    // Joints (ode_joints.hpp): ODE's fixed, ball, slider, double ball (distance) and hinge2
+    // (wheel) joints, ball joints with angular-motor rows (hinge, cone), and speculative stops.
+    caps.jointTypes = {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"};
     caps.integrators = {Integrator::SemiImplicitEuler};  // ODE's own
     caps.solvers = {Solver::ProjectedGaussSeidel, Solver::Direct};
     caps.defaultSolver = Solver::ProjectedGaussSeidel;
@@ -42,10 +45,23 @@ Backend makeOdeBackend() {
                        "body.angularVelocity", "body.shape", "body.mass", "body.density", "body.inertia",
                        "body.linearDamping", "body.angularDamping", "body.gravityScale", "body.gyroscopic",
                        "body.material", "body.isTrigger", "body.layer", "body.mask", "body.allowSleep",
-                       "body.isAwake"};
+                       "body.isAwake",
+                       // Joints: only what ode_joints.cpp honours and tests/backends/ode/test_ode_joints.cpp
+                       // checks.
+                       "joint.hinge.limits", "joint.hinge.motor", "joint.hinge.spring",
+                       "joint.slider.limits", "joint.slider.motor", "joint.slider.spring",
+                       "joint.wheel.limits", "joint.wheel.motor", "joint.wheel.spring", "joint.wheel.steering",
+                       "joint.distance.spring", "joint.distance.minLength", "joint.distance.maxLength",
+                       "joint.cone.swingLimit", "joint.cone.twistLimits"};
+    // Every type: collideConnected (the near callback skips joined pairs), and breaking, which the
+    // layer does from the reactions (ODE's joint feedback, in N and N m).
+    for (const char* type : {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"})
+        for (const char* field : {"breakForce", "breakTorque", "collideConnected"})
+            caps.parameters.insert(std::string("joint.") + type + "." + field);
     caps.options = {
-        {"erp", "error reduction parameter: fraction of contact overlap corrected per step, in [0, 1]; "
-                "default settings.baumgarte (0.2)"},
+        {"erp", "error reduction parameter: fraction of contact overlap (and of slider and wheel joint drift) "
+                "corrected per step, in [0, 1]; default settings.baumgarte (0.2). Ball, hinge, cone, fixed and "
+                "distance joints use their own 0.8"},
         {"cfm", "constraint force mixing: softness of resting contacts, >= 0; default 1e-6 (bouncing contacts "
                 "use 1e-10 so softness does not absorb the rebound)"},
     };

@@ -42,6 +42,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     if (trigger ? !(a->moves() || b->moves()) : !(a->isDynamic() || b->isDynamic())) return;
     if (!a->isActive() && !b->isActive()) return;  // asleep (or asleep on something static)
     if (!layersCollide(a->layer(), a->mask(), b->layer(), b->mask())) return;
+    if (jointExcludes(a, b)) return;  // joined by a joint with collideConnected false
     if (!collidable(o1, o2)) return;
     // ODE's normals point into geom 1: make that a dynamic body, whose joint feedback is read.
     if (!a->isDynamic()) {

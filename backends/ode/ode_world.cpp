@@ -120,8 +120,36 @@ void OdeWorld::destroyBody(BodyPeer& peer) {
     bodies_.pop_back();
 }
 
+std::unique_ptr<JointPeer> OdeWorld::createJoint(const JointPeerDef& def) {
+    auto joint = std::make_unique<OdeJoint>(*this, def);
+    joint->slot = userJoints_.size();
+    userJoints_.push_back(joint.get());
+    if (!def.collideConnected && def.bodyA)
+        ++excludedPairs_[std::minmax(static_cast<const OdeBody*>(def.bodyA), static_cast<const OdeBody*>(def.bodyB))];
+    return joint;
+}
+
+void OdeWorld::destroyJoint(JointPeer& peer) {
+    auto& joint = static_cast<OdeJoint&>(peer);
+    if (!joint.collideConnected() && joint.bodyA()) {
+        const std::pair<const OdeBody*, const OdeBody*> key = std::minmax<const OdeBody*>(joint.bodyA(), joint.bodyB());
+        if (--excludedPairs_[key] == 0) excludedPairs_.erase(key);
+    }
+    // Bodies it held (even asleep) move freely from now on.
+    if (joint.bodyB()->id()) dBodyEnable(joint.bodyB()->id());
+    if (joint.bodyA() && joint.bodyA()->id()) dBodyEnable(joint.bodyA()->id());
+    userJoints_.back()->slot = joint.slot;
+    userJoints_[joint.slot] = userJoints_.back();
+    userJoints_.pop_back();
+}
+
+bool OdeWorld::jointExcludes(const OdeBody* a, const OdeBody* b) const {
+    return !excludedPairs_.empty() && excludedPairs_.contains(std::minmax(a, b));
+}
+
 void OdeWorld::setEffects(Effects effects) {
     effects_ = effects;
+    for (OdeJoint* j : userJoints_) j->setEnabled(effects.has(Effect::Joints));
     const Vec3 g = effects.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
     dWorldSetGravity(world_, g.x(), g.y(), g.z());
     const double h = odeStep();
@@ -174,8 +202,11 @@ void OdeWorld::step(double time, double dt) {
         pairs_.clear();
         points_.clear();
     }
+    const bool joints = effects_.has(Effect::Joints) && !userJoints_.empty();
     for (int s = 0; s < substeps; ++s) {
         if (contacts) collide();
+        if (joints)
+            for (OdeJoint* j : userJoints_) j->beforeOdeStep(h);
         for (const OdeBody* b : forced_) b->feedForces();
         if (effects_.has(Effect::Gravity))
             for (const OdeBody* b : scaledGravity_) {
@@ -198,12 +229,15 @@ void OdeWorld::step(double time, double dt) {
             ++quickSteps_;
         }
         if (contacts) dJointGroupEmpty(contactGroup_);
+        if (joints)
+            for (OdeJoint* j : userJoints_) j->afterOdeStep();
         if (settings_.planar)
             for (const OdeBody* b : bodies_) b->projectToPlane();
         if (continuous) continuousCollision(before_);
     }
     for (OdeBody* b : forced_) b->clearForces();
     forced_.clear();
+    for (OdeJoint* j : userJoints_) j->finishStep(dt, joints ? substeps : 1);
     randomSeed_ = dRandGetSeed();
     dRandSetSeed(outsideSeed);
 }

@@ -6,11 +6,14 @@
 #include <ode/ode.h>
 
 #include <cstdint>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "ode_body.hpp"
+#include "ode_joints.hpp"
 
 namespace anyphys::ode {
 
@@ -23,6 +26,8 @@ public:
 
     std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
     void destroyBody(BodyPeer& body) override;
+    std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
+    void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
@@ -75,6 +80,8 @@ private:
     void collide();
     void createContactJoints(const OdeBody& a, const OdeBody& b, dContact* contacts, int count);
     void continuousCollision(const std::vector<Vec3>& before);
+    /// A joint with collideConnected false joins a and b (either order).
+    bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
     void applyDampingStep(double h);
     double odeStep() const;  // s, the length of one ODE step
 
@@ -91,6 +98,9 @@ private:
     double lastH_ = 0.0;  // s, the ODE step the bodies' damping scales were computed for
 
     std::vector<OdeBody*> bodies_;
+    std::vector<OdeJoint*> userJoints_;
+    // Body pairs joined by joints with collideConnected false, and how many such joints each has.
+    std::map<std::pair<const OdeBody*, const OdeBody*>, int> excludedPairs_;
     std::vector<OdeBody*> forced_;         // bodies with held forces this step
     std::vector<OdeBody*> scaledGravity_;  // dynamic bodies with gravityScale other than 0 and 1
     std::vector<OdeBody*> gyroscopic_;     // bodies whose implicit gyroscopic term this backend applies
