@@ -13,6 +13,7 @@ bool LayerFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphas
     const auto* b = static_cast<const BulletBodyPeer*>(o1->getUserPointer());
     if (a == nullptr || b == nullptr) return true;  // not ours (e.g. a user's object through the escape hatch)
     if (!contacts) return false;
+    if (!o0->checkCollideWith(o1)) return false;  // joined by a joint with collideConnected false
     if (!layersCollide(a->layer(), a->mask(), b->layer(), b->mask())) return false;
     if (a->trigger() || b->trigger()) return a->moves() || b->moves();  // sensors see anything that moves
     return a->dynamic() || b->dynamic();                               // something must respond
@@ -73,7 +74,49 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
 BulletWorld::~BulletWorld() {
     // Bodies whose peers outlive the world (the layer destroys them first; tests may not) leave
     // it now, so their peers never touch a dead world.
+    // Joints first: their constraints refer to the bodies.
+    while (!joints_.empty()) detachJoint(*joints_.back());
     while (!bodies_.empty()) detach(*bodies_.back());
+}
+
+std::unique_ptr<JointPeer> BulletWorld::createJoint(const JointPeerDef& def) {
+    auto peer = std::make_unique<BulletJointPeer>(*this, def);
+    // collideConnected false: Bullet records the pair on both bodies (checkCollideWith), the
+    // layer filter then refuses the pair, and a pair already in the cache goes now, with its
+    // manifold, so no stale contact between them is reported or solved.
+    world_->addConstraint(&peer->constraint(), !def.collideConnected);
+    if (!def.collideConnected && def.bodyA != nullptr) {
+        btRigidBody& a = static_cast<BulletBodyPeer*>(def.bodyA)->rigidBody();
+        btRigidBody& b = static_cast<BulletBodyPeer*>(def.bodyB)->rigidBody();
+        if (a.getBroadphaseHandle() != nullptr && b.getBroadphaseHandle() != nullptr)
+            broadphase_->getOverlappingPairCache()->removeOverlappingPair(a.getBroadphaseHandle(),
+                                                                          b.getBroadphaseHandle(), dispatcher_.get());
+    }
+    // A joint wakes what it joins (Bullet then keeps them in one island).
+    if (def.bodyA != nullptr) def.bodyA->setAwake(true);
+    def.bodyB->setAwake(true);
+    peer->constraint().setEnabled(effects_.has(Effect::Joints));
+    joints_.push_back(peer.get());
+    return peer;
+}
+
+void BulletWorld::destroyJoint(JointPeer& joint) { detachJoint(static_cast<BulletJointPeer&>(joint)); }
+
+void BulletWorld::detachJoint(BulletJointPeer& joint) {
+    const auto it = std::find(joints_.begin(), joints_.end(), &joint);
+    if (it == joints_.end()) return;
+    joints_.erase(it);
+    btTypedConstraint& c = joint.constraint();
+    world_->removeConstraint(&c);
+    joint.detached();
+    // The bodies may collide again (if they were kept apart) and fall on their own: wake them,
+    // and let the broad phase look for their pair anew.
+    for (btRigidBody* body : {&c.getRigidBodyA(), &c.getRigidBodyB()}) {
+        const auto* peer = static_cast<BulletBodyPeer*>(body->getUserPointer());
+        if (peer == nullptr || !peer->inWorld_ || !peer->moves()) continue;
+        body->activate(true);
+        if (body->getBroadphaseHandle() != nullptr) world_->refreshBroadphaseProxy(body);
+    }
 }
 
 std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
@@ -129,6 +172,7 @@ void BulletWorld::setEffects(Effects effects) {
     effects_ = effects;
     world_->setEffects(effects);
     filter_.contacts = effects.has(Effect::Contacts);
+    for (BulletJointPeer* joint : joints_) joint->constraint().setEnabled(effects.has(Effect::Joints));
     // Continuous collision: Bullet's swept-sphere CCD and its predictive contacts.
     world_->getDispatchInfo().m_useContinuous = effects.has(Effect::ContinuousCollision);
     for (BulletBodyPeer* body : bodies_) {
@@ -167,11 +211,15 @@ void BulletWorld::step(double time, double dt) {
     const int substeps = settings_.substeps.value_or(1);  // resolved by the layer
     const double h = dt / substeps;
     const auto bh = static_cast<btScalar>(h);
+    for (BulletJointPeer* joint : joints_) joint->beginStep();
     for (int s = 0; s < substeps; ++s) {
         for (BulletBodyPeer* body : forced_) body->pushForces();
+        for (BulletJointPeer* joint : joints_) joint->beginSubstep();
         world_->stepSimulation(bh, 1, bh);
+        for (BulletJointPeer* joint : joints_) joint->endSubstep(h);
         for (BulletBodyPeer* body : kinematic_) body->advanceKinematic(h);
     }
+    for (BulletJointPeer* joint : joints_) joint->endStep(dt);
     for (BulletBodyPeer* body : forced_) body->clearForces();
     forced_.clear();
 }

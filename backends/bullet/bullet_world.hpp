@@ -15,6 +15,7 @@
 #include "anyphys/world_settings.hpp"
 #include "bullet_body.hpp"
 #include "bullet_dynamics_world.hpp"
+#include "bullet_joints.hpp"
 
 namespace anyphys::bullet {
 
@@ -33,6 +34,8 @@ public:
 
     std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
     void destroyBody(BodyPeer& body) override;
+    std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
+    void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
@@ -53,6 +56,8 @@ public:
     void addForced(BulletBodyPeer* body) { forced_.push_back(body); }
     /// Removes the body from the Bullet world (on destroyBody, or when its peer dies first).
     void detach(BulletBodyPeer& body);
+    /// Removes the joint's constraint from the Bullet world (on destroyJoint, or when its peer dies first).
+    void detachJoint(BulletJointPeer& joint);
     /// After a teleport: refresh the body's bounds and wake what touches it.
     void teleported(BulletBodyPeer& body);
 
@@ -64,6 +69,7 @@ private:
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
+    std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
 
     // Destroyed in reverse order of declaration: world_ first.
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;

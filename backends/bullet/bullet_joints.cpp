@@ -1,0 +1,409 @@
+#include "bullet_joints.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bullet_body.hpp"
+#include "bullet_convert.hpp"
+#include "bullet_world.hpp"
+
+namespace anyphys::bullet {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double wrap(double angle) { return angle - 2.0 * kPi * std::round(angle / (2.0 * kPi)); }
+
+btRigidBody& rigidOf(BodyPeer* body) {
+    // The world (a null body A): Bullet's shared static body, whose frame is the world frame.
+    if (body == nullptr) return btTypedConstraint::getFixedBody();
+    return static_cast<BulletBodyPeer*>(body)->rigidBody();
+}
+
+// 6-DOF spring 2 axis indices: translations 0..2, rotations 3..5.
+constexpr int kLinX = 0, kAngX = 3, kAngY = 4;
+
+// Free axis: lower > upper (Bullet's convention for an unlimited degree of freedom).
+void freeAxis(btGeneric6DofSpring2Constraint& c, int axis) { c.setLimit(axis, 1, -1); }
+
+}  // namespace
+
+// ---- DistanceConstraint --------------------------------------------------------------------
+
+DistanceConstraint::DistanceConstraint(btRigidBody& a, btRigidBody& b, const btVector3& anchorA,
+                                       const btVector3& anchorB, double length)
+    : btTypedConstraint(MAX_CONSTRAINT_TYPE, a, b), anchorA_(anchorA), anchorB_(anchorB), length_(length) {}
+
+void DistanceConstraint::rows(Row out[2], int& count) const {
+    count = 0;
+    const btVector3 d = m_rbB.getCenterOfMassTransform() * anchorB_ - m_rbA.getCenterOfMassTransform() * anchorA_;
+    if (d.length() < 1e-9) return;  // no direction to act along
+    if (spring) out[count++] = Row::Spring;
+    else if (!minLength && !maxLength) out[count++] = Row::Rigid;
+    // A spring with both bounds needs three rows; the bound being approached is the one kept.
+    const double length = d.length();
+    if (count < 2 && minLength && maxLength) {
+        out[count++] = length - *minLength < *maxLength - length ? Row::Min : Row::Max;
+    } else {
+        if (count < 2 && minLength) out[count++] = Row::Min;
+        if (count < 2 && maxLength) out[count++] = Row::Max;
+    }
+}
+
+void DistanceConstraint::getInfo1(btConstraintInfo1* info) {
+    Row r[2];
+    int count = 0;
+    rows(r, count);
+    info->m_numConstraintRows = count;
+    info->nub = 6 - count;
+}
+
+void DistanceConstraint::getInfo2(btConstraintInfo2* info) {
+    Row r[2];
+    int count = 0;
+    rows(r, count);
+    const btTransform& ta = m_rbA.getCenterOfMassTransform();
+    const btTransform& tb = m_rbB.getCenterOfMassTransform();
+    const btVector3 pa = ta * anchorA_, pb = tb * anchorB_;
+    const btVector3 ra = pa - ta.getOrigin(), rb = pb - tb.getOrigin();
+    const btVector3 d = pb - pa;
+    const btScalar length = d.length();
+    if (count == 0) return;
+    const btVector3 n = d / length;
+    // J v = d(length)/dt; an impulse lambda pushes B along +n (A along -n).
+    const btVector3 angA = -ra.cross(n), angB = rb.cross(n);
+    const btScalar rate = n.dot(m_rbB.getLinearVelocity() + m_rbB.getAngularVelocity().cross(rb) -
+                                m_rbA.getLinearVelocity() - m_rbA.getAngularVelocity().cross(ra));
+    const btScalar fps = info->fps, erp = erp_ >= 0 ? erp_ : info->erp;
+    for (int i = 0; i < count; ++i) {
+        const int s = i * info->rowskip;
+        for (int k = 0; k < 3; ++k) {
+            info->m_J1linearAxis[s + k] = -n[k];
+            info->m_J1angularAxis[s + k] = angA[k];
+            info->m_J2linearAxis[s + k] = n[k];
+            info->m_J2angularAxis[s + k] = angB[k];
+        }
+        if (cfm_ != 0) info->cfm[s] = cfm_;
+        switch (r[i]) {
+            case Row::Rigid: {
+                const btScalar C = length - static_cast<btScalar>(length_);
+                info->m_constraintError[s] = -erp * fps * C;
+                info->m_lowerLimit[s] = -SIMD_INFINITY;
+                info->m_upperLimit[s] = SIMD_INFINITY;
+                break;
+            }
+            case Row::Max: {  // pulls only: lambda <= 0; ahead of the bound the row lets the gap close
+                const btScalar C = length - static_cast<btScalar>(*maxLength);
+                info->m_constraintError[s] = -(C < 0 ? btScalar(1) : erp) * fps * C;
+                info->m_lowerLimit[s] = -SIMD_INFINITY;
+                info->m_upperLimit[s] = 0;
+                break;
+            }
+            case Row::Min: {  // pushes only: lambda >= 0
+                const btScalar C = length - static_cast<btScalar>(*minLength);
+                info->m_constraintError[s] = -(C > 0 ? btScalar(1) : erp) * fps * C;
+                info->m_lowerLimit[s] = 0;
+                info->m_upperLimit[s] = SIMD_INFINITY;
+                break;
+            }
+            case Row::Spring: {
+                // The spring-damper's impulse over this substep from the state at its start (as
+                // Bullet's own 6-DOF springs do): the row is clamped to exactly that impulse.
+                const btScalar C = length - static_cast<btScalar>(length_);
+                const btScalar impulse = -static_cast<btScalar>(spring->stiffness * C + spring->damping * rate) / fps;
+                info->m_constraintError[s] = 0;
+                info->m_lowerLimit[s] = impulse;
+                info->m_upperLimit[s] = impulse;
+                break;
+            }
+            case Row::None: break;
+        }
+    }
+}
+
+void DistanceConstraint::setParam(int num, btScalar value, int axis) {
+    (void)axis;
+    if (num == BT_CONSTRAINT_ERP || num == BT_CONSTRAINT_STOP_ERP) erp_ = value;
+    if (num == BT_CONSTRAINT_CFM || num == BT_CONSTRAINT_STOP_CFM) cfm_ = value;
+}
+
+btScalar DistanceConstraint::getParam(int num, int axis) const {
+    (void)axis;
+    if (num == BT_CONSTRAINT_ERP || num == BT_CONSTRAINT_STOP_ERP) return erp_;
+    return cfm_;
+}
+
+// ---- BulletJointPeer -------------------------------------------------------------------------
+
+BulletJointPeer::BulletJointPeer(BulletWorld& world, const JointPeerDef& def) : world_(&world), def_(def) {
+    btRigidBody& a = rigidOf(def.bodyA);
+    btRigidBody& b = rigidOf(def.bodyB);
+    const btTransform fa = toBt(def.frameA), fb = toBt(def.frameB);
+    switch (def.type) {
+        case JointType::Fixed: constraint_ = std::make_unique<btFixedConstraint>(a, b, fa, fb); break;
+        case JointType::Ball:
+            constraint_ = std::make_unique<btPoint2PointConstraint>(a, b, fa.getOrigin(), fb.getOrigin());
+            break;
+        case JointType::Hinge:
+        case JointType::Slider:
+        case JointType::Wheel: {
+            // The free rotation comes first in the Euler order, so its angle has the full range
+            // (the middle one is limited to +-pi/2): X for a hinge, Y (the axle) for a wheel.
+            const RotateOrder order = def.type == JointType::Wheel ? RO_YXZ : RO_XYZ;
+            auto dof = std::make_unique<btGeneric6DofSpring2Constraint>(a, b, fa, fb, order);
+            dof_ = dof.get();
+            for (int axis = 0; axis < 6; ++axis) dof_->setLimit(axis, 0, 0);  // locked
+            if (def.type == JointType::Wheel) freeAxis(*dof_, kAngY);
+            constraint_ = std::move(dof);
+            break;
+        }
+        case JointType::Cone: {
+            // Bullet's twist span is symmetric: B's frame turns about X to the middle of the range.
+            btScalar twistSpan = SIMD_PI;  // no twist limit: the full turn
+            if (def.twistLimits) {
+                twistOffset_ = -0.5 * (def.twistLimits->lower + def.twistLimits->upper);
+                twistSpan = static_cast<btScalar>(0.5 * (def.twistLimits->upper - def.twistLimits->lower));
+            }
+            const Transform turnedB{def.frameB.position,
+                                    def.frameB.orientation * Quat(Eigen::AngleAxisd(twistOffset_, Vec3::UnitX()))};
+            auto cone = std::make_unique<btConeTwistConstraint>(a, b, fa, toBt(turnedB));
+            const auto swing = static_cast<btScalar>(std::min(def.swingLimit, kPi));
+            cone->setLimit(swing, swing, twistSpan);
+            constraint_ = std::move(cone);
+            break;
+        }
+        case JointType::Distance: {
+            auto distance = std::make_unique<DistanceConstraint>(a, b, toBt(def.anchorA), toBt(def.anchorB), def.length);
+            distance_ = distance.get();
+            distance_->minLength = def.minLength;
+            distance_->maxLength = def.maxLength;
+            constraint_ = std::move(distance);
+            break;
+        }
+    }
+    feedback_ = {};
+    constraint_->setJointFeedback(&feedback_);
+    constraint_->enableFeedback(true);
+    applyLimits();
+    applyMotor();
+    applySpring();
+    measure();
+    position_ = 0.0;  // frames coincide at creation
+}
+
+BulletJointPeer::~BulletJointPeer() {
+    if (world_ != nullptr) world_->detachJoint(*this);
+}
+
+void* BulletJointPeer::nativeObject(const std::type_info& pointerType) {
+    if (pointerType == typeid(btTypedConstraint*)) return constraint_.get();
+    if (dof_ != nullptr && pointerType == typeid(btGeneric6DofSpring2Constraint*)) return dof_;
+    if (pointerType == typeid(btPoint2PointConstraint*) && def_.type == JointType::Ball) return constraint_.get();
+    if (pointerType == typeid(btFixedConstraint*) && def_.type == JointType::Fixed) return constraint_.get();
+    if (pointerType == typeid(btConeTwistConstraint*) && def_.type == JointType::Cone) return constraint_.get();
+    return nullptr;
+}
+
+void BulletJointPeer::setMotor(const std::optional<JointMotor>& motor) {
+    def_.motor = motor;
+    applyMotor();
+    wakeBodies();
+}
+
+void BulletJointPeer::setLimits(const std::optional<JointLimits>& limits) {
+    def_.limits = limits;
+    applyLimits();
+    wakeBodies();
+}
+
+void BulletJointPeer::setSpring(const std::optional<JointSpringSI>& spring) {
+    def_.spring = spring;
+    applySpring();
+    wakeBodies();
+}
+
+void BulletJointPeer::setSteeringAngle(double angle) {
+    if (def_.type != JointType::Wheel || !def_.steering || dof_ == nullptr) return;
+    steeringAngle_ = angle;
+    const Transform steered{def_.frameA.position,
+                            def_.frameA.orientation * Quat(Eigen::AngleAxisd(angle, Vec3::UnitX()))};
+    dof_->setFrames(toBt(steered), toBt(def_.frameB));
+    wakeBodies();
+}
+
+// The axis the joint's limits, spring and motor act on, in the 6-DOF's numbering.
+void BulletJointPeer::applyLimits() {
+    if (dof_ == nullptr) return;
+    if (!def_.limits) {
+        freeAxis(*dof_, def_.type == JointType::Hinge ? kAngX : kLinX);
+        return;
+    }
+    const auto lower = static_cast<btScalar>(def_.limits->lower), upper = static_cast<btScalar>(def_.limits->upper);
+    // Bullet's Euler angle about X is minus the hinge angle (B turning +X relative to A reads
+    // negative there; checked by the limits test): the range is mirrored. Offsets along X agree.
+    // Bullet's angle lives in (-pi, pi]: a hinge limit beyond is held at +-pi.
+    if (def_.type == JointType::Hinge)
+        dof_->setLimit(kAngX, -std::min(upper, btScalar(SIMD_PI)), -std::max(lower, btScalar(-SIMD_PI)));
+    else
+        dof_->setLimit(kLinX, lower, upper);
+}
+
+void BulletJointPeer::applyMotor() {
+    if (dof_ == nullptr) return;
+    const int axis = def_.type == JointType::Hinge ? kAngX : def_.type == JointType::Wheel ? kAngY : kLinX;
+    if (!def_.motor) {
+        dof_->enableMotor(axis, false);
+        return;
+    }
+    // Bullet 3.24's 6-DOF spring 2 motor bounds each substep's impulse by maxMotorForce / fps:
+    // a force (N, N m), as the layer's (checked by the spin-up test: w = tau t / I). Its row is
+    // J = (+axis, -axis) with J v = target, the rate of A relative to B: negated (checked by the
+    // sign tests, rotation and translation).
+    const double sign = -1.0;
+    dof_->enableMotor(axis, true);
+    dof_->setTargetVelocity(axis, static_cast<btScalar>(sign * def_.motor->speed));
+    dof_->setMaxMotorForce(axis, static_cast<btScalar>(def_.motor->maxForce));
+}
+
+void BulletJointPeer::applySpring() {
+    if (distance_ != nullptr) {
+        distance_->spring = def_.spring;
+        return;
+    }
+    if (dof_ == nullptr) return;
+    const int axis = def_.type == JointType::Hinge ? kAngX : kLinX;
+    if (!def_.spring) {
+        dof_->enableSpring(axis, false);
+        return;
+    }
+    dof_->enableSpring(axis, true);
+    // limitIfNeeded = false: the SI values as given (Bullet would otherwise soften a spring whose
+    // period is under 4 substeps, which changes its frequency silently).
+    dof_->setStiffness(axis, static_cast<btScalar>(def_.spring->stiffness), false);
+    dof_->setDamping(axis, static_cast<btScalar>(def_.spring->damping), false);
+    dof_->setEquilibriumPoint(axis, 0);
+}
+
+void BulletJointPeer::wakeBodies() {
+    if (def_.bodyA != nullptr) def_.bodyA->setAwake(true);
+    if (def_.bodyB != nullptr) def_.bodyB->setAwake(true);
+}
+
+void BulletJointPeer::beginStep() {
+    stepImpulse_.setZero();
+    stepAngularImpulse_.setZero();
+    solved_ = false;
+}
+
+void BulletJointPeer::beginSubstep() {
+    if (def_.type == JointType::Hinge && def_.spring) {
+        // Bullet's angle is wrapped to (-pi, pi], the layer's runs on past +-pi (whole turns
+        // count): a spring wound k turns pulls back through them. Bullet's spring acts on its
+        // angle minus the equilibrium point, so the equilibrium carries the whole turns (its angle
+        // is minus the hinge angle: the wrapped part cancels).
+        const double angle = hingeAngle();
+        const double turns = std::round((angle - wrap(angle)) / (2.0 * kPi));
+        dof_->setEquilibriumPoint(kAngX, static_cast<btScalar>(2.0 * kPi * turns));
+    }
+    feedback_.m_appliedForceBodyA.setZero();
+    feedback_.m_appliedForceBodyB.setZero();
+    feedback_.m_appliedTorqueBodyA.setZero();
+    feedback_.m_appliedTorqueBodyB.setZero();
+}
+
+void BulletJointPeer::endSubstep(double h) {
+    const btRigidBody& a = constraint_->getRigidBodyA();
+    const btRigidBody& b = constraint_->getRigidBodyB();
+    // A sleeping island is not solved: its joints keep the reactions they last reported.
+    if (!a.isActive() && !b.isActive()) return;
+    solved_ = true;
+    // Bullet's feedback is the substep's impulse / h: a force on B and a torque about B's centre
+    // of mass. The torque about B's anchor: tau - r x F, r from the centre of mass to the anchor.
+    const Vec3 force = fromBt(feedback_.m_appliedForceBodyB);
+    const Vec3 torque = fromBt(feedback_.m_appliedTorqueBodyB);
+    const btTransform& tb = b.getCenterOfMassTransform();
+    const Vec3 local = def_.type == JointType::Distance ? def_.anchorB : def_.frameB.position;
+    const Vec3 r = fromBt(tb.getBasis() * toBt(local));
+    stepImpulse_ += h * force;
+    stepAngularImpulse_ += h * (torque - r.cross(force));
+}
+
+void BulletJointPeer::endStep(double dt) {
+    if (solved_) {
+        reactionForce_ = stepImpulse_ / dt;
+        reactionTorque_ = stepAngularImpulse_ / dt;
+    }
+    measure();
+}
+
+BodyState BulletJointPeer::stateA() const {
+    if (def_.bodyA == nullptr) return {};
+    return def_.bodyA->state();
+}
+BodyState BulletJointPeer::stateB() const { return def_.bodyB->state(); }
+
+// The hinge angle now, unwrapped against the last reported one.
+double BulletJointPeer::hingeAngle() const {
+    const BodyState a = stateA(), b = stateB();
+    const Quat rel = (a.orientation * def_.frameA.orientation).conjugate() * (b.orientation * def_.frameB.orientation);
+    const double raw = wrap(2.0 * std::atan2(rel.x(), rel.w()));
+    return raw + 2.0 * kPi * std::round((position_ - raw) / (2.0 * kPi));
+}
+
+// Position and speed from the bodies' states, by the contract's definitions (joint_peer.hpp).
+void BulletJointPeer::measure() {
+    const BodyState a = stateA(), b = stateB();
+    Quat qA = a.orientation * def_.frameA.orientation;
+    if (def_.type == JointType::Wheel && def_.steering) qA = qA * Quat(Eigen::AngleAxisd(steeringAngle_, Vec3::UnitX()));
+    const Quat qB = b.orientation * def_.frameB.orientation;
+    const bool distance = def_.type == JointType::Distance;
+    const Vec3 rA = a.orientation * (distance ? def_.anchorA : def_.frameA.position);
+    const Vec3 rB = b.orientation * (distance ? def_.anchorB : def_.frameB.position);
+    const Vec3 d = (b.position + rB) - (a.position + rA);
+    const Vec3 x = qA * Vec3::UnitX();
+    const Vec3 relW = b.angularVelocity - a.angularVelocity;
+    switch (def_.type) {
+        case JointType::Hinge:
+            // Unwrapped: the turn nearest the last angle, so the angle runs past +-pi.
+            position_ = hingeAngle();
+            speed_ = relW.dot(x);
+            break;
+        case JointType::Slider: {
+            position_ = d.dot(x);
+            // d/dt (d . x) with x turning with A: B's anchor against A's point under it.
+            const Vec3 vA = a.linearVelocity + a.angularVelocity.cross(rA + d);
+            const Vec3 vB = b.linearVelocity + b.angularVelocity.cross(rB);
+            speed_ = (vB - vA).dot(x);
+            break;
+        }
+        case JointType::Wheel:
+            position_ = d.dot(x);
+            speed_ = relW.dot(qA * Vec3::UnitY());
+            break;
+        case JointType::Distance: {
+            const double length = d.norm();
+            position_ = length - def_.length;
+            const Vec3 vA = a.linearVelocity + a.angularVelocity.cross(rA);
+            const Vec3 vB = b.linearVelocity + b.angularVelocity.cross(rB);
+            speed_ = length > 1e-12 ? (vB - vA).dot(d / length) : 0.0;
+            break;
+        }
+        case JointType::Ball:
+        case JointType::Cone: {
+            // swing = acos(xA . xB); d/dt (xA . xB) = (wB - wA) . (xB x xA) = -sin(swing) swing'.
+            const Vec3 xB = qB * Vec3::UnitX();
+            const Vec3 bend = x.cross(xB);
+            const double sine = bend.norm();
+            position_ = std::atan2(sine, x.dot(xB));
+            speed_ = sine > 1e-9 ? relW.dot(bend) / sine : 0.0;
+            break;
+        }
+        case JointType::Fixed:
+            position_ = 0.0;
+            speed_ = 0.0;
+            break;
+    }
+}
+
+}  // namespace anyphys::bullet

@@ -1,0 +1,108 @@
+#pragma once
+// Joints of the Bullet backend. Each joint is one Bullet constraint:
+//   fixed     btFixedConstraint (a 6-DOF spring 2 with every axis locked)
+//   ball      btPoint2PointConstraint
+//   hinge     btGeneric6DofSpring2Constraint, rotation about frame X free (Euler order XYZ, so
+//             the free angle is the first one and has the full range), limits, motor and
+//             spring on that angle
+//   slider    btGeneric6DofSpring2Constraint, translation along frame X free
+//   wheel     btGeneric6DofSpring2Constraint, translation along X (suspension: spring, limits)
+//             and rotation about Y (the axle: motor) free, Euler order YXZ so the spin angle
+//             has the full range; steering turns frame A about X (setFrames)
+//   cone      btConeTwistConstraint (twist axis = frame X); asymmetric twist limits by turning
+//             B's frame about X to the middle of the range
+//   distance  DistanceConstraint below: one row along the line between the anchors (rigid,
+//             min / max as one-sided rows, or a spring as an exact impulse per substep)
+// Positions and speeds are computed here from the bodies' states (never from Bullet's angles),
+// reactions from Bullet's joint feedback summed over the step's substeps.
+#include <memory>
+#include <optional>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "anyphys/peers/joint_peer.hpp"
+
+namespace anyphys::bullet {
+
+class BulletWorld;
+class BulletBodyPeer;
+
+/// A rod, rope or spring between two anchors: one scalar row along the line through them.
+class DistanceConstraint final : public btTypedConstraint {
+public:
+    DistanceConstraint(btRigidBody& a, btRigidBody& b, const btVector3& anchorA, const btVector3& anchorB, double length);
+
+    void getInfo1(btConstraintInfo1* info) override;
+    void getInfo2(btConstraintInfo2* info) override;
+    void setParam(int num, btScalar value, int axis = -1) override;
+    btScalar getParam(int num, int axis = -1) const override;
+
+    std::optional<double> minLength, maxLength;
+    std::optional<JointSpringSI> spring;
+
+private:
+    enum class Row { None, Rigid, Min, Max, Spring };
+    // The rows of this substep (getInfo1 and getInfo2 see the same poses).
+    void rows(Row out[2], int& count) const;
+
+    btVector3 anchorA_, anchorB_;
+    double length_;
+    btScalar erp_ = -1, cfm_ = 0;  // erp < 0: the solver's
+};
+
+class BulletJointPeer final : public JointPeer {
+public:
+    BulletJointPeer(BulletWorld& world, const JointPeerDef& def);
+    ~BulletJointPeer() override;
+
+    double position() const override { return position_; }
+    double speed() const override { return speed_; }
+    Vec3 reactionForce() const override { return reactionForce_; }
+    Vec3 reactionTorque() const override { return reactionTorque_; }
+    void setMotor(const std::optional<JointMotor>& motor) override;
+    void setLimits(const std::optional<JointLimits>& limits) override;
+    void setSpring(const std::optional<JointSpringSI>& spring) override;
+    void setSteeringAngle(double angle) override;
+    void* nativeObject(const std::type_info& pointerType) override;
+
+    // ---- for the world -------------------------------------------------------------------
+    btTypedConstraint& constraint() { return *constraint_; }
+    bool collideConnected() const { return def_.collideConnected; }
+    /// Before the step's first substep.
+    void beginStep();
+    /// Before each substep of h seconds: clears Bullet's feedback.
+    void beginSubstep();
+    /// After each substep: adds its impulses to the step's.
+    void endSubstep(double h);
+    /// After the step: reactions (mean over dt), position and speed.
+    void endStep(double dt);
+    /// The world is going away (or the joint was destroyed): never touch it again.
+    void detached() { world_ = nullptr; }
+
+private:
+    void applyMotor();
+    void applyLimits();
+    void applySpring();
+    void wakeBodies();
+    void measure();
+    double hingeAngle() const;
+    Transform frameAWorld() const;
+    Transform frameBWorld() const;
+    BodyState stateA() const;
+    BodyState stateB() const;
+
+    BulletWorld* world_;
+    JointPeerDef def_;
+    double steeringAngle_ = 0.0;
+    double twistOffset_ = 0.0;  // cone: B's Bullet frame turned about X by this (rad)
+    std::unique_ptr<btTypedConstraint> constraint_;
+    btGeneric6DofSpring2Constraint* dof_ = nullptr;  // hinge, slider, wheel
+    DistanceConstraint* distance_ = nullptr;
+    btJointFeedback feedback_;
+    Vec3 stepImpulse_ = Vec3::Zero(), stepAngularImpulse_ = Vec3::Zero();  // on B, about B's anchor
+    bool solved_ = false;  // some substep of this step solved the joint
+    double position_ = 0.0, speed_ = 0.0;
+    Vec3 reactionForce_ = Vec3::Zero(), reactionTorque_ = Vec3::Zero();
+};
+
+}  // namespace anyphys::bullet
