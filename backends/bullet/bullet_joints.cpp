@@ -108,13 +108,14 @@ void DistanceConstraint::getInfo2(btConstraintInfo2* info) {
                 break;
             }
             case Row::Spring: {
-                // The spring-damper's impulse over this substep from the state at its start (as
-                // Bullet's own 6-DOF springs do): the row is clamped to exactly that impulse.
+                // The spring-damper's impulse over this substep from the state at its start, as
+                // Bullet's own 6-DOF springs do it: the row asks for an infinite speed its way and
+                // is bounded by that impulse (bounds lo == hi stall the MLCP solver).
                 const btScalar C = length - static_cast<btScalar>(length_);
                 const btScalar impulse = -static_cast<btScalar>(spring->stiffness * C + spring->damping * rate) / fps;
-                info->m_constraintError[s] = 0;
-                info->m_lowerLimit[s] = impulse;
-                info->m_upperLimit[s] = impulse;
+                info->m_constraintError[s] = impulse < 0 ? -SIMD_INFINITY : SIMD_INFINITY;
+                info->m_lowerLimit[s] = std::min(impulse, btScalar(0));
+                info->m_upperLimit[s] = std::max(impulse, btScalar(0));
                 break;
             }
             case Row::None: break;
