@@ -469,6 +469,20 @@ TEST_P(BulletJoints, BallAndOpenConePendulumPeriod) {
     }
 }
 
+// A cone without twist limits lets B spin freely about the twist axis, through +-pi and on.
+TEST_P(BulletJoints, ConeWithoutTwistLimitsSpinsFreely) {
+    auto world = jointWorld(Effect::Joints);
+    auto b = body(*world, Vec3(1, 0, 0), 1.0, 0.1);
+    JointPeerDef d = heldToWorld(JointType::Cone, *b, Vec3(1, 0, 0), Vec3::Zero());
+    d.swingLimit = 0.5;
+    auto cone = world->createJoint(d);
+    b->setAngularVelocity({3.0, 0, 0});  // about frame X (world X, through the anchor)
+    double t = 0.0;
+    run(*world, 3.0, t);  // 9 rad: past +-pi more than once
+    EXPECT_NEAR(b->state().angularVelocity.x(), 3.0, 1e-6);
+    EXPECT_NEAR(cone->position(), 0.0, 1e-6);  // no swing
+}
+
 // A cone: a body hanging below its anchor, kicked sideways hard, swings no further than the
 // cone; twist stays inside asymmetric limits when spun about the twist axis.
 TEST_P(BulletJoints, ConeHoldsSwingAndTwist) {
@@ -553,6 +567,32 @@ TEST_P(BulletJoints, WheelSuspensionAndSpin) {
     EXPECT_LE(fastest, 1e-6);                  // the spin never outruns tau t / I
     EXPECT_NEAR(joint->speed(), target, 1e-6); // t* = I w / tau = 1.6 s, so reached by 5 s
     EXPECT_NEAR(wheel->state().angularVelocity.z(), target, 1e-6);
+}
+
+// The suspension's travel limits hold: a wheel on a weak spring under gravity (suspension up)
+// settles on its lower stop, with the stop's reaction carrying the rest of the weight.
+TEST_P(BulletJoints, WheelSuspensionLimitsHold) {
+    auto world = jointWorld();
+    const double m = 2.0, k = 50.0;  // free sag m g / k = 0.39 m, the stop at 0.1 m
+    auto wheel = body(*world, Vec3::Zero(), m, 0.1);
+    const Quat frame(Eigen::Matrix3d((Eigen::Matrix3d() << 0, 0, 1, 1, 0, 0, 0, 1, 0).finished()));
+    JointPeerDef d = heldToWorld(JointType::Wheel, *wheel, Vec3::Zero(), Vec3::Zero(), frame);
+    d.spring = JointSpringSI{k, 2.0};
+    d.limits = JointLimits{-0.1, 0.2};
+    auto joint = world->createJoint(d);
+    double t = 0.0, lowest = 0.0;
+    for (int i = 0; i < 180; ++i) {
+        world->step(t, kDt);
+        t += kDt;
+        lowest = std::min(lowest, joint->position());
+    }
+    std::cout << "[ MEASURED ] bullet " << toString(gSolver) << " wheel stop -0.1: lowest " << lowest << ", rest "
+              << joint->position() << ", reaction " << joint->reactionForce().y() << " N\n";
+    // The stop row closes the gap exactly in the step it is met: 1 mm bound.
+    EXPECT_GE(lowest, -0.1 - 1e-3);
+    EXPECT_NEAR(joint->position(), -0.1, 1e-3);
+    // Spring (k 0.1 = 5 N) and stop together hold the weight (19.62 N).
+    EXPECT_NEAR(joint->reactionForce().y(), m * kG, 1e-3 * m * kG);
 }
 
 // Steering turns the axle (frame Y on A) about the suspension (frame X): the wheel's own axle
@@ -749,6 +789,15 @@ TEST_P(BulletJoints, JointsWakeTheirBodies) {
     run(*world, 0.5, t);
     EXPECT_GT(hinge->speed(), 0.5);  // the motor turns B against A (both free: they counter-rotate)
     EXPECT_LT(a->state().angularVelocity.z(), 0.0);
+    // Stopped, they sleep again; a push on A alone wakes B with it (one island).
+    hinge->setMotor(JointMotor{0.0, 1.0});
+    run(*world, 3.0, t);
+    ASSERT_FALSE(a->isAwake());
+    ASSERT_FALSE(b->isAwake());
+    a->applyLinearImpulse({0, 1.0, 0});
+    world->step(t, kDt);
+    EXPECT_TRUE(b->isAwake());
+    EXPECT_GT(b->state().linearVelocity.y(), 0.0);  // carried along through the joint
 }
 
 // Reactions while moving (what breakForce reads): a hinge pendulum released from the horizontal
