@@ -15,9 +15,9 @@ constexpr double kPi = std::numbers::pi;
 
 double wrap(double angle) { return angle - 2.0 * kPi * std::round(angle / (2.0 * kPi)); }
 
-btRigidBody& rigidOf(BodyPeer* body) {
-    // The world (a null body A): Bullet's shared static body, whose frame is the world frame.
-    if (body == nullptr) return btTypedConstraint::getFixedBody();
+btRigidBody& rigidOf(BulletWorld& world, BodyPeer* body) {
+    // The world (a null body A): the world's static ground, whose frame is the world frame.
+    if (body == nullptr) return world.ground();
     return static_cast<BulletBodyPeer*>(body)->rigidBody();
 }
 
@@ -138,8 +138,8 @@ btScalar DistanceConstraint::getParam(int num, int axis) const {
 // ---- BulletJointPeer -------------------------------------------------------------------------
 
 BulletJointPeer::BulletJointPeer(BulletWorld& world, const JointPeerDef& def) : world_(&world), def_(def) {
-    btRigidBody& a = rigidOf(def.bodyA);
-    btRigidBody& b = rigidOf(def.bodyB);
+    btRigidBody& a = rigidOf(world, def.bodyA);
+    btRigidBody& b = rigidOf(world, def.bodyB);
     const btTransform fa = toBt(def.frameA), fb = toBt(def.frameB);
     switch (def.type) {
         case JointType::Fixed: constraint_ = std::make_unique<btFixedConstraint>(a, b, fa, fb); break;

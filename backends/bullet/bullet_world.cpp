@@ -77,9 +77,9 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
 }
 
 BulletWorld::~BulletWorld() {
-    // Bodies whose peers outlive the world (the layer destroys them first; tests may not) leave
-    // it now, so their peers never touch a dead world.
-    // Joints first: their constraints refer to the bodies.
+    // Joints and bodies whose peers outlive the world (the layer destroys them first; tests may
+    // not) leave it now, so their peers never touch a dead world; joints first, their constraints
+    // refer to the bodies.
     while (!joints_.empty()) detachJoint(*joints_.back());
     while (!bodies_.empty()) detach(*bodies_.back());
 }
@@ -88,9 +88,11 @@ std::unique_ptr<JointPeer> BulletWorld::createJoint(const JointPeerDef& def) {
     auto peer = std::make_unique<BulletJointPeer>(*this, def);
     // collideConnected false: Bullet records the pair on both bodies (checkCollideWith), the
     // layer filter then refuses the pair, and a pair already in the cache goes now, with its
-    // manifold, so no stale contact between them is reported or solved.
-    world_->addConstraint(&peer->constraint(), !def.collideConnected);
-    if (!def.collideConnected && def.bodyA != nullptr) {
+    // manifold, so no stale contact between them is reported or solved. A joint to the world has
+    // no pair to keep apart.
+    const bool apart = !def.collideConnected && def.bodyA != nullptr;
+    world_->addConstraint(&peer->constraint(), apart);
+    if (apart) {
         btRigidBody& a = static_cast<BulletBodyPeer*>(def.bodyA)->rigidBody();
         btRigidBody& b = static_cast<BulletBodyPeer*>(def.bodyB)->rigidBody();
         if (a.getBroadphaseHandle() != nullptr && b.getBroadphaseHandle() != nullptr)
@@ -115,14 +117,19 @@ void BulletWorld::detachJoint(BulletJointPeer& joint) {
     btTypedConstraint& c = joint.constraint();
     world_->removeConstraint(&c);
     joint.detached();
-    // The bodies may collide again (if they were kept apart) and fall on their own: wake them,
-    // and let the broad phase look for their pair anew.
-    for (btRigidBody* body : {&c.getRigidBodyA(), &c.getRigidBodyB()}) {
-        const auto* peer = static_cast<BulletBodyPeer*>(body->getUserPointer());
-        if (peer == nullptr || !peer->inWorld_ || !peer->moves()) continue;
-        body->activate(true);
-        if (body->getBroadphaseHandle() != nullptr) world_->refreshBroadphaseProxy(body);
-    }
+    // The bodies fall on their own now: wake them.
+    btRigidBody& a = c.getRigidBodyA();
+    btRigidBody& b = c.getRigidBodyB();
+    for (btRigidBody* body : {&a, &b})
+        if (!body->isStaticOrKinematicObject()) body->activate(true);
+    // A pair kept apart may collide again: the broad phase only reports pairs that begin to
+    // overlap, so one overlapping already goes back into the cache here (through the filter).
+    btBroadphaseProxy* pa = a.getBroadphaseHandle();
+    btBroadphaseProxy* pb = b.getBroadphaseHandle();
+    if (pa != nullptr && pb != nullptr && a.checkCollideWith(&b) &&
+        TestAabbAgainstAabb2(pa->m_aabbMin, pa->m_aabbMax, pb->m_aabbMin, pb->m_aabbMax) &&
+        broadphase_->getOverlappingPairCache()->findPair(pa, pb) == nullptr)
+        broadphase_->getOverlappingPairCache()->addOverlappingPair(pa, pb);
 }
 
 std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {

@@ -56,6 +56,9 @@ public:
     void addForced(BulletBodyPeer* body) { forced_.push_back(body); }
     /// Removes the body from the Bullet world (on destroyBody, or when its peer dies first).
     void detach(BulletBodyPeer& body);
+    /// The static body a joint to the world is attached to (frame = world frame; not in the
+    /// Bullet world, one per world rather than Bullet's process-wide getFixedBody()).
+    btRigidBody& ground() { return *ground_; }
     /// Removes the joint's constraint from the Bullet world (on destroyJoint, or when its peer dies first).
     void detachJoint(BulletJointPeer& joint);
     /// After a teleport: refresh the body's bounds and wake what touches it.
@@ -79,6 +82,7 @@ private:
     std::unique_ptr<btDantzigSolver> mlcpInterface_;
     std::unique_ptr<btConstraintSolver> solver_;
     LayerFilter filter_;
+    std::unique_ptr<btRigidBody> ground_ = std::make_unique<btRigidBody>(0, nullptr, nullptr);
     std::unique_ptr<AnyphysDynamicsWorld> world_;
 };
 
