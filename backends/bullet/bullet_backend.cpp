@@ -61,6 +61,7 @@ Backend makeBulletBackend() {
         {"frictionDirections", "1: friction along the sliding direction only, 2: also across it; default 2"},
         {"frictionCaching", "1: keep each point's friction directions across steps; default 0"},
         {"fixedFrictionDirections", "1: friction directions from the normal only, not the sliding velocity; default 0"},
+        {"decoupledJoints", "1: each joint's rigid rows are handed to the solver in a basis where they do not interact (solved in one pass), 0: Bullet's rows as they are; default 1"},
         {"jointIterations", "sequential-impulse iterations of joint rows (Bullet does not warm start them); default 10 x settings.iterations"},
         {"linearSlop", "m, overlap the solver leaves uncorrected; default 0"},
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},

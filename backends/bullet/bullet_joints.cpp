@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Eigenvalues>
+
 #include "bullet_body.hpp"
 #include "bullet_convert.hpp"
 #include "bullet_world.hpp"
@@ -135,6 +137,128 @@ btScalar DistanceConstraint::getParam(int num, int axis) const {
     return cfm_;
 }
 
+// ---- DecoupledConstraint -------------------------------------------------------------------
+
+DecoupledConstraint::DecoupledConstraint(btTypedConstraint& inner)
+    : btTypedConstraint(inner.getConstraintType(), inner.getRigidBodyA(), inner.getRigidBodyB()), inner_(inner) {}
+
+void DecoupledConstraint::getInfo1(btConstraintInfo1* info) {
+    inner_.getInfo1(info);
+    rows_ = info->m_numConstraintRows;
+}
+
+void DecoupledConstraint::getInfo2(btConstraintInfo2* info) {
+    const int n = rows_;
+    if (!decouple || n < 2) {
+        inner_.getInfo2(info);
+        return;
+    }
+    // The inner constraint writes its rows into the scratch, initialised as the solver does
+    // (Jacobians 0, no bounds, the global CFM in the first row).
+    for (auto* a : {&j1l_, &j1a_, &j2l_, &j2a_, &error_, &cfm_}) {
+        a->resize(3 * n);
+        for (int i = 0; i < 3 * n; ++i) (*a)[i] = 0;
+    }
+    lower_.resize(3 * n);
+    upper_.resize(3 * n);
+    for (int i = 0; i < 3 * n; ++i) {
+        lower_[i] = -SIMD_INFINITY;
+        upper_[i] = SIMD_INFINITY;
+    }
+    cfm_[0] = info->cfm[0];
+    btConstraintInfo2 scratch = *info;
+    scratch.rowskip = 3;
+    scratch.m_J1linearAxis = &j1l_[0];
+    scratch.m_J1angularAxis = &j1a_[0];
+    scratch.m_J2linearAxis = &j2l_[0];
+    scratch.m_J2angularAxis = &j2a_[0];
+    scratch.m_constraintError = &error_[0];
+    scratch.cfm = &cfm_[0];
+    scratch.m_lowerLimit = &lower_[0];
+    scratch.m_upperLimit = &upper_[0];
+    inner_.getInfo2(&scratch);
+    info->m_damping = scratch.m_damping;
+
+    // The rigid rows (no bounds, one CFM), at most 6.
+    constexpr int kMax = 6;
+    int rigid[kMax];
+    int count = 0;
+    bool decouplable = true;
+    for (int r = 0; r < n; ++r) {
+        if (lower_[3 * r] > -SIMD_INFINITY || upper_[3 * r] < SIMD_INFINITY) continue;
+        if (count == kMax || (count > 0 && cfm_[3 * r] != cfm_[3 * rigid[0]])) {
+            decouplable = false;
+            break;
+        }
+        rigid[count++] = r;
+    }
+    const auto vec = [](const btAlignedObjectArray<btScalar>& a, int r) { return btVector3(a[3 * r], a[3 * r + 1], a[3 * r + 2]); };
+    btVector3 lin1[kMax], ang1[kMax], lin2[kMax], ang2[kMax];
+    btScalar err[kMax];
+    if (decouplable && count >= 2) {
+        // K = J M^-1 J^T as the solver applies impulses (factors mask directions, as in Bullet).
+        const btRigidBody& a = m_rbA;
+        const btRigidBody& b = m_rbB;
+        using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax, kMax>;
+        Block K(count, count);
+        btVector3 dl1[kMax], da1[kMax], dl2[kMax], da2[kMax];
+        for (int i = 0; i < count; ++i) {
+            const int r = rigid[i];
+            dl1[i] = vec(j1l_, r) * a.getInvMass() * a.getLinearFactor();
+            da1[i] = (a.getInvInertiaTensorWorld() * vec(j1a_, r)) * a.getAngularFactor();
+            dl2[i] = vec(j2l_, r) * b.getInvMass() * b.getLinearFactor();
+            da2[i] = (b.getInvInertiaTensorWorld() * vec(j2a_, r)) * b.getAngularFactor();
+        }
+        for (int i = 0; i < count; ++i)
+            for (int k = 0; k < count; ++k) {
+                const int r = rigid[k];
+                K(i, k) = static_cast<double>(vec(j1l_, r).dot(dl1[i]) + vec(j1a_, r).dot(da1[i]) + vec(j2l_, r).dot(dl2[i]) +
+                                              vec(j2a_, r).dot(da2[i]));
+            }
+        const Block sym = 0.5 * (K + K.transpose());
+        Eigen::SelfAdjointEigenSolver<Block> eigen(sym);
+        if (eigen.info() == Eigen::Success) {
+            const Block& Q = eigen.eigenvectors();  // columns: the new rows' weights
+            for (int k = 0; k < count; ++k) {
+                lin1[k] = ang1[k] = lin2[k] = ang2[k] = btVector3(0, 0, 0);
+                err[k] = 0;
+                for (int i = 0; i < count; ++i) {
+                    const auto q = static_cast<btScalar>(Q(i, k));
+                    const int r = rigid[i];
+                    lin1[k] += q * vec(j1l_, r);
+                    ang1[k] += q * vec(j1a_, r);
+                    lin2[k] += q * vec(j2l_, r);
+                    ang2[k] += q * vec(j2a_, r);
+                    err[k] += q * error_[3 * r];
+                }
+            }
+        } else {
+            count = 0;
+        }
+    } else {
+        count = 0;
+    }
+    // Out: the rigid rows' places take the new rows, the bounded rows pass through.
+    int next = 0;
+    for (int r = 0; r < n; ++r) {
+        const int s = r * info->rowskip;
+        const bool replaced = next < count && rigid[next] == r;
+        const btVector3 l1 = replaced ? lin1[next] : vec(j1l_, r), a1 = replaced ? ang1[next] : vec(j1a_, r);
+        const btVector3 l2 = replaced ? lin2[next] : vec(j2l_, r), a2 = replaced ? ang2[next] : vec(j2a_, r);
+        for (int k = 0; k < 3; ++k) {
+            info->m_J1linearAxis[s + k] = l1[k];
+            info->m_J1angularAxis[s + k] = a1[k];
+            if (info->m_J2linearAxis != nullptr) info->m_J2linearAxis[s + k] = l2[k];
+            if (info->m_J2angularAxis != nullptr) info->m_J2angularAxis[s + k] = a2[k];
+        }
+        info->m_constraintError[s] = replaced ? err[next] : error_[3 * r];
+        info->cfm[s] = cfm_[3 * r];
+        info->m_lowerLimit[s] = lower_[3 * r];
+        info->m_upperLimit[s] = upper_[3 * r];
+        if (replaced) ++next;
+    }
+}
+
 // ---- BulletJointPeer -------------------------------------------------------------------------
 
 BulletJointPeer::BulletJointPeer(BulletWorld& world, const JointPeerDef& def) : world_(&world), def_(def) {
@@ -183,9 +307,11 @@ BulletJointPeer::BulletJointPeer(BulletWorld& world, const JointPeerDef& def) : 
             break;
         }
     }
+    decoupled_ = std::make_unique<DecoupledConstraint>(*constraint_);
+    decoupled_->decouple = world.decoupledJoints();
     feedback_ = {};
-    constraint_->setJointFeedback(&feedback_);
-    constraint_->enableFeedback(true);
+    decoupled_->setJointFeedback(&feedback_);
+    decoupled_->enableFeedback(true);
     applyLimits();
     applyMotor();
     applySpring();
@@ -198,7 +324,7 @@ BulletJointPeer::~BulletJointPeer() {
 }
 
 void* BulletJointPeer::nativeObject(const std::type_info& pointerType) {
-    if (pointerType == typeid(btTypedConstraint*)) return constraint_.get();
+    if (pointerType == typeid(btTypedConstraint*)) return decoupled_.get();  // the one in the Bullet world
     if (dof_ != nullptr && pointerType == typeid(btGeneric6DofSpring2Constraint*)) return dof_;
     if (pointerType == typeid(btPoint2PointConstraint*) && def_.type == JointType::Ball) return constraint_.get();
     if (pointerType == typeid(btFixedConstraint*) && def_.type == JointType::Fixed) return constraint_.get();
@@ -314,8 +440,8 @@ void BulletJointPeer::beginSubstep() {
 }
 
 void BulletJointPeer::endSubstep(double h) {
-    const btRigidBody& a = constraint_->getRigidBodyA();
-    const btRigidBody& b = constraint_->getRigidBodyB();
+    const btRigidBody& a = decoupled_->getRigidBodyA();
+    const btRigidBody& b = decoupled_->getRigidBodyB();
     // A sleeping island is not solved: its joints keep the reactions they last reported.
     if (!a.isActive() && !b.isActive()) return;
     solved_ = true;

@@ -70,10 +70,13 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     info.m_restitutionVelocityThreshold = static_cast<btScalar>(settings.restitutionThreshold);
     info.m_globalCfm = static_cast<btScalar>(option("cfm", info.m_globalCfm));
     // Bullet starts every joint row from zero impulse each step (no warm starting, unlike
-    // contacts), so at the world's 30 iterations a motor holding a 1 m arm of 2 kg droops by 0.3
-    // rad in 2 s and a fixed joint sags 4 mm; joints get their own count (Bullet's per-constraint
-    // override; contacts keep the world's): 10 x iterations, where both are gone (2e-4 rad, 6e-9 m).
+    // contacts). Each joint's rigid rows are decoupled (DecoupledConstraint), but rows of
+    // different joints, and a motor or limit against its joint's rigid rows, still converge by
+    // iteration: at the world's 30 a motor holding a 1 m arm of 2 kg droops by 0.3 rad in 2 s and
+    // a 40-link chain gaps 5.8 cm. Joints get their own count (Bullet's per-constraint override;
+    // contacts keep the world's): 10 x iterations, 2e-4 rad and 3.5 mm.
     jointIterations_ = static_cast<int>(option("jointIterations", 10.0 * info.m_numIterations));
+    decoupledJoints_ = option("decoupledJoints", 1.0) != 0.0;
 }
 
 BulletWorld::~BulletWorld() {

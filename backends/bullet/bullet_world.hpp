@@ -59,6 +59,8 @@ public:
     /// The static body a joint to the world is attached to (frame = world frame; not in the
     /// Bullet world, one per world rather than Bullet's process-wide getFixedBody()).
     btRigidBody& ground() { return *ground_; }
+    /// Joint rows decoupled per joint (backend option decoupledJoints, default 1).
+    bool decoupledJoints() const { return decoupledJoints_; }
     /// Removes the joint's constraint from the Bullet world (on destroyJoint, or when its peer dies first).
     void detachJoint(BulletJointPeer& joint);
     /// After a teleport: refresh the body's bounds and wake what touches it.
@@ -74,6 +76,7 @@ private:
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
     std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
     int jointIterations_ = 300;                // solver iterations of joint rows (backend option)
+    bool decoupledJoints_ = true;              // DecoupledConstraint on (backend option)
 
     // Destroyed in reverse order of declaration: world_ first.
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
