@@ -145,10 +145,59 @@ DecoupledConstraint::DecoupledConstraint(btTypedConstraint& inner)
 void DecoupledConstraint::getInfo1(btConstraintInfo1* info) {
     inner_.getInfo1(info);
     rows_ = info->m_numConstraintRows;
+    if (stops) {
+        info->m_numConstraintRows += 2;
+        info->nub = std::max(0, info->nub - 2);
+    }
+}
+
+int DecoupledConstraint::stopRows(btConstraintInfo2* info, int row) {
+    const btTransform& ta = m_rbA.getCenterOfMassTransform();
+    const btTransform& tb = m_rbB.getCenterOfMassTransform();
+    const btTransform fa = ta * stops->frameA, fb = tb * stops->frameB;
+    const btVector3 x = fa.getBasis().getColumn(0);
+    btVector3 l1(0, 0, 0), a1, l2(0, 0, 0), a2;
+    btScalar position;
+    if (stops->angular) {
+        // The angle of B about A's X: the relative rotation's twist about X.
+        const btQuaternion rel = fa.getRotation().inverse() * fb.getRotation();
+        position = btScalar(2) * btAtan2(rel.x(), rel.w());
+        if (position > SIMD_PI) position -= SIMD_2_PI;
+        if (position < -SIMD_PI) position += SIMD_2_PI;
+        a1 = -x;
+        a2 = x;
+    } else {
+        // The offset along A's X; x turns with A, so A's side acts at the point under B's anchor.
+        const btVector3 d = fb.getOrigin() - fa.getOrigin();
+        position = d.dot(x);
+        l1 = -x;
+        a1 = -(fa.getOrigin() + d - ta.getOrigin()).cross(x);
+        l2 = x;
+        a2 = (fb.getOrigin() - tb.getOrigin()).cross(x);
+    }
+    const btScalar erp = info->erp, fps = info->fps;
+    for (int side = 0; side < 2; ++side) {
+        const btScalar sign = side == 0 ? btScalar(1) : btScalar(-1);  // lower: C = x - lower; upper: upper - x
+        const btScalar C = side == 0 ? position - stops->lower : stops->upper - position;
+        const int s = (row + side) * info->rowskip;
+        for (int k = 0; k < 3; ++k) {
+            info->m_J1linearAxis[s + k] = sign * l1[k];
+            info->m_J1angularAxis[s + k] = sign * a1[k];
+            if (info->m_J2linearAxis != nullptr) info->m_J2linearAxis[s + k] = sign * l2[k];
+            if (info->m_J2angularAxis != nullptr) info->m_J2angularAxis[s + k] = sign * a2[k];
+        }
+        // J v = dC/dt >= -C / h ahead of the stop (reach it, not past it), >= -erp C / h past it.
+        info->m_constraintError[s] = -(C > 0 ? btScalar(1) : erp) * fps * C;
+        info->cfm[s] = 0;
+        info->m_lowerLimit[s] = 0;
+        info->m_upperLimit[s] = SIMD_INFINITY;
+    }
+    return 2;
 }
 
 void DecoupledConstraint::getInfo2(btConstraintInfo2* info) {
     const int n = rows_;
+    if (stops) stopRows(info, n);
     if (!decouple || n < 2) {
         inner_.getInfo2(info);
         return;
@@ -353,27 +402,27 @@ void BulletJointPeer::setSpring(const std::optional<JointSpringSI>& spring) {
 void BulletJointPeer::setSteeringAngle(double angle) {
     if (def_.type != JointType::Wheel || !def_.steering || dof_ == nullptr) return;
     steeringAngle_ = angle;
-    const Transform steered{def_.frameA.position,
-                            def_.frameA.orientation * Quat(Eigen::AngleAxisd(angle, Vec3::UnitX()))};
-    dof_->setFrames(toBt(steered), toBt(def_.frameB));
+    dof_->setFrames(toBt(steeredFrameA()), toBt(def_.frameB));
+    if (decoupled_->stops) decoupled_->stops->frameA = toBt(steeredFrameA());
     wakeBodies();
 }
 
 // The axis the joint's limits, spring and motor act on, in the 6-DOF's numbering.
 void BulletJointPeer::applyLimits() {
     if (dof_ == nullptr) return;
+    // The axis stays free in the 6-DOF constraint; the stops are the wrapper's rows (AxisStops).
+    freeAxis(*dof_, def_.type == JointType::Hinge ? kAngX : kLinX);
     if (!def_.limits) {
-        freeAxis(*dof_, def_.type == JointType::Hinge ? kAngX : kLinX);
+        decoupled_->stops.reset();
         return;
     }
-    const auto lower = static_cast<btScalar>(def_.limits->lower), upper = static_cast<btScalar>(def_.limits->upper);
-    // Bullet's Euler angle about X is minus the hinge angle (B turning +X relative to A reads
-    // negative there; checked by the limits test): the range is mirrored. Offsets along X agree.
-    // Bullet's angle lives in (-pi, pi]: a hinge limit beyond is held at +-pi.
-    if (def_.type == JointType::Hinge)
-        dof_->setLimit(kAngX, -std::min(upper, btScalar(SIMD_PI)), -std::max(lower, btScalar(-SIMD_PI)));
-    else
-        dof_->setLimit(kLinX, lower, upper);
+    DecoupledConstraint::AxisStops stops;
+    stops.angular = def_.type == JointType::Hinge;
+    stops.frameA = toBt(steeredFrameA());
+    stops.frameB = toBt(def_.frameB);
+    stops.lower = static_cast<btScalar>(def_.limits->lower);
+    stops.upper = static_cast<btScalar>(def_.limits->upper);
+    decoupled_->stops = stops;
 }
 
 void BulletJointPeer::applyMotor() {
@@ -469,6 +518,12 @@ BodyState BulletJointPeer::stateA() const {
     return def_.bodyA->state();
 }
 BodyState BulletJointPeer::stateB() const { return def_.bodyB->state(); }
+
+// Frame A turned by the steering angle about X (wheels with steering; the frame as given otherwise).
+Transform BulletJointPeer::steeredFrameA() const {
+    if (def_.type != JointType::Wheel || !def_.steering) return def_.frameA;
+    return {def_.frameA.position, def_.frameA.orientation * Quat(Eigen::AngleAxisd(steeringAngle_, Vec3::UnitX()))};
+}
 
 // The hinge angle now, unwrapped against the last reported one.
 double BulletJointPeer::hingeAngle() const {

@@ -69,7 +69,23 @@ public:
 
     bool decouple = true;  ///< false: the inner constraint's rows as they are
 
+    /// Stops on the joint's axis (frame X of A): the offset of B's frame origin along it, or the
+    /// angle of B about it (wrapped to (-pi, pi]). Two one-sided rows added after the inner
+    /// constraint's, which close the gap to a stop in the step they meet it (a speculative row,
+    /// as contacts are) and push out of an overshoot at the solver's ERP. Bullet's 6-DOF ranges
+    /// instead stop a body dead wherever it is when it would cross within the step (its bounce
+    /// logic) and then let it creep on at ERP x gap / h: a slider 1 m down a 30 deg incline reached
+    /// its stop at 0.97 s instead of 0.64.
+    struct AxisStops {
+        bool angular = false;
+        btTransform frameA, frameB;  // the joint frames in A's and B's centre-of-mass frames
+        btScalar lower = 0, upper = 0;
+    };
+    std::optional<AxisStops> stops;
+
 private:
+    int stopRows(btConstraintInfo2* info, int row);
+
     btTypedConstraint& inner_;
     int rows_ = 0;
     // Scratch rows of the inner constraint (row r at index 3 r), kept between steps.
@@ -113,6 +129,7 @@ private:
     void wakeBodies();
     void measure();
     double hingeAngle() const;
+    Transform steeredFrameA() const;
     Transform frameAWorld() const;
     Transform frameBWorld() const;
     BodyState stateA() const;

@@ -1043,5 +1043,36 @@ TEST_P(BulletJoints, ConicalPendulumKeepsItsCone) {
     }
 }
 
+// A slider down a frictionless 30 deg incline (g sin 30 = 4.905 m/s^2 along the axis) reaches its
+// limit 1 m down at t* = sqrt(2 / a) with v* = sqrt(2 a), not later and not slowed before it.
+TEST_P(BulletJoints, SliderOnInclineReachesItsLimitOnTime) {
+    auto world = jointWorld();
+    auto b = body(*world, Vec3::Zero(), 1.0, 0.1);
+    const Quat downhill(Eigen::AngleAxisd(-kPi / 6.0, Vec3::UnitZ()));  // frame X = (cos 30, -sin 30, 0)
+    JointPeerDef d = heldToWorld(JointType::Slider, *b, Vec3::Zero(), Vec3::Zero(), downhill);
+    d.limits = JointLimits{-1.0, 1.0};
+    auto slider = world->createJoint(d);
+    const double a = kG * 0.5, tStar = std::sqrt(2.0 / a), vStar = std::sqrt(2.0 * a);
+    double t = 0.0, tStop = -1.0, vBefore = 0.0, deepest = 0.0;
+    while (t < 1.5) {
+        const double v = slider->speed();
+        world->step(t, kDt);
+        t += kDt;
+        if (tStop < 0.0 && slider->position() >= 0.999) {
+            tStop = t;
+            vBefore = v;
+        }
+        deepest = std::max(deepest, slider->position());
+    }
+    std::cout << "[ MEASURED ] bullet " << toString(gSolver) << " slider on incline: stop at " << tStop << " s (exact " << tStar
+              << "), speed before " << vBefore << " m/s (exact " << vStar << "), past the limit " << (deepest - 1.0) * 1e3
+              << " mm, rests at " << slider->position() << ", speed " << slider->speed() << "\n";
+    EXPECT_NEAR(tStop, tStar, kDt);              // within the step it happens in
+    EXPECT_NEAR(vBefore, vStar, 0.1 * vStar);    // sampled up to a step before: a dt of 4.9 m/s^2 (3 %)
+    EXPECT_LT(deepest - 1.0, 1e-3);              // the stop closes the gap in the step it is met
+    EXPECT_NEAR(slider->position(), 1.0, 1e-3);  // and it rests on it
+    EXPECT_NEAR(slider->speed(), 0.0, 0.02);
+}
+
 }  // namespace
 }  // namespace anyphys::bullet
