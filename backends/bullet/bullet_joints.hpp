@@ -3,16 +3,18 @@
 //   fixed     btFixedConstraint (a 6-DOF spring 2 with every axis locked)
 //   ball      btPoint2PointConstraint
 //   hinge     btGeneric6DofSpring2Constraint, rotation about frame X free (Euler order XYZ, so
-//             the free angle is the first one and has the full range), limits, motor and
-//             spring on that angle
+//             the free angle is the first one and has the full range), motor and spring on
+//             that angle
 //   slider    btGeneric6DofSpring2Constraint, translation along frame X free
-//   wheel     btGeneric6DofSpring2Constraint, translation along X (suspension: spring, limits)
+//   wheel     btGeneric6DofSpring2Constraint, translation along X (suspension: spring)
 //             and rotation about Y (the axle: motor) free, Euler order YXZ so the spin angle
 //             has the full range; steering turns frame A about X (setFrames)
 //   cone      btConeTwistConstraint (twist axis = frame X); asymmetric twist limits by turning
 //             B's frame about X to the middle of the range
 //   distance  DistanceConstraint below: one row along the line between the anchors (rigid,
 //             min / max as one-sided rows, or a spring as an exact impulse per substep)
+// Each is wrapped in a DecoupledConstraint, which is what the Bullet world solves: it hands the
+// rigid rows over decoupled and adds the stop rows of hinge, slider and wheel limits.
 // Positions and speeds are computed here from the bodies' states (never from Bullet's angles),
 // reactions from Bullet's joint feedback summed over the step's substeps.
 #include <memory>
