@@ -20,7 +20,8 @@ Backend makeBulletBackend() {
     caps.shapes = {ShapeType::Sphere, ShapeType::Box,  ShapeType::Capsule, ShapeType::Plane,
                    ShapeType::Convex, ShapeType::Mesh, ShapeType::Compound};
     caps.bodyTypes = {BodyType::Static, BodyType::Kinematic, BodyType::Dynamic};
-    caps.effects = Effects::all().remove(Effect::Joints);  // joints arrive with their own issue
+    caps.effects = Effects::all();
+    caps.jointTypes = {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"};
     caps.solvers = {Solver::ProjectedGaussSeidel, Solver::Direct};
     caps.defaultSolver = Solver::ProjectedGaussSeidel;
     // Bullet's own defaults. Bullet substeps the whole step (free bodies too): with n > 1 a free
@@ -42,6 +43,16 @@ Backend makeBulletBackend() {
                        "body.density", "body.inertia", "body.linearDamping", "body.angularDamping",
                        "body.gravityScale", "body.gyroscopic", "body.material", "body.isTrigger", "body.layer",
                        "body.mask", "body.allowSleep", "body.isAwake"};
+    // Joint parameters honoured (each checked by tests/backends/bullet/test_bullet_joints.cpp).
+    for (const char* type : {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"})
+        for (const char* field : {"breakForce", "breakTorque", "collideConnected"})
+            caps.parameters.insert(std::string("joint.") + type + "." + field);
+    for (const char* field : {"joint.hinge.limits", "joint.hinge.motor", "joint.hinge.spring", "joint.slider.limits",
+                              "joint.slider.motor", "joint.slider.spring", "joint.wheel.limits", "joint.wheel.motor",
+                              "joint.wheel.spring", "joint.wheel.steering", "joint.distance.spring",
+                              "joint.distance.minLength", "joint.distance.maxLength", "joint.cone.swingLimit",
+                              "joint.cone.twistLimits"})
+        caps.parameters.insert(field);
     caps.options = {
         {"erp2", "fraction of deep overlap (beyond splitImpulseDepth) removed per step by split impulse; default settings.baumgarte"},
         {"splitImpulse", "1: push deep overlap apart without adding velocity (Bullet's split impulse), 0: Baumgarte only; default 1"},
@@ -50,6 +61,8 @@ Backend makeBulletBackend() {
         {"frictionDirections", "1: friction along the sliding direction only, 2: also across it; default 2"},
         {"frictionCaching", "1: keep each point's friction directions across steps; default 0"},
         {"fixedFrictionDirections", "1: friction directions from the normal only, not the sliding velocity; default 0"},
+        {"decoupledJoints", "1: each joint's rigid rows are handed to the solver in a basis where they do not interact (solved in one pass), 0: Bullet's rows as they are; default 1"},
+        {"jointIterations", "sequential-impulse iterations of joint rows (Bullet does not warm start them); default 10 x settings.iterations"},
         {"linearSlop", "m, overlap the solver leaves uncorrected; default 0"},
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
     };

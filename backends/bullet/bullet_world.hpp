@@ -15,6 +15,7 @@
 #include "anyphys/world_settings.hpp"
 #include "bullet_body.hpp"
 #include "bullet_dynamics_world.hpp"
+#include "bullet_joints.hpp"
 
 namespace anyphys::bullet {
 
@@ -33,6 +34,8 @@ public:
 
     std::unique_ptr<BodyPeer> createBody(const BodyPeerDef& def) override;
     void destroyBody(BodyPeer& body) override;
+    std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
+    void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
     void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
@@ -53,6 +56,13 @@ public:
     void addForced(BulletBodyPeer* body) { forced_.push_back(body); }
     /// Removes the body from the Bullet world (on destroyBody, or when its peer dies first).
     void detach(BulletBodyPeer& body);
+    /// The static body a joint to the world is attached to (frame = world frame; not in the
+    /// Bullet world, one per world rather than Bullet's process-wide getFixedBody()).
+    btRigidBody& ground() { return *ground_; }
+    /// Joint rows decoupled per joint (backend option decoupledJoints, default 1).
+    bool decoupledJoints() const { return decoupledJoints_; }
+    /// Removes the joint's constraint from the Bullet world (on destroyJoint, or when its peer dies first).
+    void detachJoint(BulletJointPeer& joint);
     /// After a teleport: refresh the body's bounds and wake what touches it.
     void teleported(BulletBodyPeer& body);
 
@@ -64,6 +74,9 @@ private:
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
+    std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
+    int jointIterations_ = 300;                // solver iterations of joint rows (backend option)
+    bool decoupledJoints_ = true;              // DecoupledConstraint on (backend option)
 
     // Destroyed in reverse order of declaration: world_ first.
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
@@ -72,6 +85,7 @@ private:
     std::unique_ptr<btDantzigSolver> mlcpInterface_;
     std::unique_ptr<btConstraintSolver> solver_;
     LayerFilter filter_;
+    std::unique_ptr<btRigidBody> ground_ = std::make_unique<btRigidBody>(0, nullptr, nullptr);
     std::unique_ptr<AnyphysDynamicsWorld> world_;
 };
 
