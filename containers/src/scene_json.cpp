@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "anyphys/containers/assembly.hpp"
 #include "anyphys/containers/scene.hpp"
 #include "anyphys/effects.hpp"
 #include "anyphys/enums.hpp"
@@ -694,10 +695,102 @@ void write(std::string& out, const ojson& v, int indent) {
 
 }  // namespace
 
-Scene parseScene(const std::string& jsonText) {
+namespace {
+
+// Where a scene is being read from, for its instances: the options, the files being loaded
+// (outermost first, to name a cycle) and how deep the nesting is.
+struct LoadContext {
+    SceneLoadOptions options;
+    std::vector<std::string> chain;
+    int depth = 0;
+};
+
+Scene loadSceneIn(const std::string& path, const LoadContext& context);
+
+std::string chainText(const std::vector<std::string>& chain, const std::string& last) {
+    std::string out;
+    for (const auto& file : chain) out += std::filesystem::path(file).filename().string() + " -> ";
+    return out + std::filesystem::path(last).filename().string();
+}
+
+/// The scene an instance names: a built-in assembly, or a file under the including file's
+/// folder (SceneLoadOptions says what else is allowed).
+Scene instanceScene(const json& v, const std::string& path, const LoadContext& context) {
+    const std::string name = readString(v, path);
+    if (isBuiltinAssembly(name)) return builtinAssembly(name);
+    const SceneLoadOptions& o = context.options;
+    std::string known;
+    for (const auto& n : builtinAssemblyNames()) known += (known.empty() ? "" : ", ") + n;
+    if (o.folder.empty())
+        fail(path, v, "must be a built-in assembly (" + known + "); a scene given as text has no folder to load files "
+                      "from (load it from a file, or set SceneLoadOptions::folder)");
+    namespace fs = std::filesystem;
+    const fs::path given(name);
+    if (given.is_absolute() && !o.allowOutsideFolder)
+        fail(path, v, "must be a built-in assembly (" + known + ") or a path relative to the including file; absolute "
+                      "paths are refused unless SceneLoadOptions::allowOutsideFolder is set");
+    const fs::path folder = fs::path(o.folder).lexically_normal();
+    const fs::path full = (folder / given).lexically_normal();
+    const fs::path inside = full.lexically_relative(folder);
+    if (!o.allowOutsideFolder && (inside.empty() || *inside.begin() == ".."))
+        fail(path, v, "leaves the including file's folder; refused unless SceneLoadOptions::allowOutsideFolder is set");
+    std::error_code ec;
+    const std::string canonical = fs::weakly_canonical(full, ec).string();
+    if (std::find(context.chain.begin(), context.chain.end(), canonical) != context.chain.end())
+        fail(path, v, "instances form a cycle: " + chainText(context.chain, canonical));
+    if (context.depth >= o.maxDepth)
+        fail(path, v, "nests instances deeper than SceneLoadOptions::maxDepth (" + std::to_string(o.maxDepth) + ")");
+    LoadContext inner = context;
+    inner.options.folder = full.has_parent_path() ? full.parent_path().string() : ".";
+    inner.chain.push_back(canonical);
+    inner.depth = context.depth + 1;
+    try {
+        return loadSceneIn(full.string(), inner);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());  // "instances[0].scene: parts/arm.json: bodies[2]..."
+    }
+}
+
+void readInstances(const json& v, Scene& scene, const LoadContext& context) {
+    if (!v.is_array()) fail("instances", v, "must be an array of instance objects");
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const std::string path = at("instances", i);
+        const json& item = v[i];
+        requireObject(item, path);
+        checkKeys(item, path, {"scene", "position", "orientation", "prefix"});
+        const auto* sceneName = find(item, "scene");
+        if (!sceneName) missing(join(path, "scene"), "every instance names a scene file or a built-in assembly");
+        Transform pose;
+        if (auto* x = find(item, "position")) pose.position = readVec3(*x, join(path, "position"));
+        if (auto* x = find(item, "orientation")) pose.orientation = readQuat(*x, join(path, "orientation"));
+        std::string prefix;
+        if (auto* x = find(item, "prefix")) prefix = readString(*x, join(path, "prefix"));
+        const Scene assembly = instanceScene(*sceneName, join(path, "scene"), context);
+        const std::size_t total = scene.bodies.size() + assembly.bodies.size();
+        if (total > context.options.maxBodies)
+            fail(path, *sceneName, "would bring the scene to " + std::to_string(total) +
+                                       " bodies, more than SceneLoadOptions::maxBodies (" +
+                                       std::to_string(context.options.maxBodies) + ")");
+        const std::size_t firstBody = scene.bodies.size(), firstJoint = scene.joints.size();
+        try {
+            appendInstance(scene, assembly, pose, prefix);
+        } catch (const Error& e) {
+            throw Error(path + ": " + e.what());
+        }
+        if (scene.settings.planar) {
+            for (std::size_t b = firstBody; b < scene.bodies.size(); ++b)
+                validatePlanar(scene.bodies[b], path + " body \"" + scene.bodies[b].name + "\"");
+            for (std::size_t j = firstJoint; j < scene.joints.size(); ++j)
+                validatePlanar(scene.joints[j].def, path + " joint " + std::to_string(j - firstJoint));
+        }
+    }
+}
+
+Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
     const json doc = parseJson(jsonText);
     requireObject(doc, "", "a JSON object with \"settings\", \"materials\", \"bodies\", ...");
-    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "joints"}, " at the top level");
+    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "instances", "joints"},
+              " at the top level");
 
     Scene scene;
     if (auto* v = find(doc, "settings")) scene.settings = readSettings(*v, "settings");
@@ -715,17 +808,24 @@ Scene parseScene(const std::string& jsonText) {
             scene.bodies.push_back(std::move(b));
         }
     }
+    // Before the joints: the scene's own joints may hold instance bodies ("r1/hand_l").
+    if (auto* v = find(doc, "instances")) readInstances(*v, scene, context);
     if (auto* v = find(doc, "joints")) {
         if (!v->is_array()) fail("joints", *v, "must be an array of joint objects");
         std::map<std::string, const BodyDef*> bodies;
         for (const BodyDef& b : scene.bodies) bodies.emplace(b.name, &b);
         std::map<std::string, std::size_t> names;
+        for (const SceneJoint& j : scene.joints)
+            if (!j.def.name.empty()) names.emplace(j.def.name, std::numeric_limits<std::size_t>::max());
         for (std::size_t i = 0; i < v->size(); ++i) {
             SceneJoint j = readJoint((*v)[i], at("joints", i), bodies, scene.settings.planar);
             if (!j.def.name.empty()) {
                 if (const auto it = names.find(j.def.name); it != names.end())
                     fail(at("joints", i) + ".name", (*v)[i]["name"],
-                         "must be unique (already used by " + at("joints", it->second) + ")");
+                         "must be unique (already used by " +
+                             (it->second == std::numeric_limits<std::size_t>::max() ? std::string("an instance")
+                                                                                    : at("joints", it->second)) +
+                             ")");
                 names.emplace(j.def.name, i);
             }
             scene.joints.push_back(std::move(j));
@@ -734,7 +834,7 @@ Scene parseScene(const std::string& jsonText) {
     return scene;
 }
 
-Scene loadScene(const std::string& path) {
+Scene loadSceneIn(const std::string& path, const LoadContext& context) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw Error(path + ": cannot read scene file (it is a directory)");
     std::ifstream in(path, std::ios::binary);
@@ -743,7 +843,7 @@ Scene loadScene(const std::string& path) {
     text << in.rdbuf();
     if (in.bad()) throw Error(path + ": cannot read scene file (read error)");
     try {
-        return parseScene(text.str());
+        return parseSceneIn(text.str(), context);
     } catch (const Error& e) {
         // Name the file instead of the generic "scene" root: "scene.json: bodies[0].name: ...".
         std::string what = e.what();
@@ -751,6 +851,25 @@ Scene loadScene(const std::string& path) {
         if (what.starts_with(root)) what.erase(0, root.size());
         throw Error(path + ": " + what);
     }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& jsonText) { return parseScene(jsonText, SceneLoadOptions{}); }
+
+Scene parseScene(const std::string& jsonText, const SceneLoadOptions& options) {
+    return parseSceneIn(jsonText, LoadContext{options, {}, 0});
+}
+
+Scene loadScene(const std::string& path) { return loadScene(path, SceneLoadOptions{}); }
+
+Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
+    LoadContext context{options, {}, 0};
+    context.options.folder = std::filesystem::path(path).parent_path().string();
+    if (context.options.folder.empty()) context.options.folder = ".";
+    std::error_code ec;
+    context.chain.push_back(std::filesystem::weakly_canonical(path, ec).string());
+    return loadSceneIn(path, context);
 }
 
 std::string sceneToJson(const Scene& scene) {

@@ -25,11 +25,17 @@ struct Scene {
 };
 
 
+struct SceneLoadOptions;  // assembly.hpp: what instances may load
+
 /// Parses scene JSON text. Throws anyphys::Error whose message names the JSON path, the value
-/// and the rule, e.g. "bodies[3].shape.radius: must be > 0, got -1".
+/// and the rule, e.g. "bodies[3].shape.radius: must be > 0, got -1". Its "instances" may name
+/// built-in assemblies only, unless `options.folder` says where files are.
 Scene parseScene(const std::string& jsonText);
-/// Reads and parses a scene file; the message of an error starts with the file name.
+Scene parseScene(const std::string& jsonText, const SceneLoadOptions& options);
+/// Reads and parses a scene file; the message of an error starts with the file name. Its
+/// "instances" load files under its folder (see SceneLoadOptions), expanded into the scene.
 Scene loadScene(const std::string& path);
+Scene loadScene(const std::string& path, const SceneLoadOptions& options);
 /// Serialises a scene; parseScene(sceneToJson(s)) reproduces s exactly (doubles round-trip).
 std::string sceneToJson(const Scene& scene);
 /// Writes sceneToJson(scene) to a file; throws anyphys::Error if it cannot.
