@@ -366,9 +366,19 @@ private:
             }
         }
         if (def_.twistLimits) {
-            Quat rel = frameA_.conjugate() * frameB_;
-            const double twist = wrap(2.0 * std::atan2(rel.x(), rel.w()));
-            limitPair(kTwistLower, kTwistUpper, angularRow(xA), twist, def_.twistLimits->lower, def_.twistLimits->upper);
+            // Twist: the part about X of rel = swing * twist. It turns about the axis halfway
+            // between A's and B's X axes (turning about A's axis alone is off by the swing, which
+            // at a wide swing fed the limit the wrong rate: a ragdoll's shoulders pulled apart).
+            // Near a half-turn swing the twist has no meaning: its rows rest.
+            const Quat rel = frameA_.conjugate() * frameB_;
+            const Vec3 half = xA + xB;
+            if (std::hypot(rel.w(), rel.x()) > 0.05 && half.squaredNorm() > 1e-6) {
+                const double twist = wrap(2.0 * std::atan2(rel.x(), rel.w()));
+                limitPair(kTwistLower, kTwistUpper, angularRow(half.normalized()), twist, def_.twistLimits->lower,
+                          def_.twistLimits->upper);
+            } else {
+                joint_.impulse[kTwistLower] = joint_.impulse[kTwistUpper] = 0.0;
+            }
         }
     }
 
