@@ -649,6 +649,11 @@ std::vector<CatalogueScene> buildCatalogue() {
     all.push_back(hangingChain());
     all.push_back(motorSpinUp());
     all.push_back(sliderSpring());
+    // The joint scenes move in the XY plane with hinges about Z: the same on 2D engines.
+    all.push_back(planar(hingePendulum()));
+    all.push_back(planar(hangingChain()));
+    all.push_back(planar(motorSpinUp()));
+    all.push_back(planar(sliderSpring()));
     return all;
 }
 
