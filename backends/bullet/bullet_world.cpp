@@ -142,6 +142,7 @@ std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
     world_->addRigidBody(&body, btBroadphaseProxy::AllFilter, btBroadphaseProxy::AllFilter);
     peer->inWorld_ = true;
     bodies_.push_back(peer.get());
+    attached_.insert(&body);
     if (peer->type() == BodyType::Kinematic) kinematic_.push_back(peer.get());
     peer->applyEffects();
     if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
@@ -154,13 +155,17 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
     if (!peer.inWorld_) return;
     btRigidBody& body = peer.rigidBody();
     // Bodies resting on this one must not hang in the air.
+    const auto wake = [this](const btCollisionObject* other) {
+        if (attached_.contains(other)) const_cast<btCollisionObject*>(other)->activate();
+    };
     const int manifolds = dispatcher_->getNumManifolds();
     for (int m = 0; m < manifolds; ++m) {
         btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
-        if (manifold->getBody0() == &body) const_cast<btCollisionObject*>(manifold->getBody1())->activate();
-        if (manifold->getBody1() == &body) const_cast<btCollisionObject*>(manifold->getBody0())->activate();
+        if (manifold->getBody0() == &body) wake(manifold->getBody1());
+        if (manifold->getBody1() == &body) wake(manifold->getBody0());
     }
     world_->removeRigidBody(&body);
+    attached_.erase(&body);
     peer.inWorld_ = false;
     const auto drop = [&peer](std::vector<BulletBodyPeer*>& list) {
         list.erase(std::remove(list.begin(), list.end(), &peer), list.end());
@@ -178,8 +183,10 @@ void BulletWorld::teleported(BulletBodyPeer& peer) {
     const int manifolds = dispatcher_->getNumManifolds();
     for (int m = 0; m < manifolds; ++m) {
         btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
-        if (manifold->getBody0() == &peer.rigidBody()) const_cast<btCollisionObject*>(manifold->getBody1())->activate();
-        if (manifold->getBody1() == &peer.rigidBody()) const_cast<btCollisionObject*>(manifold->getBody0())->activate();
+        const btCollisionObject* other = manifold->getBody0() == &peer.rigidBody()   ? manifold->getBody1()
+                                         : manifold->getBody1() == &peer.rigidBody() ? manifold->getBody0()
+                                                                                     : nullptr;
+        if (other != nullptr && attached_.contains(other)) const_cast<btCollisionObject*>(other)->activate();
     }
 }
 

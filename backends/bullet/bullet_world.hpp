@@ -5,6 +5,7 @@
 // effects, user forces and the force hook.
 #include <memory>
 #include <utility>
+#include <unordered_set>
 #include <vector>
 
 #include <BulletDynamics/MLCPSolvers/btDantzigSolver.h>
@@ -72,6 +73,9 @@ private:
     ForceHook forceHook_;
     MaterialTable materials_;
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
+    // The attached bodies' collision objects. Bullet can keep a manifold naming a body already
+    // removed (seen when a torn chain's world is destroyed); waking a neighbour goes through here.
+    std::unordered_set<const btCollisionObject*> attached_;
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
     std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
