@@ -73,9 +73,9 @@ protected:
                   << ": worst joint gap " << worstGap * 1e3 << " mm, fastest body after 10 s " << fastest
                   << " m/s, lowest body " << lowest << " m\n";
         EXPECT_TRUE(finite) << "a state went non-finite";
-        // 10 cm: soft joints stretch for a moment when a 70 kg body lands on another from 4 m
-        // (native: 3 cm for a moment); a torn limb is metres.
-        expectCriterion(planarTest() ? "planar.assemblies.ragdoll_gap" : "assemblies.ragdoll_gap", worstGap < 0.1,
+        // 5 cm: soft joints stretch for a moment when a 70 kg body lands on another from 4 m
+        // (native: 3.1 cm, planar 2.4 cm); a torn limb is metres.
+        expectCriterion(planarTest() ? "planar.assemblies.ragdoll_gap" : "assemblies.ragdoll_gap", worstGap < 0.05,
                         "worst joint gap " + std::to_string(worstGap) + " m");
         // At rest after 10 s: 0.1 m/s, well below a limb still falling (1 m/s after 0.1 s).
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_rest" : "assemblies.ragdoll_rest", fastest < 0.1,
