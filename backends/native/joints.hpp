@@ -39,8 +39,6 @@ struct NativeJoint {
     double speed = 0.0;
     Vec3 reactionForce = Vec3::Zero();
     Vec3 reactionTorque = Vec3::Zero();
-    double turns = 0.0;                 // hinge: whole turns so far, so the angle runs past +-pi
-    double lastAngle = 0.0;             // hinge: angle within (-pi, pi] at the last report
     // Sums over the current step's substeps (reactions).
     Vec3 stepLinear = Vec3::Zero();
     Vec3 stepAngular = Vec3::Zero();    // about B's centre of mass
