@@ -40,12 +40,6 @@ std::vector<std::string> enumNames(const std::set<E>& values) {
 /// The integrator of that scene-file name; throws anyphys::Error naming `option` otherwise.
 Integrator parseIntegrator(const std::string& option, const std::string& name);
 
-/// Creates the scene's bodies in order. An error names the body ("bodies[2] \"ball\": ...").
-std::vector<Body> createSceneBodies(World& world, const Scene& scene);
-/// Creates the scene's joints between `bodies` (createSceneBodies' result, in scene order); an
-/// error names the scene joint ("joints[2] \"knee\": ...").
-std::vector<Joint> createSceneJoints(World& world, const Scene& scene, const std::vector<Body>& bodies);
-
 /// Writes text to a file (for --out); throws anyphys::Error if it cannot.
 void writeFile(const std::string& path, const std::string& text);
 

@@ -133,8 +133,9 @@ int run(const RunOptions& o) {
 
     EventRecorder recorder;  // before the world, so it outlives it
     World world(scene.settings, scene.materials);
-    const std::vector<Body> bodies = createSceneBodies(world, scene);
-    const std::vector<Joint> joints = createSceneJoints(world, scene, bodies);
+    const SceneObjects objects = createSceneObjects(world, scene);
+    const std::vector<Body>& bodies = objects.bodies;
+    const std::vector<Joint>& joints = objects.joints;
     // Names captured now: an exit flagged as removal names a body that no longer exists.
     std::map<BodyId, std::string> names;
     for (const Body& body : bodies) names[body.id()] = body.name();

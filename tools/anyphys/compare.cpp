@@ -120,8 +120,7 @@ ComboResult runCombo(const CatalogueScene& entry, const BackendInfo& backend, In
     std::vector<Body> bodies;
     try {
         world = std::make_unique<World>(settings, entry.scene.materials);
-        bodies = createSceneBodies(*world, entry.scene);
-        createSceneJoints(*world, entry.scene, bodies);
+        bodies = createSceneObjects(*world, entry.scene).bodies;
     } catch (const Error& e) {
         return refuse(ComboResult::Status::Unsupported, e.what());
     }

@@ -9,5 +9,6 @@
 #include "anyphys/joint_def.hpp"
 #include "anyphys/listeners/contact_listener.hpp"
 #include "anyphys/world.hpp"
+#include "anyphys/scene_objects.hpp"
 #include "anyphys/world_settings.hpp"
 #include "anyphys/backends.hpp"

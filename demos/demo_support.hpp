@@ -1,0 +1,65 @@
+#pragma once
+// What every demo program shares: the --backend / --seconds / --out options, a world that is
+// planar on a 2D engine, the stepping loop with its trajectory CSV (the `anyphys run` format)
+// and the non-finite check, and main()'s error reporting (one line on stderr, non-zero exit).
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "anyphys/anyphys.hpp"
+
+namespace anyphys::demo {
+
+struct DemoOptions {
+    std::string backend = "native";
+    double seconds = 0.0;  ///< simulated time, s
+    std::string out;       ///< trajectory CSV; empty: none
+};
+
+/// Adds --backend, --seconds (default `defaultSeconds`) and --out to `app`.
+void addCommonOptions(CLI::App& app, DemoOptions& options, double defaultSeconds);
+
+/// Checks the common options (known backend, seconds finite and > 0); throws anyphys::Error
+/// naming the option otherwise.
+void validate(const DemoOptions& options);
+
+/// True when the backend simulates planar worlds only (a 2D engine): the demo builds its planar
+/// version of the scene, as the quickstart does.
+bool planarOnly(const std::string& backend);
+
+/// Default settings on `backend`, planar when the engine is 2D-only.
+WorldSettings settingsFor(const std::string& backend);
+
+/// Writes body states per step as CSV, the `anyphys run --out` format:
+/// step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
+class TrajectoryWriter {
+public:
+    /// An empty path writes nothing.
+    explicit TrajectoryWriter(const std::string& path);
+    void write(long long step, double time, const std::vector<Body>& bodies);
+    /// Flushes; throws anyphys::Error if the file could not be written.
+    void finish();
+
+private:
+    std::string path_;
+    std::ofstream file_;
+};
+
+/// The name of the first body whose position, orientation or velocity is not finite; empty if
+/// all are finite.
+std::string firstNonFinite(const std::vector<Body>& bodies);
+
+/// Steps `world` for options.seconds, recording `bodies` to options.out; calls `perStep(step)`
+/// before each step (controls, animation) when given. Returns false, after one line on stderr
+/// naming the body and the time, if a state became non-finite.
+bool simulate(World& world, const std::vector<Body>& bodies, const DemoOptions& options,
+              const std::function<void(long long)>& perStep = {});
+
+/// Parses the command line and runs `body`: usage errors exit 2, anyphys::Error and other
+/// exceptions exit 1, each as one line "program: message" on stderr; --help exits 0.
+int runMain(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+}  // namespace anyphys::demo
