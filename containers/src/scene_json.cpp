@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anyphys/containers/assembly.hpp"
+#include "anyphys/containers/mass_regularization.hpp"
 #include "anyphys/containers/scene.hpp"
 #include "anyphys/effects.hpp"
 #include "anyphys/enums.hpp"
@@ -707,6 +708,16 @@ struct LoadContext {
 
 Scene loadSceneIn(const std::string& path, const LoadContext& context);
 
+MassRegularization readRegularization(const json& v, const std::string& path) {
+    requireObject(v, path);
+    checkKeys(v, path, {"maxMassRatio", "raiseParentInertia"});
+    MassRegularization options;
+    if (auto* x = find(v, "maxMassRatio")) options.maxMassRatio = readNumber(*x, join(path, "maxMassRatio"));
+    if (auto* x = find(v, "raiseParentInertia")) options.raiseParentInertia = readBool(*x, join(path, "raiseParentInertia"));
+    validate(options, path + ".");
+    return options;
+}
+
 std::string chainText(const std::vector<std::string>& chain, const std::string& last) {
     std::string out;
     for (const auto& file : chain) out += std::filesystem::path(file).filename().string() + " -> ";
@@ -757,7 +768,7 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
         const std::string path = at("instances", i);
         const json& item = v[i];
         requireObject(item, path);
-        checkKeys(item, path, {"scene", "position", "orientation", "prefix"});
+        checkKeys(item, path, {"scene", "position", "orientation", "prefix", "regularize"});
         const auto* sceneName = find(item, "scene");
         if (!sceneName) missing(join(path, "scene"), "every instance names a scene file or a built-in assembly");
         Transform pose;
@@ -765,7 +776,15 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
         if (auto* x = find(item, "orientation")) pose.orientation = readQuat(*x, join(path, "orientation"));
         std::string prefix;
         if (auto* x = find(item, "prefix")) prefix = readString(*x, join(path, "prefix"));
-        const Scene assembly = instanceScene(*sceneName, join(path, "scene"), context);
+        Scene assembly = instanceScene(*sceneName, join(path, "scene"), context);
+        if (auto* x = find(item, "regularize")) {
+            const MassRegularization options = readRegularization(*x, join(path, "regularize"));
+            try {
+                regularizeMasses(assembly, options);
+            } catch (const Error& e) {
+                throw Error(join(path, "regularize") + ": " + e.what());
+            }
+        }
         const std::size_t total = scene.bodies.size() + assembly.bodies.size();
         if (total > context.options.maxBodies)
             fail(path, *sceneName, "would bring the scene to " + std::to_string(total) +
