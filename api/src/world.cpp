@@ -359,14 +359,17 @@ void World::dispatchEvents() {
     i.contacts.clear();
     i.peer->reportContacts(i.contacts);
     // The layer decides what touching means, identically for every backend: a collision pair
-    // touches when some point is closer than linearSlop; a trigger pair when it overlaps.
+    // touches when some point is closer than linearSlop, or (where the backend reports impulses)
+    // pushed the bodies apart: an engine may turn a fast body around on a speculative contact
+    // before the surfaces meet, and a contact that changes a velocity is a contact. A trigger
+    // pair touches when it overlaps.
     const bool impulses = i.backend->capabilities.contactImpulses;
     const double slop = settings_.linearSlop;
     i.touching.clear();
     for (const ContactReport::Pair& c : i.contacts.pairs) {
         bool touches = c.trigger;
         for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
-            touches = i.contacts.points[k].depth > -slop;
+            touches = i.contacts.points[k].depth > -slop || (impulses && i.contacts.points[k].normalImpulse > 0.0);
         if (!touches) continue;
         const BodyId a = unpackId(c.bodyA), b = unpackId(c.bodyB);
         const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);

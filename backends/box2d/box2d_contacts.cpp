@@ -25,6 +25,12 @@ void ContactRules::PreSolve(b2Contact* contact, const b2Manifold* /*oldManifold*
     contact->SetRestitutionThreshold(restitutionThreshold_);
 }
 
+void ContactRules::PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) {
+    solved_ = true;
+    SolvedImpulses& entry = solvedImpulses_.emplace_back(SolvedImpulses{contact, {}});
+    for (int32 p = 0; p < impulse->count && p < b2_maxManifoldPoints; ++p) entry.normal[static_cast<std::size_t>(p)] = impulse->normalImpulses[p];
+}
+
 // Box2D bounces the normal velocity its solver finds, -e' v_rel. The layer's restitution means:
 // leave with e times the speed at the instant of impact. Under gravity the two differ by parts of
 // a step's g h, because semi-implicit Euler (Box2D's integrator) moves each step with the
@@ -50,7 +56,7 @@ float ContactRules::impactRestitution(b2Contact* contact, float e) const {
         const b2Vec2 dv = b->GetLinearVelocityFromWorldPoint(wm.points[i]) - a->GetLinearVelocityFromWorldPoint(wm.points[i]);
         vn += b2Dot(dv, wm.normal) / static_cast<float>(count);
     }
-    if (vn >= -restitutionThreshold_) return e;  // no bounce: leave Box2D's own rule in charge
+    if (vn >= 0.0f) return e;  // separating: nothing to bounce
     const auto fall = [&](const b2Body* body) {
         return body->GetType() == b2_dynamicBody ? body->GetGravityScale() * gravity_ : b2Vec2(0.0f, 0.0f);
     };
@@ -60,6 +66,9 @@ float ContactRules::impactRestitution(b2Contact* contact, float e) const {
     const bool afterSolve = solved_ || bodyOf(contact->GetFixtureA()).movedSinceStepStart() ||
                             bodyOf(contact->GetFixtureB()).movedSinceStepStart();
     const float impact = -vn + 0.5f * g * h_;
+    // The threshold is on the speed at the instant of impact; Box2D would compare the speed its
+    // solver sees, up to g h faster, and bounce an impact just below the threshold.
+    if (impact <= restitutionThreshold_) return 0.0f;
     const float leave = afterSolve ? e * impact + 0.5f * g * h_ : e * impact - 0.5f * g * h_;
     const float seen = afterSolve ? -vn : -vn + g * h_;
     return seen > 0.0f ? std::max(0.0f, leave / seen) : e;

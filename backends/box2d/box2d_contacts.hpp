@@ -2,6 +2,8 @@
 // The layer's rules inside Box2D's contact pipeline: which pairs may touch (layersCollide on the
 // 32-bit layers, where b2Filter has 16 bits), and the resolved friction, restitution and
 // restitution threshold of each pair (set in pre-solve, replacing Box2D's own mixing).
+#include <array>
+#include <vector>
 #include <box2d/box2d.h>
 
 #include "anyphys/effects.hpp"
@@ -29,7 +31,16 @@ public:
 
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) override;
     void PreSolve(b2Contact* contact, const b2Manifold* oldManifold) override;
-    void PostSolve(b2Contact*, const b2ContactImpulse*) override { solved_ = true; }
+    void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) override;
+
+    /// Every normal impulse a solve applied since the last clear, one entry per contact and
+    /// solve: the main solve's, and time of impact's, whose impulses Box2D does not store in the
+    /// manifold (a fast body turned around there would otherwise report none).
+    struct SolvedImpulses {
+        const b2Contact* contact;
+        std::array<float, b2_maxManifoldPoints> normal;
+    };
+    std::vector<SolvedImpulses>& solvedImpulses() { return solvedImpulses_; }
 
 private:
     /// The restitution to give Box2D so that the pair leaves with e times its speed at the
@@ -39,6 +50,7 @@ private:
     float h_ = 1.0f / 60.0f;
     b2Vec2 gravity_{0.0f, 0.0f};
     bool solved_ = false;  // the step's main solve is done: pre-solve calls now come from time of impact
+    std::vector<SolvedImpulses> solvedImpulses_;
     Effects effects_;
     MaterialTable materials_;
     float restitutionThreshold_ = 1.0f;

@@ -230,40 +230,33 @@ void Box2dWorld::step(double time, double dt) {
         StepStartForces stage(time);
         forceHook_(stage);
     }
-    impulses_.clear();
+    rules_.solvedImpulses().clear();
     for (Box2dJoint* j : joints_) j->beginStep();
     for (int i = 0; i < substeps_; ++i) {
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
         if (effects_.has(Effect::Restitution))
             for (Box2dBody* b : bodies_) b->markStepStart();
         world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
-        if (substeps_ > 1) addImpulses();
         for (Box2dJoint* j : joints_) j->afterSubstep();
     }
     world_->ClearForces();
     for (Box2dJoint* j : joints_) j->endStep(dt);
+    sumImpulses();
 }
 
-void Box2dWorld::addImpulses() {
-    const auto byContact = [](const SummedImpulses& s, const b2Contact* c) { return std::less<const b2Contact*>{}(s.contact, c); };
-    const std::size_t known = impulses_.size();
-    for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
-        if (!c->IsTouching()) continue;
-        const auto end = impulses_.begin() + static_cast<std::ptrdiff_t>(known);
-        auto it = std::lower_bound(impulses_.begin(), end, c, byContact);
-        SummedImpulses* sum = nullptr;
-        if (it != end && it->contact == c) {
-            sum = &*it;
-        } else {  // new this substep: appended, sorted in below
-            sum = &impulses_.emplace_back(SummedImpulses{c, {}});
-        }
-        const b2Manifold* m = c->GetManifold();
-        for (int32 p = 0; p < m->pointCount; ++p) sum->sum[static_cast<std::size_t>(p)] += m->points[p].normalImpulse;
+// The step's impulse per contact point is the sum over every solve of the step: each substep's
+// main solve and any time-of-impact solve.
+void Box2dWorld::sumImpulses() {
+    std::vector<ContactRules::SolvedImpulses>& solved = rules_.solvedImpulses();
+    std::stable_sort(solved.begin(), solved.end(), [](const auto& x, const auto& y) {
+        return std::less<const b2Contact*>{}(x.contact, y.contact);
+    });
+    impulses_.clear();
+    for (const ContactRules::SolvedImpulses& s : solved) {
+        if (impulses_.empty() || impulses_.back().contact != s.contact) impulses_.push_back(SummedImpulses{s.contact, {}});
+        for (std::size_t p = 0; p < s.normal.size(); ++p) impulses_.back().sum[p] += s.normal[p];
     }
-    if (impulses_.size() > known)
-        std::sort(impulses_.begin(), impulses_.end(), [](const SummedImpulses& x, const SummedImpulses& y) {
-            return std::less<const b2Contact*>{}(x.contact, y.contact);
-        });
+    solved.clear();
 }
 
 const Box2dWorld::SummedImpulses* Box2dWorld::summedImpulses(const b2Contact* contact) const {
@@ -294,7 +287,7 @@ void Box2dWorld::reportContacts(ContactReport& out) {
         const WorldManifold wm = worldManifold(*c);
         out.addPair(a, b, false, fromB2(wm.normal), sleeping);  // Box2D's normal points from fixture A to B
         const b2Manifold* m = c->GetManifold();
-        const SummedImpulses* summed = substeps_ > 1 ? summedImpulses(c) : nullptr;
+        const SummedImpulses* summed = summedImpulses(c);  // none: not solved this step (asleep)
         for (int32 p = 0; p < m->pointCount; ++p) {
             const float impulse = summed ? summed->sum[static_cast<std::size_t>(p)] : m->points[p].normalImpulse;
             // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.

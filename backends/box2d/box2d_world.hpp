@@ -74,15 +74,14 @@ private:
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
 
-    /// Per touching contact, the normal impulses summed over this step's substeps (substeps > 1
-    /// only; with one substep the manifold's own impulses are the step's). Sorted by contact, so
-    /// a step looks them up without allocating.
+    /// Per solved contact, the normal impulses summed over this step's solves (substeps and time
+    /// of impact). Sorted by contact, so a step looks them up without allocating.
     struct SummedImpulses {
         const b2Contact* contact;
         std::array<float, b2_maxManifoldPoints> sum;
     };
     std::vector<SummedImpulses> impulses_;
-    void addImpulses();  // after each substep
+    void sumImpulses();  // after the step
     const SummedImpulses* summedImpulses(const b2Contact* contact) const;
 };
 

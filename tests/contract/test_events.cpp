@@ -14,8 +14,18 @@
 namespace anyphys::test {
 namespace {
 
+// Each case runs in 3D and in a planar world (every body lies in the XY plane), so a 2D engine
+// is held to the same event rules.
 class EventsTest : public ContractTest {
 protected:
+    void BallBouncingToRestHasExactEnterAndExitCounts();
+    void EveryBounceOfADropHeightSweepHasItsEnterAndExit();
+    void LastEventsMatchWhatListenersReceived();
+    void RestingBodyEntersOnceAndNeverExits();
+    void PairOrderIsLowerIdFirstWithNormalFromAToB();
+    void BodyPassingThroughSensorGetsTriggerEnterAndExit();
+    void DestroyingAndCreatingBodiesInsideCallbackIsSafe();
+
     std::string missingFor(std::initializer_list<ShapeType> shapes) const {
         return lacking(caps(), shapes, Effect::Contacts | Effect::Events);
     }
@@ -111,6 +121,13 @@ struct BounceEvents {
     double margin = std::numeric_limits<double>::infinity();  ///< m/s, closest impact speed to the threshold
 };
 
+/// Events a dropped ball received over 4 s (it rests after about 1.5 s; 4 s includes falling asleep).
+struct BounceRun {
+    int enters = 0, exits = 0;
+    std::vector<std::string> violations;
+    std::string log;
+};
+
 BounceEvents expectedBounceEvents(double h, double e, double threshold) {
     BounceEvents out;
     double v = std::sqrt(2 * kG * h);
@@ -126,9 +143,23 @@ BounceEvents expectedBounceEvents(double h, double e, double threshold) {
     return out;
 }
 
+BounceRun bounce(WorldSettings s, double h, double e, double threshold, double radius) {
+    s.restitutionThreshold = threshold;
+    MaterialLibrary materials;
+    materials.add("ball", Material{0.6, e, 1000.0});
+    World world(s, materials);
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    world.createBody(groundDef());
+    world.createBody(ballDef("ball", radius, Vec3(0, radius + h, 0), "ball"));
+    while (world.time() < 4.0) world.step();
+    return {listener.count(ContactPhase::Enter, false), listener.count(ContactPhase::Exit, false), listener.violations,
+            listener.log()};
+}
+
 // With e = 0.5, impact 6 m/s and threshold 2 m/s: impacts at 6 and 3 m/s bounce, 1.5 m/s does
 // not -> 3 enters, 2 exits. The last hop (1.5 m/s) rises 11 cm, far beyond any touching margin.
-TEST_P(EventsTest, BallBouncingToRestHasExactEnterAndExitCounts) {
+void EventsTest::BallBouncingToRestHasExactEnterAndExitCounts() {
     const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
     ANYPHYS_REQUIRE(missing.empty(), missing);
     ANYPHYS_REQUIRE(caps().effects.has(Effect::Restitution), "effect restitution");
@@ -140,28 +171,47 @@ TEST_P(EventsTest, BallBouncingToRestHasExactEnterAndExitCounts) {
     ASSERT_GT(expected.margin, 0.3);
     ASSERT_EQ(expected.enters, 3);
 
-    WorldSettings s = settings();
-    s.restitutionThreshold = kThreshold;
-    MaterialLibrary materials;
-    materials.add("ball", Material{0.6, kE, 1000.0});
-    World world(s, materials);
-    CheckingListener listener(world);
-    world.addListener(&listener);
-    world.createBody(groundDef());
-    world.createBody(ballDef("ball", kRadius, Vec3(0, kRadius + h, 0), "ball"));
-    while (world.time() < 4.0) world.step();  // rests after 1.5 s; 4 s includes falling asleep
+    const BounceRun run = bounce(settings(), h, kE, kThreshold, kRadius);
+    EXPECT_TRUE(run.violations.empty()) << ::testing::PrintToString(run.violations);
+    report(backend() + " bouncing ball enters (exact " + std::to_string(expected.enters) + ")", run.enters);
+    report(backend() + " bouncing ball exits (exact " + std::to_string(expected.exits) + ")", run.exits);
+    EXPECT_EQ(run.enters, expected.enters) << run.log;
+    EXPECT_EQ(run.exits, expected.exits) << run.log;
+}
 
-    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
-    report(backend() + " bouncing ball enters (exact " + std::to_string(expected.enters) + ")",
-           listener.count(ContactPhase::Enter, false));
-    report(backend() + " bouncing ball exits (exact " + std::to_string(expected.exits) + ")",
-           listener.count(ContactPhase::Exit, false));
-    EXPECT_EQ(listener.count(ContactPhase::Enter, false), expected.enters) << listener.log();
-    EXPECT_EQ(listener.count(ContactPhase::Exit, false), expected.exits) << listener.log();
+// A contact that changes a body's velocity is a contact, wherever the impact falls within a step:
+// a sweep of drop heights (impacts from 2.5 to 7 m/s in 0.05 m/s steps, so the surfaces meet at
+// every phase of the step and the engine may turn the ball around on a speculative contact
+// before they touch) must bracket every impact with an enter and an exit.
+void EventsTest::EveryBounceOfADropHeightSweepHasItsEnterAndExit() {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    ANYPHYS_REQUIRE(caps().effects.has(Effect::Restitution), "effect restitution");
+    constexpr double kE = 0.5, kThreshold = 2.0, kRadius = 0.25;
+    int runs = 0, wrong = 0;
+    std::string first;
+    for (double impact = 2.5; impact <= 7.0 + 1e-9; impact += 0.05) {
+        const double h = impact * impact / (2 * kG);
+        const BounceEvents expected = expectedBounceEvents(h, kE, kThreshold);
+        if (expected.margin < 0.3) continue;  // as above: an impact near the threshold may go either way
+        const BounceRun run = bounce(settings(), h, kE, kThreshold, kRadius);
+        ++runs;
+        EXPECT_TRUE(run.violations.empty()) << "impact " << impact << " m/s: " << ::testing::PrintToString(run.violations);
+        if (run.enters != expected.enters || run.exits != expected.exits) {
+            ++wrong;
+            if (first.empty())
+                first = "impact " + std::to_string(impact) + " m/s: " + std::to_string(run.enters) + " enters, " +
+                        std::to_string(run.exits) + " exits (exact " + std::to_string(expected.enters) + ", " +
+                        std::to_string(expected.exits) + ")\n" + run.log;
+        }
+    }
+    report(backend() + " drop-height sweep: runs with wrong event counts (of " + std::to_string(runs) + ")", wrong);
+    EXPECT_GT(runs, 50);
+    EXPECT_EQ(wrong, 0) << first;
 }
 
 // lastEvents() holds exactly what the listeners received in the last step.
-TEST_P(EventsTest, LastEventsMatchWhatListenersReceived) {
+void EventsTest::LastEventsMatchWhatListenersReceived() {
     const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
     ANYPHYS_REQUIRE(missing.empty(), missing);
     World world(settings());
@@ -185,7 +235,7 @@ TEST_P(EventsTest, LastEventsMatchWhatListenersReceived) {
 
 // A body resting on the ground enters once and then stays: never a second enter, never an exit
 // (not even when it falls asleep).
-TEST_P(EventsTest, RestingBodyEntersOnceAndNeverExits) {
+void EventsTest::RestingBodyEntersOnceAndNeverExits() {
     const std::string missing = missingFor({ShapeType::Box, ShapeType::Plane});
     ANYPHYS_REQUIRE(missing.empty(), missing);
     World world(settings());
@@ -202,7 +252,7 @@ TEST_P(EventsTest, RestingBodyEntersOnceAndNeverExits) {
 
 // Pair order is fixed (lower id first) whichever body was created first, and the normal points
 // from A to B.
-TEST_P(EventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) {
+void EventsTest::PairOrderIsLowerIdFirstWithNormalFromAToB() {
     const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
     ANYPHYS_REQUIRE(missing.empty(), missing);
     for (bool groundFirst : {true, false}) {
@@ -232,7 +282,7 @@ TEST_P(EventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) {
 
 // A ball flying through a sensor gets one trigger enter and one trigger exit, and is not
 // deflected (a sensor never collides).
-TEST_P(EventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) {
+void EventsTest::BodyPassingThroughSensorGetsTriggerEnterAndExit() {
     const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Box});
     ANYPHYS_REQUIRE(missing.empty(), missing);
     WorldSettings s = settings();
@@ -271,7 +321,7 @@ TEST_P(EventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) {
 
 // A listener may destroy the body it is told about and create another; the world stays sound,
 // the destroyed pair ends with one exit flagged as removal, and the new body collides normally.
-TEST_P(EventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) {
+void EventsTest::DestroyingAndCreatingBodiesInsideCallbackIsSafe() {
     const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Plane});
     ANYPHYS_REQUIRE(missing.empty(), missing);
     World world(settings());
@@ -310,7 +360,28 @@ TEST_P(EventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) {
     (void)ground;
 }
 
+class PlanarEventsTest : public EventsTest {
+protected:
+    bool planarTest() const override { return true; }
+};
+
+TEST_P(EventsTest, BallBouncingToRestHasExactEnterAndExitCounts) { BallBouncingToRestHasExactEnterAndExitCounts(); }
+TEST_P(PlanarEventsTest, BallBouncingToRestHasExactEnterAndExitCounts) { BallBouncingToRestHasExactEnterAndExitCounts(); }
+TEST_P(EventsTest, EveryBounceOfADropHeightSweepHasItsEnterAndExit) { EveryBounceOfADropHeightSweepHasItsEnterAndExit(); }
+TEST_P(PlanarEventsTest, EveryBounceOfADropHeightSweepHasItsEnterAndExit) { EveryBounceOfADropHeightSweepHasItsEnterAndExit(); }
+TEST_P(EventsTest, LastEventsMatchWhatListenersReceived) { LastEventsMatchWhatListenersReceived(); }
+TEST_P(PlanarEventsTest, LastEventsMatchWhatListenersReceived) { LastEventsMatchWhatListenersReceived(); }
+TEST_P(EventsTest, RestingBodyEntersOnceAndNeverExits) { RestingBodyEntersOnceAndNeverExits(); }
+TEST_P(PlanarEventsTest, RestingBodyEntersOnceAndNeverExits) { RestingBodyEntersOnceAndNeverExits(); }
+TEST_P(EventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) { PairOrderIsLowerIdFirstWithNormalFromAToB(); }
+TEST_P(PlanarEventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) { PairOrderIsLowerIdFirstWithNormalFromAToB(); }
+TEST_P(EventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) { BodyPassingThroughSensorGetsTriggerEnterAndExit(); }
+TEST_P(PlanarEventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) { BodyPassingThroughSensorGetsTriggerEnterAndExit(); }
+TEST_P(EventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { DestroyingAndCreatingBodiesInsideCallbackIsSafe(); }
+TEST_P(PlanarEventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { DestroyingAndCreatingBodiesInsideCallbackIsSafe(); }
+
 ANYPHYS_CONTRACT_SUITE(EventsTest);
+ANYPHYS_CONTRACT_SUITE(PlanarEventsTest);
 
 }  // namespace
 }  // namespace anyphys::test
