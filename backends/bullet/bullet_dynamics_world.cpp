@@ -34,7 +34,21 @@ void AnyphysDynamicsWorld::applyMaterials() {
             if (e > 0 && bodyA != nullptr && bodyB != nullptr) {
                 const btVector3 va = bodyA->getVelocityInLocalPoint(p.getPositionWorldOnA() - bodyA->getCenterOfMassPosition());
                 const btVector3 vb = bodyB->getVelocityInLocalPoint(p.getPositionWorldOnB() - bodyB->getCenterOfMassPosition());
-                bouncing = -(va - vb).dot(p.m_normalWorldOnB) > restitutionThreshold_;
+                const btScalar closing = -(va - vb).dot(p.m_normalWorldOnB);
+                bouncing = closing > restitutionThreshold_;
+                // A speculative point (still apart by d): Bullet would let the bodies close the
+                // gap this step and take d / dt off the rebound, so an impact that falls early in
+                // a step rebounds at a fraction of e v. A gap this step closes bounces now, as if
+                // touching; a gap it does not close waits for a later step without restitution.
+                const btScalar gap = p.getDistance();
+                if (bouncing && gap > 0) {
+                    if (gap < closing * timeStep_) {
+                        p.m_distance1 = 0;
+                    } else {
+                        p.m_combinedRestitution = 0;
+                        bouncing = false;
+                    }
+                }
             }
             if (bouncing) {
                 p.m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_ERP;
@@ -47,6 +61,7 @@ void AnyphysDynamicsWorld::applyMaterials() {
 }
 
 void AnyphysDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo) {
+    timeStep_ = solverInfo.m_timeStep;
     applyMaterials();
     btDiscreteDynamicsWorld::solveConstraints(solverInfo);
 }

@@ -45,6 +45,7 @@ private:
     Effects effects_;
     btScalar timeToSleep_ = 0.5f;
     btScalar restitutionThreshold_ = 1.0f;
+    btScalar timeStep_ = 1.0f / 60.0f;  // of the step being solved
     int awakeBodies_ = 0;
 };
 
