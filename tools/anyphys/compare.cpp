@@ -17,11 +17,13 @@ double mechanicalEnergy(const World& world, const std::vector<Body>& bodies, con
         const Body& body = bodies[i];
         if (body.type() != BodyType::Dynamic) continue;
         const MassProperties mp = body.massProperties();
-        const Vec3 wLocal = body.angularVelocityLocal();
+        // Spin in the principal frame, where the inertia is diagonal; height of the centre of
+        // mass (a compound's is not at the body origin). linearVelocity is the centre of mass's.
+        const Vec3 wPrincipal = mp.principalAxes.conjugate() * body.angularVelocityLocal();
         const Vec3 g = world.settings().gravity * scene.bodies[i].gravityScale;
         energy += 0.5 * mp.mass * body.linearVelocity().squaredNorm();
-        energy += 0.5 * wLocal.dot(mp.inertia.cwiseProduct(wLocal));
-        energy -= mp.mass * g.dot(body.position());
+        energy += 0.5 * wPrincipal.dot(mp.inertia.cwiseProduct(wPrincipal));
+        energy -= mp.mass * g.dot(body.centerOfMass());
     }
     return energy;
 }
