@@ -1,11 +1,14 @@
 // `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV, with
 // --events the collision and trigger events of each step, and with --joints every joint's state.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "cli.hpp"
 
@@ -21,6 +24,7 @@ struct RunOptions {
     std::string out;
     std::string events;
     std::string joints;
+    bool hash = false;
     // Set after parsing: which optional flags were given.
     const CLI::Option* backendOption = nullptr;
     const CLI::Option* stepsOption = nullptr;
@@ -109,6 +113,28 @@ void writeJointRows(std::ostream& out, long long step, double time, const std::v
     }
 }
 
+/// FNV-1a over the bit patterns of every body's final state, in scene order: equal hashes mean
+/// bit-identical runs (determinism), any difference changes it.
+std::uint64_t stateHash(const std::vector<Body>& bodies) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    const auto mix = [&h](double v) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        for (int i = 0; i < 8; ++i) {
+            h ^= (bits >> (8 * i)) & 0xffu;
+            h *= 0x100000001b3ull;
+        }
+    };
+    for (const Body& body : bodies) {
+        const BodyState s = body.state();
+        for (double v : {s.position.x(), s.position.y(), s.position.z(), s.orientation.w(), s.orientation.x(),
+                         s.orientation.y(), s.orientation.z(), s.linearVelocity.x(), s.linearVelocity.y(),
+                         s.linearVelocity.z(), s.angularVelocity.x(), s.angularVelocity.y(), s.angularVelocity.z()})
+            mix(v);
+    }
+    return h;
+}
+
 /// Applies the (already validated) command-line overrides to the scene settings.
 void applyOverrides(const RunOptions& o, Scene& scene) {
     if (o.backendOption->count()) scene.settings.backend = o.backend;
@@ -157,7 +183,11 @@ int run(const RunOptions& o) {
         jointFile << kJointsHeader << '\n';
         writeJointRows(jointFile, 0, world.time(), joints);
     }
-    std::ostream& out = o.outOption->count() ? static_cast<std::ostream&>(file) : std::cout;
+    // With --hash and no --out, stdout carries the hash alone.
+    std::ostringstream discard;
+    discard.setstate(std::ios::badbit);  // writes are dropped
+    const bool csvToStdout = !o.outOption->count() && !o.hash;
+    std::ostream& out = o.outOption->count() ? static_cast<std::ostream&>(file) : csvToStdout ? std::cout : discard;
     out << kCsvHeader << '\n';
     writeRows(out, 0, world.time(), bodies);
     for (long long step = 1; step <= steps; ++step) {
@@ -166,6 +196,12 @@ int run(const RunOptions& o) {
         if (eventFile.is_open()) recorder.writeRows(eventFile, step, world.time(), names);
         if (jointFile.is_open()) writeJointRows(jointFile, step, world.time(), joints);
     }
+    if (o.hash) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(stateHash(bodies)));
+        std::cout << "state-hash " << text << '\n';
+    }
+    if (&out == &discard) return 0;
     out.flush();
     if (!out) throw Error((o.outOption->count() ? o.out : std::string("stdout")) + ": write failed");
     eventFile.flush();
@@ -194,6 +230,9 @@ Command addRunCommand(CLI::App& parent) {
                                       "Also write every joint per step as CSV (step,time,joint,position,speed,fx,fy,fz,"
                                       "tx,ty,tz: angle in rad or offset in m, its rate, the reaction on bodyB in N and "
                                       "N m, world frame)");
+    app->add_flag("--hash", o->hash,
+                  "Print `state-hash <16 hex digits>`: a hash of every body's final state (bit-exact; equal for "
+                  "two runs of one scene on one backend). Without --out the CSV is then not printed");
     return {app, [o] { return run(*o); }};
 }
 
