@@ -106,7 +106,12 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
     // Unset solver knobs take the backend's defaults, so settings() shows what runs.
     if (!settings_.solver) settings_.solver = caps.defaultSolver;
     if (!settings_.substeps) settings_.substeps = caps.defaultSubsteps;
-    if (!settings_.iterations) settings_.iterations = caps.defaultIterations;
+    if (!settings_.iterations) {
+        // Fewer substeps than the backend's default keep at least its default work per step
+        // (native's 8 substeps x 1 iteration becomes 1 x 8): one sweep per step cannot hold a stack.
+        const int work = caps.defaultIterations * caps.defaultSubsteps;
+        settings_.iterations = std::max(caps.defaultIterations, (work + *settings_.substeps - 1) / *settings_.substeps);
+    }
     impl_->peer = impl_->backend->createWorld(settings_);
     TaskSystem* tasks = settings_.taskSystem;
     if (!tasks && settings_.workers > 1 && caps.parameters.contains("settings.workers")) {

@@ -98,6 +98,12 @@ Backend makeBox2dBackend() {
     caps.options = {
         {"positionIterations", "Box2D position-correction iterations per Box2D step (b2World::Step); default 3"},
     };
+    // Stability over the whole run, sleeping off, per solver and substep count
+    // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
+    caps.knownDeviations.insert({
+        {"planar.stability.pyramid20.pgs.s1",
+         "at 1 substep x 8 iterations the 20-row pyramid's boxes drift 2.9 cm over 5 s (bound 1 cm); 1.8 mm at 4 substeps"},
+    });
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<box2d::Box2dWorld>(settings);
     };

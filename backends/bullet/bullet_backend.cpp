@@ -127,6 +127,26 @@ Backend makeBulletBackend() {
         {"planar.assemblies.ragdoll_rest",
          "a planar pile still moves at 0.22 m/s after 10 s (sleeping off)"},
     };
+    // Stability over the whole run, sleeping off, per solver and substep count
+    // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
+    caps.knownDeviations.insert({
+        {"stability.stack10.pgs.s1",
+         "at 1 substep the 10-box stack drifts 6.5 cm over 10 s (bound 1 cm); 5 mm at 4 substeps"},
+        {"stability.stack10.direct.s1",
+         "the MLCP solver at 1 substep: the stack drifts 6.8 cm and the top lifts 3.4 mm; 6.6 mm at 4 substeps"},
+        {"stability.pyramid20.pgs.s1",
+         "the 20-row pyramid comes apart: boxes drift 19 cm and the top box lifts 12.6 cm over 5 s"},
+        {"stability.pyramid20.pgs.s4",
+         "at 4 substeps the pyramid still comes apart: drift 8.1 cm, top lifts 5.6 cm"},
+        {"planar.stability.stack10.pgs.s1",
+         "as stability.stack10.pgs.s1, planar: 2.0 cm"},
+        {"planar.stability.stack10.direct.s1",
+         "as stability.stack10.direct.s1, planar: 2.0 cm"},
+        {"planar.stability.pyramid20.pgs.s1",
+         "as stability.pyramid20.pgs.s1, planar: drift 16 cm, top lifts 8 cm"},
+        {"planar.stability.pyramid20.pgs.s4",
+         "as stability.pyramid20.pgs.s4, planar: drift 5.3 cm, top lifts 5.7 cm"},
+    });
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<bullet::BulletWorld>(settings);
     };

@@ -48,6 +48,30 @@ Backend makeNativeBackend() {
     joint("distance", {"spring", "minLength", "maxLength"});
     joint("cone", {"swingLimit", "twistLimits"});
     joint("wheel", {"limits", "motor", "spring", "steering"});
+    // Stability over the whole run, sleeping off, per solver and substep count
+    // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
+    caps.knownDeviations.insert({
+        {"stability.stack10.soft_step.s1",
+         "at 1 substep (8 iterations; contacts capped at 30 Hz, half the step rate) a 10-box stack drifts 2.2 cm over 10 s (bound 1 cm); 4.3 mm at 4 substeps"},
+        {"stability.stack10.pgs.s1",
+         "PGS at 1 substep x 8 iterations topples a 10-box stack (2.9 m). The drift falls with iterations (30: 5 cm, 100: 7.6 mm) and not with less Baumgarte (0: 15 cm): the velocity solve converges too slowly on a stack; cause under investigation"},
+        {"stability.stack10.pgs.s4",
+         "PGS at 4 substeps x 2 iterations: the 10-box stack drifts 6.4 cm over 10 s (as stability.stack10.pgs.s1)"},
+        {"stability.pyramid20.soft_step.s1",
+         "at 1 substep the 20-row pyramid's boxes drift up to 1.8 cm over 5 s (bound 1 cm); 5.9 mm at 4 substeps"},
+        {"stability.pyramid20.pgs.s1",
+         "PGS at 1 substep: the 20-row pyramid's boxes drift 11 cm over 5 s and its top sinks 5.8 cm (as stability.stack10.pgs.s1)"},
+        {"stability.pyramid20.pgs.s4",
+         "PGS at 4 substeps: the 20-row pyramid's boxes drift 1.2 cm over 5 s (bound 1 cm)"},
+        {"planar.stability.stack10.soft_step.s1",
+         "as stability.stack10.soft_step.s1, planar: 1.5 cm"},
+        {"planar.stability.stack10.pgs.s1",
+         "as stability.stack10.pgs.s1, planar: the stack drifts 73 cm"},
+        {"planar.stability.stack10.pgs.s4",
+         "as stability.stack10.pgs.s4, planar: 2.7 cm"},
+        {"planar.stability.pyramid20.pgs.s1",
+         "as stability.pyramid20.pgs.s1, planar: 1.4 cm, top sinks 5.6 cm"},
+    });
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
     };

@@ -124,6 +124,20 @@ Backend makeOdeBackend() {
         {"planar.assemblies.ragdoll_rest",
          "a planar pile of four ragdolls still moves at 0.22 m/s after 10 s (as assemblies.ragdoll_rest)"},
     };
+    // Stability over the whole run, sleeping off, per solver and substep count
+    // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
+    caps.knownDeviations.insert({
+        {"stability.stack10.pgs.s1",
+         "quickstep at 1 substep x 50 iterations: the 10-box stack drifts 1.7 cm over 10 s (bound 1 cm); 0.5 mm at 4 substeps"},
+        {"stability.stack10.direct.s1",
+         "dWorldStep topples the 10-box stack (8.4 m) at 1 substep; cause not yet found (the contacts' friction pyramid and soft CFM are the suspects)"},
+        {"stability.stack10.direct.s4",
+         "dWorldStep topples the 10-box stack at 4 substeps too (3.0 m)"},
+        {"planar.stability.stack10.direct.s1",
+         "as stability.stack10.direct.s1, planar: drifts 36 cm and throws the top box up 1.1 m"},
+        {"planar.stability.stack10.direct.s4",
+         "as stability.stack10.direct.s4, planar: drifts 2.4 cm, top box lifts 7 cm"},
+    });
     return backend;
 }
 

@@ -1,0 +1,140 @@
+// Hard cases stay stable over the whole run, with sleeping off, on every solver a backend offers
+// and at 1 and 4 substeps. Sleeping can freeze a stack before its drift shows and reading the
+// drift once at the end misses a pile that came apart and fell back; so every step is measured,
+// up and down as well as sideways.
+#include <cmath>
+#include <sstream>
+
+#include "contact_helpers.hpp"
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+/// Worst motion of a resting structure over a run: sideways drift of any box from where it was
+/// built, and the top box's sinking (positive) or lifting (negative).
+struct StructureRun {
+    double drift = 0.0;
+    double sink = 0.0;
+    double lift = 0.0;
+    bool finite = true;
+};
+
+StructureRun runStructure(const CatalogueScene& entry, WorldSettings s, double seconds) {
+    World world(s, entry.scene.materials);
+    std::vector<Body> boxes;
+    std::vector<Vec3> built;
+    std::size_t top = 0;
+    for (BodyDef def : entry.scene.bodies) {
+        def.allowSleep = false;
+        Body body = world.createBody(def);
+        if (def.type != BodyType::Dynamic) continue;
+        if (boxes.empty() || def.position.y() > built[top].y()) top = boxes.size();
+        boxes.push_back(body);
+        built.push_back(def.position);
+    }
+    StructureRun run;
+    while (world.time() < seconds) {
+        world.step();
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            const Vec3 p = boxes[i].position();
+            if (!p.allFinite()) {
+                run.finite = false;
+                return run;
+            }
+            const Vec3 d = p - built[i];
+            run.drift = std::max(run.drift, std::hypot(d.x(), d.z()));
+        }
+        const double dy = boxes[top].position().y() - built[top].y();
+        run.sink = std::max(run.sink, -dy);
+        run.lift = std::max(run.lift, dy);
+    }
+    return run;
+}
+
+class StabilityTest : public ContractTest {
+protected:
+    /// Every solver the backend offers, at 1 and (where substeps are honoured) 4 substeps.
+    std::vector<WorldSettings> variants(const CatalogueScene& entry, bool direct) const {
+        std::vector<WorldSettings> out;
+        const bool substeps = caps().parameters.contains("settings.substeps");
+        for (Solver solver : caps().solvers) {
+            if (solver == Solver::Direct && !direct) {
+                // Visible, not silent: a direct solver's cost grows with the cube of the contacts.
+                std::cout << "[ NOT RUN  ] " << backend() << " " << entry.name
+                          << " with the direct solver: O(n^3) in the contacts, minutes per run at this size\n";
+                continue;
+            }
+            for (int n : substeps ? std::vector<int>{1, 4} : std::vector<int>{1}) {
+                WorldSettings s = entry.scene.settings;
+                s.backend = backend();
+                s.planar = planarTest();
+                s.solver = solver;
+                s.substeps = n;
+                out.push_back(s);
+            }
+        }
+        return out;
+    }
+
+    static std::string variantName(const WorldSettings& s) {
+        return std::string(toString(*s.solver)) + ".s" + std::to_string(*s.substeps);
+    }
+
+    // drift: the sideways bound; contacts: how many resting contacts are below the top box (it
+    // may sink by their allowed overlap, linearSlop each, and no more).
+    void expectStandsOverRun(const std::string& scene, const std::string& id, double seconds, double driftBound,
+                             int contactsBelowTop, bool direct) {
+        const CatalogueScene& entry = catalogueScene(scene);
+        for (const WorldSettings& s : variants(entry, direct)) {
+            const StructureRun run = runStructure(entry, s, seconds);
+            const std::string variant = variantName(s);
+            std::ostringstream measured;
+            measured << variant << ": drift " << run.drift << " m, sank " << run.sink << " m, lifted " << run.lift << " m";
+            std::cout << "[ MEASURED ] " << backend() << " " << scene << " over " << seconds << " s, sleeping off, "
+                      << measured.str() << '\n';
+            EXPECT_TRUE(run.finite) << variant;
+            const double sinkBound = contactsBelowTop * s.linearSlop;
+            // Lifting: built without gaps or overlap, nothing may push the top up; 1 mm covers
+            // the contacts settling to their designed overlap unevenly.
+            const bool stands = run.finite && run.drift <= driftBound && run.sink <= sinkBound && run.lift <= 1e-3;
+            expectCriterion(id + "." + variant, stands,
+                            measured.str() + " (bounds: drift " + std::to_string(driftBound) + ", sink " +
+                                std::to_string(sinkBound) + ", lift 0.001)");
+        }
+    }
+
+    // A straight stack has nothing pushing it sideways: 1 cm over 10 s is solver error only.
+    void tenBoxStack() {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectStandsOverRun(planarTest() ? "box_stack_10_planar" : "box_stack_10", planarTest() ? "planar.stability.stack10" : "stability.stack10",
+                        10.0, 0.01, 10, true);
+}
+
+    // A 20-row pyramid: its rows spread a little as the contacts below compress, 1 cm over 5 s.
+    void twentyRowPyramid() {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectStandsOverRun(planarTest() ? "pyramid_20_planar" : "pyramid_20", planarTest() ? "planar.stability.pyramid20" : "stability.pyramid20",
+                        5.0, 0.01, 20, false);
+    }
+};
+
+TEST_P(StabilityTest, TenBoxStackStandsOverTheWholeRun) { tenBoxStack(); }
+TEST_P(StabilityTest, TwentyRowPyramidStandsOverTheWholeRun) { twentyRowPyramid(); }
+
+ANYPHYS_CONTRACT_SUITE(StabilityTest);
+
+class PlanarStabilityTest : public StabilityTest {
+protected:
+    bool planarTest() const override { return true; }
+};
+
+TEST_P(PlanarStabilityTest, TenBoxStackStandsOverTheWholeRun) { tenBoxStack(); }
+TEST_P(PlanarStabilityTest, TwentyRowPyramidStandsOverTheWholeRun) { twentyRowPyramid(); }
+
+ANYPHYS_CONTRACT_SUITE(PlanarStabilityTest);
+
+}  // namespace
+}  // namespace anyphys::test
