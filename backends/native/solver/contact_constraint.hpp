@@ -40,6 +40,7 @@ struct WideContact {
     bool writeB[wide::kLanes];
     ContactManifold* manifold[wide::kLanes];  // source of each lane; null in padding lanes
     int pointCount;                    // most points in any lane
+    bool reverse = false;              // the next solve visits the points last to first
     wide::Vec3W invMassA, invMassB;    // per axis
     wide::SymMat3W invIA, invIB;
     wide::Vec3W normal, tangent1, tangent2;
