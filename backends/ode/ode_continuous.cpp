@@ -1,9 +1,10 @@
 // Continuous collision, approximated: ODE has none. A body that moved more than half its inner
 // radius in one ODE step is stopped where the ray from its start centre along its motion first
-// meets static geometry, its inner radius (less a sliver of overlap) before the hit point, keeping
+// meets other geometry, its inner radius (less a sliver of overlap) before the hit point, keeping
 // its velocity. It then overlaps the surface, so ODE's discrete contact stops it next step.
-// Limits: only static geometry, and only along the centre's path (a fast body can still clip an
-// edge its centre passes by).
+// Limits: other bodies are taken where they are at the end of the step (two fast bodies crossing
+// each other's paths are not swept against each other's motion), and only the centre's path is
+// swept (a fast body can still clip an edge its centre passes by).
 #include <cmath>
 #include <limits>
 
@@ -35,7 +36,7 @@ void sweepCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<SweepQuery*>(data);
     const dGeomID other = o1 == q.ray ? o2 : o1;
     const auto* target = static_cast<const OdeBody*>(dGeomGetData(other));
-    if (!target || target->moves() || target->isTrigger()) return;
+    if (!target || target == q.body || target->isTrigger()) return;
     if (!layersCollide(q.body->layer(), q.body->mask(), target->layer(), target->mask())) return;
     // Already inside: the discrete contact handles it; the ray would only find the way out.
     if (pointDepth(other, q.start) > 0) return;

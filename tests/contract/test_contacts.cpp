@@ -169,6 +169,19 @@ TEST_P(ContactsTest, FastSphereNeverTunnelsThroughThinWall) {
     EXPECT_TRUE(run.finite);
 }
 
+// The same ball at a free 1 000 kg wall: continuous collision is not only against static
+// geometry (a game's bullet hits a crate, not just the level).
+TEST_P(ContactsTest, FastSphereNeverTunnelsThroughThinDynamicWall) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Box},
+                                        Effect::Contacts | Effect::ContinuousCollision);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const FastSphereRun run = runFastSphereAtThinWall(settings(), true);
+    report(backend() + " fast sphere at a dynamic wall: farthest centre x, wall frame (face at 9.95)", run.farthest, "m");
+    expectCriterion("tunnelling.fast_sphere_dynamic_wall", run.farthest < kFastSphereBound,
+                    "farthest centre x " + std::to_string(run.farthest) + " m in the wall's frame (face 9.95, middle 10)");
+    EXPECT_TRUE(run.finite);
+}
+
 ANYPHYS_CONTRACT_SUITE(ContactsTest);
 
 }  // namespace
