@@ -77,6 +77,9 @@ Backend makeBox2dBackend() {
         {"planar.joints.chain_gap_heavy", "the same chain with a 100x end mass tears apart too (as planar.joints.chain_gap)"},
         {"planar.assemblies.ragdoll_gap",
          "joints of a planar pile of four ragdolls open by up to 37 cm as the ragdolls land on each other (bound 5 cm): Box2D 2.4's 8 velocity iterations at one 1/60 s step yield under the impacts"},
+        {"planar.free_flight.fast_body_speed",
+         "Box2D 2.4 caps every body's motion at b2_maxTranslation = 2 m per step (a compile-time constant): "
+         "at 60 Hz nothing flies faster than 120 m/s (a 300 m/s body after 1 s: 120 m/s); 4 substeps raise the cap to 480 m/s (300 m/s kept)"},
         {"planar.assemblies.regularised_chain_gap",
          "a heavy-ended chain with regularised masses (ratio 10, parents' inertia raised) still opens by 11 cm "
          "(bound 5 cm) at Box2D 2.4's 8 velocity iterations per 1/60 s step; 3.2 cm at 30 iterations, 1.1 cm at 4 substeps"},

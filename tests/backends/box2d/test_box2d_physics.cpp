@@ -236,8 +236,9 @@ TEST(Box2dPhysics, CapsuleRestsOnEndAndSide) {
     EXPECT_NEAR(b.position().y(), 0.2, 1e-3);
 }
 
-// A 200 m/s ball at a 10 cm wall: Box2D clamps any body to b2_maxTranslation = 2 m per step (its
-// velocity is scaled down to 120 m/s at dt 1/60), and continuous collision stops it at the wall.
+// A 200 m/s ball at a 10 cm wall: continuous collision stops it at the wall. (Box2D also clamps
+// any body to b2_maxTranslation = 2 m per step, 120 m/s at dt 1/60: a deviation the contract's
+// free-flight case declares, reported here.)
 TEST(Box2dPhysics, FastBallStopsAtThinWall) {
     WorldSettings s = planarSettings();
     s.gravity = Vec3::Zero();
@@ -257,7 +258,6 @@ TEST(Box2dPhysics, FastBallStopsAtThinWall) {
     report("fast ball: farthest centre x (wall face 9.95)", farthest, "m");
     report("fast ball: fastest speed after a step (b2_maxTranslation clamp)", fastest, "m/s");
     EXPECT_LT(farthest, 9.95 - 0.05 + 0.01);
-    EXPECT_LE(fastest, 2.0 * 60 + 1e-3);
 }
 
 }  // namespace
