@@ -110,6 +110,13 @@ Backend makeBox2dBackend() {
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<box2d::Box2dWorld>(settings);
     };
+    // Ceilings of the declared misses above, in each test's measure (stability: the worst of
+    // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
+    caps.deviationCeilings = {
+        {"planar.stability.pyramid20.pgs.s1", 4.4},
+        {"planar.free_flight.fast_body_speed", 180.01},
+        {"planar.assemblies.regularised_chain_gap", 0.17},
+    };
     return backend;
 }
 

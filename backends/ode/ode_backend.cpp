@@ -138,6 +138,15 @@ Backend makeOdeBackend() {
         {"planar.stability.stack10.direct.s4",
          "as stability.stack10.direct.s4, planar: drifts 2.4 cm, top box lifts 7 cm"},
     });
+    // Ceilings of the declared misses above, in each test's measure (stability: the worst of
+    // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
+    caps.deviationCeilings = {
+        {"stability.stack10.pgs.s1", 2.5},
+        {"stability.stack10.direct.s1", 5000},
+        {"stability.stack10.direct.s4", 5000},
+        {"planar.stability.stack10.direct.s1", 5000},
+        {"planar.stability.stack10.direct.s4", 150},
+    };
     return backend;
 }
 

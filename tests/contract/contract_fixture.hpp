@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,17 +36,26 @@ protected:
     /// Checks a named contract criterion. If the backend declares it as a known deviation, a
     /// miss is printed (measured value and the backend's reason) instead of failing, and a pass
     /// fails, because the declaration has become untrue.
-    void expectCriterion(const std::string& id, bool met, const std::string& measured) const {
+    /// With `value` (the criterion's measure), a declared miss must also stay within the
+    /// backend's ceiling for it, if it declares one.
+    void expectCriterion(const std::string& id, bool met, const std::string& measured,
+                         std::optional<double> value = std::nullopt) const {
         const auto& known = caps().knownDeviations;
         const auto it = known.find(id);
+        const auto ceiling = caps().deviationCeilings.find(id);
         if (it == known.end()) {
             EXPECT_TRUE(met) << "criterion " << id << " missed: " << measured;
+        } else if (!met && value && ceiling != caps().deviationCeilings.end() && !(*value <= ceiling->second)) {
+            ADD_FAILURE() << "backend " << backend() << " misses " << id << " worse than its declared ceiling "
+                          << ceiling->second << ": " << measured;
         } else if (met) {
             ADD_FAILURE() << "backend " << backend() << " declares criterion " << id
                           << " a known deviation, but it now passes (" << measured << "): update its capabilities";
         } else {
             std::cout << "[ KNOWN    ] backend " << backend() << " misses " << id << ": " << measured << " ("
-                      << it->second << ")\n";
+                      << it->second << ")"
+                      << (ceiling != caps().deviationCeilings.end() ? " [ceiling " + std::to_string(ceiling->second) + "]" : "")
+                      << "\n";
             ::testing::Test::RecordProperty("known_deviation_" + id, measured);
         }
     }

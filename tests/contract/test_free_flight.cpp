@@ -27,7 +27,8 @@ protected:
         const bool kept = std::abs(speed - 300.0) <= 300.0 * 1e-12 && std::abs(x - 300.0 * world.time()) <= 1e-9 * x;
         expectCriterion(criterion, kept,
                         "speed " + std::to_string(speed) + " m/s (exact 300), x " + std::to_string(x) + " m (exact " +
-                            std::to_string(300.0 * world.time()) + ")");
+                            std::to_string(300.0 * world.time()) + ")",
+                        std::abs(speed - 300.0));
     }
 };
 

@@ -53,7 +53,8 @@ protected:
                worstRatio);
         expectCriterion(criterion, worst <= 1.0,
                         "rebound " + std::to_string(worstRatio) + " x e^2 h at an impact of " + std::to_string(worstImpact) +
-                            " m/s (" + std::to_string(worst) + " x the method's bound)");
+                            " m/s (" + std::to_string(worst) + " x the method's bound)",
+                        worst);
     }
 };
 

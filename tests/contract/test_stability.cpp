@@ -2,7 +2,9 @@
 // and at 1 and 4 substeps. Sleeping can freeze a stack before its drift shows and reading the
 // drift once at the end misses a pile that came apart and fell back; so every step is measured,
 // up and down as well as sideways.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "contact_helpers.hpp"
@@ -97,10 +99,14 @@ protected:
             const double sinkBound = contactsBelowTop * s.linearSlop;
             // Lifting: built without gaps or overlap, nothing may push the top up; 1 mm covers
             // the contacts settling to their designed overlap unevenly.
-            const bool stands = run.finite && run.drift <= driftBound && run.sink <= sinkBound && run.lift <= 1e-3;
-            expectCriterion(id + "." + variant, stands,
+            // The measure a declared deviation's ceiling applies to: the worst of the three as a
+            // multiple of its bound (<= 1 stands).
+            const double times = run.finite ? std::max({run.drift / driftBound, run.sink / sinkBound, run.lift / 1e-3})
+                                            : std::numeric_limits<double>::infinity();
+            expectCriterion(id + "." + variant, times <= 1.0,
                             measured.str() + " (bounds: drift " + std::to_string(driftBound) + ", sink " +
-                                std::to_string(sinkBound) + ", lift 0.001)");
+                                std::to_string(sinkBound) + ", lift 0.001; " + std::to_string(times) + " x)",
+                            times);
         }
     }
 

@@ -41,6 +41,7 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
         {"options", options},
         {"knownDeviations", caps.knownDeviations},
+        {"deviationCeilings", caps.deviationCeilings},
         {"missingShapePairs", missingPairNames(caps)},
     };
 }
@@ -90,7 +91,11 @@ void printText(const std::vector<BackendInfo>& backends) {
         for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
         row("options", orNone(options));
         row("missing pairs", orNone(missingPairNames(c)));
-        for (const auto& [criterion, reason] : c.knownDeviations) row("known deviation", criterion + ": " + reason);
+        for (const auto& [criterion, reason] : c.knownDeviations) {
+            const auto ceiling = c.deviationCeilings.find(criterion);
+            const std::string limit = ceiling == c.deviationCeilings.end() ? "" : " [ceiling " + std::to_string(ceiling->second) + "]";
+            row("known deviation", criterion + ": " + reason + limit);
+        }
     }
 }
 

@@ -49,6 +49,10 @@ struct Capabilities {
     /// it passes, if any. The contract suite reports these visibly instead of failing, and fails
     /// if a declared deviation no longer occurs (so the table stays true).
     std::map<std::string, std::string> knownDeviations;
+    /// Ceilings of declared deviations, by criterion id: the worst value of the criterion's
+    /// measure (in the test's unit) the deviation may reach. A miss beyond it fails, so a
+    /// deviation that grows is caught, not reported as known.
+    std::map<std::string, double> deviationCeilings;
 };
 
 }  // namespace anyphys
