@@ -67,12 +67,16 @@ Backend makeBulletBackend() {
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
     };
     caps.knownDeviations = {
+        {"planar.pyramid20.drift",
+         "as pyramid20.drift, planar: 16 cm"},
+        {"pyramid20.sink",
+         "the 20-row pyramid's top box is thrown up 12.6 cm as it comes apart (as pyramid20.drift)"},
+        {"pyramid20.drift",
+         "the 20-row pyramid comes apart with sleeping off: boxes drift 19 cm sideways within 5 s (as stability.pyramid20.pgs.s1)"},
         {"planar.stack10.top_drift",
-         "top box 1.9 cm sideways after 10 s in the plane: the same friction sway as stack10.top_drift"},
+         "as stack10.top_drift, planar: 2.0 cm over 10 s; 1.2 mm at 4 substeps"},
         {"stack10.top_drift",
-         "top box 3.25 cm sideways after 10 s (pgs, 30 iterations, two friction directions): Bullet's "
-         "square friction with warm starting lets the stack sway; 0.66 cm with backendOptions "
-         "frictionDirections = 1, which in turn lets a box creep down a slope (slope.static_hold)"},
+         "the 10-box stack's top drifts 6.5 cm sideways over 10 s with sleeping off (1 substep, pgs, 30 iterations; the earlier 3.25 cm was read after the stack fell asleep); 5 mm at 4 substeps"},
         {"slope.kinetic_acceleration.near_threshold",
          "2 deg past the friction angle the box slides too slowly (a = 0.21 m/s^2, exact 0.38; at 35 "
          "deg 1.65 against 1.61 passes): two friction directions per point bound friction by a square, up "
@@ -153,6 +157,11 @@ Backend makeBulletBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"planar.pyramid20.drift", 0.24},
+        {"pyramid20.sink", 0.19},
+        {"pyramid20.drift", 0.3},
+        {"planar.stack10.top_drift", 0.03},
+        {"stack10.top_drift", 0.1},
         {"stability.stack10.pgs.s1", 10},
         {"stability.stack10.direct.s1", 10},
         {"stability.pyramid20.pgs.s1", 190},

@@ -71,6 +71,8 @@ Backend makeOdeBackend() {
     // Measured by the joint and assembly contract at the defaults (one 1/60 s step, quickstep 50
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
+        {"stack10.top_drift",
+         "the 10-box stack's top drifts 1.7 cm sideways over 10 s with sleeping off (quickstep at 1 substep x 50 iterations); 0.5 mm at 4 substeps (as stability.stack10.pgs.s1)"},
         {"joints.wide_pendulum_energy",
          "a 1.5 rad pendulum loses 8.7 % (hinge) and 9.6 % (ball) of its swing energy in 20 periods: ODE's first-order joint rows at one 1/60 s step (ERP correction drains the swing); 4 substeps keep it under 1 %"},
         {"planar.joints.wide_pendulum_energy",
@@ -141,6 +143,7 @@ Backend makeOdeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"stack10.top_drift", 0.025},
         {"stability.stack10.pgs.s1", 2.5},
         {"stability.stack10.direct.s1", 5000},
         {"stability.stack10.direct.s4", 5000},

@@ -202,6 +202,29 @@ SceneCheck endpointCheck(SceneCheck check, EndpointProbe::Measure measure) {
     return check;
 }
 
+/// The worst of f(initial states, current states, time) over every observation: a stack that
+/// slid apart and came back, or one frozen by sleep before its drift showed, is still caught.
+class WorstOverRunProbe : public SceneProbe {
+public:
+    explicit WorstOverRunProbe(EndpointProbe::Measure measure) : measure_(std::move(measure)) {}
+    void observe(double time, const std::vector<BodyState>& states) override {
+        if (first_.empty()) first_ = states;
+        const double v = measure_(first_, states, time);
+        if (!(v <= worst_)) worst_ = v;  // keeps a NaN (blow-up) visible
+    }
+    double value() const override { return worst_; }
+
+private:
+    EndpointProbe::Measure measure_;
+    std::vector<BodyState> first_;
+    double worst_ = 0.0;
+};
+
+SceneCheck worstOverRunCheck(SceneCheck check, EndpointProbe::Measure measure) {
+    check.makeProbe = [measure] { return std::make_unique<WorstOverRunProbe>(measure); };
+    return check;
+}
+
 /// First rebound of a dropped body, as a fraction of its drop: (apex - rest) / (start - rest),
 /// where `rest` is its height when touching the ground. Exact for restitution e: e^2.
 class ReboundProbe : public SceneProbe {
@@ -345,7 +368,7 @@ CatalogueScene boxStack10() {
     constexpr int kBoxes = 10;
     CatalogueScene c;
     c.name = "box_stack_10";
-    c.description = "10 unit boxes stacked on the ground with no gap: must stand; top box's sideways drift after 10 s";
+    c.description = "10 unit boxes stacked on the ground with no gap, sleeping off: must stand; top box's largest sideways drift over 10 s";
     c.duration = 10.0;
     c.scene.settings.timeStep = 1.0 / 60.0;
     c.scene.bodies.push_back(groundPlane());
@@ -353,9 +376,10 @@ CatalogueScene boxStack10() {
         char name[32];
         std::snprintf(name, sizeof name, "box_%02d", i);
         c.scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
+        c.scene.bodies.back().allowSleep = false;  // sleep would freeze the stack before drift shows
     }
-    c.check = endpointCheck(
-        SceneCheck{"top drift", "m", 0.0, 0.01, "1 cm sideways: the contract's bound for a standing stack", {},
+    c.check = worstOverRunCheck(
+        SceneCheck{"top drift", "m", 0.0, 0.01, "1 cm sideways at any time: the contract's bound for a standing stack", {},
                    "stack10.top_drift"},
         maxHorizontalDrift({static_cast<std::size_t>(kBoxes)}));
     return c;
@@ -365,7 +389,7 @@ CatalogueScene pyramid20() {
     constexpr int kRows = 20;
     CatalogueScene c;
     c.name = "pyramid_20";
-    c.description = "pyramid of 210 unit boxes, 20 rows, base 20, no gaps: must stand for 5 s (largest sideways drift)";
+    c.description = "pyramid of 210 unit boxes, 20 rows, base 20, no gaps, sleeping off: must stand for 5 s (largest sideways drift over the run)";
     c.duration = 5.0;
     c.scene.settings.timeStep = 1.0 / 60.0;
     c.scene.bodies.push_back(groundPlane());
@@ -376,10 +400,11 @@ CatalogueScene pyramid20() {
             std::snprintf(name, sizeof name, "box_r%02d_%02d", row, i);
             const double x = i - 0.5 * (count - 1);  // each row centred on x = 0, boxes side by side
             c.scene.bodies.push_back(unitBox(name, Vec3(x, 0.5 + row, 0)));
+            c.scene.bodies.back().allowSleep = false;
         }
     }
-    c.check = endpointCheck(
-        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways (a tenth of a box): the pyramid stands as built", {},
+    c.check = worstOverRunCheck(
+        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways at any time (a tenth of a box): the pyramid stands as built", {},
                    "pyramid20.drift"},
         maxHorizontalDrift(dynamicBodies(c.scene)));
     return c;

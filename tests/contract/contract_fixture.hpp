@@ -40,12 +40,12 @@ protected:
     /// backend's ceiling for it, if it declares one.
     void expectCriterion(const std::string& id, bool met, const std::string& measured,
                          std::optional<double> value = std::nullopt) const {
-        const auto& known = caps().knownDeviations;
-        const auto it = known.find(id);
-        const auto ceiling = caps().deviationCeilings.find(id);
-        if (it == known.end()) {
+        const Capabilities c = caps();  // caps() returns a copy: iterators need it alive
+        const auto it = c.knownDeviations.find(id);
+        const auto ceiling = c.deviationCeilings.find(id);
+        if (it == c.knownDeviations.end()) {
             EXPECT_TRUE(met) << "criterion " << id << " missed: " << measured;
-        } else if (!met && value && ceiling != caps().deviationCeilings.end() && !(*value <= ceiling->second)) {
+        } else if (!met && value && ceiling != c.deviationCeilings.end() && !(*value <= ceiling->second)) {
             ADD_FAILURE() << "backend " << backend() << " misses " << id << " worse than its declared ceiling "
                           << ceiling->second << ": " << measured;
         } else if (met) {
@@ -54,7 +54,7 @@ protected:
         } else {
             std::cout << "[ KNOWN    ] backend " << backend() << " misses " << id << ": " << measured << " ("
                       << it->second << ")"
-                      << (ceiling != caps().deviationCeilings.end() ? " [ceiling " + std::to_string(ceiling->second) + "]" : "")
+                      << (ceiling != c.deviationCeilings.end() ? " [ceiling " + std::to_string(ceiling->second) + "]" : "")
                       << "\n";
             ::testing::Test::RecordProperty("known_deviation_" + id, measured);
         }
