@@ -1,5 +1,6 @@
 #include "demo_support.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -79,24 +80,32 @@ std::string firstNonFinite(const std::vector<Body>& bodies) {
     return {};
 }
 
-bool simulate(World& world, const std::vector<Body>& bodies, const DemoOptions& options,
-              const std::function<void(long long)>& perStep) {
+SimulationResult simulate(World& world, const std::vector<Body>& bodies, const DemoOptions& options,
+                          const StepHooks& hooks) {
     TrajectoryWriter trajectory(options.out);
     const long long steps = std::llround(options.seconds / world.settings().timeStep);
     trajectory.write(0, world.time(), bodies);
+    SimulationResult result;
+    std::chrono::steady_clock::duration stepping{};
     for (long long step = 1; step <= steps; ++step) {
-        if (perStep) perStep(step);
+        if (hooks.before) hooks.before(step);
+        const auto start = std::chrono::steady_clock::now();
         world.step();
+        stepping += std::chrono::steady_clock::now() - start;
+        result.steps = step;
         trajectory.write(step, world.time(), bodies);
         if (const std::string bad = firstNonFinite(bodies); !bad.empty()) {
-            trajectory.finish();
             std::cerr << "non-finite state: body \"" << bad << "\" at t = " << world.time() << " s on "
                       << world.backendName() << '\n';
-            return false;
+            result.finite = false;
+            break;
         }
+        if (hooks.after) hooks.after(step);
     }
     trajectory.finish();
-    return true;
+    if (result.steps > 0)
+        result.msPerStep = std::chrono::duration<double, std::milli>(stepping).count() / static_cast<double>(result.steps);
+    return result;
 }
 
 int runMain(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {

@@ -52,11 +52,23 @@ private:
 /// all are finite.
 std::string firstNonFinite(const std::vector<Body>& bodies);
 
-/// Steps `world` for options.seconds, recording `bodies` to options.out; calls `perStep(step)`
-/// before each step (controls, animation) when given. Returns false, after one line on stderr
-/// naming the body and the time, if a state became non-finite.
-bool simulate(World& world, const std::vector<Body>& bodies, const DemoOptions& options,
-              const std::function<void(long long)>& perStep = {});
+/// What a demo does around each step: set controls or animation before it, measure after it.
+struct StepHooks {
+    std::function<void(long long step)> before;
+    std::function<void(long long step)> after;
+};
+
+struct SimulationResult {
+    bool finite = true;      ///< false: a state became non-finite (reported on stderr)
+    long long steps = 0;     ///< steps taken
+    double msPerStep = 0.0;  ///< wall time of World::step alone, mean
+};
+
+/// Steps `world` for options.seconds, recording `bodies` to options.out and calling the hooks.
+/// Stops early, after one line on stderr naming the body and the time, if a state became
+/// non-finite.
+SimulationResult simulate(World& world, const std::vector<Body>& bodies, const DemoOptions& options,
+                          const StepHooks& hooks = {});
 
 /// Parses the command line and runs `body`: usage errors exit 2, anyphys::Error and other
 /// exceptions exit 1, each as one line "program: message" on stderr; --help exits 0.
