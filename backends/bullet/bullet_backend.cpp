@@ -67,6 +67,9 @@ Backend makeBulletBackend() {
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
     };
     caps.knownDeviations = {
+        {"vehicle.turning_radius",
+         "the car turns 14 % wide (10.4 m for the bicycle geometry's 9.16 m at 0.3 rad) at 1 substep x 30 "
+         "iterations: the steered wheel joints do not converge (100 iterations: 9.46 m, 4 substeps: 9.61 m)"},
         {"planar.pyramid20.drift",
          "as pyramid20.drift, planar: 16 cm"},
         {"pyramid20.sink",
@@ -157,6 +160,7 @@ Backend makeBulletBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"vehicle.turning_radius", 0.2},
         {"planar.pyramid20.drift", 0.24},
         {"pyramid20.sink", 0.19},
         {"pyramid20.drift", 0.3},
