@@ -48,7 +48,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path) : path_(path) {
     file_ << "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
 }
 
-void TrajectoryWriter::write(long long step, double time, const std::vector<Body>& bodies) {
+void TrajectoryWriter::write(long long step, double time, const std::vector<Body>& bodies, const std::string& prefix) {
     if (!file_.is_open()) return;
     char buffer[512];
     for (const Body& body : bodies) {
@@ -58,7 +58,7 @@ void TrajectoryWriter::write(long long step, double time, const std::vector<Body
         // 17 significant digits read back to the same double, as `anyphys run` writes them.
         std::snprintf(buffer, sizeof buffer,
                       "%lld,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                      step, time, csvField(body.name()).c_str(), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(),
+                      step, time, csvField(prefix + body.name()).c_str(), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(),
                       v.z(), w.x(), w.y(), w.z());
         file_ << buffer;
     }

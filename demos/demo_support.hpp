@@ -39,7 +39,8 @@ class TrajectoryWriter {
 public:
     /// An empty path writes nothing.
     explicit TrajectoryWriter(const std::string& path);
-    void write(long long step, double time, const std::vector<Body>& bodies);
+    /// One row per body; `prefix` goes before each name (several worlds in one file).
+    void write(long long step, double time, const std::vector<Body>& bodies, const std::string& prefix = "");
     /// Flushes; throws anyphys::Error if the file could not be written.
     void finish();
 
