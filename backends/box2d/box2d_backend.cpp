@@ -64,6 +64,8 @@ Backend makeBox2dBackend() {
             caps.parameters.insert(std::string("joint.") + type + "." + field);
     // Measured by the joint contract at 1/60 s, one substep (tests/contract/test_joints.cpp).
     caps.knownDeviations = {
+        {"planar.assemblies.ragdoll_limits",
+         "a hinge goes 88 deg past its limits in the planar pile at Box2D 2.4's 8 velocity iterations per 1/60 s step (as planar.assemblies.ragdoll_gap)"},
         {"planar.joints.hinge_limit",
          "a point-like bob on a 1 m arm (m L^2 / I = 250) released horizontal passes a -0.5 rad hinge limit by 0.32 rad "
          "and rests 0.025 rad past it: Box2D solves the limit apart from the anchor, and 8 velocity iterations do not "
@@ -113,6 +115,7 @@ Backend makeBox2dBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"planar.assemblies.ragdoll_limits", 130.0},
         {"planar.stability.pyramid20.pgs.s1", 4.4},
         {"planar.free_flight.fast_body_speed", 180.01},
         {"planar.assemblies.regularised_chain_gap", 0.17},

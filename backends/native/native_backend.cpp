@@ -51,6 +51,10 @@ Backend makeNativeBackend() {
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
+        {"assemblies.ragdoll_limits",
+         "an elbow goes 5.9 deg past its limit as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration (bound 3 deg); the limit rows converge with more work: 8 x 4: 2.3 deg, 16 x 1: 1.4 deg, 32 x 1: 0.3 deg"},
+        {"planar.assemblies.ragdoll_limits",
+         "as assemblies.ragdoll_limits, planar: 3.4 deg"},
         {"stability.stack10.soft_step.s1",
          "at 1 substep (8 iterations; contacts capped at 30 Hz, half the step rate) a 10-box stack drifts 2.2 cm over 10 s (bound 1 cm); 4.3 mm at 4 substeps"},
         {"stability.stack10.pgs.s1",
@@ -74,6 +78,8 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"assemblies.ragdoll_limits", 9.0},
+        {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},
         {"stability.stack10.pgs.s1", 4},
         {"stability.stack10.pgs.s4", 2.5},

@@ -71,6 +71,10 @@ Backend makeOdeBackend() {
     // Measured by the joint and assembly contract at the defaults (one 1/60 s step, quickstep 50
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
+        {"assemblies.ragdoll_limits",
+         "an elbow bends 57 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg"},
+        {"planar.assemblies.ragdoll_limits",
+         "as assemblies.ragdoll_limits, planar: 16.6 deg"},
         {"stack10.top_drift",
          "the 10-box stack's top drifts 1.7 cm sideways over 10 s with sleeping off (quickstep at 1 substep x 50 iterations); 0.5 mm at 4 substeps (as stability.stack10.pgs.s1)"},
         {"joints.wide_pendulum_energy",
@@ -143,6 +147,8 @@ Backend makeOdeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"assemblies.ragdoll_limits", 90.0},
+        {"planar.assemblies.ragdoll_limits", 25.0},
         {"stack10.top_drift", 0.025},
         {"stability.stack10.pgs.s1", 2.5},
         {"stability.stack10.direct.s1", 5000},

@@ -1,5 +1,6 @@
 // The built-in assemblies on every backend that has their joints: a pile of ragdolls stays
 // whole and comes to rest, sleeping off.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -120,7 +121,19 @@ protected:
         World world(scene.settings, scene.materials);
         const SceneObjects objects = createSceneObjects(world, scene);
         JointGapMeter gaps(scene, objects);
-        while (world.time() < 10.0 && gaps.observe()) world.step();
+        double worstLimit = 0.0;  // rad beyond a hinge's limits
+        const auto observeLimits = [&] {
+            for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+                const JointDef& d = scene.joints[i].def;
+                if (d.type != JointType::Hinge || !d.limits) continue;
+                const double angle = objects.joints[i].position();
+                worstLimit = std::max({worstLimit, d.limits->lower - angle, angle - d.limits->upper});
+            }
+        };
+        while (world.time() < 10.0 && gaps.observe()) {
+            observeLimits();
+            world.step();
+        }
         const double worstGap = gaps.worst();
         const bool finite = gaps.finite();
         double fastest = 0.0, lowest = 1e9;
@@ -140,6 +153,13 @@ protected:
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_rest" : "assemblies.ragdoll_rest", fastest < 0.1,
                         "fastest body " + std::to_string(fastest) + " m/s after 10 s");
         EXPECT_GT(lowest, -0.2);  // nothing fell through the ground
+        // Hinge limits (elbows, knees; every planar joint) held within 3 degrees: a soft limit
+        // gives a little under a 70 kg landing; a broken one lets a knee bend the wrong way.
+        const double limitDegrees = worstLimit * 180.0 / std::numbers::pi;
+        std::cout << "[ MEASURED ] " << backend() << " pile of 4 " << assembly << ": worst hinge limit violation "
+                  << limitDegrees << " deg\n";
+        expectCriterion(planarTest() ? "planar.assemblies.ragdoll_limits" : "assemblies.ragdoll_limits", limitDegrees <= 3.0,
+                        "a hinge went " + std::to_string(limitDegrees) + " deg beyond its limits", limitDegrees);
     }
 
     void regularisedChain(const WorldSettings& settings, const std::string& criterion) {
