@@ -248,7 +248,10 @@ void Box2dWorld::step(double time, double dt) {
 // main solve and any time-of-impact solve.
 void Box2dWorld::sumImpulses() {
     std::vector<ContactRules::SolvedImpulses>& solved = rules_.solvedImpulses();
-    std::stable_sort(solved.begin(), solved.end(), [](const auto& x, const auto& y) {
+    // std::sort, not stable_sort: stable_sort takes a temporary buffer from the heap every step.
+    // Entries of one contact may change order; their sum is the same to rounding, and the same
+    // input always sorts the same way.
+    std::sort(solved.begin(), solved.end(), [](const auto& x, const auto& y) {
         return std::less<const b2Contact*>{}(x.contact, y.contact);
     });
     impulses_.clear();
