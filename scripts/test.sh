@@ -78,8 +78,10 @@ export ASAN_OPTIONS="detect_leaks=$detect_leaks"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 stage "sanitizer build (build-asan/)"
+# -O1 -g1 (line tables): the sanitizers' usual level, and half the compile time of -O2 -g
+# (63 -> 33 s for the largest test file), which keeps CI within its 30 minutes.
 bash scripts/build.sh build-asan \
-  -DANYPHYS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DANYPHYS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DANYPHYS_BUILD_BENCH=OFF -DANYPHYS_BUILD_DEMOS=OFF
 done_stage asan-build
 
