@@ -205,6 +205,17 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
     };
     constexpr int kMinContactsPerRange = 64;
     parallelFor(tasks, static_cast<int>(slots_.size()), kMinContactsPerRange, narrowPhase);
+    // Any worker may meet the largest pair next step: every worker's scratch keeps the largest
+    // capacity any needed, so a steady world never allocates here.
+    std::size_t found = 0, previous = 0;
+    for (const Scratch& s : scratch_) {
+        found = std::max(found, s.found.capacity());
+        previous = std::max(previous, s.previous.capacity());
+    }
+    for (Scratch& s : scratch_) {
+        s.found.reserve(found);
+        s.previous.reserve(previous);
+    }
 
     for (std::uint32_t slot = 0; slot < slots_.size(); ++slot) {
         Contact& c = slots_[slot];

@@ -340,6 +340,9 @@ void NativeWorld::updateAllProxies(double dt) {
     // Moved in proxy order, whatever the workers: the tree comes out the same every run.
     std::vector<ProxyMove>& all = proxyMoves_.front();
     for (std::size_t w = 1; w < proxyMoves_.size(); ++w) all.insert(all.end(), proxyMoves_[w].begin(), proxyMoves_[w].end());
+    // Any worker may take every range next step (ranges go to whichever worker is free): each
+    // buffer holds the whole step's moves, so a steady world never allocates here.
+    for (auto& moves : proxyMoves_) moves.reserve(all.size());
     std::sort(all.begin(), all.end());
     for (const ProxyMove& move : all) broadPhase_.setFatAabb(move.proxy, move.fat);
 }

@@ -478,6 +478,9 @@ void BroadPhase::updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onP
 
     pairBuffer_.clear();
     for (const auto& pairs : workerPairs_) pairBuffer_.insert(pairBuffer_.end(), pairs.begin(), pairs.end());
+    // Any worker may take every range next time (ranges go to whichever worker is free): each
+    // buffer holds all the pairs found, so a steady world never allocates here.
+    for (auto& pairs : workerPairs_) pairs.reserve(pairBuffer_.size());
     // Sorted: callers see a deterministic order whatever the workers did; unique: two proxies
     // with the same key pair (several proxies of one key) are reported once.
     std::sort(pairBuffer_.begin(), pairBuffer_.end());
