@@ -27,7 +27,10 @@ print("ok backends --json:", names)
 PY
 
 # The catalogue listings are well formed too.
-"$anyphys" scenes | grep -q '^projectile' || { echo "FAIL: 'scenes' does not list projectile"; exit 1; }
+# Captured first: `grep -q` stops reading at the first match, and the writer's SIGPIPE would
+# fail the pipeline under pipefail.
+scenes="$("$anyphys" scenes)"
+grep -q '^projectile' <<< "$scenes" || { echo "FAIL: 'scenes' does not list projectile"; exit 1; }
 "$anyphys" scenes --json | python3 -m json.tool > /dev/null || { echo "FAIL: 'scenes --json' is not valid JSON"; exit 1; }
 "$anyphys" scene projectile | python3 -m json.tool > /dev/null || { echo "FAIL: 'scene projectile' is not valid JSON"; exit 1; }
 echo "PASS backends"
