@@ -20,9 +20,6 @@ int gyroscopicFlags(GyroscopicMode mode) {
     return 0;
 }
 
-// Bullet damps by v *= (1 - d)^dt each step; d = 1 - exp(-c) makes that exp(-c dt), the exact
-// solution of dv/dt = -c v over the step.
-btScalar bulletDamping(double c) { return static_cast<btScalar>(-std::expm1(-c)); }
 
 }  // namespace
 
@@ -92,8 +89,7 @@ void BulletBodyPeer::applyEffects() {
     const Effects e = world_.effects();
     const Vec3 g = e.has(Effect::Gravity) ? Vec3(gravityScale_ * world_.settings().gravity) : Vec3(Vec3::Zero());
     body_->setGravity(toBt(g));
-    const bool damping = e.has(Effect::Damping);
-    body_->setDamping(damping ? bulletDamping(linearDamping_) : 0, damping ? bulletDamping(angularDamping_) : 0);
+    body_->setDamping(0, 0);  // the world applies the exact decay: AnyphysDynamicsWorld::predictUnconstraintMotion
     // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
     const int gyro = e.has(Effect::Gyroscopic) && !world_.settings().planar ? gyroscopicFlags(gyroscopic_) : 0;
     body_->setFlags(BT_DISABLE_WORLD_GRAVITY | gyro);

@@ -44,6 +44,8 @@ public:
     bool compound() const { return shapes_->root()->isCompound(); }
     bool moves() const { return type_ != BodyType::Static; }
     bool dynamic() const { return type_ == BodyType::Dynamic; }
+    double linearDamping() const { return linearDamping_; }    // 1/s
+    double angularDamping() const { return angularDamping_; }  // 1/s
     /// Dynamic or kinematic and awake: simulated this step.
     bool activeMover() const { return moves() && body_->isActive(); }
 

@@ -1,8 +1,28 @@
 #include "bullet_dynamics_world.hpp"
 
+#include <cmath>
+
 #include "bullet_body.hpp"
 
 namespace anyphys::bullet {
+
+void AnyphysDynamicsWorld::predictUnconstraintMotion(btScalar timeStep) {
+    // Bullet damps by v *= (1 - d)^h with d clamped to [0, 1]. The d giving exp(-c h),
+    // 1 - exp(-c), rounds to exactly 1 above c = 37 1/s and freezes the body; so Bullet's damping
+    // stays 0 and the exact decay of dv/dt = -c v is applied here, where Bullet would apply its
+    // own: to the velocity at the start of the step, before forces and contacts.
+    if (effects_.has(Effect::Damping))
+        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
+            btRigidBody* body = m_nonStaticRigidBodies[i];
+            if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
+            const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
+            const double h = timeStep;
+            body->setLinearVelocity(body->getLinearVelocity() * static_cast<btScalar>(std::exp(-peer->linearDamping() * h)));
+            body->setAngularVelocity(body->getAngularVelocity() *
+                                     static_cast<btScalar>(std::exp(-peer->angularDamping() * h)));
+        }
+    btDiscreteDynamicsWorld::predictUnconstraintMotion(timeStep);
+}
 
 void AnyphysDynamicsWorld::applyMaterials() {
     if (materials_ == nullptr) return;

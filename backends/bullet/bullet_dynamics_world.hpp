@@ -6,6 +6,7 @@
 //    friction and restitution for its pair of materials (Bullet would multiply the two bodies'
 //    values);
 //  - updateActivationState: sleeping with this world's timeToSleep, or never.
+//  - predictUnconstraintMotion: damping by the exact factor exp(-c h) per Bullet step;
 //  - saveKinematicState: a no-op; Bullet would recompute a kinematic body's velocity from its
 //    last two poses, but anyphys moves kinematic bodies itself at their exact velocity.
 #include <btBulletDynamicsCommon.h>
@@ -39,6 +40,7 @@ protected:
     void solveConstraints(btContactSolverInfo& solverInfo) override;
     void updateActivationState(btScalar timeStep) override;
     void saveKinematicState(btScalar timeStep) override { (void)timeStep; }
+    void predictUnconstraintMotion(btScalar timeStep) override;
 
 private:
     const MaterialTable* materials_ = nullptr;

@@ -1,6 +1,7 @@
 #include "stages.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 
@@ -131,9 +132,9 @@ public:
                 }
                 if (explicitGyro && b.gyroscopic == GyroscopicMode::Explicit)
                     a.angular += gyroscopic::acceleration(s.angularVelocity, s.orientation, b.inertia);
-                if (damping) {
-                    a.linear -= b.linearDamping * s.linearVelocity;
-                    a.angular -= b.angularDamping * s.angularVelocity;
+                if (damping) {  // stiff damping was applied as a factor before the step
+                    if (!stiffDamping(b.linearDamping, step.dt)) a.linear -= b.linearDamping * s.linearVelocity;
+                    if (!stiffDamping(b.angularDamping, step.dt)) a.angular -= b.angularDamping * s.angularVelocity;
                 }
             }
         };
@@ -152,6 +153,7 @@ public:
                       std::span<BodyState>(states_).subspan(offset, static_cast<std::size_t>(end - begin)), accelerations,
                       scratch_[static_cast<std::size_t>(worker)]);
         };
+        if (damping) applyStiffDamping(bodies, step.dt);
         const int count = static_cast<int>(states_.size());
         constexpr int kMinBodiesPerRange = 256;
         if (hook)
@@ -164,6 +166,23 @@ public:
     }
 
 private:
+    // Damping dv/dt = -c v inside an explicit integrator is stable only while c h stays below
+    // about 2 (a body damped at 150 1/s at 60 Hz grows 1.5x per step) and accurate only well
+    // below that. Up to c h = 0.1 it stays in the acceleration, where the integrator keeps its
+    // order (its per-step error is below 0.5 % even for explicit Euler); beyond, the velocity
+    // is scaled by the exact decay exp(-c h) before the step, as the contact solver does: stable
+    // for any c, and exact when damping is the only force.
+    static constexpr double kMaxExplicitDampingStep = 0.1;
+    static bool stiffDamping(double c, double h) { return c * h > kMaxExplicitDampingStep; }
+
+    void applyStiffDamping(const std::vector<NativeBody>& bodies, double h) {
+        for (std::size_t i = 0; i < dynamic_.size(); ++i) {
+            const NativeBody& b = bodies[dynamic_[i]];
+            if (stiffDamping(b.linearDamping, h)) states_[i].linearVelocity *= std::exp(-b.linearDamping * h);
+            if (stiffDamping(b.angularDamping, h)) states_[i].angularVelocity *= std::exp(-b.angularDamping * h);
+        }
+    }
+
     // Copies the dynamic bodies' states into one contiguous array the integrator works on.
     void gather(NativeWorld& world) {
         const auto& bodies = world.bodies();

@@ -100,6 +100,41 @@ TEST_P(DynamicsTest, DampingDecaysExponentially) {
     EXPECT_NEAR(b.linearVelocity().x(), 5.0 * std::exp(-0.8 * 2.0), 1e-8);
 }
 
+// Damping far stiffer than the step, dv/dt = -c v with c h = 0.67 and 2.5 at 60 Hz: an explicit
+// update (v *= 1 - c h) flips the velocity's sign and grows it 1.5x per step at c = 150, and
+// Bullet's own damping (1 - d)^h freezes the body once d = 1 - exp(-c) rounds to 1 (c > 37).
+// The exact decay exp(-c h) per step is stable for any c: v after n steps is v0 exp(-c n h).
+TEST_P(DynamicsTest, StiffDampingDecaysByTheExactFactor) {
+    ANYPHYS_REQUIRE(caps().parameters.count("body.linearDamping") && caps().parameters.count("body.angularDamping"),
+                    "parameters body.linearDamping and body.angularDamping");
+    for (double c : {40.0, 150.0}) {
+        SCOPED_TRACE("damping " + std::to_string(c) + " 1/s");
+        World world(weightless());
+        const double h = world.settings().timeStep;
+        BodyDef def;
+        def.shape = ShapeDef::sphere(0.5);  // isotropic: the spin keeps its axis
+        def.linearVelocity = Vec3(5, 0, 0);
+        def.angularVelocity = Vec3(0, 0, 3);
+        def.linearDamping = c;
+        def.angularDamping = c;
+        Body b = world.createBody(def);
+        for (int n = 1; n <= 3; ++n) {
+            world.step();
+            const double decay = std::exp(-c * n * h);
+            // 1e-5 relative: the factor is exact; float engines round it to about 1e-7 per step.
+            EXPECT_NEAR(b.linearVelocity().x(), 5 * decay, 1e-5 * 5 * decay) << "after " << n << " steps";
+            EXPECT_NEAR(b.angularVelocity().norm(), 3 * decay, 1e-5 * 3 * decay) << "after " << n << " steps";
+        }
+        // Over the three steps it moves between the right and left Riemann sums of the exact
+        // velocity (each step at its end or its start velocity): an engine may damp before or
+        // after moving, but not move further or backwards. 1e-6 relative for float engines.
+        const double f = std::exp(-c * h);
+        const double least = 5 * h * (f + f * f + f * f * f), most = 5 * h * (1 + f + f * f);
+        EXPECT_GE(b.position().x(), least * (1 - 1e-6));
+        EXPECT_LE(b.position().x(), most * (1 + 1e-6));
+    }
+}
+
 // Gravity scale 0.5 halves the fall: y = y0 - (g/2) t^2 / 2 (Verlet: exact for constant a).
 TEST_P(DynamicsTest, GravityScale) {
     ANYPHYS_REQUIRE(caps().parameters.count("body.gravityScale"), "parameter body.gravityScale");
