@@ -1,6 +1,7 @@
 #include "bullet_world.hpp"
 
 #include <algorithm>
+#include <functional>
 
 #include "bullet_convert.hpp"
 
@@ -19,9 +20,25 @@ bool LayerFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphas
     return a->dynamic() || b->dynamic();                               // something must respond
 }
 
+namespace {
+
+std::unique_ptr<btDefaultCollisionConfiguration> makeCollisionConfiguration(const WorldSettings& settings) {
+    auto configuration = std::make_unique<btDefaultCollisionConfiguration>();
+    // Backend option planeMultipoint = 1: a convex shape on a plane gets its whole face of points
+    // at once (Bullet's perturbation, 3 iterations, from fewer than 3 points) instead of one new
+    // point per step. Off by default: measured, it helps a box sliding diagonally down a slope but
+    // makes stacks on the ground and long slides worse (docs/hardcases.md has the figures). Set
+    // before the dispatcher copies the algorithm factories.
+    const auto it = settings.backendOptions.find("planeMultipoint");
+    if (it != settings.backendOptions.end() && it->second != 0.0) configuration->setPlaneConvexMultipointIterations();
+    return configuration;
+}
+
+}  // namespace
+
 BulletWorld::BulletWorld(const WorldSettings& settings)
     : settings_(settings),
-      configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+      configuration_(makeCollisionConfiguration(settings)),
       dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()) {
     const Solver solver = settings.solver.value_or(Solver::ProjectedGaussSeidel);
@@ -235,10 +252,12 @@ void BulletWorld::step(double time, double dt) {
     const double h = dt / substeps;
     const auto bh = static_cast<btScalar>(h);
     for (BulletJointPeer* joint : joints_) joint->beginStep();
+    earlierImpulses_.clear();
     for (int s = 0; s < substeps; ++s) {
         for (BulletBodyPeer* body : forced_) body->pushForces();
         for (BulletJointPeer* joint : joints_) joint->beginSubstep();
         world_->stepSimulation(bh, 1, bh);
+        if (s + 1 < substeps && effects_.has(Effect::Events)) accumulateSubstepImpulses();
         for (BulletJointPeer* joint : joints_) joint->endSubstep(h);
         for (BulletBodyPeer* body : kinematic_) body->advanceKinematic(h);
     }
@@ -251,12 +270,52 @@ bool BulletWorld::hasAwakeBodies() const {
     return !effects_.has(Effect::Contacts) || world_->awakeBodyCount() > 0;
 }
 
+BulletWorld::ObjectPair BulletWorld::pairOf(const btPersistentManifold& manifold) {
+    const btCollisionObject* a = manifold.getBody0();
+    const btCollisionObject* b = manifold.getBody1();
+    return std::less<>()(a, b) ? ObjectPair(a, b) : ObjectPair(b, a);
+}
+
+void BulletWorld::accumulateSubstepImpulses() {
+    const int manifolds = dispatcher_->getNumManifolds();
+    for (int m = 0; m < manifolds; ++m) {
+        const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+        double impulse = 0.0;
+        for (int i = 0; i < manifold->getNumContacts(); ++i) impulse += manifold->getContactPoint(i).getAppliedImpulse();
+        if (impulse > 0.0) earlierImpulses_[pairOf(*manifold)] += impulse;
+    }
+}
+
 void BulletWorld::reportContacts(ContactReport& out) {
     // Compound bodies (one manifold per child pair) and continuous collision's predictive
     // contacts make several manifolds per body pair: merged at the end, only then.
     bool repeats = world_->predictiveManifoldCount() > 0;
     const auto asleep = [](const BulletBodyPeer& body) { return body.moves() && !body.isAwake(); };
     const int manifolds = dispatcher_->getNumManifolds();
+    // With substeps, each pair's impulse of the earlier substeps is shared among its points in
+    // proportion to their last impulses (evenly when those are zero): the pair's total is the
+    // step's, its split among points the last substep's.
+    struct LastSolve {
+        double impulse = 0.0;
+        int points = 0;
+    };
+    std::map<ObjectPair, LastSolve> lastSolve;
+    if (!earlierImpulses_.empty())
+        for (int m = 0; m < manifolds; ++m) {
+            const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+            LastSolve& last = lastSolve[pairOf(*manifold)];
+            for (int i = 0; i < manifold->getNumContacts(); ++i) {
+                last.impulse += manifold->getContactPoint(i).getAppliedImpulse();
+                ++last.points;
+            }
+        }
+    const auto earlierShare = [&](const btPersistentManifold& manifold, const btManifoldPoint& p) {
+        if (earlierImpulses_.empty()) return 0.0;
+        const auto earlier = earlierImpulses_.find(pairOf(manifold));
+        if (earlier == earlierImpulses_.end()) return 0.0;
+        const LastSolve& last = lastSolve[pairOf(manifold)];
+        return last.impulse > 0.0 ? earlier->second * p.getAppliedImpulse() / last.impulse : earlier->second / last.points;
+    };
     for (int m = 0; m < manifolds; ++m) {
         const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
         const int count = manifold->getNumContacts();
@@ -278,7 +337,8 @@ void BulletWorld::reportContacts(ContactReport& out) {
         for (int i = 0; i < count; ++i) {
             const btManifoldPoint& p = manifold->getContactPoint(i);
             const Vec3 point = 0.5 * (fromBt(p.getPositionWorldOnA()) + fromBt(p.getPositionWorldOnB()));
-            out.addPoint({point, -static_cast<double>(p.getDistance()), static_cast<double>(p.getAppliedImpulse())});
+            const double impulse = static_cast<double>(p.getAppliedImpulse()) + earlierShare(*manifold, p);
+            out.addPoint({point, -static_cast<double>(p.getDistance()), impulse});
         }
     }
     out.sleepKnown = true;

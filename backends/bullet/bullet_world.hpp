@@ -3,6 +3,7 @@
 // destroyed in the right order (the world first, then solver, broad phase, dispatcher and
 // configuration), plus what anyphys adds per world: the material table, the layer filter, the
 // effects, user forces and the force hook.
+#include <map>
 #include <memory>
 #include <utility>
 #include <unordered_set>
@@ -68,8 +69,17 @@ public:
     void teleported(BulletBodyPeer& body);
 
 private:
+    /// A pair of collision objects, lower address first (one Bullet pair, however many manifolds).
+    using ObjectPair = std::pair<const btCollisionObject*, const btCollisionObject*>;
+    static ObjectPair pairOf(const btPersistentManifold& manifold);
+    /// Adds each pair's normal impulse of the substep just solved to earlierImpulses_.
+    void accumulateSubstepImpulses();
+
     WorldSettings settings_;
     Effects effects_;
+    // Normal impulse per pair over the step's substeps before the last (events only). Bullet's
+    // points hold the last solve's impulse; reportContacts adds these to report the whole step's.
+    std::map<ObjectPair, double> earlierImpulses_;
     ForceHook forceHook_;
     MaterialTable materials_;
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
