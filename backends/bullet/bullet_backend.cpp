@@ -64,6 +64,7 @@ Backend makeBulletBackend() {
         {"decoupledJoints", "1: each joint's rigid rows are handed to the solver in a basis where they do not interact (solved in one pass), 0: Bullet's rows as they are; default 1"},
         {"jointIterations", "sequential-impulse iterations of joint rows (Bullet does not warm start them); default 10 x settings.iterations"},
         {"linearSlop", "m, overlap the solver leaves uncorrected; default 0"},
+        {"planeMultipoint", "1: a convex shape on a plane gets its whole face of contact points at once (Bullet's perturbation, 3 iterations), 0: one new point per step (Bullet's default); default 0"},
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
     };
     caps.knownDeviations = {
@@ -175,6 +176,58 @@ Backend makeBulletBackend() {
         {"planar.stability.pyramid20.pgs.s1", 125},
         {"planar.stability.pyramid20.pgs.s4", 86},
     };
+    // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
+    // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.
+    caps.knownDeviations.insert({
+        {"hard.stack20.drift",
+         "the 20-box stack's top drifts 37 cm over 10 s with sleeping off (as stack10.top_drift, worse with height)"},
+        {"planar.hard.pyramid100.drift",
+         "the 5050-box planar pyramid collapses (boxes 10 m from where they started within 5 s; as pyramid20.drift)"},
+        {"hard.arch.displacement",
+         "the arch's wedge blocks slip 1.9 cm over 5 s (cause not yet found; the same arch stands within 2.2 mm on native)"},
+        {"planar.hard.arch.displacement",
+         "as hard.arch.displacement, planar: 1.3 cm"},
+        {"hard.heavy_plank.displacement",
+         "the 1 kg boxes under the 100 kg plank give 3.5 cm over 5 s (mass ratio 100 at 1 substep; cause not yet found)"},
+        {"planar.hard.heavy_plank.displacement",
+         "as hard.heavy_plank.displacement, planar: 3.0 cm"},
+        {"hard.spinning_box.displacement",
+         "a box spinning at 100 rad/s on the ground walks 1.8 m within 5 s (one new contact point per step on a plane: the spin turns the manifold's points away faster than they are found)"},
+        {"hard.mixed_pile_mesh.sink",
+         "pieces of the pile fall through the triangle-mesh floor (4.7 m below it within 5 s; cause not yet found)"},
+        {"hard.ragdoll_pile.joint_gap",
+         "joints of a pile of 10 ragdolls open by up to 18.5 cm (as assemblies.ragdoll_gap)"},
+        {"planar.hard.ragdoll_pile.joint_gap",
+         "as hard.ragdoll_pile.joint_gap, planar: 21 cm"},
+        {"slope.kinetic_acceleration.near_threshold.about_x",
+         "as slope.kinetic_acceleration.near_threshold, slope tilted about x: a = 0.21 m/s^2, exact 0.38"},
+        {"slope.kinetic_acceleration.near_threshold.diagonal",
+         "as slope.kinetic_acceleration.near_threshold, slope tilted about (1, 0, 1), sliding at 45 deg to the box's faces: a = 0.13 m/s^2, exact 0.38 (0.37 with planeMultipoint = 1)"},
+        {"slope.kinetic_acceleration.resting_height.diagonal",
+         "on the 35 deg slope tilted about (1, 0, 1) the box rides 1.4 cm low on a corner (one new contact point per step on a plane)"},
+        {"friction.slide_distance",
+         "a box pushed across the ground stops 5 to 6.4 % short (0 deg 0.869 m, 30 deg 0.863, 45 deg 0.896, 135 deg 0.858; exact 0.917): friction per point with one new point per step"},
+        {"friction.slide_direction",
+         "a box pushed across the ground at 30 deg ends 5.8 cm off its line (0 deg: 5.2 cm): the single-point manifold turns it"},
+    });
+    caps.deviationCeilings.insert({
+        {"hard.stack20.drift", 0.6},
+        {"planar.hard.pyramid100.drift", 15},
+        {"hard.arch.displacement", 0.03},
+        {"planar.hard.arch.displacement", 0.025},
+        {"hard.heavy_plank.displacement", 0.06},
+        {"planar.hard.heavy_plank.displacement", 0.05},
+        {"hard.spinning_box.displacement", 3.0},
+        {"hard.mixed_pile_mesh.sink", 20.0},
+        {"hard.ragdoll_pile.joint_gap", 0.3},
+        {"planar.hard.ragdoll_pile.joint_gap", 0.35},
+        {"slope.kinetic_acceleration.near_threshold.about_x", 0.5},
+        {"slope.kinetic_acceleration.near_threshold.diagonal", 0.75},
+        {"slope.kinetic_acceleration.resting_height.diagonal", 0.03},
+        {"slope.kinetic_acceleration.near_threshold", 0.5},
+        {"friction.slide_distance", 0.1},
+        {"friction.slide_direction", 0.1},
+    });
     return backend;
 }
 

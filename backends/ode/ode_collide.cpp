@@ -4,6 +4,7 @@
 // none at all when everything sleeps, each awake geom against the space when few are awake,
 // the whole space otherwise.
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 #include <utility>
 
@@ -19,6 +20,24 @@ namespace {
 // a sleeping 1000-box pile with k boxes awake (instructions per step): the whole space 4.4 M plus
 // 4 k per awake box, per awake geom 45 k each: about even at k = 100.
 constexpr std::size_t kAwakeShareForWholeSpace = 10;  // 1 geom in 10 awake
+
+}  // namespace
+
+namespace {
+
+int dropDegenerateContacts(dContact* contacts, int count) {
+    // ODE's convex-convex test returns NaN normals for faces that touch exactly (blocks of an
+    // arch built flush); one such contact makes the step's quaternions NaN and ODE aborts the
+    // process. A contact without a finite point, unit normal and finite depth is dropped.
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+        const dContactGeom& g = contacts[i].geom;
+        const Vec3 normal = toVec3(g.normal);
+        const bool valid = toVec3(g.pos).allFinite() && std::isfinite(g.depth) && std::abs(normal.norm() - 1.0) < 1e-6;
+        if (valid) contacts[kept++] = contacts[i];
+    }
+    return kept;
+}
 
 }  // namespace
 
@@ -51,7 +70,8 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     }
     // Collide into a stack buffer: most candidate pairs from the broad phase have no points.
     dContact found[kMaxContactsPerPair];
-    const int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
+    int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
+    n = dropDegenerateContacts(found, n);
     if (n <= 0) return;
     if (!trigger) createContactJoints(*a, *b, found, n);  // sensors never collide
     if (!effects_.has(Effect::Events)) return;
@@ -81,10 +101,40 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, dContact*
     const bool events = effects_.has(Effect::Events);
     for (int i = 0; i < count; ++i) {
         contacts[i].surface = surface;
+        if (surface.mode & dContactApprox1) alignFrictionWithSlip(a, b, contacts[i]);
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
         if (events) joints_.push_back(joint);  // its feedback is wired once the pass is done
     }
+}
+
+Vec3 OdeWorld::predictedVelocity(const OdeBody& body, const Vec3& point) const {
+    if (!body.id()) return Vec3::Zero();  // static: no ODE body
+    dVector3 v;
+    dBodyGetPointVel(body.id(), point.x(), point.y(), point.z(), v);
+    Vec3 velocity = toVec3(v);
+    if (body.isDynamic() && effects_.has(Effect::Gravity) && dBodyGetGravityMode(body.id()))
+        velocity += body.gravityScale() * settings_.gravity * odeStep();
+    return velocity;
+}
+
+void OdeWorld::alignFrictionWithSlip(const OdeBody& a, const OdeBody& b, dContact& contact) const {
+    // Approx1 bounds each of its two tangent directions by mu N on its own: a pyramid, not a
+    // cone. With ODE's directions (chosen from the normal alone) a box sliding diagonally feels
+    // up to sqrt(2) mu N and a slope tilted diagonally holds a box it should release. The first
+    // direction along the slip the step would produce (the relative velocity at the point plus
+    // what gravity adds over the step) makes the bound on the slip exactly mu N, in any direction.
+    const Vec3 point = toVec3(contact.geom.pos);
+    const Vec3 normal = toVec3(contact.geom.normal);
+    const Vec3 relative = predictedVelocity(a, point) - predictedVelocity(b, point);
+    const Vec3 slip = relative - normal.dot(relative) * normal;
+    const double speed = slip.norm();
+    if (!(speed > kSlipDirectionSpeed)) return;  // no slip to align with: ODE's directions serve
+    const Vec3 direction = slip / speed;
+    contact.fdir1[0] = direction.x();
+    contact.fdir1[1] = direction.y();
+    contact.fdir1[2] = direction.z();
+    contact.surface.mode |= dContactFDir1;
 }
 
 void OdeWorld::collide() {

@@ -15,6 +15,10 @@ constexpr int kDefaultSubsteps = 1;
 /// (ODE culls box-box manifolds to the most spread-out points).
 constexpr int kMaxContactsPerPair = 4;
 
+// m/s: below this predicted slip a contact keeps ODE's own friction directions (a resting
+// contact's slip is rounding noise, whose direction means nothing).
+constexpr double kSlipDirectionSpeed = 1e-6;
+
 /// Constraint force mixing (contact softness) of resting contacts. ODE's CFM is absolute, not
 /// per unit mass: 1e-5 (ODE's demos, bodies of about 1 kg) lets the layer's 1000 kg boxes sink
 /// centimetres; ODE's double default 1e-10 is so rigid that quickstep jitters and stacks walk.

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "anyphys/containers/scene_catalogue.hpp"
+#include "anyphys/scene_objects.hpp"
 #include "contact_helpers.hpp"
 #include "ode_world.hpp"
 
@@ -30,6 +32,23 @@ BodyDef box(const Vec3& at, const std::string& material = "") {
 /// The backend's world behind a World, reached through the escape hatch (the peer registers
 /// itself as the dWorld's user data).
 ode::OdeWorld& peerOf(World& world) { return *static_cast<ode::OdeWorld*>(dWorldGetData(world.native<dxWorld>())); }
+
+// ODE's convex-convex test returns NaN normals for hull faces that touch exactly; one such
+// contact made the step's quaternions NaN and ODE aborted the whole process
+// ("!bSafeNormalize4Fault"). The hard-case arch is built of flush wedge blocks.
+TEST(OdeBackend, FlushHullFacesNeitherAbortNorPoisonTheState) {
+    const CatalogueScene& arch = catalogueScene("hard_arch");
+    WorldSettings s = arch.scene.settings;
+    s.backend = "ode";
+    World world(s, arch.scene.materials);
+    const SceneObjects objects = createSceneObjects(world, arch.scene);
+    for (int i = 0; i < 60; ++i) world.step();
+    for (const Body& b : objects.bodies) {
+        const bool finiteState = b.position().allFinite() && b.orientation().coeffs().allFinite() &&
+                                 b.linearVelocity().allFinite() && b.angularVelocity().allFinite();
+        EXPECT_TRUE(finiteState) << b.name();
+    }
+}
 
 TEST(OdeBackend, EscapeHatchReturnsEngineObjects) {
     World world(odeSettings());
