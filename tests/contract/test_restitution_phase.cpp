@@ -2,6 +2,8 @@
 // heights puts the impact at every phase of the step, including a ball that arrives inside the
 // engine's contact margin at the start of a step, and one that meets the ground mid-step.
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "contact_helpers.hpp"
 #include "contract_fixture.hpp"
@@ -15,14 +17,34 @@ protected:
         const std::string missing =
             lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
         ANYPHYS_REQUIRE(missing.empty(), missing);
+        reboundSweep(criterion, settings(), 0.037);
+    }
+
+    /// Every solver the backend offers at 1 and (where honoured) 4 substeps, each its own
+    /// criterion `<criterion>.<solver>.s<n>`, on a coarser sweep (0.11 m/s apart: 37 heights).
+    void reboundSweepPerSolver(const std::string& criterion) {
+        const std::string missing =
+            lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
+        ANYPHYS_REQUIRE(missing.empty(), missing);
+        const bool substeps = caps().parameters.contains("settings.substeps");
+        for (Solver solver : caps().solvers)
+            for (int n : substeps ? std::vector<int>{1, 4} : std::vector<int>{1}) {
+                WorldSettings s = settings();
+                s.solver = solver;
+                s.substeps = n;
+                reboundSweep(criterion + "." + std::string(toString(solver)) + ".s" + std::to_string(n), s, 0.11);
+            }
+    }
+
+    void reboundSweep(const std::string& criterion, const WorldSettings& base, double impactStep) {
         constexpr double kE = 0.7, kRadius = 0.25;
         double worst = 0.0, worstRatio = 1.0, worstImpact = 0.0;
         int runs = 0;
         // Impacts from 3 to 7 m/s, 0.037 m/s apart: the fall's last step covers 5 to 12 cm, so
         // 109 heights meet the ground at phases spread over the step.
-        for (double impact = 3.0; impact <= 7.0; impact += 0.037) {
+        for (double impact = 3.0; impact <= 7.0; impact += impactStep) {
             const double h = impact * impact / (2 * kG);
-            WorldSettings s = settings();
+            WorldSettings s = base;
             s.restitutionThreshold = 1.0;  // every impact here bounces
             MaterialLibrary materials;
             materials.add("ball", Material{0.6, kE, 1000.0});
@@ -48,7 +70,7 @@ protected:
             }
             ++runs;
         }
-        report(backend() + " rebound sweep over " + std::to_string(runs) + " drop heights: worst rebound / (e^2 h) at " +
+        report(backend() + " " + criterion + ": rebound sweep over " + std::to_string(runs) + " drop heights: worst rebound / (e^2 h) at " +
                    std::to_string(worstImpact) + " m/s",
                worstRatio);
         expectCriterion(criterion, worst <= 1.0,
@@ -59,6 +81,9 @@ protected:
 };
 
 TEST_P(RestitutionPhaseTest, ReboundHeightHoldsAtEveryImpactPhase) { reboundSweep("restitution.rebound_phase"); }
+TEST_P(RestitutionPhaseTest, ReboundHeightHoldsForEverySolverAndSubstepCount) {
+    reboundSweepPerSolver("restitution.rebound_phase");
+}
 
 ANYPHYS_CONTRACT_SUITE(RestitutionPhaseTest);
 
@@ -68,6 +93,9 @@ protected:
 };
 
 TEST_P(PlanarRestitutionPhaseTest, ReboundHeightHoldsAtEveryImpactPhase) { reboundSweep("planar.restitution.rebound_phase"); }
+TEST_P(PlanarRestitutionPhaseTest, ReboundHeightHoldsForEverySolverAndSubstepCount) {
+    reboundSweepPerSolver("planar.restitution.rebound_phase");
+}
 
 ANYPHYS_CONTRACT_SUITE(PlanarRestitutionPhaseTest);
 
