@@ -12,9 +12,12 @@
 #include <numbers>
 
 #include "anyphys/error.hpp"
+#include "catalogue_parts.hpp"
 
 namespace anyphys {
 namespace {
+
+using namespace catalogue_parts;
 
 /// Rotation by a constant world-frame angular velocity w for time t, applied to q0.
 Quat rotateConstant(const Quat& q0, const Vec3& w, double t) {
@@ -41,14 +44,6 @@ std::function<std::optional<BodyState>(const std::string&, double)> ballisticRef
         s.orientation = rotateConstant(def.orientation, def.angularVelocity, t);
         return s;
     };
-}
-
-BodyDef sphereBody(const std::string& name, double radius, double mass) {
-    BodyDef def;
-    def.name = name;
-    def.shape = ShapeDef::sphere(radius);
-    def.mass = mass;
-    return def;
 }
 
 /// A thin plate whose principal moments are exactly diag(1, 2, 3) kg m^2 (given explicitly; the
@@ -178,120 +173,6 @@ CatalogueScene freeBodies() {
 }
 
 // ---- contact scenes ----------------------------------------------------------------------------
-
-/// Reduces a run to f(initial states, final states, final time); most checks need no more.
-class EndpointProbe : public SceneProbe {
-public:
-    using Measure = std::function<double(const std::vector<BodyState>&, const std::vector<BodyState>&, double)>;
-    explicit EndpointProbe(Measure measure) : measure_(std::move(measure)) {}
-    void observe(double time, const std::vector<BodyState>& states) override {
-        if (first_.empty()) first_ = states;
-        last_ = states;
-        time_ = time;
-    }
-    double value() const override { return first_.empty() ? 0.0 : measure_(first_, last_, time_); }
-
-private:
-    Measure measure_;
-    std::vector<BodyState> first_, last_;
-    double time_ = 0.0;
-};
-
-SceneCheck endpointCheck(SceneCheck check, EndpointProbe::Measure measure) {
-    check.makeProbe = [measure] { return std::make_unique<EndpointProbe>(measure); };
-    return check;
-}
-
-/// The worst of f(initial states, current states, time) over every observation: a stack that
-/// slid apart and came back, or one frozen by sleep before its drift showed, is still caught.
-class WorstOverRunProbe : public SceneProbe {
-public:
-    explicit WorstOverRunProbe(EndpointProbe::Measure measure) : measure_(std::move(measure)) {}
-    void observe(double time, const std::vector<BodyState>& states) override {
-        if (first_.empty()) first_ = states;
-        const double v = measure_(first_, states, time);
-        if (!(v <= worst_)) worst_ = v;  // keeps a NaN (blow-up) visible
-    }
-    double value() const override { return worst_; }
-
-private:
-    EndpointProbe::Measure measure_;
-    std::vector<BodyState> first_;
-    double worst_ = 0.0;
-};
-
-SceneCheck worstOverRunCheck(SceneCheck check, EndpointProbe::Measure measure) {
-    check.makeProbe = [measure] { return std::make_unique<WorstOverRunProbe>(measure); };
-    return check;
-}
-
-/// First rebound of a dropped body, as a fraction of its drop: (apex - rest) / (start - rest),
-/// where `rest` is its height when touching the ground. Exact for restitution e: e^2.
-class ReboundProbe : public SceneProbe {
-public:
-    ReboundProbe(std::size_t body, double restHeight) : body_(body), rest_(restHeight) {}
-    void observe(double, const std::vector<BodyState>& states) override {
-        const BodyState& s = states.at(body_);
-        const double y = s.position.y(), vy = s.linearVelocity.y();
-        if (!start_) start_ = y;
-        if (phase_ == Phase::Falling && vy > 0) phase_ = Phase::Rising;  // the first bounce
-        if (phase_ == Phase::Rising) {
-            if (!(y <= apex_)) apex_ = y;  // keeps a NaN (blow-up) visible
-            if (vy < 0) phase_ = Phase::Done;  // past the apex: later bounces do not count
-        }
-    }
-    double value() const override {
-        if (!start_ || phase_ == Phase::Falling) return 0.0;  // no rebound (yet)
-        return (apex_ - rest_) / (*start_ - rest_);
-    }
-
-private:
-    enum class Phase { Falling, Rising, Done };
-    std::size_t body_;
-    double rest_;
-    std::optional<double> start_;
-    double apex_ = -std::numeric_limits<double>::infinity();
-    Phase phase_ = Phase::Falling;
-};
-
-/// Indices of the dynamic bodies of a scene.
-std::vector<std::size_t> dynamicBodies(const Scene& scene) {
-    std::vector<std::size_t> out;
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-        if (scene.bodies[i].type == BodyType::Dynamic) out.push_back(i);
-    return out;
-}
-
-/// Largest horizontal (x, z) distance any of `bodies` moved from its start: a standing stack
-/// moves ~0 sideways. Vertical settling is left out: resting contacts keep a designed overlap
-/// (settings.linearSlop each), so a tall stack sinks by design without drifting.
-EndpointProbe::Measure maxHorizontalDrift(std::vector<std::size_t> bodies) {
-    return [bodies](const std::vector<BodyState>& first, const std::vector<BodyState>& last, double) {
-        double worst = 0.0;
-        for (std::size_t i : bodies) {
-            const Vec3 moved = last[i].position - first[i].position;
-            const double d = std::hypot(moved.x(), moved.z());
-            if (!(d <= worst)) worst = d;  // keeps a NaN (blow-up) visible
-        }
-        return worst;
-    };
-}
-
-BodyDef groundPlane() {
-    BodyDef ground;
-    ground.name = "ground";
-    ground.type = BodyType::Static;
-    ground.shape = ShapeDef::plane(Vec3(0, 1, 0), 0.0);
-    return ground;
-}
-
-BodyDef unitBox(const std::string& name, const Vec3& position) {
-    BodyDef box;
-    box.name = name;
-    box.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));  // 1 m cube, 1000 kg at the default density
-    box.position = position;
-    return box;
-}
 
 CatalogueScene bouncingBall() {
     constexpr double kRestitution = 0.5, kRadius = 0.5, kStart = 5.0;
@@ -679,6 +560,11 @@ std::vector<CatalogueScene> buildCatalogue() {
     all.push_back(planar(hangingChain()));
     all.push_back(planar(motorSpinUp()));
     all.push_back(planar(sliderSpring()));
+    // Hard cases: the catalogue's own stress scenes, and those built for the purpose.
+    for (CatalogueScene& c : all)
+        if (c.name == "pyramid_20" || c.name == "pyramid_20_planar" || c.name == "chain_40" || c.name == "chain_40_planar")
+            c.hardCase = true;
+    for (CatalogueScene& c : hardCaseScenes()) all.push_back(std::move(c));
     return all;
 }
 

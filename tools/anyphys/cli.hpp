@@ -23,6 +23,7 @@ struct Command {
 Command addBackendsCommand(CLI::App& parent);
 Command addRunCommand(CLI::App& parent);
 Command addCompareCommand(CLI::App& parent);
+Command addHardCasesCommand(CLI::App& parent);
 Command addScenesCommand(CLI::App& parent);
 Command addSceneCommand(CLI::App& parent);
 

@@ -15,7 +15,7 @@ Command addScenesCommand(CLI::App& parent) {
     auto json = std::make_shared<bool>(false);
     CLI::App* app = parent.add_subcommand("scenes", "List the built-in catalogue scenes");
     app->add_flag("--json", *json,
-                  "Print JSON: name, description, duration (s), bodies, hasReference, check, compareByDefault");
+                  "Print JSON: name, description, duration (s), bodies, hasReference, check, compareByDefault, hardCase");
     return {app, [json] {
                 const auto& catalogue = sceneCatalogue();
                 if (*json) {
@@ -32,7 +32,8 @@ Command addScenesCommand(CLI::App& parent) {
                                         {"bodies", c.scene.bodies.size()},
                                         {"hasReference", static_cast<bool>(c.reference)},
                                         {"check", check},
-                                        {"compareByDefault", c.compareByDefault}});
+                                        {"compareByDefault", c.compareByDefault},
+                                        {"hardCase", c.hardCase}});
                     }
                     std::cout << nlohmann::json{{"scenes", list}}.dump(2) << '\n';
                     return 0;
@@ -42,7 +43,7 @@ Command addScenesCommand(CLI::App& parent) {
                 std::printf("%-*s  %8s  %s\n", int(width), "name", "duration", "description");
                 for (const CatalogueScene& c : catalogue)
                     std::printf("%-*s  %7gs  %s%s\n", int(width), c.name.c_str(), c.duration, c.description.c_str(),
-                                c.compareByDefault ? "" : " [compare: only with --scenes]");
+                                c.hardCase ? " [hard case]" : c.compareByDefault ? "" : " [compare: only with --scenes]");
                 return 0;
             }};
 }

@@ -58,9 +58,12 @@ struct CatalogueScene {
     /// Part of `anyphys compare` when no --scenes are given; off for loads too slow to run on
     /// every backend and integrator each time (they stay selectable by name).
     bool compareByDefault = true;
+    /// One of the hard cases (`anyphys hardcases`): a scene that breaks weak solvers, with a
+    /// pass criterion (its check) every backend is measured against, sleeping off.
+    bool hardCase = false;
 };
 
-/// Every built-in scene, in a stable order.
+/// Every built-in scene, in a stable order (the hard cases among them).
 const std::vector<CatalogueScene>& sceneCatalogue();
 /// The named scene; throws anyphys::Error listing the known names otherwise.
 const CatalogueScene& catalogueScene(const std::string& name);
