@@ -16,7 +16,10 @@ def cell(result):
 
 def main(path):
     cases = json.load(open(path))["hardcases"]
-    backends = list(cases[0]["results"].keys()) if cases else []
+    found = list(cases[0]["results"].keys()) if cases else []
+    # The project's usual order (JSON objects come back sorted by name), then any other.
+    preferred = ["native", "ode", "bullet", "box2d"]
+    backends = [b for b in preferred if b in found] + [b for b in found if b not in preferred]
     print("| hard case | measure (bound) | " + " | ".join(backends) + " |")
     print("|---|---|" + "---|" * len(backends))
     for c in cases:

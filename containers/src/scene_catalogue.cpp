@@ -285,7 +285,7 @@ CatalogueScene pyramid20() {
         }
     }
     c.check = worstOverRunCheck(
-        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways at any time (a tenth of a box): the pyramid stands as built", {},
+        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways at any time (a twentieth of a box): the pyramid stands as built", {},
                    "pyramid20.drift"},
         maxHorizontalDrift(dynamicBodies(c.scene)));
     return c;
