@@ -83,10 +83,9 @@ Backend makeBulletBackend() {
          "the 10-box stack's top drifts 6.5 cm sideways over 10 s with sleeping off (1 substep, pgs, 30 iterations; the earlier 3.25 cm was read after the stack fell asleep); 5 mm at 4 substeps"},
         {"slope.kinetic_acceleration.near_threshold",
          "2 deg past the friction angle the box slides too slowly (a = 0.21 m/s^2, exact 0.38; at 35 "
-         "deg 1.65 against 1.61 passes): two friction directions per point bound friction by a square, up "
-         "to sqrt(2) mu once the box slows and the sliding direction is lost; with frictionDirections "
-         "= 1 it slides at 0.66 m/s^2 instead (contact points re-created as the box slides); no setting "
-         "found that meets 5 %"},
+         "deg 1.65 against 1.61 passes). Not the friction square (the box slides along a face "
+         "normal, where the square and the circle agree); planeMultipoint = 1 gives 0.28, "
+         "frictionDirections = 1 0.66 (too fast); cause not yet found"},
         // Joints and assemblies, measured by their contract at the defaults (one 1/60 s step).
         {"joints.pendulum_energy",
          "a 0.3 rad pendulum loses 6.2 % of its swing energy in 20 periods at one 1/60 s step: Bullet's Baumgarte position correction on joint rows drains the swing; 4 substeps keep it under 1.2 %"},
@@ -192,9 +191,9 @@ Backend makeBulletBackend() {
         {"planar.hard.heavy_plank.displacement",
          "as hard.heavy_plank.displacement, planar: 3.0 cm"},
         {"hard.spinning_box.displacement",
-         "a box spinning at 100 rad/s on the ground walks 1.8 m within 5 s (one new contact point per step on a plane: the spin turns the manifold's points away faster than they are found)"},
+         "a box spinning at 100 rad/s (1.7 rad per step) on the ground is thrown about: its centre rises to 1.2 m and ends 1.3 m away within 5 s; planeMultipoint = 1 and frictionDirections = 1 do not cure it (cause not yet found)"},
         {"hard.mixed_pile_mesh.sink",
-         "pieces of the pile fall through the triangle-mesh floor (4.7 m below it within 5 s; cause not yet found)"},
+         "pieces of the pile sink up to 6 cm into the triangle-mesh floor (convex shapes against triangles; cause not yet found)"},
         {"hard.ragdoll_pile.joint_gap",
          "joints of a pile of 10 ragdolls open by up to 18.5 cm (as assemblies.ragdoll_gap)"},
         {"planar.hard.ragdoll_pile.joint_gap",
@@ -204,11 +203,11 @@ Backend makeBulletBackend() {
         {"slope.kinetic_acceleration.near_threshold.diagonal",
          "as slope.kinetic_acceleration.near_threshold, slope tilted about (1, 0, 1), sliding at 45 deg to the box's faces: a = 0.13 m/s^2, exact 0.38 (0.37 with planeMultipoint = 1)"},
         {"slope.kinetic_acceleration.resting_height.diagonal",
-         "on the 35 deg slope tilted about (1, 0, 1) the box rides 1.4 cm low on a corner (one new contact point per step on a plane)"},
+         "on the 35 deg slope tilted about (1, 0, 1) the box rides 1.4 cm low, on a corner or an edge"},
         {"friction.slide_distance",
-         "a box pushed across the ground stops 5 to 6.4 % short (0 deg 0.869 m, 30 deg 0.863, 45 deg 0.896, 135 deg 0.858; exact 0.917): friction per point with one new point per step"},
+         "a box pushed across the ground stops 5 to 6.4 % short (0 deg 0.869 m, 30 deg 0.863, 45 deg 0.896, 135 deg 0.858; exact 0.917), cause not yet found (planeMultipoint = 1: 0.857 to 0.891 m)"},
         {"friction.slide_direction",
-         "a box pushed across the ground at 30 deg ends 5.8 cm off its line (0 deg: 5.2 cm): the single-point manifold turns it"},
+         "a box pushed across the ground at 30 deg ends 5.8 cm off its line (0 deg: 5.2 cm), cause not yet found"},
     });
     caps.deviationCeilings.insert({
         {"hard.stack20.drift", 0.6},
@@ -218,7 +217,7 @@ Backend makeBulletBackend() {
         {"hard.heavy_plank.displacement", 0.06},
         {"planar.hard.heavy_plank.displacement", 0.05},
         {"hard.spinning_box.displacement", 3.0},
-        {"hard.mixed_pile_mesh.sink", 20.0},
+        {"hard.mixed_pile_mesh.sink", 0.1},
         {"hard.ragdoll_pile.joint_gap", 0.3},
         {"planar.hard.ragdoll_pile.joint_gap", 0.35},
         {"slope.kinetic_acceleration.near_threshold.about_x", 0.5},
