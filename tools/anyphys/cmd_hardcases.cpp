@@ -2,9 +2,13 @@
 // overlap, far from the origin, fast bodies, ragdoll piles...) on every backend, sleeping off,
 // as a matrix of case x backend: the measured figure against the case's bound, and whether it
 // passes, misses (FAIL), or misses as the backend declares (known, within its ceiling).
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
