@@ -131,6 +131,17 @@ Backend makeBox2dBackend() {
          "joints of a planar pile of 10 ragdolls open by up to 87 cm at the defaults (as planar.assemblies.ragdoll_gap)"},
     });
     caps.deviationCeilings.insert({
+        // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
+        // that tear five times over, as their figure depends on the step the tear starts at.
+        {"planar.joints.chain_gap", 56.8},  // torn: 5x, the figure depends on when it tore
+        {"planar.joints.chain_gap_heavy", 69.3},  // torn: 5x, the figure depends on when it tore
+        {"planar.joints.double_pendulum_energy_fast", 0.254},
+        {"planar.joints.hinge_limit", 12.7},  // in multiples of its bounds
+        {"planar.joints.pendulum_energy", 0.394},
+        {"planar.joints.wheel_travel", 0.229},
+        {"planar.joints.wide_pendulum_energy", 1.68},
+        {"planar.joints.wide_pendulum_period", 0.198},
+        {"planar.assemblies.ragdoll_gap", 0.744},
         {"planar.hard.pyramid100.drift", 2.5},
         {"planar.hard.heavy_plank.displacement", 0.04},
         {"planar.hard.ragdoll_pile.joint_gap", 1.5},

@@ -210,6 +210,31 @@ Backend makeBulletBackend() {
          "a box pushed across the ground at 30 deg ends 5.8 cm off its line (0 deg: 5.2 cm), cause not yet found"},
     });
     caps.deviationCeilings.insert({
+        // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
+        // that tear five times over, as their figure depends on the step the tear starts at.
+        {"joints.chain_gap", 39.6},  // torn: 5x, the figure depends on when it tore
+        {"joints.chain_gap.direct", 43.5},  // torn: 5x, the figure depends on when it tore
+        {"joints.chain_gap_heavy", 78},  // torn: 5x, the figure depends on when it tore
+        {"joints.chain_gap_heavy.direct", 63.3},  // torn: 5x, the figure depends on when it tore
+        {"joints.conical_pendulum", 4.03},
+        {"joints.distance_rod", 0.0255},
+        {"joints.double_pendulum_energy_fast", 0.173},
+        {"joints.pendulum_energy", 0.123},
+        {"joints.wide_pendulum_energy", 0.951},
+        {"joints.wide_pendulum_period", 0.0897},
+        {"planar.joints.chain_gap", 49.1},  // torn: 5x, the figure depends on when it tore
+        {"planar.joints.chain_gap.direct", 48.1},  // torn: 5x, the figure depends on when it tore
+        {"planar.joints.chain_gap_heavy", 73.6},  // torn: 5x, the figure depends on when it tore
+        {"planar.joints.chain_gap_heavy.direct", 70},  // torn: 5x, the figure depends on when it tore
+        {"planar.joints.distance_rod", 0.0255},
+        {"planar.joints.double_pendulum_energy_fast", 0.173},
+        {"planar.joints.pendulum_energy", 0.123},
+        {"planar.joints.wide_pendulum_energy", 0.951},
+        {"planar.joints.wide_pendulum_period", 0.0897},
+        {"assemblies.ragdoll_gap", 0.328},
+        {"assemblies.ragdoll_rest", 0.292},
+        {"planar.assemblies.ragdoll_gap", 0.162},
+        {"planar.assemblies.ragdoll_rest", 0.431},
         {"hard.stack20.drift", 0.6},
         {"planar.hard.pyramid100.drift", 15},
         {"hard.arch.displacement", 0.03},

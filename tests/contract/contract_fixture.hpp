@@ -53,7 +53,7 @@ protected:
                           << " a known deviation, but it now passes (" << measured << "): update its capabilities";
         } else {
             std::cout << "[ KNOWN    ] backend " << backend() << " misses " << id << ": " << measured << " ("
-                      << it->second << ")"
+                      << it->second << ")" << (value ? " [measure " + std::to_string(*value) + "]" : "")
                       << (ceiling != c.deviationCeilings.end() ? " [ceiling " + std::to_string(ceiling->second) + "]" : "")
                       << "\n";
             ::testing::Test::RecordProperty("known_deviation_" + id, measured);

@@ -148,10 +148,10 @@ protected:
         // 5 cm: soft joints stretch for a moment when a 70 kg body lands on another from 4 m
         // (native: 3.1 cm, planar 2.4 cm); a torn limb is metres.
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_gap" : "assemblies.ragdoll_gap", worstGap < 0.05,
-                        "worst joint gap " + std::to_string(worstGap) + " m");
+                        "worst joint gap " + std::to_string(worstGap) + " m", worstGap);
         // At rest after 10 s: 0.1 m/s, well below a limb still falling (1 m/s after 0.1 s).
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_rest" : "assemblies.ragdoll_rest", fastest < 0.1,
-                        "fastest body " + std::to_string(fastest) + " m/s after 10 s");
+                        "fastest body " + std::to_string(fastest) + " m/s after 10 s", fastest);
         EXPECT_GT(lowest, -0.2);  // nothing fell through the ground
         // Hinge limits (elbows, knees; every planar joint) held within 3 degrees: a soft limit
         // gives a little under a 70 kg landing; a broken one lets a knee bend the wrong way.

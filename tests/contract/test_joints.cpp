@@ -139,11 +139,12 @@ protected:
             const std::string energyText = where + "energy change " + std::to_string(100.0 * s.energyDrift) + " % of the swing";
             if (amplitude < 1.0) {
                 EXPECT_TRUE(periodOk) << where << "period " << s.period << " s, exact " << exact;
-                expectCriterion(criterion("joints.pendulum_energy"), energyOk, energyText);
+                expectCriterion(criterion("joints.pendulum_energy"), energyOk, energyText, std::abs(s.energyDrift));
             } else {
                 expectCriterion(criterion("joints.wide_pendulum_period"), periodOk,
-                                where + "period " + std::to_string(s.period) + " s, exact " + std::to_string(exact));
-                expectCriterion(criterion("joints.wide_pendulum_energy"), energyOk, energyText);
+                                where + "period " + std::to_string(s.period) + " s, exact " + std::to_string(exact),
+                                std::abs(s.period - exact) / exact);
+                expectCriterion(criterion("joints.wide_pendulum_energy"), energyOk, energyText, std::abs(s.energyDrift));
             }
             EXPECT_TRUE(joint.isValid());
         }
@@ -265,7 +266,10 @@ protected:
         const bool held = lowest > -0.55 && std::abs(joint.position() + 0.5) < 0.02 && std::abs(joint.speed()) < 0.05;
         expectCriterion(criterion("joints.hinge_limit"), held,
                         "deepest " + std::to_string(lowest) + " rad, rests at " + std::to_string(joint.position()) +
-                            " rad, speed " + std::to_string(joint.speed()) + " rad/s");
+                            " rad, speed " + std::to_string(joint.speed()) + " rad/s",
+                        // in multiples of its bounds: overshoot 0.05 rad, rest 0.02 rad, speed 0.05 rad/s
+                        std::max({(-0.5 - lowest) / 0.05, std::abs(joint.position() + 0.5) / 0.02,
+                                  std::abs(joint.speed()) / 0.05}));
     }
 
     void DistanceRodAndRopeCase() {
@@ -286,7 +290,8 @@ protected:
             }
             std::cout << "[ MEASURED ] " << backend() << " distance rod: worst length error " << worst * 1e3 << " mm\n";
             // 1 cm: the swing's tension sags a soft rod by millimetres.
-        expectCriterion(criterion("joints.distance_rod"), worst < 0.01, "worst length error " + std::to_string(worst) + " m");
+        expectCriterion(criterion("joints.distance_rod"), worst < 0.01, "worst length error " + std::to_string(worst) + " m",
+                        worst);
             EXPECT_NEAR(rod.position(), bob.position().norm() - 1.0, 1e-6);
         }
         ANYPHYS_REQUIRE(hasParameter("joint.distance.maxLength"), "joint.distance.maxLength");
@@ -343,12 +348,14 @@ protected:
             expectCriterion(criterion(sign > 0 ? "joints.double_pendulum_energy_slow" : "joints.double_pendulum_energy_fast"),
                             s.energyDrift <= 0.05,
                             std::string(sign > 0 ? "slow" : "fast") + " mode: energy change " +
-                                std::to_string(100.0 * s.energyDrift) + " % of the swing");
+                                std::to_string(100.0 * s.energyDrift) + " % of the swing",
+                            std::abs(s.energyDrift));
             // 1 %: the modes' small-amplitude form is exact to theta^2 / 16 ~ 2e-4 here; a joint that
             // stretched or coupled the modes wrongly would shift the period by more.
             expectCriterion(criterion(sign > 0 ? "joints.double_pendulum_slow" : "joints.double_pendulum_fast"),
                         std::abs(s.period - exact) <= 0.01 * exact,
-                        "period " + std::to_string(s.period) + " s, exact " + std::to_string(exact));
+                        "period " + std::to_string(s.period) + " s, exact " + std::to_string(exact),
+                        std::abs(s.period - exact) / exact);
         }
     }
 
@@ -459,7 +466,8 @@ protected:
         // 5 % of the 0.196 m swing and of the period: an undamped spring through a joint at 60 Hz
         // ((omega dt)^2 = 0.028) keeps both to about 1 %.
         expectCriterion(criterion("joints.wheel_travel"), std::abs(lowest + 2.0 * sag) <= 0.05 * 2.0 * sag,
-                        "lowest " + std::to_string(lowest) + " m, exact " + std::to_string(-2.0 * sag));
+                        "lowest " + std::to_string(lowest) + " m, exact " + std::to_string(-2.0 * sag),
+                        std::abs(lowest + 2.0 * sag) / (2.0 * sag));
         EXPECT_NEAR(period, 2.0 * kPi / omega, 0.05 * 2.0 * kPi / omega);
         // The drive: I = 0.4 m r^2 = 0.072 kg m^2 reaches 10 rad/s in 0.14 s at 5 N m.
         EXPECT_NEAR(joint.speed(), 10.0, 0.1);
@@ -546,7 +554,7 @@ protected:
             const bool defaultSolver = solver == caps().defaultSolver;
             const std::string id = std::string(endRatio > 10.0 ? "joints.chain_gap_heavy" : "joints.chain_gap") +
                                    (defaultSolver ? "" : "." + std::string(toString(solver)));
-            expectCriterion(criterion(id), worst < (defaultSolver && endRatio <= 10.0 ? 0.1 : 0.2), measured);
+            expectCriterion(criterion(id), worst < (defaultSolver && endRatio <= 10.0 ? 0.1 : 0.2), measured, worst);
         }
     }
 
@@ -675,7 +683,8 @@ TEST_P(JointTest, ConicalPendulumKeepsItsCone) {
     // 0.02 rad of cone angle (1 deg) and 0.1 rad of phase after 34 turns (0.05 %): a first-order
     // step keeps a circular orbit to that; a drifting or damping joint would open or close it.
     expectCriterion(criterion("joints.conical_pendulum"), worstAngle < 0.02 && phaseError < 0.1,
-                    "cone angle error " + std::to_string(worstAngle) + " rad, phase error " + std::to_string(phaseError) + " rad");
+                    "cone angle error " + std::to_string(worstAngle) + " rad, phase error " + std::to_string(phaseError) + " rad",
+                    std::max(worstAngle / 0.02, phaseError / 0.1));  // in multiples of the bound
 }
 
 // A double pendulum (two 1 kg bobs, 1 m arms, hinges about Z) started in each small-amplitude
