@@ -7,6 +7,8 @@
 //    values);
 //  - updateActivationState: sleeping with this world's timeToSleep, or never.
 //  - predictUnconstraintMotion: damping by the exact factor exp(-c h) per Bullet step;
+//  - performDiscreteCollisionDetection: stale convex-plane points dropped before the narrow
+//    phase, so a sliding box keeps its face of points;
 //  - saveKinematicState: a no-op; Bullet would recompute a kinematic body's velocity from its
 //    last two poses, but anyphys moves kinematic bodies itself at their exact velocity.
 #include <btBulletDynamicsCommon.h>
@@ -26,6 +28,8 @@ public:
     void setEffects(Effects effects) { effects_ = effects; }
     void setTimeToSleep(double seconds) { timeToSleep_ = static_cast<btScalar>(seconds); }
     void setRestitutionThreshold(double speed) { restitutionThreshold_ = static_cast<btScalar>(speed); }
+    /// Drop stale points of convex-plane manifolds before the narrow phase (with planeMultipoint).
+    void setRefreshPlaneManifoldsFirst(bool on) { refreshPlaneManifoldsFirst_ = on; }
 
     /// Writes the table's friction and restitution into every contact point (also called by
     /// tests to check the table reaches the points).
@@ -41,6 +45,7 @@ protected:
     void updateActivationState(btScalar timeStep) override;
     void saveKinematicState(btScalar timeStep) override { (void)timeStep; }
     void predictUnconstraintMotion(btScalar timeStep) override;
+    void performDiscreteCollisionDetection() override;
 
 private:
     const MaterialTable* materials_ = nullptr;
@@ -49,6 +54,7 @@ private:
     btScalar restitutionThreshold_ = 1.0f;
     btScalar timeStep_ = 1.0f / 60.0f;  // of the step being solved
     int awakeBodies_ = 0;
+    bool refreshPlaneManifoldsFirst_ = false;
 };
 
 }  // namespace anyphys::bullet
