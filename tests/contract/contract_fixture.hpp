@@ -66,6 +66,27 @@ protected:
         s.planar = planarTest();
         return s;
     }
+
+    /// `base` once per solver the backend offers, at 1 and (where the backend honours substeps)
+    /// 4 substeps: the settings a contract criterion is checked under when it must hold for every
+    /// solver and substep count. `variantName` gives each one's criterion suffix.
+    std::vector<WorldSettings> everySolverAndSubstepCount(const WorldSettings& base) const {
+        const bool substeps = caps().parameters.contains("settings.substeps");
+        std::vector<WorldSettings> out;
+        for (Solver solver : caps().solvers)
+            for (int n : substeps ? std::vector<int>{1, 4} : std::vector<int>{1}) {
+                WorldSettings s = base;
+                s.solver = solver;
+                s.substeps = n;
+                out.push_back(s);
+            }
+        return out;
+    }
+
+    /// "<solver>.s<substeps>", e.g. "pgs.s4", for settings from `everySolverAndSubstepCount`.
+    static std::string variantName(const WorldSettings& s) {
+        return std::string(toString(s.solver.value())) + ".s" + std::to_string(s.substeps.value());
+    }
 };
 
 inline std::string backendTestName(const ::testing::TestParamInfo<std::string>& info) { return info.param; }

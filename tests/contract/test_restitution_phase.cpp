@@ -26,14 +26,8 @@ protected:
         const std::string missing =
             lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
         ANYPHYS_REQUIRE(missing.empty(), missing);
-        const bool substeps = caps().parameters.contains("settings.substeps");
-        for (Solver solver : caps().solvers)
-            for (int n : substeps ? std::vector<int>{1, 4} : std::vector<int>{1}) {
-                WorldSettings s = settings();
-                s.solver = solver;
-                s.substeps = n;
-                reboundSweep(criterion + "." + std::string(toString(solver)) + ".s" + std::to_string(n), s, 0.11);
-            }
+        for (const WorldSettings& s : everySolverAndSubstepCount(settings()))
+            reboundSweep(criterion + "." + variantName(s), s, 0.11);
     }
 
     void reboundSweep(const std::string& criterion, const WorldSettings& base, double impactStep) {

@@ -87,10 +87,6 @@ protected:
         return out;
     }
 
-    static std::string variantName(const WorldSettings& s) {
-        return std::string(toString(*s.solver)) + ".s" + std::to_string(*s.substeps);
-    }
-
     // drift: the sideways bound; contacts: how many resting contacts are below the top box (it
     // may sink by their allowed overlap, linearSlop each, and no more).
     void expectStandsOverRun(const std::string& scene, const std::string& id, double seconds, double driftBound,
