@@ -123,11 +123,28 @@ std::unique_ptr<World> pileWorld(int workers, bool sleeping) {
 }
 
 TEST(NativeAllocations, SteadyStepAllocatesNothing) {
-    for (int workers : {1, 2}) {
-        auto world = pileWorld(workers, false);
+    {
+        auto world = pileWorld(1, false);
         allocationsDuring(*world, 240);  // settle: contacts and arrays reach their steady sizes
-        EXPECT_EQ(allocationsDuring(*world, 60), 0) << workers << " worker(s)";
+        EXPECT_EQ(allocationsDuring(*world, 60), 0) << "1 worker";
     }
+    // With two workers, ranges go to whichever thread is free, and the collision routines'
+    // per-thread scratch (grow-only, collision/scratch.hpp) grows the first time a thread meets a
+    // shape pair, which a loaded machine may delay past any settling time. That growth happens
+    // a bounded number of times; an allocation every step would show in every window. So: one of
+    // five 60-step windows after settling must allocate nothing.
+    auto world = pileWorld(2, false);
+    allocationsDuring(*world, 240);
+    long windows[5] = {};
+    bool quiet = false;
+    for (long& allocated : windows) {
+        allocated = allocationsDuring(*world, 60);
+        if (allocated == 0) {
+            quiet = true;
+            break;
+        }
+    }
+    EXPECT_TRUE(quiet) << "2 workers: every 60-step window allocated (first " << windows[0] << ", last " << windows[4] << ")";
 }
 
 TEST(NativeAllocations, SleepingPileAllocatesNothing) {
