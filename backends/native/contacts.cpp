@@ -53,11 +53,18 @@ void warmStartFrom(const std::vector<ContactManifold>& old, ContactManifold& fre
     }
 }
 
-// Planar fast path: the points of a box face come in pairs at z = +h and -h with the same x and
-// y. In a planar world they act as one constraint (no body can tilt about X or Y), and solving
-// both doubles the stiffness and the cost. One point per (x, y) is kept, at z = 0, the deeper
-// one's separation and the lower feature id (so warm starting matches step to step).
-void mergePlanarPoints(Manifold& m, double tolerance) {
+// In a planar world a manifold acts in the XY plane:
+//  - Its normal is put in the plane. A hull-hull normal can carry a rounding-level z (1e-17);
+//    then the friction's second tangent, meant to be the locked Z, has a sliver of in-plane mass,
+//    the 2x2 tangent mass inverts to huge entries, and the impulse along Z (which moves nothing)
+//    fills the friction cone, leaving none along the plane: a planar stone arch slid apart.
+//  - The points of a face come in pairs at z = +h and -h with the same x and y; they act as one
+//    constraint (no body can tilt about X or Y), and solving both doubles the stiffness and the
+//    cost. One point per (x, y) is kept, at z = 0, the deeper one's separation and the lower
+//    feature id (so warm starting matches step to step).
+void flattenPlanarManifold(Manifold& m, double tolerance) {
+    m.normal.z() = 0.0;
+    m.normal.normalize();
     int kept = 0;
     for (int i = 0; i < m.pointCount; ++i) {
         ManifoldPoint p = m.points[i];
@@ -169,7 +176,7 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
     }
     collide(sa, xfA, sb, xfB, margin, scratch.found, &c.collideCache);
     if (planar)
-        for (Manifold& m : scratch.found) mergePlanarPoints(m, 0.1 * linearSlop);
+        for (Manifold& m : scratch.found) flattenPlanarManifold(m, 0.1 * linearSlop);
     // The new manifolds replace the old in place (no allocation once the capacity is there);
     // the old ones are kept aside for warm starting.
     scratch.previous.assign(c.manifolds.begin(), c.manifolds.end());

@@ -92,15 +92,12 @@ Backend makeNativeBackend() {
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.
     caps.knownDeviations.insert({
-        {"planar.hard.arch.displacement",
-         "the planar arch collapses (2.2 m) where the 3D one stands within 2.2 mm: planar hull-hull contact (cause not yet found)"},
         {"hard.overlap25.speed",
          "each overlap is pushed apart at up to settings.contactPushMaxVelocity (3 m/s); the upper box, pushed off the lower one while that rises off the ground, reaches 3.4 m/s"},
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 3.2 m/s"},
     });
     caps.deviationCeilings.insert({
-        {"planar.hard.arch.displacement", 4.0},
         {"hard.overlap25.speed", 4.5},
         {"planar.hard.overlap25.speed", 4.5},
     });

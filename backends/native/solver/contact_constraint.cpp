@@ -38,18 +38,22 @@ Vec3 perpendicular(const Vec3& n) {
 double bounceVelocity(double e, double vn, double an, double offset) { return -e * (vn - an * offset) + an * offset; }
 
 // Inverse of a symmetric 2x2 matrix; a direction with no mass (a planar body's Z) gets none.
+// "No mass" is relative: a direction a billion times lighter than the other is rounding noise,
+// and inverting it would give huge entries and a huge impulse along it.
 void invertTangentMass(double k11, double k12, double k22, double out[3]) {
+    const double scale = std::max(k11, k22);
+    const bool has1 = k11 > 1e-9 * scale, has2 = k22 > 1e-9 * scale;
     const double det = k11 * k22 - k12 * k12;
-    if (det > 1e-12 * k11 * k22 && det > 0.0) {
+    if (has1 && has2 && det > 1e-12 * k11 * k22) {
         const double inv = 1.0 / det;
         out[0] = inv * k22;
         out[1] = -inv * k12;
         out[2] = inv * k11;
         return;
     }
-    out[0] = k11 > 0.0 ? 1.0 / k11 : 0.0;
+    out[0] = has1 ? 1.0 / k11 : 0.0;
     out[1] = 0.0;
-    out[2] = k22 > 0.0 ? 1.0 / k22 : 0.0;
+    out[2] = has2 ? 1.0 / k22 : 0.0;
 }
 
 void setLane(Vec3W& to, int lane, const Vec3& v) {
