@@ -182,7 +182,7 @@ Backend makeBulletBackend() {
         {"planar.hard.arch.displacement",
          "as hard.arch.displacement, planar: 1.3 cm"},
         {"hard.heavy_plank.displacement",
-         "the 1 kg boxes under the 100 kg plank give 3.0 cm over 5 s (mass ratio 100 at 1 substep; cause not yet found)"},
+         "the 1 kg boxes under the 100 kg plank give 3.0 cm over 5 s: at a mass ratio of 100 the 30 sequential-impulse iterations do not converge. Verified: 300 iterations leave 1.0 mm, the direct (MLCP) solver 5.4 mm"},
         {"planar.hard.heavy_plank.displacement",
          "as hard.heavy_plank.displacement, planar: 5.0 cm"},
         {"hard.mixed_pile_mesh.sink",
