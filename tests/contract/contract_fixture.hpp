@@ -23,11 +23,19 @@ protected:
     /// Contract tests build 3D worlds unless their fixture says planar: a planar-only (2D)
     /// backend skips them, visibly, by its dimensions capability.
     virtual bool planarTest() const { return false; }
+    /// A suite whose cases need no third dimension (bad input, queries, sleeping, materials)
+    /// says so: on a backend without 3D worlds it then runs in a planar world, not skipped.
+    virtual bool runsPlanarWithout3D() const { return false; }
+    /// Whether this test's worlds are planar: a planar suite, or a suite that needs no third
+    /// dimension on a backend that has none.
+    bool planarWorld() const { return planarTest() || (runsPlanarWithout3D() && caps().dimensions < 3); }
 
     void SetUp() override {
-        if (!planarTest() && caps().dimensions < 3)
+        if (!planarWorld() && caps().dimensions < 3)
             GTEST_SKIP() << "backend " << backend() << " lacks 3D worlds (dimensions " << caps().dimensions << ")";
-        if (planarTest() && !caps().planar) GTEST_SKIP() << "backend " << backend() << " lacks planar worlds";
+        if (planarWorld() && !caps().planar) GTEST_SKIP() << "backend " << backend() << " lacks planar worlds";
+        if (planarWorld() && !planarTest())
+            std::cout << "[ PLANAR   ] backend " << backend() << " has no 3D worlds: this suite runs in a planar world\n";
     }
 
     const std::string& backend() const { return GetParam(); }
@@ -63,7 +71,7 @@ protected:
     WorldSettings settings() const {
         WorldSettings s;
         s.backend = backend();
-        s.planar = planarTest();
+        s.planar = planarWorld();
         return s;
     }
 

@@ -12,7 +12,10 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-class BadInputTest : public ContractTest {};
+class BadInputTest : public ContractTest {
+protected:
+    bool runsPlanarWithout3D() const override { return true; }
+};
 
 // Runs `call`, expects an Error whose message contains every fragment.
 template <class F>

@@ -9,7 +9,10 @@
 namespace anyphys::test {
 namespace {
 
-class MaterialsTest : public ContractTest {};
+class MaterialsTest : public ContractTest {
+protected:
+    bool runsPlanarWithout3D() const override { return true; }
+};
 
 constexpr double kV0 = 5.0;  // m/s
 

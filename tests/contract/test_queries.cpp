@@ -13,6 +13,7 @@ constexpr double kExact = 1e-6;  // m: closed-form ray / box intersections, only
 
 class QueriesTest : public ContractTest {
 protected:
+    bool runsPlanarWithout3D() const override { return true; }
     // Ground y = 0 and three static unit boxes centred at x = 2, 4, 6 (y = 0.5); box "b2" is on
     // layer 2, the others on layer 1; a sensor box at x = 1 that queries must ignore.
     void build(World& world) {
@@ -89,11 +90,11 @@ TEST_P(QueriesTest, OverlapFindsTheBodiesAShapeTouches) {
     World world(settings());
     build(world);
     using Names = std::vector<std::string>;
-    // A sphere beside b1 reaching 0.1 m into it, clear of the ground (its bottom at y = 0.4).
-    EXPECT_EQ(names(world.overlap(ShapeDef::sphere(0.6), Transform{Vec3(2, 1.0, 1.0), Quat::Identity()})),
-              Names{"b1"});
+    // A sphere beside b1 (above it in a planar world) reaching 0.1 m into it, clear of the ground.
+    const Vec3 beside = planarWorld() ? Vec3(2, 1.5, 0) : Vec3(2, 1.0, 1.0);
+    EXPECT_EQ(names(world.overlap(ShapeDef::sphere(0.6), Transform{beside, Quat::Identity()})), Names{"b1"});
     // A sphere 0.1 m short of b1 touches nothing.
-    EXPECT_TRUE(world.overlap(ShapeDef::sphere(0.4), Transform{Vec3(2, 1.0, 1.0), Quat::Identity()}).empty());
+    EXPECT_TRUE(world.overlap(ShapeDef::sphere(0.4), Transform{beside, Quat::Identity()}).empty());
     // A long box along the row covers b1..b3 and dips into the ground; the sensor is skipped.
     EXPECT_EQ(names(world.overlap(ShapeDef::box(Vec3(4, 0.5, 0.5)), Transform{Vec3(4, 0.4, 0), Quat::Identity()})),
               (Names{"b1", "b2", "b3", "ground"}));
@@ -101,11 +102,15 @@ TEST_P(QueriesTest, OverlapFindsTheBodiesAShapeTouches) {
     EXPECT_EQ(names(world.overlap(ShapeDef::box(Vec3(4, 0.5, 0.5)), Transform{Vec3(4, 0.6, 0), Quat::Identity()}, 2u)),
               Names{"b2"});
     // The pose's rotation counts: a box centred at x = 0.85 reaches x = 1.35, short of b1's face at
-    // 1.5; turned 45 deg about y its corner reaches 0.85 + 0.5 sqrt(2) = 1.557, 5.7 cm into b1.
-    const ShapeDef plate = ShapeDef::box(Vec3(0.5, 0.2, 0.5));
-    const Quat turn(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()));
-    EXPECT_TRUE(world.overlap(plate, Transform{Vec3(0.85, 0.5, 0), Quat::Identity()}).empty());
-    EXPECT_EQ(names(world.overlap(plate, Transform{Vec3(0.85, 0.5, 0), turn})), Names{"b1"});
+    // 1.5; turned 45 deg about y its corner reaches 0.85 + 0.5 sqrt(2) = 1.557, 5.7 cm into b1. In
+    // a planar world the turn is about z, so the box is a cube held at y = 0.75, whose turned
+    // corners (0.71 from its centre) stay clear of the ground.
+    const bool planar = planarWorld();
+    const ShapeDef plate = ShapeDef::box(planar ? Vec3(0.5, 0.5, 0.5) : Vec3(0.5, 0.2, 0.5));
+    const Quat turn(Eigen::AngleAxisd(std::numbers::pi / 4, planar ? Vec3::UnitZ() : Vec3::UnitY()));
+    const Vec3 at(0.85, planar ? 0.75 : 0.5, 0);
+    EXPECT_TRUE(world.overlap(plate, Transform{at, Quat::Identity()}).empty());
+    EXPECT_EQ(names(world.overlap(plate, Transform{at, turn})), Names{"b1"});
 }
 
 ANYPHYS_CONTRACT_SUITE(QueriesTest);
