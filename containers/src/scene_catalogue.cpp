@@ -285,8 +285,10 @@ CatalogueScene pyramid20() {
         }
     }
     c.check = worstOverRunCheck(
-        SceneCheck{"max box drift", "m", 0.0, 0.05, "5 cm sideways at any time (a twentieth of a box): the pyramid stands as built", {},
-                   "pyramid20.drift"},
+        SceneCheck{"max box drift", "m", 0.0, 0.01,
+                   "1 cm sideways at any time: nothing pushes a symmetric pyramid sideways, and its rows spread only "
+                   "as the contacts below compress (by at most linearSlop, 5 mm, each), so more is solver error",
+                   {}, "pyramid20.drift"},
         maxHorizontalDrift(dynamicBodies(c.scene)));
     return c;
 }
