@@ -76,6 +76,7 @@ struct ContactPrepareParams {
     Softness staticSoftness;           // contacts with a static body: stiffer, so piles do not sink
     double speculativeDistance = 0.0;  // m: points farther than this weigh little in the friction centre
     double velocityTimeOffset = 0.0;   // s: where the integrator's velocity sits in time (restitution)
+    double stepTime = 0.0;             // s: the whole step (an impact falls within it)
     bool warmStart = true;
 };
 

@@ -284,6 +284,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     prepareParams_.staticSoftness = makeSoftness(2.0 * hertz, settings.contactDampingRatio, h_);
     prepareParams_.speculativeDistance = settings.speculativeDistance;
     prepareParams_.velocityTimeOffset = velocityTimeOffset(settings.integrator, step.dt);
+    prepareParams_.stepTime = step.dt;
     prepareParams_.warmStart = true;
     solveParams_.invH = 1.0 / h_;
     solveParams_.pushMaxVelocity = settings.contactPushMaxVelocity;
