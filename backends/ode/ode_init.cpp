@@ -2,7 +2,38 @@
 
 #include <ode/ode.h>
 
+#include <atomic>
+#include <cstdarg>
+#include <cstdio>
+#include <mutex>
+#include <set>
+#include <string>
+
 namespace anyphys::ode {
+namespace {
+
+std::atomic<long> messagesReceived{0};
+
+// ODE reports solver trouble (for example "LCP internal error, s <= 0" from dWorldStep's Dantzig
+// solver) through a message callback that by default prints every occurrence: hundreds of lines
+// a second from one stack. Each kind of message (its format text) is printed once per process,
+// with a note that repeats are not shown; the simulation is unchanged.
+void reportOnce(int number, const char* format, va_list args) {
+    ++messagesReceived;
+    static std::mutex mutex;
+    static std::set<std::string> seen;
+    {
+        std::lock_guard lock(mutex);
+        if (!seen.insert(format).second) return;
+    }
+    char text[512];
+    std::vsnprintf(text, sizeof text, format, args);
+    std::fprintf(stderr, "anyphys ode: ODE message %d: %s (repeats of this message are not shown)\n", number, text);
+}
+
+}  // namespace
+
+long odeMessagesReceived() { return messagesReceived; }
 
 void ensureOdeInitialised() {
     // dInitODE2 must run once before any ODE call. dCloseODE is never called: worlds of this
@@ -10,6 +41,7 @@ void ensureOdeInitialised() {
     // (so LeakSanitizer does not report them).
     static const bool initialised = [] {
         dInitODE2(0);
+        dSetMessageHandler(&reportOnce);
         return true;
     }();
     (void)initialised;
