@@ -165,8 +165,14 @@ ComboResult runCombo(const CatalogueScene& entry, const BackendInfo& backend, In
     if (probe) {
         result.checkValue = probe->value();
         result.checkPassed = entry.check->passes(*result.checkValue);
-        result.knownDeviation =
-            !result.checkPassed && backend.capabilities.knownDeviations.contains(entry.check->criterion);
+        const Capabilities& caps = backend.capabilities;
+        const std::string& criterion = entry.check->criterion;
+        if (const auto it = caps.deviationCeilings.find(criterion); it != caps.deviationCeilings.end())
+            result.ceiling = it->second;
+        // A declaration covers a miss up to its ceiling: a deviation grown past it is a regression.
+        const bool declared = !result.checkPassed && caps.knownDeviations.contains(criterion);
+        result.overCeiling = declared && result.ceiling && !(*result.checkValue <= *result.ceiling);
+        result.knownDeviation = declared && !result.overCeiling;
     }
     return result;
 }

@@ -29,6 +29,8 @@ struct ComboResult {
     std::optional<double> checkValue;           ///< the scene's own measure (CatalogueScene::check)
     bool checkPassed = false;                   ///< checkValue within the check's tolerance
     bool knownDeviation = false;                ///< failed, and the backend declares that criterion missed
+    std::optional<double> ceiling;              ///< the backend's declared ceiling for the criterion, if any
+    bool overCeiling = false;                   ///< declared, but the value is worse than the ceiling
 };
 
 /// Runs `scene` for its duration on `backend` with `integrator`. Never throws for a refusal:
