@@ -64,7 +64,7 @@ Backend makeBulletBackend() {
         {"decoupledJoints", "1: each joint's rigid rows are handed to the solver in a basis where they do not interact (solved in one pass), 0: Bullet's rows as they are; default 1"},
         {"jointIterations", "sequential-impulse iterations of joint rows (Bullet does not warm start them); default 10 x settings.iterations"},
         {"linearSlop", "m, overlap the solver leaves uncorrected; default 0"},
-        {"planeMultipoint", "1: a convex shape on a plane keeps its whole face of contact points (Bullet's perturbation, 3 iterations, with stale points dropped first), 0: one new point per step (Bullet's default); default 1"},
+        {"planeMultipoint", "1: a convex shape on a plane keeps its whole face of contact points (Bullet's perturbation, 5 tilts whenever the face lacks 4 points, with stale points dropped first), 0: one new point per step (Bullet's default); default 1"},
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
     };
     caps.knownDeviations = {
@@ -124,8 +124,6 @@ Backend makeBulletBackend() {
          "joints of a pile of four ragdolls open by up to 13 cm as the ragdolls land on each other (bound 5 cm): Baumgarte joint rows at one 1/60 s step yield under the impacts"},
         {"planar.assemblies.ragdoll_gap",
          "as assemblies.ragdoll_gap, in a planar world (81 mm)"},
-        {"assemblies.ragdoll_limits",
-         "a hinge goes 3.1 deg past its limits as the four ragdolls land on each other (bound 3): Bullet's limit rows are position-corrected (Baumgarte) at one 1/60 s step, so they give under the impacts; the figure follows the pile's chaotic course"},
         {"planar.assemblies.ragdoll_rest",
          "a planar pile still moves at 0.22 m/s after 10 s (sleeping off)"},
     };
@@ -178,7 +176,7 @@ Backend makeBulletBackend() {
         {"planar.hard.pyramid100.drift",
          "the 5050-box planar pyramid collapses (boxes 10 m from where they started within 5 s; as pyramid20.drift)"},
         {"hard.arch.displacement",
-         "the arch's wedge blocks move 1.6 cm over 5 s (native: 2.2 mm). Measured, not yet a cause: its joints rest 2 to 4 mm deep (twice the 1 mm hull margin plus slop) and the crown sags 1.6 cm with them; a 0.1 mm margin halves the sag (0.7 cm) but blocks still move 1.3 cm; 300 iterations or the direct solver change nothing, 4 substeps give 1.1 cm, SAT normals (m_enableSatConvex) 2.7 cm"},
+         "the arch's crown drops 1.55 cm in its first 4 steps (native: 2.2 mm over 5 s). Measured, the cause not wholly found: each joint is first found 2 mm open with one contact point (the two 1 mm hull margins: Bullet's face clipping sees the shrunk cores, and starts only once they overlap), the crown falls freely for two steps, and its joints, leaning 10 deg from vertical, hold from step 3, 2 to 4 mm deep; a 0.1 mm margin still drops it 7 mm, then the blocks creep (the crown 2 cm out of the arch's plane by 5 s); 300 iterations or the direct solver change nothing, 4 substeps give 1.1 cm, SAT normals (m_enableSatConvex) 2.7 cm"},
         {"planar.hard.arch.displacement",
          "as hard.arch.displacement, planar: 1.4 cm"},
         {"hard.heavy_plank.displacement",
@@ -186,7 +184,7 @@ Backend makeBulletBackend() {
         {"planar.hard.heavy_plank.displacement",
          "as hard.heavy_plank.displacement, planar: 5.0 cm"},
         {"hard.mixed_pile_mesh.sink",
-         "pieces of the pile sink up to 6 cm into the triangle-mesh floor (convex shapes against triangles; cause not yet found)"},
+         "a tumbling octahedron sinks 5.5 cm into the floor (5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size (6 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
         {"hard.ragdoll_pile.joint_gap",
          "joints of a pile of 10 ragdolls open by up to 18.5 cm (as assemblies.ragdoll_gap)"},
         {"planar.hard.ragdoll_pile.joint_gap",
@@ -216,7 +214,6 @@ Backend makeBulletBackend() {
         {"planar.joints.wide_pendulum_period", 0.0897},
         {"assemblies.ragdoll_gap", 0.328},
         {"planar.assemblies.ragdoll_gap", 0.162},
-        {"assemblies.ragdoll_limits", 6.0},
         {"planar.assemblies.ragdoll_rest", 0.431},
         {"hard.stack20.drift", 0.6},
         {"planar.hard.pyramid100.drift", 15},

@@ -40,6 +40,17 @@ void AnyphysDynamicsWorld::performDiscreteCollisionDetection() {
                 manifold->refreshContactPoints(manifold->getBody0()->getWorldTransform(),
                                                manifold->getBody1()->getWorldTransform());
         }
+    // A sensor's manifold starts each step empty, so whether it overlaps is judged from this
+    // step's points only. Kept points are refreshed by moving with the bodies and dropped only
+    // once they separate or slide past the breaking threshold; a ball passing straight through a
+    // sensor moves along its entry point's normal, so that point only grew deeper (2.5 m deep
+    // after crossing the sensor) and the sensor reported the overlap until the bounding boxes
+    // parted. A sensor has no impulses to warm start, so nothing is lost.
+    for (int m = 0; m < getDispatcher()->getNumManifolds(); ++m) {
+        btPersistentManifold* manifold = getDispatcher()->getManifoldByIndexInternal(m);
+        if (!manifold->getBody0()->hasContactResponse() || !manifold->getBody1()->hasContactResponse())
+            manifold->clearManifold();
+    }
     btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
 }
 

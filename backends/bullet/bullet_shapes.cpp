@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "bullet_convert.hpp"
+#include "bullet_reaching_shape.hpp"
 
 namespace anyphys::bullet {
 namespace {
@@ -71,21 +72,22 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
     const ShapeDef& d = ps.def;
     std::unique_ptr<btCollisionShape> shape;
     switch (d.type) {
-        case ShapeType::Sphere:
-            shape = std::make_unique<btSphereShape>(static_cast<btScalar>(d.radius));
+        case ShapeType::Sphere: {
+            shape = reachingSphere(static_cast<btScalar>(d.radius));
             coreExtent_ = std::min(coreExtent_, d.radius);
             break;
+        }
         case ShapeType::Box: {
-            auto box = std::make_unique<btBoxShape>(toBt(d.halfExtents));
-            box->setMargin(static_cast<btScalar>(std::min(kBoxMargin, 0.1 * d.halfExtents.minCoeff())));
-            shape = std::move(box);
+            shape = reachingBox(toBt(d.halfExtents),
+                                static_cast<btScalar>(std::min(kBoxMargin, 0.1 * d.halfExtents.minCoeff())));
             coreExtent_ = std::min(coreExtent_, d.halfExtents.minCoeff());
             break;
         }
-        case ShapeType::Capsule:  // along Y; Bullet's height is the core segment's length
-            shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(d.radius), static_cast<btScalar>(2 * d.halfHeight));
+        case ShapeType::Capsule: {  // along Y; Bullet's height is the core segment's length
+            shape = reachingCapsule(static_cast<btScalar>(d.radius), static_cast<btScalar>(2 * d.halfHeight));
             coreExtent_ = std::min(coreExtent_, d.radius);
             break;
+        }
         case ShapeType::Plane: {
             // Planes are infinite: the local pose folds into the plane's normal and offset.
             const double length = d.normal.norm();
@@ -100,7 +102,7 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
             const double inner = hullInnerRadius(hull);
             const double margin = std::min(kHullMargin, 0.25 * inner);
             btAlignedObjectArray<btVector3> points = shrunkHull(hull, margin);
-            auto convex = std::make_unique<btConvexHullShape>();
+            auto convex = std::make_unique<ReachingHull>();
             if (points.size() >= 4) {
                 for (int i = 0; i < points.size(); ++i) convex->addPoint(points[i], false);
                 convex->setMargin(static_cast<btScalar>(margin));
@@ -110,6 +112,7 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
             }
             convex->recalcLocalAabb();
             convex->initializePolyhedralFeatures();  // face-based manifolds (stable resting contact)
+            convex->enableReach();
             shape = std::move(convex);
             coreExtent_ = std::min(coreExtent_, inner);
             break;
