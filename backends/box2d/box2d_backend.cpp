@@ -15,6 +15,7 @@ Backend makeBox2dBackend() {
                           " (single precision): planar worlds (XY, rotation about Z), sequential impulses";
     Capabilities& caps = backend.capabilities;
     caps.dimensions = 2;
+    caps.unitRoundoff = 0x1p-24;  // Box2D 2.4 steps in float
     caps.planar = true;
     caps.maxConvexVertices = b2_maxPolygonVertices;  // of a hull's outline in the XY plane
     caps.shapes = {ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Plane, ShapeType::Convex,

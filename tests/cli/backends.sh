@@ -15,12 +15,13 @@ import json, sys
 doc = json.load(open(sys.argv[1]))
 names = [b["name"] for b in doc["backends"]]
 assert "native" in names, names
-fields = {"dimensions", "planar", "shapes", "bodyTypes", "jointTypes", "effects", "integrators", "solvers",
+fields = {"dimensions", "unitRoundoff", "planar", "shapes", "bodyTypes", "jointTypes", "effects", "integrators", "solvers",
           "gyroscopicModes", "forceEvaluation", "parameters", "options"}
 for b in doc["backends"]:
     caps = b["capabilities"]
     assert fields <= caps.keys(), (b["name"], fields - caps.keys())
     assert caps["forceEvaluation"] in ("per_stage", "per_step"), caps["forceEvaluation"]
+    assert caps["unitRoundoff"] in (2.0 ** -53, 2.0 ** -24), caps["unitRoundoff"]  # double or float engines
 native = next(b for b in doc["backends"] if b["name"] == "native")["capabilities"]
 assert set(native["integrators"]) == {"explicit_euler", "semi_implicit_euler", "verlet", "midpoint", "rk4"}, native["integrators"]
 print("ok backends --json:", names)

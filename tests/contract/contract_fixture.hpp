@@ -3,6 +3,7 @@
 // a test needs is skipped by capability, with the reason printed (never by backend name).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -66,6 +67,13 @@ protected:
                       << "\n";
             ::testing::Test::RecordProperty("known_deviation_" + id, measured);
         }
+    }
+
+    /// Rounding in the engine's arithmetic: `roundings` roundings of a quantity of size
+    /// `magnitude`. A result "exact up to rounding" is within this of the exact value; it is
+    /// about 1e-16 relative per rounding for double engines and 6e-8 for float ones.
+    double rounding(double magnitude, double roundings = 1) const {
+        return caps().unitRoundoff * std::abs(magnitude) * roundings;
     }
 
     WorldSettings settings() const {

@@ -40,7 +40,10 @@ const std::vector<double> kSteps = {1.0 / 20, 1.0 / 40, 1.0 / 80, 1.0 / 160};
 // these steps; 0.15 separates every order from its neighbour with margin.
 constexpr double kSlopeTolerance = 0.15;
 
-class ConvergenceTest : public ContractTest {};
+class ConvergenceTest : public ContractTest {
+protected:
+    bool runsPlanarWithout3D() const override { return true; }
+};
 
 // Harmonic oscillator x'' = -w^2 x through the force callback (needs per-stage force
 // evaluation: a force held constant over the step would cap every method at first order).

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,7 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
     for (const auto& [name, meaning] : caps.options) options[name] = meaning;
     return {
         {"dimensions", caps.dimensions},
+        {"unitRoundoff", caps.unitRoundoff},
         {"planar", caps.planar},
         {"shapes", enumNames(caps.shapes)},
         {"bodyTypes", enumNames(caps.bodyTypes)},
@@ -77,6 +79,11 @@ void printText(const std::vector<BackendInfo>& backends) {
         row("body types", orNone(enumNames(c.bodyTypes)));
         row("joint types", orNone({c.jointTypes.begin(), c.jointTypes.end()}));
         row("effects", orNone(c.effects.names()));
+        {
+            std::ostringstream roundoff;
+            roundoff << c.unitRoundoff << (c.unitRoundoff > 0x1p-30 ? " (steps in float)" : " (steps in double)");
+            row("unit roundoff", roundoff.str());
+        }
         row("integrators", orNone(enumNames(c.integrators)));
         row("solvers", orNone(enumNames(c.solvers)) + " (default " + std::string(toString(c.defaultSolver)) + ", " +
                            std::to_string(c.defaultSubsteps) + " substeps x " + std::to_string(c.defaultIterations) +

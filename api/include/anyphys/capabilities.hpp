@@ -21,6 +21,10 @@ enum class ForceEvaluation {
 struct Capabilities {
     int dimensions = 3;                        ///< 3, or 2 for planar-only engines
     bool planar = false;                       ///< can run planar (XY) worlds
+    /// The engine's unit roundoff: the relative error of one rounding in its arithmetic. The layer
+    /// is double throughout; an engine that steps in float (Box2D 2.4) rounds every state it
+    /// returns to about 6e-8 relative, so "exact" results agree only to that.
+    double unitRoundoff = 0x1p-53;
     std::set<ShapeType> shapes;                ///< shape types it can simulate
     std::set<BodyType> bodyTypes;              ///< body types it can simulate
     std::set<std::string> jointTypes;          ///< joint type names
