@@ -42,6 +42,9 @@ public:
     bool trigger() const { return trigger_; }
     /// Several shapes (a btCompoundShape): one manifold per touching child pair.
     bool compound() const { return shapes_->root()->isCompound(); }
+    bool hasMesh() const { return shapes_->hasMesh(); }
+    /// See ShapeSet::setReaching; the world turns it on while it holds a mesh.
+    void setReaching(bool on) { shapes_->setReaching(on); }
     bool moves() const { return type_ != BodyType::Static; }
     bool dynamic() const { return type_ == BodyType::Dynamic; }
     double linearDamping() const { return linearDamping_; }    // 1/s

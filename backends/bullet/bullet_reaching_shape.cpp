@@ -11,7 +11,7 @@ template <class Shape, class... Args>
 std::unique_ptr<btCollisionShape> reaching(btScalar margin, Args&&... args) {
     auto shape = std::make_unique<ReachingShape<Shape>>(std::forward<Args>(args)...);
     if (margin >= 0) shape->setMargin(margin);
-    shape->enableReach();
+    shape->measureReach();
     return shape;
 }
 

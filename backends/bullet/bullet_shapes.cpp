@@ -112,7 +112,7 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
             }
             convex->recalcLocalAabb();
             convex->initializePolyhedralFeatures();  // face-based manifolds (stable resting contact)
-            convex->enableReach();
+            convex->measureReach();
             shape = std::move(convex);
             coreExtent_ = std::min(coreExtent_, inner);
             break;
@@ -129,14 +129,26 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
             auto bvh = std::make_unique<btBvhTriangleMeshShape>(mesh->array.get(), /*useQuantizedAabbCompression=*/true);
             bvh->setMargin(0);  // triangles are exact; the other shape's margin keeps GJK robust
             meshes_.push_back(std::move(mesh));
+            hasMesh_ = true;
             shape = std::move(bvh);
             break;
         }
         case ShapeType::Compound:  // flattened by the layer
             break;
     }
+    if (auto* reaching = dynamic_cast<Reaching*>(shape.get())) reaching_.push_back(reaching);
     children_.push_back(std::move(shape));
     return children_.back().get();
+}
+
+void ShapeSet::setReaching(bool on) {
+    if (reaching_.empty()) return;
+    for (Reaching* shape : reaching_) shape->setReaching(on);
+    if (compound_) {  // the compound keeps its children's boxes: refresh them
+        for (int i = 0; i < compound_->getNumChildShapes(); ++i)
+            compound_->updateChildTransform(i, compound_->getChildTransform(i), /*shouldRecalculateLocalAabb=*/false);
+        compound_->recalculateLocalAabb();
+    }
 }
 
 }  // namespace anyphys::bullet

@@ -12,6 +12,8 @@
 
 namespace anyphys::bullet {
 
+class Reaching;
+
 class ShapeSet {
 public:
     /// Builds the shapes; several shapes, or one not at the body frame's origin, become a
@@ -26,6 +28,11 @@ public:
     /// m, smallest distance from a shape's centre to its surface: moving less than this per
     /// step cannot tunnel (used for continuous collision).
     double coreExtent() const { return coreExtent_; }
+    /// Whether one of the shapes is a triangle mesh.
+    bool hasMesh() const { return hasMesh_; }
+    /// Lets the convex shapes' bounding boxes reach out by their contact breaking threshold (see
+    /// ReachingShape), as the world does while it holds a mesh.
+    void setReaching(bool on);
 
 private:
     struct Mesh {
@@ -40,7 +47,9 @@ private:
     std::vector<std::unique_ptr<btCollisionShape>> children_;
     std::unique_ptr<btCompoundShape> compound_;
     btCollisionShape* root_ = nullptr;
+    std::vector<Reaching*> reaching_;  // the convex children
     double coreExtent_ = 0.0;
+    bool hasMesh_ = false;
 };
 
 }  // namespace anyphys::bullet

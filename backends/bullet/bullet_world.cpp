@@ -169,12 +169,22 @@ std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
     bodies_.push_back(peer.get());
     attached_.insert(&body);
     if (peer->type() == BodyType::Kinematic) kinematic_.push_back(peer.get());
+    if (peer->hasMesh() && meshBodies_++ == 0) setReaching(true);
+    else if (meshBodies_ > 0) peer->setReaching(true);
     peer->applyEffects();
     if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
     return peer;
 }
 
 void BulletWorld::destroyBody(BodyPeer& peer) { detach(static_cast<BulletBodyPeer&>(peer)); }
+
+void BulletWorld::setReaching(bool on) {
+    // Only while a mesh is here: the larger boxes cost broad-phase pairs (see ReachingShape).
+    for (BulletBodyPeer* body : bodies_) {
+        body->setReaching(on);
+        world_->updateSingleAabb(&body->rigidBody());
+    }
+}
 
 void BulletWorld::detach(BulletBodyPeer& peer) {
     if (!peer.inWorld_) return;
@@ -197,6 +207,7 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
     };
     drop(bodies_);
     if (peer.type() == BodyType::Kinematic) drop(kinematic_);
+    if (peer.hasMesh() && --meshBodies_ == 0) setReaching(false);
     drop(forced_);
 }
 

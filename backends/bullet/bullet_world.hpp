@@ -58,6 +58,8 @@ public:
     void addForced(BulletBodyPeer* body) { forced_.push_back(body); }
     /// Removes the body from the Bullet world (on destroyBody, or when its peer dies first).
     void detach(BulletBodyPeer& body);
+    /// Turns every body's reaching bounding boxes on or off (on while the world holds a mesh).
+    void setReaching(bool on);
     /// The static body a joint to the world is attached to (frame = world frame; not in the
     /// Bullet world, one per world rather than Bullet's process-wide getFixedBody()).
     btRigidBody& ground() { return *ground_; }
@@ -83,6 +85,7 @@ private:
     ForceHook forceHook_;
     MaterialTable materials_;
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
+    int meshBodies_ = 0;                      // attached bodies with a triangle mesh
     // The attached bodies' collision objects. Bullet can keep a manifold naming a body already
     // removed (seen when a torn chain's world is destroyed); waking a neighbour goes through here.
     std::unordered_set<const btCollisionObject*> attached_;
