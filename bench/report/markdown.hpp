@@ -16,6 +16,19 @@ inline std::string num(double value, int digits) {
     return text;
 }
 
+/// A count per step (an average over the measured window, maybe negative as a difference):
+/// whole above 10, otherwise three significant digits, so that one in 60 steps reads 0.0167, not 0.
+inline std::string perStepCount(double value) {
+    if (std::isnan(value)) return "-";
+    if (value == 0 || std::abs(value) >= 10) return num(value, 0);
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+}
+
+/// Heap allocations per step, or "n/a" where the build does not count them (a negative mark).
+inline std::string allocations(double perStep) { return perStep < 0 ? "n/a" : perStepCount(perStep); }
+
 class Table {
 public:
     /// The first `textColumns` columns hold names (left-aligned); the rest figures (right-aligned).

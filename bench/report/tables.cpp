@@ -16,9 +16,6 @@ std::string settled(const Record& r) {
     return text;
 }
 
-/// Allocations per step, or "n/a" where the build does not count them.
-std::string allocs(double perStep) { return perStep < 0 ? "n/a" : num(perStep, perStep < 10 ? 1 : 0); }
-
 /// The rows of one scene, in the order the table shows them.
 std::vector<const Record*> sceneRows(const Results& results, const std::string& scene) {
     std::vector<const Record*> rows;
@@ -44,7 +41,7 @@ void printScenes(const Results& results, std::ostream& out) {
             table.row({scene, engineName(*r), r->label, num((*r)["steps"], 0), num((*r)["wall_ms"], 3),
                        num((*r)["wall_median_ms"], 3), num((*r)["cpu_ms"], 3), num((*r)["penetration_mm"], 2),
                        num((*r)["ground_penetration_mm"], 2), num((*r)["moved"], 0), num((*r)["max_move_m"], 3),
-                       num((*r)["max_speed"], 3), settled(*r), allocs((*r)["allocs_per_step"])});
+                       num((*r)["max_speed"], 3), settled(*r), allocations((*r)["allocs_per_step"])});
     table.print(out);
 }
 
@@ -92,7 +89,7 @@ void printOverhead(const Results& results, std::ostream& out) {
                    num(r["overhead_pct"], 1) + " %", num(r["overhead_wall_pct"], 1) + " %",
                    num(r["anyphys_penetration_mm"], 2) + " / " + num(r["raw_penetration_mm"], 2),
                    yesNo(r["anyphys_settled"]) + " / " + yesNo(r["raw_settled"]),
-                   allocs(r["anyphys_allocs_per_step"]) + " / " + allocs(r["raw_allocs_per_step"]),
+                   allocations(r["anyphys_allocs_per_step"]) + " / " + allocations(r["raw_allocs_per_step"]),
                    num(r["rounds"], 0)});
     }
     table.print(out);
@@ -110,7 +107,7 @@ void printAllocations(const Results& results, std::ostream& out) {
             for (const std::string& scene : tableScenes()) {
                 const Record* r = results.find(kind, scene, engine);
                 any = any || (r && r->ran());
-                row.push_back(r && r->ran() ? allocs((*r)["allocs_per_step"]) : "");
+                row.push_back(r && r->ran() ? allocations((*r)["allocs_per_step"]) : "");
             }
             if (any) table.row(row);
         }

@@ -120,11 +120,11 @@ void steadyAllocations(const Results& results, Verdicts& v) {
             const double total = (*r)["allocs_per_step"];
             counted = counted && total >= 0;
             worstTotal = std::max(worstTotal, total);
-            totals += (totals.empty() ? "" : ", ") + scene + " " + num(total, 0);
+            totals += (totals.empty() ? "" : ", ") + scene + " " + allocations(total);
             if (const Record* raw = ran(results.find("raw", scene, engine))) {
                 const double extra = total - (*raw)["allocs_per_step"];
                 worstAdded = std::max(worstAdded, extra);
-                added += (added.empty() ? "" : ", ") + scene + " " + num(extra, 0);
+                added += (added.empty() ? "" : ", ") + scene + " " + perStepCount(extra);
             }
         }
         if (totals.empty()) continue;
@@ -132,10 +132,10 @@ void steadyAllocations(const Results& results, Verdicts& v) {
             v.line("SKIPPED", "anyphys " + engine + " allocations: this build does not count them (sanitizer)");
         } else if (added.empty()) {
             v.check(worstTotal == 0, "anyphys " + engine + ": 0 allocations per steady step: at most " +
-                                         num(worstTotal, 0) + " (" + totals + ")");
+                                         allocations(worstTotal) + " (" + totals + ")");
         } else {
             v.check(worstAdded <= 0, "anyphys " + engine + ": the layer adds 0 allocations per steady step to " +
-                                         rawName(engine) + "'s own: at most " + num(worstAdded, 0) + " (" + added +
+                                         rawName(engine) + "'s own: at most " + perStepCount(worstAdded) + " (" + added +
                                          "; in all, engine included: " + totals + ")");
         }
     }

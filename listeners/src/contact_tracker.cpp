@@ -117,6 +117,16 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
         if (events[k].points.capacity() > 0) spare_.push_back(std::move(events[k].points));
     events.resize(used);
     if (!unchanged) active_.swap(next_);  // exits above read the old list
+    matchSwappedCapacities();
+}
+
+void ContactTracker::matchSwappedCapacities() {
+    const auto match = [](auto&... buffers) {
+        const std::size_t most = std::max({buffers.capacity()...});
+        (buffers.reserve(most), ...);  // a no-op on the one that has it, and once the others do
+    };
+    match(active_, next_);
+    match(listed_, sorting_, lastSorted_);
 }
 
 void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted,
@@ -213,6 +223,10 @@ std::vector<ContactPoint> ContactTracker::takePointStorage() {
     if (spare_.empty()) {
         std::vector<ContactPoint> fresh;
         fresh.reserve(kPointsPerEvent);
+        // Every storage may come back to spare_ (a pile's event count goes up and down from step
+        // to step): room for all of them now, so returning one never grows spare_ in a later,
+        // steady step. Geometric, so a first step making thousands stays linear.
+        if (spare_.capacity() < ++storagesMade_) spare_.reserve(2 * storagesMade_);
         return fresh;
     }
     std::vector<ContactPoint> reused = std::move(spare_.back());

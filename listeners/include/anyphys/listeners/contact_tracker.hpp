@@ -70,6 +70,9 @@ private:
     void walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted, const AsleepQuery& asleep);
     void sortListed();
     std::vector<ContactPoint> takePointStorage();
+    /// Gives every buffer that trades places with another (by swap) the larger capacity of the
+    /// two, so a later step that lists fewer pairs than some earlier one never allocates.
+    void matchSwappedCapacities();
 
     // Sorted by (a, b): a step is one sort of the listed pairs and one merge walk. The other
     // vectors are scratch kept between steps, so a steady step allocates nothing.
@@ -81,6 +84,7 @@ private:
     bool activeIsLastListing_ = false;  // active_ holds exactly lastSorted_'s pairs
     std::vector<Decision> decisions_;
     std::vector<std::vector<ContactPoint>> spare_;  // point storage of past events, for reuse
+    std::size_t storagesMade_ = 0;  // point storages ever made: spare_ never needs to hold more
 };
 
 }  // namespace anyphys
