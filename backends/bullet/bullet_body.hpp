@@ -43,6 +43,8 @@ public:
     /// Several shapes (a btCompoundShape): one manifold per touching child pair.
     bool compound() const { return shapes_->root()->isCompound(); }
     bool hasMesh() const { return shapes_->hasMesh(); }
+    /// Its shape is a plane (and not a compound holding one).
+    bool isPlane() const { return body_->getCollisionShape()->getShapeType() == STATIC_PLANE_PROXYTYPE; }
     /// See ShapeSet::setReaching; the world turns it on while it holds a mesh.
     void setReaching(bool on) { shapes_->setReaching(on); }
     bool moves() const { return type_ != BodyType::Static; }

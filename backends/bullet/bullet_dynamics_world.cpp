@@ -46,11 +46,12 @@ void AnyphysDynamicsWorld::performDiscreteCollisionDetection() {
     // sensor moves along its entry point's normal, so that point only grew deeper (2.5 m deep
     // after crossing the sensor) and the sensor reported the overlap until the bounding boxes
     // parted. A sensor has no impulses to warm start, so nothing is lost.
-    for (int m = 0; m < getDispatcher()->getNumManifolds(); ++m) {
-        btPersistentManifold* manifold = getDispatcher()->getManifoldByIndexInternal(m);
-        if (!manifold->getBody0()->hasContactResponse() || !manifold->getBody1()->hasContactResponse())
-            manifold->clearManifold();
-    }
+    if (clearSensorManifolds_)
+        for (int m = 0; m < getDispatcher()->getNumManifolds(); ++m) {
+            btPersistentManifold* manifold = getDispatcher()->getManifoldByIndexInternal(m);
+            if (!manifold->getBody0()->hasContactResponse() || !manifold->getBody1()->hasContactResponse())
+                manifold->clearManifold();
+        }
     btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
 }
 

@@ -64,7 +64,7 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     world_->setMaterials(&materials_);
     world_->setTimeToSleep(settings.timeToSleep);
     world_->setRestitutionThreshold(settings.restitutionThreshold);
-    world_->setRefreshPlaneManifoldsFirst(planeMultipoint(settings));
+    planeMultipoint_ = planeMultipoint(settings);  // its refresh pass runs while a plane is here (createBody)
     // Only moving bodies need fresh bounds each step; static ones are refreshed when teleported.
     world_->setForceUpdateAllAabbs(false);
 
@@ -171,6 +171,8 @@ std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
     if (peer->type() == BodyType::Kinematic) kinematic_.push_back(peer.get());
     if (peer->hasMesh() && meshBodies_++ == 0) setReaching(true);
     else if (meshBodies_ > 0) peer->setReaching(true);
+    if (peer->trigger() && sensorBodies_++ == 0) world_->setClearSensorManifolds(true);
+    if (peer->isPlane() && planeBodies_++ == 0) world_->setRefreshPlaneManifoldsFirst(planeMultipoint_);
     peer->applyEffects();
     if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
     return peer;
@@ -208,6 +210,8 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
     drop(bodies_);
     if (peer.type() == BodyType::Kinematic) drop(kinematic_);
     if (peer.hasMesh() && --meshBodies_ == 0) setReaching(false);
+    if (peer.trigger() && --sensorBodies_ == 0) world_->setClearSensorManifolds(false);
+    if (peer.isPlane() && --planeBodies_ == 0) world_->setRefreshPlaneManifoldsFirst(false);
     drop(forced_);
 }
 

@@ -86,6 +86,9 @@ private:
     MaterialTable materials_;
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     int meshBodies_ = 0;                      // attached bodies with a triangle mesh
+    int sensorBodies_ = 0;                    // attached trigger bodies
+    int planeBodies_ = 0;                     // attached bodies whose shape is a plane
+    bool planeMultipoint_ = true;             // backend option planeMultipoint
     // The attached bodies' collision objects. Bullet can keep a manifold naming a body already
     // removed (seen when a torn chain's world is destroyed); waking a neighbour goes through here.
     std::unordered_set<const btCollisionObject*> attached_;
