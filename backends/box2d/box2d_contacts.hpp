@@ -1,7 +1,8 @@
 #pragma once
 // The layer's rules inside Box2D's contact pipeline: which pairs may touch (layersCollide on the
 // 32-bit layers, where b2Filter has 16 bits), and the resolved friction, restitution and
-// restitution threshold of each pair (set in pre-solve, replacing Box2D's own mixing).
+// restitution threshold of each pair (replacing Box2D's own mixing): friction when a contact
+// begins, restitution in pre-solve, per impact.
 #include <array>
 #include <vector>
 #include <box2d/box2d.h>
@@ -19,8 +20,14 @@ Box2dBody& bodyOf(const b2Fixture* fixture);
 /// One per world (no globals): Box2D asks it about each new pair and each touching contact.
 class ContactRules final : public b2ContactFilter, public b2ContactListener {
 public:
-    void setEffects(Effects effects) { effects_ = effects; }
-    void setMaterials(const MaterialTable& table) { materials_ = table; }
+    void setEffects(Effects effects) {
+        effects_ = effects;
+        updateBounces();
+    }
+    void setMaterials(const MaterialTable& table) {
+        materials_ = table;
+        updateBounces();
+    }
     void setRestitutionThreshold(double v) { restitutionThreshold_ = static_cast<float>(v); }
     /// Before each b2World::Step: its duration and the world's gravity (for restitution).
     void beginStep(float h, const b2Vec2& gravity) {
@@ -30,6 +37,9 @@ public:
     }
 
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) override;
+    /// A contact's friction is its pair's, set once when it begins touching (Box2D keeps it).
+    void BeginContact(b2Contact* contact) override { applyMaterial(contact); }
+    /// Restitution per impact, where something can bounce (see impactRestitution).
     void PreSolve(b2Contact* contact, const b2Manifold* oldManifold) override;
     void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) override;
 
@@ -42,13 +52,20 @@ public:
     };
     std::vector<SolvedImpulses>& solvedImpulses() { return solvedImpulses_; }
 
+    /// Sets the pair's friction, and no bounce until pre-solve gives one; again for every contact
+    /// when the table or the effects change (Box2dWorld).
+    void applyMaterial(b2Contact* contact) const;
+
 private:
+    void updateBounces();
+
     /// The restitution to give Box2D so that the pair leaves with e times its speed at the
     /// instant of impact, in the way a semi-implicit Euler flight then rises (see the .cpp).
     float impactRestitution(b2Contact* contact, float e) const;
 
     float h_ = 1.0f / 60.0f;
     b2Vec2 gravity_{0.0f, 0.0f};
+    bool bounces_ = false;  // restitution is on and some pair of materials has some
     bool solved_ = false;  // the step's main solve is done: pre-solve calls now come from time of impact
     std::vector<SolvedImpulses> solvedImpulses_;
     Effects effects_;

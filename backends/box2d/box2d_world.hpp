@@ -59,6 +59,8 @@ private:
     b2Body* ground();
     /// Contacts on or off changes which pairs pass the filter: let Box2D ask again.
     void refilterAll();
+    /// The table's friction into every existing contact (after the table or the effects change).
+    void reapplyMaterials();
 
     WorldSettings settings_;
     int velocityIterations_;
