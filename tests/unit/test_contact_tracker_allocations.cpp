@@ -1,35 +1,16 @@
 // The contact tracker reuses its buffers: once a step has listed as many pairs as any later step
 // will, later steps allocate nothing, however the number of touching pairs goes up and down
-// beneath that mark (a settling pile loses and regains contacts every step). Counted with a
-// replaced global operator new (the only replacement in this test program).
+// beneath that mark (a settling pile loses and regains contacts every step). Counted by the
+// replaced global operator new of step_allocations.hpp (the only replacement in this program).
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <numeric>
 #include <random>
 #include <vector>
 
+#include "../backends/step_allocations.hpp"
 #include "anyphys/listeners/contact_tracker.hpp"
-
-// The replacements pair malloc with free on purpose; GCC cannot see that when it inlines them
-// into a new-expression and warns of a mismatch (an error under the sanitizer build's -Werror).
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-namespace {
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-    if (counting) ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace anyphys {
 namespace {
@@ -62,13 +43,12 @@ TEST(ContactTrackerAllocations, FewerPairsThanTheMarkAllocateNothing) {
     ASSERT_EQ(events.size(), kPairs);  // every pair enters
 
     std::size_t fewest = kPairs;
-    counting = true;
+    test::StepAllocations::start();
     for (int s = 1; s < kSteps; ++s) {
         tracker.update(steps[static_cast<std::size_t>(s)], points, events);
         fewest = std::min(fewest, tracker.activePairs());
     }
-    counting = false;
-    EXPECT_EQ(allocations.load(), 0);
+    EXPECT_EQ(test::StepAllocations::stop(), 0u);
     EXPECT_LT(fewest, kPairs / 10);  // the sequence did empty most of the storage into the spares
 }
 
