@@ -1,6 +1,7 @@
 // Helpers shared by the subcommands.
 #include "cli.hpp"
 
+#include <charconv>
 #include <fstream>
 
 namespace anyphys::cli {
@@ -17,6 +18,12 @@ std::string join(const std::vector<std::string>& items, std::string_view separat
 Integrator parseIntegrator(const std::string& option, const std::string& name) {
     if (auto integrator = fromString<Integrator>(name)) return *integrator;
     throw Error::invalid(option, "\"" + name + "\"", "must be one of " + allowedNames<Integrator>());
+}
+
+std::string exactNumber(double value) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+    return std::string(buffer, end);
 }
 
 void writeFile(const std::string& path, const std::string& text) {

@@ -26,6 +26,7 @@ Command addCompareCommand(CLI::App& parent);
 Command addHardCasesCommand(CLI::App& parent);
 Command addScenesCommand(CLI::App& parent);
 Command addSceneCommand(CLI::App& parent);
+Command addMergeCommand(CLI::App& parent);
 
 /// "a, b, c".
 std::string join(const std::vector<std::string>& items, std::string_view separator = ", ");
@@ -40,6 +41,10 @@ std::vector<std::string> enumNames(const std::set<E>& values) {
 
 /// The integrator of that scene-file name; throws anyphys::Error naming `option` otherwise.
 Integrator parseIntegrator(const std::string& option, const std::string& name);
+
+/// The shortest text that reads back to the same double ("0.2", "0.016666666666666666"; "nan",
+/// "inf" for a blow-up), for results files.
+std::string exactNumber(double value);
 
 /// Writes text to a file (for --out); throws anyphys::Error if it cannot.
 void writeFile(const std::string& path, const std::string& text);

@@ -8,6 +8,7 @@
 
 #include "cli.hpp"
 #include "compare.hpp"
+#include "sweep.hpp"
 
 namespace anyphys::cli {
 namespace {
@@ -17,6 +18,13 @@ struct CompareOptions {
     std::vector<std::string> backends;
     std::vector<std::string> integrators;
     bool json = false;
+    // Sweep mode (docs/sweeps.md): any of these turns it on.
+    std::vector<std::string> sweeps;  ///< NAME=V1,V2,... each
+    std::optional<int> repeat;
+    std::string out;
+    std::string shard;                ///< k/N
+    std::optional<int> shards;        ///< N for a Kubernetes indexed job
+    bool sweepMode() const { return !sweeps.empty() || repeat || !out.empty() || !shard.empty() || shards; }
 };
 
 /// The combinations to run, with names checked up front (an unknown name is a usage error).
@@ -142,7 +150,33 @@ nlohmann::json toJson(const std::vector<ComboResult>& results) {
     return {{"results", list}};
 }
 
+/// The sweep's grid: the --sweep axes; --integrators, if given, is one more axis.
+int sweep(const CompareOptions& o) {
+    const Selection s = select(o);
+    SweepOptions options;
+    options.scenes = s.scenes;
+    options.backends = s.backends;
+    for (const std::string& spec : o.sweeps) {
+        options.axes.push_back(parseSweepAxis(spec));
+        for (std::size_t i = 0; i + 1 < options.axes.size(); ++i)
+            if (options.axes[i].name == options.axes.back().name)
+                throw Error("--sweep " + spec + ": the setting \"" + options.axes.back().name + "\" is swept twice");
+    }
+    if (!o.integrators.empty()) {
+        for (const SweepAxis& axis : options.axes)
+            if (axis.name == "integrator") throw Error("--integrators and --sweep integrator=...: give the integrators once");
+        options.axes.push_back(parseSweepAxis("integrator=" + join(o.integrators, ",")));
+    }
+    options.repeat = o.repeat.value_or(3);
+    if (options.repeat < 1) throw Error::invalid("--repeat", options.repeat, "must be >= 1");
+    options.out = o.out;
+    options.shard = o.shard.empty() ? shardFromEnvironment(o.shards) : parseShard("--shard", o.shard);
+    options.json = o.json;
+    return runSweep(options);
+}
+
 int compare(const CompareOptions& o) {
+    if (o.sweepMode()) return sweep(o);
     const Selection s = select(o);
     std::vector<ComboResult> results;
     for (const CatalogueScene* scene : s.scenes)
@@ -193,6 +227,27 @@ Command addCompareCommand(CLI::App& parent) {
                     "Comma-separated integrators (default: each backend's own): " + allowedNames<Integrator>())
         ->delimiter(',');
     app->add_flag("--json", o->json, "Print JSON instead of a table");
+    // Each --sweep is one axis; its values are split by parseSweepAxis, not CLI11 (no delimiter).
+    app->add_option("--sweep", o->sweeps,
+                    "Sweep a setting over values, NAME=V1,V2,... (repeatable; a full grid over every axis): " +
+                        allowedAxisNames() + "; timeStep also takes fractions like 1/60; effectOff takes effect names or none")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->check([](const std::string& spec) {
+            try {
+                parseSweepAxis(spec);
+                return std::string();
+            } catch (const Error& e) {
+                const std::string message = e.what();  // CLI11 names the option itself
+                return message.starts_with("--sweep ") ? message.substr(8) : message;
+            }
+        });
+    app->add_option("--repeat", o->repeat, "Timed runs per configuration after one untimed warm-up (default 3 in sweep mode)");
+    app->add_option("--out", o->out, "Write one row per configuration to this CSV, and a .jsonl beside it");
+    app->add_option("--shard", o->shard,
+                    "Run only the k-th of N cost-balanced parts, k/N (default: from SLURM_ARRAY_TASK_ID / "
+                    "SLURM_ARRAY_TASK_COUNT or JOB_COMPLETION_INDEX)");
+    app->add_option("--shards", o->shards, "N for a Kubernetes indexed job (JOB_COMPLETION_INDEX); else ANYPHYS_SHARD_COUNT");
     return {app, [o] { return compare(*o); }};
 }
 

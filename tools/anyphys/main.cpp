@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
     CLI::App app{"anyphys: one physics API over several engines; run scenes and compare backends", "anyphys"};
     app.require_subcommand(1);
     const std::vector<Command> commands{addBackendsCommand(app), addRunCommand(app), addCompareCommand(app),
-                                        addHardCasesCommand(app), addScenesCommand(app), addSceneCommand(app)};
+                                        addHardCasesCommand(app), addScenesCommand(app), addSceneCommand(app),
+                                        addMergeCommand(app)};
     if (std::string known; isUnknownSubcommand(argc, argv, commands, known))
         return fail("unknown subcommand \"" + std::string(argv[1]) + "\"; known: " + known, 2);
     try {
