@@ -191,6 +191,7 @@ void World::refreshEffects() {
 
 Body World::createBody(const BodyDef& input) {
     if (impl_->stepping) throw Error("World.createBody: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.createBody");
     validate(input, "BodyDef");
     if (settings_.planar) validatePlanar(input, "BodyDef");
     if (!materials_.contains(input.material))
@@ -257,6 +258,7 @@ Body World::createBody(const BodyDef& input) {
 
 void World::destroyBody(Body body) {
     if (impl_->stepping) throw Error("World.destroyBody: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.destroyBody");
     if (body.world() != this) throw Error("World.destroyBody: the body belongs to another world");
     Slot& s = slot(body.id(), "World.destroyBody");
     // Its joints first: a joint never outlives one of its bodies.
@@ -333,6 +335,7 @@ void World::step() { step(settings_.timeStep); }
 
 void World::step(double dt) {
     if (impl_->stepping) throw Error("World.step: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.step");
     detail::requirePositive("World.step.dt", dt);
     {
         SteppingGuard guard(impl_->stepping);

@@ -45,6 +45,10 @@ struct World::JointSlot {
     bool broken = false;
     JointDef def;                    // as created (normalised), with the motor, limits and spring last set
     JointType peerType = JointType::Ball;  // what the backend runs (a planar ball: a hinge)
+    // The joint frame fixed in each body's peer frame (A's in the world when A is the world), as
+    // the peer received them: debug drawing places them with the bodies' poses.
+    Transform frameA;
+    Transform frameB;
     // Thresholds the layer watches: the def's when the backend reports reactions for them
     // (capabilities), else infinite.
     double breakForce = std::numeric_limits<double>::infinity();
@@ -104,6 +108,12 @@ struct World::Impl {
     WarningHandler warningHandler;
     std::set<std::string> warned;
     bool stepping = false;  // inside a step: structural changes are refused
+    bool drawing = false;   // inside World::debugDraw: a drawer may read, not change the world
+
+    /// Throws when called from a DebugDraw callback: `operation` would change what is being drawn.
+    void refuseWhileDrawing(const char* operation) const {
+        if (drawing) throw Error(std::string(operation) + ": not allowed inside World::debugDraw (a DebugDraw callback)");
+    }
 };
 
 }  // namespace anyphys

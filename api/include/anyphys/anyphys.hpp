@@ -3,6 +3,7 @@
 #include "anyphys/body.hpp"
 #include "anyphys/containers/material_library.hpp"
 #include "anyphys/containers/scene.hpp"
+#include "anyphys/debug_draw.hpp"
 #include "anyphys/defs.hpp"
 #include "anyphys/error.hpp"
 #include "anyphys/joint.hpp"

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "anyphys/body.hpp"
+#include "anyphys/debug_draw.hpp"
 #include "anyphys/containers/material_library.hpp"
 #include "anyphys/defs.hpp"
 #include "anyphys/effects.hpp"
@@ -132,6 +133,14 @@ public:
     /// joint whose reaction force exceeds breakForce, or whose reaction torque exceeds
     /// breakTorque, loses its constraint and stays as a broken handle.
     const std::vector<JointEvent>& lastJointEvents() const;
+
+    // ---- debug drawing ------------------------------------------------------------------
+    /// Hands the world to `drawer` (see debug_draw.hpp): each primitive shape at its pose in its
+    /// body's colour, the last step's contact points (lastEvents(): pairs asleep have no events,
+    /// so a sleeping pile shows none), the frames and limits of simulated joints, and the world
+    /// bounds of shapes, as `options` select. The same calls on every backend. Throws
+    /// anyphys::Error for bad options (nothing drawn), or while the world is stepping.
+    void debugDraw(DebugDraw& drawer, const DebugDrawOptions& options = {}) const;
 
     // ---- configuration ------------------------------------------------------------------
     const WorldSettings& settings() const { return settings_; }

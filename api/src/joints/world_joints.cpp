@@ -49,6 +49,7 @@ void dropParameter(JointDef& def, const std::string& field) {
 
 Joint World::createJoint(const JointDef& input) {
     if (impl_->stepping) throw Error("World.createJoint: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.createJoint");
     validate(input, "JointDef");
     // The bodies: B required, A null for the world; both live bodies of this world.
     const auto bodySlot = [this](const Body& body, const char* field) -> Slot* {
@@ -111,6 +112,8 @@ Joint World::createJoint(const JointDef& input) {
     j.broken = false;
     j.def = def;
     j.peerType = peerDef.type;
+    j.frameA = peerDef.frameA;
+    j.frameB = peerDef.frameB;
     j.breakForce = j.peer ? applied.breakForce : JointDef{}.breakForce;
     j.breakTorque = j.peer ? applied.breakTorque : JointDef{}.breakTorque;
     if (a) a->joints.push_back(index);
@@ -129,6 +132,7 @@ Joint World::createJoint(const JointDef& input) {
 
 void World::destroyJoint(Joint joint) {
     if (impl_->stepping) throw Error("World.destroyJoint: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.destroyJoint");
     if (joint.world() != this) throw Error("World.destroyJoint: the joint belongs to another world");
     jointSlot(joint.id(), "World.destroyJoint");
     releaseJoint(joint.id().index);
