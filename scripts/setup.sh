@@ -18,6 +18,7 @@ packages=(
   libode-dev         # ODE 0.16 (double precision), backend
   libbullet-dev      # Bullet 3.24, backend
   libbox2d-dev       # Box2D 2.4, backend
+  gnuplot-nox        # plots of `anyphys report` (PNG and SVG through the cairo terminals)
 )
 
 missing=()

@@ -27,6 +27,7 @@ Command addHardCasesCommand(CLI::App& parent);
 Command addScenesCommand(CLI::App& parent);
 Command addSceneCommand(CLI::App& parent);
 Command addMergeCommand(CLI::App& parent);
+Command addReportCommand(CLI::App& parent);
 
 /// "a, b, c".
 std::string join(const std::vector<std::string>& items, std::string_view separator = ", ");

@@ -27,7 +27,7 @@ std::vector<std::string> sweepColumns(const std::vector<SweepAxis>& axes) {
     for (const char* c : kSolverColumns) columns.emplace_back(c);
     for (const SweepAxis& axis : axes)
         if (!isSolverColumn(axis.name)) columns.push_back(axis.name);
-    for (const char* c : {"sweep", "status", "reason", "repeat", "steps", "ms_per_step_min", "ms_per_step_median",
+    for (const char* c : {"sweep", "status", "reason", "repeat", "steps", "effects", "ms_per_step_min", "ms_per_step_median",
                           "ms_per_sim_second", "machine_load", "pos_error", "vel_error", "error_reference",
                           "pos_error_vs_engines", "scene_scale", "error_target", "energy_drift", "momentum_drift",
                           "max_penetration", "joint_gap", "check_label", "check_value", "check_ok",
@@ -53,6 +53,7 @@ std::vector<std::string> sweepRow(const std::vector<SweepAxis>& axes, const Swee
         {"reason", r.reason},
         {"repeat", std::to_string(r.repeat)},
         {"steps", std::to_string(r.steps)},
+        {"effects", r.effects},
         {"ms_per_step_min", number(r.msPerStepMin)},
         {"ms_per_step_median", number(r.msPerStepMedian)},
         {"ms_per_sim_second", number(r.msPerSimSecond)},

@@ -138,6 +138,7 @@ SweepRecord SweepRunner::run(const SweepConfig& config) {
         return refuse("unsupported", e.what());
     }
     r.settings = world->settings();
+    r.effects = join(world->activeEffects().names(), "+");
     const double energy0 = mechanicalEnergy(*world, bodies, entry.scene);
     const double momentum0 = angularMomentumNorm(bodies);
     std::unique_ptr<SceneProbe> probe = entry.check ? entry.check->makeProbe() : nullptr;

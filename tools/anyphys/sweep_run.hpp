@@ -33,6 +33,7 @@ struct SweepRecord {
     std::optional<double> msPerStepMin, msPerStepMedian, msPerSimSecond, machineLoad;
     std::optional<double> posError, velError, posErrorVsEngines, sceneScale, errorTarget;
     std::string errorReference;  ///< closed_form, converged or ""
+    std::string effects;         ///< the effects the world simulated, "gravity+events" ("" when not run)
     std::optional<double> energyDrift, momentumDrift, maxPenetration, jointGap;
     std::optional<CheckVerdict> check;
 };
