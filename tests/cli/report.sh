@@ -97,6 +97,19 @@ assert all(abs(float(order) - 1) < 0.01 for _, order in fits), fits
 heads = open(f"{work}/real.txt").read().splitlines()
 backends = {r["backend"] for r in csv.DictReader(open(f"{work}/sweep.csv"))}
 assert len(heads) == len(backends) + 1, heads
+# The headline's numbers are the CSV's: per backend, the least ms_per_sim_second among ok rows
+# within error_target, printed as %.3g.
+rows = list(csv.DictReader(open(f"{work}/sweep.csv")))
+for backend in sorted(backends):
+    within = [r for r in rows if r["backend"] == backend and r["status"] == "ok"
+              and float(r["pos_error"]) <= float(r["error_target"])]
+    line = next(h for h in heads if h.startswith(f"projectile {backend}: "))
+    if not within:
+        assert line.endswith("not run (3D worlds (planar only))") or "none within target" in line, line
+        continue
+    best = min(within, key=lambda r: float(r["ms_per_sim_second"]))
+    expected = "%.3g ms/sim s, pos_error %.3g m" % (float(best["ms_per_sim_second"]), float(best["pos_error"]))
+    assert line.endswith(expected), (line, expected)
 print("ok report: real sweep, fitted orders", fits)
 PY
 
