@@ -39,11 +39,11 @@ for page in (md, html):
 front = md.split("Pareto front:")[1].split("### Convergence")[0]
 costs = re.findall(r"^\| (?:native|bullet) [^|]* \| ([0-9.e+-]+) \| ([0-9.e+-]+) \|$", front, re.M)
 assert costs == [("0.125", "0.032"), ("0.25", "0.016"), ("0.5", "0.008"), ("1", "0.000256"),
-                 ("2", "1.6e-05"), ("4", "1e-06"), ("8", "6.25e-08"), ("40", "5e-13")], costs
+                 ("2", "1.6e-05"), ("4", "1e-06"), ("8", "6.25e-08"), ("40", "1e-13")], costs
 
 # Fitted orders: the fixture's errors fall exactly as h (Euler) and h^4 (rk4); rk4's h = 0.001
-# error of 5e-13 is below the rounding floor (1e-12 x scene_scale 1) and must be left out, or the
-# slope would be wrong. Four points each fitted.
+# error of 1e-13 is below the rounding floor (2.2e-16 x scene_scale 1 x 2000 steps = 4.4e-13) and
+# must be left out, or the slope would be wrong. Four points each fitted.
 assert re.search(r"\| native integrator=semi_implicit_euler \| 4 \| 0 \| 1.00 \| 1 \|", md), md
 assert re.search(r"\| native integrator=rk4 \| 4 \| 1 \| 4.00 \| 4 \|", md), md
 assert re.search(r"\| bullet integrator=semi_implicit_euler \| 4 \| 0 \| 1.00 \| 1 \|", md), md

@@ -142,11 +142,10 @@ void buildCostPlot(SceneReport& s) {
 /// Least-squares slope of log(error) on log(timeStep), over points above the rounding floor, when
 /// they cover three or more distinct steps.
 void fitOrder(ConvergenceLine& line, const std::vector<const ReportRow*>& finiteRows, const Number& scale) {
-    const double floor = kRoundingFloor * (scale && *scale > 0 ? *scale : 1.0);
     std::vector<std::pair<double, double>> points;
     std::set<double> steps;
     for (const ReportRow* row : finiteRows) {
-        if (*row->posError < floor || *row->timeStep <= 0) {
+        if (*row->posError < roundingFloor(*row, scale) || *row->timeStep <= 0) {
             ++line.belowFloor;
             continue;
         }
@@ -297,6 +296,11 @@ std::optional<int> theoreticalOrder(const std::string& integrator) {
         {"explicit_euler", 1}, {"semi_implicit_euler", 1}, {"verlet", 2}, {"midpoint", 2}, {"rk4", 4}};
     const auto it = orders.find(integrator);
     return it == orders.end() ? std::nullopt : std::optional<int>(it->second);
+}
+
+double roundingFloor(const ReportRow& row, const Number& scale) {
+    const double steps = row.steps && *row.steps > 0 ? *row.steps : kFloorStepsUnknown;
+    return kDoubleEpsilon * (scale && *scale > 0 ? *scale : 1.0) * steps;
 }
 
 std::string describeSettings(const ReportRow& row, const std::vector<std::string>& varying, const std::string& skip) {

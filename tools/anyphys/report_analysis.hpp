@@ -86,8 +86,13 @@ struct SceneReport {
 
 /// Error levels of the cheapest-configuration table, as fractions of scene_scale.
 inline constexpr double kCheapestLevels[] = {1e-2, 1e-3, 1e-4};
-/// Errors below this fraction of scene_scale are rounding, not truncation: left out of the fit.
-inline constexpr double kRoundingFloor = 1e-12;
+/// Rounding, not truncation: an error below double epsilon x scene_scale x steps, the
+/// worst case of one rounding per step adding up, is left out of the fit. Rows without `steps`
+/// use 1e-12 x scene_scale (10^4 steps).
+inline constexpr double kDoubleEpsilon = 0x1p-52;
+inline constexpr double kFloorStepsUnknown = 1e4;
+/// That floor for one row, in m.
+double roundingFloor(const ReportRow& row, const Number& scale);
 
 /// One SceneReport per scene, in first-seen order.
 std::vector<SceneReport> analyse(const ReportData& data);

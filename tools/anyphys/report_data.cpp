@@ -73,6 +73,7 @@ void readFile(const std::string& path, ReportData& data) {
         row.solver = cell("solver");
         row.timeStep = number("timeStep");
         row.iterations = number("iterations");
+        row.steps = number("steps");
         row.msPerSimSecond = number("ms_per_sim_second");
         row.msPerStepMedian = number("ms_per_step_median");
         row.msPerStepMin = number("ms_per_step_min");

@@ -21,7 +21,7 @@ struct ReportRow {
     std::string effectOff;   ///< "" when the row does not switch effects
     std::string effects;     ///< the effects the run simulated, "gravity+events" ("" when unknown)
     std::string integrator, solver;
-    Number timeStep, iterations;
+    Number timeStep, iterations, steps;
     Number msPerSimSecond, msPerStepMedian, msPerStepMin, posError, sceneScale, errorTarget, machineLoad;
     std::vector<Number> otherMetrics;  ///< vel/drift/penetration/gap/check value: only for blow-up tests
     std::optional<bool> checkOk;

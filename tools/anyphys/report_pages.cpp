@@ -109,10 +109,9 @@ void convergenceSection(Document& doc, const SceneReport& s, const ScenePlots& p
         return;
     }
     if (!plots.convergence.empty()) doc.image(plots.convergence, s.scene + ": convergence");
-    const double floor = kRoundingFloor * (s.scale && *s.scale > 0 ? *s.scale : 1.0);
     doc.paragraph("Fitted order: least-squares slope of log(pos_error) on log(timeStep), over three or more distinct "
-                  "steps. Errors below " + formatNumber(floor) + " m (1e-12 x scene_scale) are rounding, not "
-                  "truncation, and are left out of the fit.");
+                  "steps. An error below 2.2e-16 x scene_scale x steps (one double rounding per step, added up) "
+                  "is rounding, not truncation, and is left out of the fit.");
     std::vector<std::vector<std::string>> rows;
     for (const ConvergenceLine& line : s.convergence)
         rows.push_back({line.label, std::to_string(line.fitPoints), std::to_string(line.belowFloor),
