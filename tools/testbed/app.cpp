@@ -169,6 +169,11 @@ void App::onMouseButton(int button, int action) {
         return;
     }
     if (ImGui::GetIO().WantCaptureMouse) return;
+    // Where the cursor is now (the press may come before this frame's motion was read).
+    double wx = 0, wy = 0;
+    glfwGetCursorPos(window_, &wx, &wy);
+    cursorX_ = wx * scale_;
+    cursorY_ = wy * scale_;
     if (button == GLFW_MOUSE_BUTTON_LEFT) {
         double lx = 0, ly = 0;
         const auto view = viewAt(cursorX_, cursorY_, lx, ly);
@@ -290,7 +295,7 @@ void App::render(int width, int height) {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     for (std::size_t i = 0; i < views_.views().size(); ++i) {
         Batch& batch = batches_[i];
-        batch.clear(camera_.target);
+        batch.clear(camera_.target, 6.0 * camera_.distance);
         View& v = views_.views()[i];
         if (v.world) batch.draw(*v.world, ui_.draw);
         renderer_->draw(batch, camera_, rects_[i], height);

@@ -93,7 +93,8 @@ std::uint64_t hashPoints(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-void Batch::clear(const Vec3& planeCentre) {
+void Batch::clear(const Vec3& planeCentre, double planeReach) {
+    planeReach_ = planeReach;
     triangles.clear();
     lines.clear();
     overlayLines.clear();
@@ -173,22 +174,24 @@ void Batch::drawShape(BodyId body, const ShapeDef& shape, const Transform& pose,
             break;
         }
         case ShapeType::Plane: {
-            // A checkered square of 2 m tiles, 60 m across, about the point of the plane nearest the
-            // centre the view asked for (snapped to the tiles, so the checks do not swim).
+            // A checkered square of 30 x 30 tiles about the point of the plane nearest the centre the
+            // view asked for, snapped to the tiles so the checks do not swim. Tiles are 2 m, doubled
+            // until the square reaches planeReach_.
             const Vec3 n = shape.normal.normalized();
             const Vec3 u = (std::abs(n.y()) < 0.9 ? n.cross(Vec3::UnitY()) : n.cross(Vec3::UnitX())).normalized();
             const Vec3 v = n.cross(u);
-            constexpr double kTile = 2.0;
             constexpr int kHalf = 15;
+            double tile = 2.0;
+            while (tile * kHalf < planeReach_ && tile < 1e6) tile *= 2.0;
             const Vec3 onPlane = planeCentre_ - (n.dot(planeCentre_) - shape.offset) * n;
-            const double cu = std::floor(u.dot(onPlane) / kTile), cv = std::floor(v.dot(onPlane) / kTile);
+            const double cu = std::floor(u.dot(onPlane) / tile), cv = std::floor(v.dot(onPlane) / tile);
             const Vec3 base = shape.offset * n;
             for (int i = -kHalf; i < kHalf; ++i)
                 for (int j = -kHalf; j < kHalf; ++j) {
-                    const double a = (cu + i) * kTile, b = (cv + j) * kTile;
+                    const double a = (cu + i) * tile, b = (cv + j) * tile;
                     // Darker than the body colour, so the ground does not outshine what stands on it.
                     const DebugColor c = shade(color, (static_cast<long long>(cu + i + cv + j) & 1) ? 0.62f : 0.72f);
-                    const Vec3 p0 = base + a * u + b * v, p1 = p0 + kTile * u, p2 = p1 + kTile * v, p3 = p0 + kTile * v;
+                    const Vec3 p0 = base + a * u + b * v, p1 = p0 + tile * u, p2 = p1 + tile * v, p3 = p0 + tile * v;
                     for (const Vec3& p : {p0, p1, p2, p0, p2, p3}) put(triangles, p, n, c);
                 }
             break;

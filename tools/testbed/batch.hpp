@@ -42,8 +42,9 @@ struct DrawToggles {
 
 class Batch : public DebugDraw {
 public:
-    /// Empties the batch; planes are drawn as a checkered square about `planeCentre`.
-    void clear(const Vec3& planeCentre);
+    /// Empties the batch; planes are drawn as a checkered square about `planeCentre`, reaching at
+    /// least `planeReach` m from it (the ground must look endless from the camera).
+    void clear(const Vec3& planeCentre, double planeReach = 30.0);
     /// Draws `world` into the batch.
     void draw(const World& world, const DrawToggles& toggles);
 
@@ -62,6 +63,7 @@ private:
     const std::vector<Vec3>& hullTriangles(const std::vector<Vec3>& points);
 
     Vec3 planeCentre_ = Vec3::Zero();
+    double planeReach_ = 30.0;
     bool showBounds_ = false;
     std::unordered_map<std::uint64_t, std::vector<Vec3>> hulls_;  ///< convex shapes' triangles by point hash
 };
