@@ -4,6 +4,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cstdio>
 
 namespace anyphys::testbed {
@@ -47,11 +48,24 @@ bool optionalInt(const char* label, std::optional<int>& value, int fallback, int
     return changed;
 }
 
+// "ok", "FAIL", or "known" for a miss the backend declares within its ceiling (as `anyphys
+// compare` and `anyphys hardcases` judge it).
+std::string verdict(const View& v) {
+    if (v.checkPasses()) return "ok";
+    const Capabilities caps = backendInfo(v.backend).capabilities;
+    if (!v.check->criterion.empty() && caps.knownDeviations.count(v.check->criterion)) {
+        const auto ceiling = caps.deviationCeilings.find(v.check->criterion);
+        if (ceiling == caps.deviationCeilings.end() || v.checkValue <= ceiling->second)
+            return "known";
+    }
+    return "FAIL";
+}
+
 std::string checkText(const View& v) {
     if (!v.check) return "";
     char text[256];
     std::snprintf(text, sizeof text, "%s %.4g %s  %s (%g +- %g)", v.check->label.c_str(), v.checkValue, v.check->unit.c_str(),
-                  v.checkPasses() ? "ok" : "FAIL", v.check->expected, v.check->tolerance);
+                  verdict(v).c_str(), v.check->expected, v.check->tolerance);
     return text;
 }
 
@@ -190,7 +204,10 @@ void drawViewLabels(const Views& views, const std::vector<Rect>& rects, float sc
         } else {
             ImGui::Text("t %.2f s  step %.3f ms (mean %.3f)  %zu bodies", v.time(), v.lastStepMs, v.meanStepMs, v.bodies.size());
             if (v.check) {
-                const ImVec4 colour = v.checkPasses() ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.5f, 0.4f, 1);
+                const std::string judged = verdict(v);
+                const ImVec4 colour = judged == "ok"      ? ImVec4(0.5f, 1, 0.5f, 1)
+                                      : judged == "known" ? ImVec4(1, 0.85f, 0.4f, 1)
+                                                          : ImVec4(1, 0.5f, 0.4f, 1);
                 ImGui::TextColored(colour, "%s", checkText(v).c_str());
             }
         }
