@@ -19,6 +19,15 @@ packages=(
   libbullet-dev      # Bullet 3.24, backend
   libbox2d-dev       # Box2D 2.4, backend
   gnuplot-nox        # plots of `anyphys report` (PNG and SVG through the cairo terminals)
+  libglfw3-dev       # the testbed's window and input (GLFW 3.3)
+  libimgui-dev       # the testbed's panels: Dear ImGui 1.86 with its GLFW and OpenGL 3 backends (static)
+  libglew-dev        # the testbed's OpenGL 3.3 core function loader
+  libpng-dev         # the testbed's screenshots and recorded frames
+  xvfb               # xvfb-run: the testbed's headless renders and tests on a machine without a display
+  xauth              # needed by xvfb-run
+  libgl1-mesa-dri    # Mesa's software OpenGL (llvmpipe) under Xvfb
+  libglx-mesa0
+  ffmpeg             # the testbed's --video FILE.mp4 / .gif
 )
 
 missing=()
