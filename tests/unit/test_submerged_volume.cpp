@@ -155,7 +155,7 @@ TEST(SubmergedVolume, CapsuleLyingIsCylinderSegmentPlusSphereCap) {
     }
 }
 
-TEST(SubmergedVolume, CapsuleTiltedMatchesAFineQuadrature) {
+TEST(SubmergedVolume, CapsuleTiltedHalvesAndComplementsAddUp) {
     // Tilted: no closed form. A capsule is convex, so its wet volume is continuous and monotonic
     // in the surface height; the two halves of a plane through its centre are equal by symmetry.
     const double r = 0.25, h = 0.6;
@@ -176,6 +176,27 @@ TEST(SubmergedVolume, CapsuleTiltedMatchesAFineQuadrature) {
             EXPECT_NEAR(lower.volume + upper.volume, full, kCapsule * full);
             // Moments add up to the whole capsule's (centred on the origin).
             EXPECT_NEAR((lower.centroid * lower.volume + upper.centroid * upper.volume).norm(), 0.0, 1e-9);
+        }
+    }
+}
+
+TEST(SubmergedVolume, CapsuleTiltedCutThroughItsCylinder) {
+    // A plane that crosses only the cylinder (not its end discs) leaves pi r^2 times the wet
+    // length of the axis (an oblique cut keeps the volume of the square cut through the same
+    // axis point), plus the lower half sphere whole.
+    const double r = 0.25, h = 0.6;
+    const double full = kPi * r * r * (2 * h + 4 * r / 3);
+    for (double angle : {0.1, 0.3, 0.6}) {
+        const Transform pose{Vec3(0, 0, 0), about(Vec3::UnitZ(), angle)};
+        const double reach = r * std::tan(angle);  // axial half-extent of the cut inside the cylinder
+        for (double y0 : {-0.3, 0.0, 0.2}) {
+            const double t = y0 / std::cos(angle);  // where the surface meets the axis
+            ASSERT_LT(std::abs(t) + reach, h);
+            const double expected = 2.0 / 3 * kPi * r * r * r + kPi * r * r * (t + h);
+            const SubmergedVolume s = submergedCapsule(r, h, pose, FluidPlane{Vec3(0, 1, 0), y0});
+            std::cout << "  capsule tilted " << angle << " cut at " << y0 << ": relative volume error "
+                      << std::abs(s.volume - expected) / full << '\n';
+            EXPECT_NEAR(s.volume, expected, kCapsule * full) << angle << " " << y0;
         }
     }
 }
