@@ -3,7 +3,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(DIRECTORY api/include/ listeners/include/ containers/include/
+install(DIRECTORY api/include/ listeners/include/ containers/include/ fields/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 set_target_properties(anyphys_headers PROPERTIES EXPORT_NAME headers)
 install(TARGETS anyphys anyphys_headers ${ANYPHYS_BACKEND_TARGETS}

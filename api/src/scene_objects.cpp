@@ -49,6 +49,13 @@ SceneObjects createSceneObjects(World& world, const Scene& scene) {
             throw Error(where + ": " + e.what());
         }
     }
+    for (std::size_t i = 0; i < scene.fields.size(); ++i) {
+        try {
+            world.addField(scene.fields[i]);
+        } catch (const Error& e) {
+            throw Error("fields[" + std::to_string(i) + "]: " + e.what());
+        }
+    }
     return made;
 }
 

@@ -171,6 +171,7 @@ void World::refreshEffects() {
         if (impl_->gyroscopicBodies > 0) wanted.add(Effect::Gyroscopic);
         if (impl_->forcesUsed || impl_->forceCallback) wanted.add(Effect::UserForces);
         if (impl_->simulatedJoints > 0) wanted.add(Effect::Joints);
+        wanted = wanted | impl_->fieldEffects;
         // Contacts need two bodies, one of which responds (or a sensor and something moving).
         const Impl& i = *impl_;
         const bool contacts = i.liveBodies >= 2 && (i.dynamicBodies > 0 || (i.triggerBodies > 0 && i.movingBodies > 0));
@@ -184,7 +185,12 @@ void World::refreshEffects() {
     const Effects active = wanted & impl_->backend->capabilities.effects;
     if (active == activeEffects_ && impl_->peer) return;
     activeEffects_ = active;
-    impl_->peer->setEffects(active);
+    // Buoyancy, drag and wind reach the backend as forces from the force hook: its user-forces
+    // stage runs while one of them does.
+    Effects peerEffects = active;
+    if (!(active & kFieldForceEffects).empty() && impl_->backend->capabilities.effects.has(Effect::UserForces))
+        peerEffects.add(Effect::UserForces);
+    impl_->peer->setEffects(peerEffects);
 }
 
 // ---- bodies ---------------------------------------------------------------------------------
@@ -268,6 +274,7 @@ void World::destroyBody(Body body) {
             event.trigger ? l->onTriggerExit(event) : l->onCollisionExit(event);
     impl_->peer->destroyBody(*s.peer);
     s.peer.reset();
+    s.fieldBody.reset();
     ++s.generation;
     impl_->freeSlots.push_back(body.id().index);
     countBody(s.def, -1);
@@ -339,6 +346,7 @@ void World::step(double dt) {
     detail::requirePositive("World.step.dt", dt);
     {
         SteppingGuard guard(impl_->stepping);
+        if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);
         impl_->peer->step(time_, dt);
     }
     // Compensated summation keeps time == n * dt to the last bit over long runs.
@@ -488,18 +496,26 @@ void World::setForceCallback(ForceCallback callback) {
     if (callback && settings_.effects && !settings_.effects->has(Effect::UserForces))
         throw Error("World.setForceCallback: the world's declared effects exclude \"userForces\"; add it to WorldSettings.effects");
     impl_->forceCallback = std::move(callback);
-    if (impl_->forceCallback) {
-        impl_->peer->setForceHook([this](ForceStage& stage) {
-            ForceContextImpl context(*this, stage, [](World& w, Body b) -> BodyPeer& {
-                if (b.world() != &w) throw Error("ForceContext: the body belongs to another world");
-                return *w.slot(b.id(), "ForceContext").peer;
-            });
-            impl_->forceCallback(context);
-        });
-    } else {
-        impl_->peer->setForceHook({});
-    }
+    installForceHook();
     refreshEffects();
+}
+
+void World::installForceHook() {
+    const bool fieldForces = !(impl_->fieldEffects & kFieldForceEffects).empty();
+    if (!impl_->forceCallback && !fieldForces) {
+        impl_->peer->setForceHook({});
+        return;
+    }
+    impl_->peer->setForceHook([this](ForceStage& stage) {
+        // The fields first (they read only states), then the game's callback.
+        if (!(activeEffects_ & kFieldForceEffects).empty()) applyFieldForces(stage);
+        if (!impl_->forceCallback) return;
+        ForceContextImpl context(*this, stage, [](World& w, Body b) -> BodyPeer& {
+            if (b.world() != &w) throw Error("ForceContext: the body belongs to another world");
+            return *w.slot(b.id(), "ForceContext").peer;
+        });
+        impl_->forceCallback(context);
+    });
 }
 
 void World::addListener(ContactListener* listener) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "anyphys/fields/field_forces.hpp"
 #include "anyphys/listeners/contact_tracker.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "anyphys/thread_pool.hpp"
@@ -20,6 +21,7 @@ struct World::Slot {
     MassProperties mass;
     Transform peerFrame;             // the peer's frame (centre of mass, principal axes) in the body frame
     std::vector<std::uint32_t> joints;  // slots of the live joints holding this body
+    std::unique_ptr<FieldBody> fieldBody;  // built on the first field evaluation (world_fields.cpp)
 
     /// The user's view (body origin) of the peer's state (centre of mass frame).
     BodyState userState() const;
@@ -103,6 +105,8 @@ struct World::Impl {
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch
 
     ForceCallback forceCallback;
+    std::vector<FieldDef> fields;  // World::addField, in order
+    Effects fieldEffects;          // the effects of the fields held
     std::vector<ContactListener*> listeners;
     ContactTracker tracker;
     WarningHandler warningHandler;

@@ -24,6 +24,7 @@
 #include "anyphys/effects.hpp"
 #include "anyphys/enums.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/fields/field_def.hpp"
 #include "anyphys/joint_validation.hpp"
 #include "anyphys/validation.hpp"
 
@@ -346,7 +347,7 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     requireObject(v, path);
     checkKeys(v, path, {"name", "type", "position", "orientation", "linearVelocity", "angularVelocity", "shape", "mass",
                         "density", "inertia", "material", "linearDamping", "angularDamping", "gravityScale",
-                        "gyroscopic", "isTrigger", "layer", "mask", "allowSleep", "isAwake"});
+                        "gyroscopic", "isTrigger", "layer", "mask", "allowSleep", "isAwake", "dragCoefficient"});
     BodyDef b;
     const auto* name = find(v, "name");
     if (!name) missing(join(path, "name"), "every body needs a non-empty, unique name");
@@ -373,8 +374,60 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     if (auto* x = find(v, "mask")) b.mask = readUint32(*x, join(path, "mask"), "must be an unsigned 32-bit integer");
     if (auto* x = find(v, "allowSleep")) b.allowSleep = readBool(*x, join(path, "allowSleep"));
     if (auto* x = find(v, "isAwake")) b.isAwake = readBool(*x, join(path, "isAwake"));
+    if (auto* x = find(v, "dragCoefficient")) b.dragCoefficient = readNumber(*x, join(path, "dragCoefficient"));
     validate(b, path);  // the same range rules, in the same words, as World::createBody
     return b;
+}
+
+// ---- fields -----------------------------------------------------------------------------------
+
+// The keys of one field type; the others keep their defaults.
+std::vector<std::string_view> fieldKeys(FieldType type) {
+    switch (type) {
+        case FieldType::Buoyancy: return {"type", "fluidDensity", "surface", "linearDrag", "angularDrag"};
+        case FieldType::Drag: return {"type", "airDensity"};
+        case FieldType::Wind: return {"type", "velocity", "airDensity"};
+        case FieldType::Explosion: return {"type", "center", "time", "impulse", "radius"};
+    }
+    return {"type"};
+}
+
+FieldDef readField(const json& v, const std::string& path, bool planar) {
+    requireObject(v, path);
+    const auto* typeValue = find(v, "type");
+    if (!typeValue) missing(join(path, "type"), "allowed types are " + fieldTypeNames());
+    const auto type = typeValue->is_string() ? fieldTypeFromString(typeValue->get<std::string>()) : std::nullopt;
+    if (!type) fail(join(path, "type"), *typeValue, "must be one of " + fieldTypeNames());
+    checkKeys(v, path, fieldKeys(*type), " for a " + std::string(toString(*type)) + " field");
+    FieldDef f;
+    f.type = *type;
+    if (auto* x = find(v, "fluidDensity")) f.fluidDensity = readNumber(*x, join(path, "fluidDensity"));
+    if (auto* x = find(v, "surface")) {
+        const std::string p = join(path, "surface");
+        requireObject(*x, p, "an object {\"normal\": [x, y, z], \"offset\": d}");
+        checkKeys(*x, p, {"normal", "offset"});
+        if (auto* y = find(*x, "normal")) f.surfaceNormal = readVec3(*y, join(p, "normal"));
+        if (auto* y = find(*x, "offset")) f.surfaceOffset = readNumber(*y, join(p, "offset"));
+    }
+    if (auto* x = find(v, "linearDrag")) f.linearDrag = readNumber(*x, join(path, "linearDrag"));
+    if (auto* x = find(v, "angularDrag")) f.angularDrag = readNumber(*x, join(path, "angularDrag"));
+    if (auto* x = find(v, "airDensity")) f.airDensity = readNumber(*x, join(path, "airDensity"));
+    if (auto* x = find(v, "velocity")) f.velocity = readVec3(*x, join(path, "velocity"));
+    if (auto* x = find(v, "center")) f.center = readVec3(*x, join(path, "center"));
+    if (auto* x = find(v, "time")) f.time = readNumber(*x, join(path, "time"));
+    if (auto* x = find(v, "impulse")) f.impulse = readNumber(*x, join(path, "impulse"));
+    if (auto* x = find(v, "radius")) f.radius = readNumber(*x, join(path, "radius"));
+    validate(f, path);  // the same range rules, in the same words, as World::addField
+    if (planar) {
+        const auto inPlane = [&](const std::string& key, const Vec3& value) {
+            if (std::abs(value.z()) > 1e-9 * std::max(1.0, value.norm()))
+                throw Error::invalid(join(path, key), formatVec3(value), "must lie in the XY plane (z = 0) in a planar world");
+        };
+        if (f.type == FieldType::Buoyancy) inPlane("surface.normal", f.surfaceNormal);
+        if (f.type == FieldType::Wind) inPlane("velocity", f.velocity);
+        if (f.type == FieldType::Explosion) inPlane("center", f.center);
+    }
+    return f;
 }
 
 // ---- joints -----------------------------------------------------------------------------------
@@ -590,6 +643,32 @@ ojson bodyJson(const BodyDef& b) {
     j["mask"] = b.mask;
     j["allowSleep"] = b.allowSleep;
     j["isAwake"] = b.isAwake;
+    if (b.dragCoefficient) j["dragCoefficient"] = *b.dragCoefficient;
+    return j;
+}
+
+ojson fieldJson(const FieldDef& f) {
+    ojson j;
+    j["type"] = std::string(toString(f.type));
+    switch (f.type) {
+        case FieldType::Buoyancy:
+            j["fluidDensity"] = f.fluidDensity;
+            j["surface"] = ojson{{"normal", vec(f.surfaceNormal)}, {"offset", f.surfaceOffset}};
+            j["linearDrag"] = f.linearDrag;
+            j["angularDrag"] = f.angularDrag;
+            break;
+        case FieldType::Drag: j["airDensity"] = f.airDensity; break;
+        case FieldType::Wind:
+            j["velocity"] = vec(f.velocity);
+            j["airDensity"] = f.airDensity;
+            break;
+        case FieldType::Explosion:
+            j["center"] = vec(f.center);
+            j["time"] = f.time;
+            j["impulse"] = f.impulse;
+            j["radius"] = f.radius;
+            break;
+    }
     return j;
 }
 
@@ -808,7 +887,7 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
 Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
     const json doc = parseJson(jsonText);
     requireObject(doc, "", "a JSON object with \"settings\", \"materials\", \"bodies\", ...");
-    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "instances", "joints"},
+    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "instances", "joints", "fields"},
               " at the top level");
 
     Scene scene;
@@ -849,6 +928,10 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
             }
             scene.joints.push_back(std::move(j));
         }
+    }
+    if (auto* v = find(doc, "fields")) {
+        if (!v->is_array()) fail("fields", *v, "must be an array of field objects (" + fieldTypeNames() + ")");
+        for (std::size_t i = 0; i < v->size(); ++i) scene.fields.push_back(readField((*v)[i], at("fields", i), scene.settings.planar));
     }
     return scene;
 }
@@ -912,6 +995,10 @@ std::string sceneToJson(const Scene& scene) {
     for (const auto& b : scene.bodies) doc["bodies"].push_back(bodyJson(b));
     doc["joints"] = ojson::array();
     for (const auto& j : scene.joints) doc["joints"].push_back(jointJson(j));
+    if (!scene.fields.empty()) {
+        doc["fields"] = ojson::array();
+        for (const auto& f : scene.fields) doc["fields"].push_back(fieldJson(f));
+    }
 
     std::string out;
     write(out, doc, 0);

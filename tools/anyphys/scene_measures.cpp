@@ -39,6 +39,7 @@ Effects contentEffects(const Scene& scene) {
             if (m.restitution > 0.0) effects.add(Effect::Restitution);
         }
     }
+    for (const FieldDef& field : scene.fields) effects.add(fieldEffect(field.type));
     return effects;
 }
 

@@ -6,6 +6,7 @@
 #include "anyphys/debug_draw.hpp"
 #include "anyphys/defs.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/fields/field_def.hpp"
 #include "anyphys/joint.hpp"
 #include "anyphys/joint_def.hpp"
 #include "anyphys/listeners/contact_listener.hpp"

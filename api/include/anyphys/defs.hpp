@@ -66,6 +66,9 @@ struct BodyDef {
     double linearDamping = 0.0;                ///< 1/s, dv/dt = -c v; default 0
     double angularDamping = 0.0;               ///< 1/s, dw/dt = -c w; default 0
     double gravityScale = 1.0;                 ///< multiplies world gravity for this body; default 1
+    /// Drag coefficient for drag and wind fields (fields/), >= 0; default: by shape (0.47 sphere,
+    /// 1.05 box, 0.82 capsule, 0.8 convex; a compound takes its first child's).
+    std::optional<double> dragCoefficient;
     GyroscopicMode gyroscopic = GyroscopicMode::Implicit;  ///< default implicit (stable, conserves |L| closely)
     bool isTrigger = false;                    ///< a sensor: reports trigger enter / exit, never collides; default false
     std::uint32_t layer = 1;                   ///< collision layer bits; default 1

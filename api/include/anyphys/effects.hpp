@@ -21,6 +21,11 @@ enum class Effect : std::uint32_t {
     Sleeping = 1u << 8,             ///< resting islands stop being simulated
     ContinuousCollision = 1u << 9,  ///< time of impact for fast bodies
     Events = 1u << 10,              ///< collision / trigger events for listeners
+    // Force fields (fields/): the layer applies them through forces and impulses on every backend.
+    Buoyancy = 1u << 11,            ///< fluid below a plane: Archimedes' force and drag in the fluid
+    Drag = 1u << 12,                ///< quadratic air drag
+    Wind = 1u << 13,                ///< quadratic drag relative to moving air
+    Explosion = 1u << 14,           ///< impulses from a point at a given time
 };
 
 /// A set of effects. Bitwise, cheap to copy.
@@ -48,14 +53,15 @@ public:
     std::vector<std::string> names() const;
 
 private:
-    static constexpr std::uint32_t allBits() { return (1u << 11) - 1; }  // one bit per Effect
+    static constexpr std::uint32_t allBits() { return (1u << 15) - 1; }  // one bit per Effect
     std::uint32_t bits_ = 0;
 };
 
 constexpr Effects operator|(Effect a, Effect b) { return Effects(a) | Effects(b); }
 
 /// Every effect with its scene-file name ("gravity", "damping", "gyroscopic", "userForces",
-/// "contacts", "friction", "restitution", "joints", "sleeping", "continuousCollision", "events").
+/// "contacts", "friction", "restitution", "joints", "sleeping", "continuousCollision", "events",
+/// "buoyancy", "drag", "wind", "explosion").
 struct EffectName {
     Effect effect;
     std::string_view name;
@@ -72,6 +78,10 @@ inline constexpr EffectName kEffectNames[] = {
     {Effect::Sleeping, "sleeping"},
     {Effect::ContinuousCollision, "continuousCollision"},
     {Effect::Events, "events"},
+    {Effect::Buoyancy, "buoyancy"},
+    {Effect::Drag, "drag"},
+    {Effect::Wind, "wind"},
+    {Effect::Explosion, "explosion"},
 };
 
 std::string_view toString(Effect e);

@@ -164,6 +164,7 @@ inline void validate(const BodyDef& b, const std::string& path) {
     requireNonNegative(path + ".linearDamping", b.linearDamping);
     requireNonNegative(path + ".angularDamping", b.angularDamping);
     requireFinite(path + ".gravityScale", b.gravityScale);
+    if (b.dragCoefficient) requireNonNegative(path + ".dragCoefficient", *b.dragCoefficient);
 }
 
 namespace detail {

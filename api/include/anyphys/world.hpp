@@ -15,6 +15,7 @@
 #include "anyphys/defs.hpp"
 #include "anyphys/effects.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/fields/field_def.hpp"
 #include "anyphys/ids.hpp"
 #include "anyphys/joint.hpp"
 #include "anyphys/joint_def.hpp"
@@ -24,6 +25,7 @@
 namespace anyphys {
 
 class World;
+class ForceStage;  // peers: a backend's force evaluation
 
 /// What a force callback sees: the time and body states of the current force evaluation, and
 /// where to put forces. On backends that evaluate per stage (native) the callback runs at each
@@ -110,6 +112,17 @@ public:
     /// Runs inside every step (see ForceContext). Replaces any previous callback; empty clears.
     void setForceCallback(ForceCallback callback);
 
+    // ---- force fields (docs/fields.md) ----------------------------------------------------
+    /// Adds a field (buoyancy, drag, wind or explosion), validated like scene files
+    /// ("FieldDef.radius: must be > 0, got -1"); its effect is derived from then on (under declared
+    /// effects that exclude it, throws). In a planar world its vectors must lie in the plane. The
+    /// field acts from the next step; fields act in the order added. Not while stepping.
+    void addField(const FieldDef& field);
+    /// The fields added, in order.
+    const std::vector<FieldDef>& fields() const;
+    /// Removes every field; their effects are no longer derived. Not while stepping.
+    void clearFields();
+
     // ---- queries ------------------------------------------------------------------------
     /// Closest hit of the ray origin + t direction, 0 <= t <= maxDistance (direction need not
     /// be unit), on bodies whose layer is in `mask`. Triggers are not hit.
@@ -184,6 +197,9 @@ private:
     void deliverEvents();  // the last step's events to the listeners
     struct MaterialTable buildMaterialTable();
     void noteForcesUsed();  // first force or torque: derive the userForces effect
+    void installForceHook();  // the peer's hook: the field stage and the force callback, when either runs
+    void applyFieldForces(ForceStage& stage);  // world_fields.cpp: buoyancy, drag, wind
+    void fireExplosions(double dt);             // world_fields.cpp: explosions due in this step
     void warn(const std::string& message);
 
     WorldSettings settings_;

@@ -5,6 +5,7 @@
 
 #include "anyphys/containers/material_library.hpp"
 #include "anyphys/defs.hpp"
+#include "anyphys/fields/field_def.hpp"
 #include "anyphys/joint_def.hpp"
 #include "anyphys/world_settings.hpp"
 
@@ -22,6 +23,7 @@ struct Scene {
     MaterialLibrary materials;
     std::vector<BodyDef> bodies;  ///< each with a unique, non-empty name
     std::vector<SceneJoint> joints;  ///< created after the bodies, in this order
+    std::vector<FieldDef> fields;    ///< force fields (buoyancy, drag, wind, explosion), added in this order
 };
 
 

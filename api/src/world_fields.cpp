@@ -1,0 +1,156 @@
+// The field stage: buoyancy, drag and wind as forces inside the backend's force evaluation (the
+// force hook, so on backends that evaluate forces per integrator stage they follow the stage's
+// states), explosions as impulses before the step. Only what every backend offers is used: body
+// states, forces and torques, impulses, ray casts and overlap queries.
+#include <algorithm>
+
+#include "anyphys/validation.hpp"
+#include "anyphys/world.hpp"
+#include "body_shapes.hpp"
+#include "world_impl.hpp"
+
+namespace anyphys {
+
+namespace {
+
+// The body's primitives in its peer frame (centre of mass, principal axes), with hull faces.
+std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperties& mass, const Transform& peerFrame) {
+    auto body = std::make_unique<FieldBody>();
+    const Quat toPeer = peerFrame.orientation.conjugate();
+    for (const PeerShape& p : flattenShape(def.shape)) {
+        FieldShape s;
+        s.type = p.def.type;
+        s.radius = p.def.radius;
+        s.halfExtents = p.def.halfExtents;
+        s.halfHeight = p.def.halfHeight;
+        if (p.hull) s.hull = std::make_shared<const ConvexFaces>(ConvexFaces{p.hull->vertices, p.hull->faces});
+        s.local.position = toPeer * (p.local.position - peerFrame.position);
+        s.local.orientation = toPeer * p.local.orientation;
+        body->volume += shapeVolume(s);
+        body->shapes.push_back(std::move(s));
+    }
+    body->mass = mass.mass;
+    body->inertia = mass.inertia;
+    const ShapeType first = def.shape.type == ShapeType::Compound && !def.shape.shapes.empty() ? def.shape.shapes[0].type
+                                                                                                : def.shape.type;
+    body->dragCoefficient = def.dragCoefficient.value_or(defaultDragCoefficient(first));
+    return body;
+}
+
+const FieldBody& fieldBodyOf(std::unique_ptr<FieldBody>& cached, const BodyDef& def, const MassProperties& mass,
+                             const Transform& peerFrame) {
+    if (!cached) cached = buildFieldBody(def, mass, peerFrame);
+    return *cached;
+}
+
+FieldState fieldState(const BodyState& s) { return {{s.position, s.orientation}, s.linearVelocity, s.angularVelocity}; }
+
+}  // namespace
+
+void World::addField(const FieldDef& input) {
+    if (impl_->stepping) throw Error("World.addField: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.addField");
+    validate(input, "FieldDef");
+    const Effect effect = fieldEffect(input.type);
+    if (settings_.planar) {
+        const auto inPlane = [](const std::string& field, const Vec3& v) {
+            if (std::abs(v.z()) > 1e-9 * std::max(1.0, v.norm()))
+                throw Error::invalid(field, formatVec3(v), "must lie in the XY plane (z = 0) in a planar world");
+        };
+        if (input.type == FieldType::Buoyancy) inPlane("FieldDef.surface.normal", input.surfaceNormal);
+        if (input.type == FieldType::Wind) inPlane("FieldDef.velocity", input.velocity);
+        if (input.type == FieldType::Explosion) inPlane("FieldDef.center", input.center);
+    }
+    if (settings_.effects && !settings_.effects->has(effect))
+        throw Error("World.addField: the world's declared effects exclude \"" + std::string(toString(effect)) +
+                    "\"; add it to WorldSettings.effects");
+    FieldDef field = input;
+    field.surfaceNormal.normalize();
+    impl_->fields.push_back(field);
+    impl_->fieldEffects.add(effect);
+    installForceHook();
+    refreshEffects();
+}
+
+const std::vector<FieldDef>& World::fields() const { return impl_->fields; }
+
+void World::clearFields() {
+    if (impl_->stepping) throw Error("World.clearFields: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileDrawing("World.clearFields");
+    impl_->fields.clear();
+    impl_->fieldEffects = Effects::none();
+    installForceHook();
+    refreshEffects();
+}
+
+void World::applyFieldForces(ForceStage& stage) {
+    const Effects on = activeEffects_ & kFieldForceEffects;
+    const bool planar = settings_.planar;
+    for (Slot& slot : impl_->slots) {
+        if (!slot.peer || slot.def.type != BodyType::Dynamic || !slot.peer->isAwake()) continue;
+        const FieldBody& body = fieldBodyOf(slot.fieldBody, slot.def, slot.mass, slot.peerFrame);
+        const FieldState state = fieldState(stage.state(*slot.peer));
+        FieldForce total;
+        for (const FieldDef& field : impl_->fields) {
+            if (!on.has(fieldEffect(field.type))) continue;
+            switch (field.type) {
+                case FieldType::Buoyancy: total += buoyancyForce(field, body, state, settings_.gravity); break;
+                case FieldType::Drag: total += dragForce(field, body, state); break;
+                case FieldType::Wind: total += windForce(field, body, state); break;
+                case FieldType::Explosion: break;  // impulses, before the step
+            }
+        }
+        if (planar) {  // the plane holds the body, as for Body::applyForce
+            total.force.z() = 0.0;
+            total.torque.x() = total.torque.y() = 0.0;
+        }
+        if (!total.force.isZero(0)) stage.addForce(*slot.peer, total.force);
+        if (!total.torque.isZero(0)) stage.addTorque(*slot.peer, total.torque);
+    }
+}
+
+void World::fireExplosions(double dt) {
+    const bool planar = settings_.planar;
+    for (const FieldDef& field : impl_->fields) {
+        // Due in this step: its start time t has t <= time < t + dt.
+        if (field.type != FieldType::Explosion || field.time < time_ || field.time >= time_ + dt) continue;
+        const Transform at{field.center, Quat::Identity()};
+        std::vector<std::uint64_t> keys = impl_->peer->overlap(flattenShape(ShapeDef::sphere(field.radius)), at, 0xFFFFFFFFu);
+        std::sort(keys.begin(), keys.end());  // the same order on every backend
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        for (std::uint64_t key : keys) {
+            const BodyId id = unpackId(key);
+            if (!isValid(id)) continue;
+            Slot& slot = impl_->slots[id.index];
+            if (slot.def.type != BodyType::Dynamic) continue;
+            const FieldState state = fieldState(slot.peer->state());
+            const auto hit = explosionHit(field, fieldBodyOf(slot.fieldBody, slot.def, slot.mass, slot.peerFrame), state);
+            if (!hit) continue;
+            // Static geometry between the centre and the point shields the body.
+            const Vec3 ray = hit->point - field.center;
+            const double reach = ray.norm();
+            bool shielded = false;
+            if (reach > settings_.linearSlop) {
+                for (const PeerRayHit& h : impl_->peer->raycast(field.center, ray / reach, reach, false, 0xFFFFFFFFu)) {
+                    if (h.distance >= reach - settings_.linearSlop) break;
+                    const BodyId other = unpackId(h.body);
+                    if (isValid(other) && impl_->slots[other.index].def.type == BodyType::Static) {
+                        shielded = true;
+                        break;
+                    }
+                }
+            }
+            if (shielded) continue;
+            Vec3 linear = hit->impulse;
+            Vec3 angular = (hit->point - state.pose.position).cross(hit->impulse);
+            if (planar) {
+                linear.z() = 0.0;
+                angular.x() = angular.y() = 0.0;
+            }
+            slot.peer->applyLinearImpulse(linear);
+            if (!angular.isZero(0)) slot.peer->applyAngularImpulse(angular);
+        }
+    }
+}
+
+}  // namespace anyphys
