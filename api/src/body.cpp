@@ -40,7 +40,7 @@ void requireAboutZ(const World* world, const char* field, const Vec3& angular) {
 // maxSpeed is an absurd input, refused like an absurd velocity.
 void requireForceWithinCeiling(const World* world, BodyType type, double mass, const char* field, const Vec3& force) {
     if (type != BodyType::Dynamic) return;
-    const double dv = force.norm() / mass * world->settings().timeStep;
+    const double dv = force.stableNorm() / mass * world->settings().timeStep;
     if (!(dv <= world->settings().maxSpeed))
         throw Error::invalid(field, formatVec3(force),
                              "would change the body's speed by " + detail::ceilingText(dv) +
@@ -143,6 +143,16 @@ void Body::applyForceAtPoint(const Vec3& force, const Vec3& worldPoint) {
 void Body::applyTorque(const Vec3& torque) {
     auto& slot = ANYPHYS_SLOT("Body.applyTorque");
     detail::requireFinite("Body.applyTorque.torque", torque);
+    if (slot.def.type == BodyType::Dynamic) {
+        // The spin change over one step, I^-1 torque dt, in the peer's principal frame.
+        const Vec3 local = slot.peer->state().orientation.conjugate() * torque;
+        const double dw = local.cwiseQuotient(slot.mass.inertia).stableNorm() * world()->settings().timeStep;
+        if (!(dw <= world()->settings().maxAngularSpeed))
+            throw Error::invalid("Body.applyTorque.torque", formatVec3(torque),
+                                 "would change the body's spin by " + detail::ceilingText(dw) +
+                                     " rad/s in one step (WorldSettings.timeStep), more than WorldSettings.maxAngularSpeed (" +
+                                     detail::ceilingText(world()->settings().maxAngularSpeed) + " rad/s)");
+    }
     world()->noteForcesUsed();
     slot.peer->addTorque(aboutZ(world(), torque));
 }
@@ -151,7 +161,7 @@ void Body::applyLinearImpulse(const Vec3& impulse) {
     auto& slot = ANYPHYS_SLOT("Body.applyLinearImpulse");
     detail::requireFinite("Body.applyLinearImpulse.impulse", impulse);
     if (slot.def.type == BodyType::Dynamic) {
-        const double dv = impulse.norm() / slot.mass.mass;
+        const double dv = impulse.stableNorm() / slot.mass.mass;
         if (!(dv <= world()->settings().maxSpeed))
             throw Error::invalid("Body.applyLinearImpulse.impulse", formatVec3(impulse),
                                  "would change the body's speed by " + detail::ceilingText(dv) +
@@ -167,7 +177,7 @@ void Body::applyAngularImpulse(const Vec3& impulse) {
     if (slot.def.type == BodyType::Dynamic) {
         // The spin change I^-1 impulse, in the peer's principal frame.
         const Vec3 local = slot.peer->state().orientation.conjugate() * impulse;
-        const double dw = local.cwiseQuotient(slot.mass.inertia).norm();
+        const double dw = local.cwiseQuotient(slot.mass.inertia).stableNorm();
         if (!(dw <= world()->settings().maxAngularSpeed))
             throw Error::invalid("Body.applyAngularImpulse.impulse", formatVec3(impulse),
                                  "would change the body's spin by " + detail::ceilingText(dw) +

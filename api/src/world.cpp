@@ -53,18 +53,37 @@ public:
     BodyState state(Body body) const override;
     void addForce(Body body, const Vec3& force) override {
         detail::requireFinite("ForceContext.addForce.force", force);
+        requireWithinCeiling(body, "ForceContext.addForce.force", force, false);
         Vec3 f = force;
         if (world_.settings().planar) f.z() = 0.0;  // the plane holds the body (see Body::applyForce)
         stage_.addForce(resolve_(world_, body), f);
     }
     void addTorque(Body body, const Vec3& torque) override {
         detail::requireFinite("ForceContext.addTorque.torque", torque);
+        requireWithinCeiling(body, "ForceContext.addTorque.torque", torque, true);
         Vec3 t = torque;
         if (world_.settings().planar) t.x() = t.y() = 0.0;
         stage_.addTorque(resolve_(world_, body), t);
     }
 
 private:
+    // A force or torque that would change the body's speed or spin by more than the world's
+    // ceiling within one step is absurd: refused like one given to Body::applyForce, before an
+    // engine integrates it (a torque is bounded about the body's weakest principal axis).
+    void requireWithinCeiling(const Body& body, const char* field, const Vec3& value, bool torque) const {
+        if (value.isZero(0) || body.type() != BodyType::Dynamic) return;
+        const MassProperties m = body.massProperties();
+        const double dt = world_.settings().timeStep;
+        const double change = value.stableNorm() / (torque ? m.inertia.minCoeff() : m.mass) * dt;
+        const double ceiling = torque ? world_.settings().maxAngularSpeed : world_.settings().maxSpeed;
+        if (!(change <= ceiling))
+            throw Error::invalid(field, formatVec3(value),
+                                 std::string("would change the body's ") + (torque ? "spin" : "speed") + " by " +
+                                     detail::ceilingText(change) + (torque ? " rad/s" : " m/s") +
+                                     " in one step (WorldSettings.timeStep), more than WorldSettings." +
+                                     (torque ? "maxAngularSpeed (" : "maxSpeed (") + detail::ceilingText(ceiling) + ")");
+    }
+
     World& world_;
     ForceStage& stage_;
     BodyPeer& (*resolve_)(World&, Body);
@@ -391,7 +410,8 @@ const char* divergence(const BodyState& s, double maxSpeed2, double maxAngularSp
                        std::abs(p.y()) <= kMaxCoordinate && std::abs(p.z()) <= kMaxCoordinate &&
                        std::isfinite(s.orientation.w() + s.orientation.x() + s.orientation.y() + s.orientation.z());
     if (sound) return nullptr;
-    if (!(std::isfinite(v2) && std::isfinite(w2) && p.allFinite() && s.orientation.coeffs().allFinite()))
+    if (!(s.linearVelocity.allFinite() && s.angularVelocity.allFinite() && p.allFinite() &&
+          s.orientation.coeffs().allFinite()))
         return "non-finite state";
     if (!(v2 <= maxSpeed2)) return "linearVelocity";
     if (!(w2 <= maxAngularSpeed2)) return "angularVelocity";
@@ -434,10 +454,10 @@ void World::checkDivergence(double dt) {
             field += !state.position.allFinite() ? "position" : !state.linearVelocity.allFinite() ? "linearVelocity"
                      : !state.angularVelocity.allFinite() ? "angularVelocity" : "orientation";
         } else if (what == std::string_view("linearVelocity")) {
-            reason = "speed " + number(state.linearVelocity.norm()) + " m/s > WorldSettings.maxSpeed " + number(settings_.maxSpeed);
+            reason = "speed " + number(state.linearVelocity.stableNorm()) + " m/s > WorldSettings.maxSpeed " + number(settings_.maxSpeed);
             field += what;
         } else if (what == std::string_view("angularVelocity")) {
-            reason = "angular speed " + number(state.angularVelocity.norm()) + " rad/s > WorldSettings.maxAngularSpeed " +
+            reason = "angular speed " + number(state.angularVelocity.stableNorm()) + " rad/s > WorldSettings.maxAngularSpeed " +
                      number(settings_.maxAngularSpeed);
             field += what;
         } else {

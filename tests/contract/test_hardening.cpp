@@ -125,10 +125,20 @@ TEST_P(HardeningTest, AbsurdFiniteValuesAreRefusedNamingTheField) {
                 "Body.applyAngularImpulse.impulse", {"WorldSettings.maxAngularSpeed"});
     expectError([&] { b.applyForce(Vec3(1e300, 0, 0)); }, ErrorKind::InvalidArgument, "Body.applyForce.force",
                 {"in one step"});
+    expectError([&] { b.applyTorque(Vec3(0, 0, 1e300)); }, ErrorKind::InvalidArgument, "Body.applyTorque.torque",
+                {"in one step", "WorldSettings.maxAngularSpeed"});
     const BodyState after = b.state();
     EXPECT_EQ(after.position, before.position);
     EXPECT_EQ(after.linearVelocity, before.linearVelocity);
     EXPECT_EQ(after.angularVelocity, before.angularVelocity);
+
+    // A force callback's absurd force is refused inside the step, before the engine integrates it
+    // (ODE aborted the process on a 1e300 N force).
+    world.setForceCallback([&](ForceContext& c) { c.addForce(b, Vec3(1e300, 0, 0)); });
+    expectError([&] { world.step(); }, ErrorKind::InvalidArgument, "ForceContext.addForce.force", {"in one step"});
+    world.setForceCallback([&](ForceContext& c) { c.addTorque(b, Vec3(0, 0, 1e300)); });
+    expectError([&] { world.step(); }, ErrorKind::InvalidArgument, "ForceContext.addTorque.torque", {"in one step"});
+    world.setForceCallback({});
 
     // The same values in a scene file name the JSON path.
     expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "position": [1e308, 0, 0], "shape": {"type": "sphere"}}]})"); },
