@@ -44,7 +44,7 @@ WorldSettings settingsFor(const std::string& backend) {
 TrajectoryWriter::TrajectoryWriter(const std::string& path) : path_(path) {
     if (path_.empty()) return;
     file_.open(path_, std::ios::binary);
-    if (!file_) throw Error(path_ + ": cannot open for writing");
+    if (!file_) throw Error(ErrorKind::Io, "", path_ + ": cannot open for writing");
     file_ << "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
 }
 
@@ -67,7 +67,7 @@ void TrajectoryWriter::write(long long step, double time, const std::vector<Body
 void TrajectoryWriter::finish() {
     if (!file_.is_open()) return;
     file_.flush();
-    if (!file_) throw Error(path_ + ": write failed");
+    if (!file_) throw Error(ErrorKind::Io, "", path_ + ": write failed");
 }
 
 std::string firstNonFinite(const std::vector<Body>& bodies) {

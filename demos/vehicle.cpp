@@ -42,7 +42,7 @@ std::vector<Control> defaultScript(bool planar) {
 
 std::vector<Control> readControlFile(const std::string& path) {
     std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open the control file");
+    if (!in) throw Error(ErrorKind::Io, "", path + ": cannot open the control file");
     std::vector<Control> rows;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -7,9 +7,13 @@
 namespace anyphys {
 namespace {
 
-World& worldOf(World* world, const char* operation) {
-    if (!world) throw Error(std::string(operation) + ": null body handle");
-    return *world;
+World& worldOf(const std::shared_ptr<detail::WorldLink>& link, BodyId id, const char* operation) {
+    if (!link || id.isNull()) throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": null body handle");
+    if (!link->world)
+        throw Error(ErrorKind::StaleHandle, "",
+                    std::string(operation) + ": stale body handle (index " + std::to_string(id.index) + ", generation " +
+                        std::to_string(id.generation) + "): the body's world was destroyed");
+    return *link->world;
 }
 
 // A planar world keeps motion in the XY plane: pushes out of it are dropped (the plane holds the
@@ -32,12 +36,27 @@ void requireAboutZ(const World* world, const char* field, const Vec3& angular) {
         throw Error::invalid(field, formatVec3(angular), "must be about Z only (x = y = 0) in a planar world");
 }
 
+// A force whose one step (settings().timeStep) changes a dynamic body's speed by more than
+// maxSpeed is an absurd input, refused like an absurd velocity.
+void requireForceWithinCeiling(const World* world, BodyType type, double mass, const char* field, const Vec3& force) {
+    if (type != BodyType::Dynamic) return;
+    const double dv = force.stableNorm() / mass * world->settings().timeStep;
+    if (!(dv <= world->settings().maxSpeed))
+        throw Error::invalid(field, formatVec3(force),
+                             "would change the body's speed by " + detail::ceilingText(dv) +
+                                 " m/s in one step (WorldSettings.timeStep), more than WorldSettings.maxSpeed (" +
+                                 detail::ceilingText(world->settings().maxSpeed) + " m/s)");
+}
+
 }  // namespace
 
 // Resolves the handle to its live slot or throws a stale-handle error naming the operation.
-#define ANYPHYS_SLOT(op) worldOf(world_, op).slot(id_, op)
+#define ANYPHYS_SLOT(op) worldOf(link_, id_, op).slot(id_, op)
 
-bool Body::isValid() const { return world_ && world_->isValid(id_); }
+Body::Body(World* world, BodyId id) : link_(world ? world->link_ : nullptr), id_(id) {}
+
+bool Body::isValid() const { return world() && world()->isValid(id_); }
+bool Body::isFrozen() const { return ANYPHYS_SLOT("Body.isFrozen").frozen; }
 
 const std::string& Body::name() const { return ANYPHYS_SLOT("Body.name").def.name; }
 BodyType Body::type() const { return ANYPHYS_SLOT("Body.type").def.type; }
@@ -72,68 +91,100 @@ Vec3 Body::angularMomentum() const {
 
 void Body::setTransform(const Vec3& position, const Quat& orientation) {
     auto& slot = ANYPHYS_SLOT("Body.setTransform");
-    detail::requireFinite("Body.setTransform.position", position);
+    detail::requireCoordinate("Body.setTransform.position", position);
     if (!orientation.coeffs().allFinite() || std::abs(orientation.norm() - 1.0) > kUnitQuaternionTolerance)
         throw Error::invalid("Body.setTransform.orientation", formatQuat(orientation), "must be a unit quaternion");
-    requireInPlane(world_, "Body.setTransform.position", position);
-    if (world_->settings().planar && !detail::rotatesAboutZOnly(orientation.normalized()))
+    requireInPlane(world(), "Body.setTransform.position", position);
+    if (world()->settings().planar && !detail::rotatesAboutZOnly(orientation.normalized()))
         throw Error::invalid("Body.setTransform.orientation", formatQuat(orientation),
                              "must be a rotation about Z (x = y = 0) in a planar world");
     const Transform pose = slot.peerPose(position, orientation.normalized());
     slot.peer->setTransform(pose.position, pose.orientation);
+    slot.checkedPose = pose;  // a frozen body is held here from now on
 }
 
 void Body::setLinearVelocity(const Vec3& v) {
     auto& slot = ANYPHYS_SLOT("Body.setLinearVelocity");
-    detail::requireFinite("Body.setLinearVelocity.velocity", v);
+    detail::requireSpeed("Body.setLinearVelocity.velocity", v, world()->settings().maxSpeed, "WorldSettings.maxSpeed", "m/s");
     if (slot.def.type == BodyType::Static && !v.isZero(0))
         throw Error::invalid("Body.setLinearVelocity.velocity", formatVec3(v), "must be zero for a static body");
-    requireInPlane(world_, "Body.setLinearVelocity.velocity", v);
+    requireInPlane(world(), "Body.setLinearVelocity.velocity", v);
     slot.peer->setLinearVelocity(v);
 }
 
 void Body::setAngularVelocity(const Vec3& w) {
     auto& slot = ANYPHYS_SLOT("Body.setAngularVelocity");
-    detail::requireFinite("Body.setAngularVelocity.velocity", w);
+    detail::requireSpeed("Body.setAngularVelocity.velocity", w, world()->settings().maxAngularSpeed,
+                         "WorldSettings.maxAngularSpeed", "rad/s");
     if (slot.def.type == BodyType::Static && !w.isZero(0))
         throw Error::invalid("Body.setAngularVelocity.velocity", formatVec3(w), "must be zero for a static body");
-    requireAboutZ(world_, "Body.setAngularVelocity.velocity", w);
+    requireAboutZ(world(), "Body.setAngularVelocity.velocity", w);
     slot.peer->setAngularVelocity(w);
 }
 
 void Body::applyForce(const Vec3& force) {
     auto& slot = ANYPHYS_SLOT("Body.applyForce");
     detail::requireFinite("Body.applyForce.force", force);
-    world_->noteForcesUsed();
-    slot.peer->addForce(inPlane(world_, force));
+    requireForceWithinCeiling(world(), slot.def.type, slot.mass.mass, "Body.applyForce.force", force);
+    world()->noteForcesUsed();
+    slot.peer->addForce(inPlane(world(), force));
 }
 
 void Body::applyForceAtPoint(const Vec3& force, const Vec3& worldPoint) {
     auto& slot = ANYPHYS_SLOT("Body.applyForceAtPoint");
     detail::requireFinite("Body.applyForceAtPoint.force", force);
-    detail::requireFinite("Body.applyForceAtPoint.point", worldPoint);
-    world_->noteForcesUsed();
-    slot.peer->addForce(inPlane(world_, force));
-    slot.peer->addTorque(aboutZ(world_, (worldPoint - slot.peer->state().position).cross(force)));
+    requireForceWithinCeiling(world(), slot.def.type, slot.mass.mass, "Body.applyForceAtPoint.force", force);
+    detail::requireCoordinate("Body.applyForceAtPoint.point", worldPoint);
+    world()->noteForcesUsed();
+    slot.peer->addForce(inPlane(world(), force));
+    slot.peer->addTorque(aboutZ(world(), (worldPoint - slot.peer->state().position).cross(force)));
 }
 
 void Body::applyTorque(const Vec3& torque) {
     auto& slot = ANYPHYS_SLOT("Body.applyTorque");
     detail::requireFinite("Body.applyTorque.torque", torque);
-    world_->noteForcesUsed();
-    slot.peer->addTorque(aboutZ(world_, torque));
+    if (slot.def.type == BodyType::Dynamic) {
+        // The spin change over one step, I^-1 torque dt, in the peer's principal frame.
+        const Vec3 local = slot.peer->state().orientation.conjugate() * torque;
+        const double dw = local.cwiseQuotient(slot.mass.inertia).stableNorm() * world()->settings().timeStep;
+        if (!(dw <= world()->settings().maxAngularSpeed))
+            throw Error::invalid("Body.applyTorque.torque", formatVec3(torque),
+                                 "would change the body's spin by " + detail::ceilingText(dw) +
+                                     " rad/s in one step (WorldSettings.timeStep), more than WorldSettings.maxAngularSpeed (" +
+                                     detail::ceilingText(world()->settings().maxAngularSpeed) + " rad/s)");
+    }
+    world()->noteForcesUsed();
+    slot.peer->addTorque(aboutZ(world(), torque));
 }
 
 void Body::applyLinearImpulse(const Vec3& impulse) {
     auto& slot = ANYPHYS_SLOT("Body.applyLinearImpulse");
     detail::requireFinite("Body.applyLinearImpulse.impulse", impulse);
-    slot.peer->applyLinearImpulse(inPlane(world_, impulse));
+    if (slot.def.type == BodyType::Dynamic) {
+        const double dv = impulse.stableNorm() / slot.mass.mass;
+        if (!(dv <= world()->settings().maxSpeed))
+            throw Error::invalid("Body.applyLinearImpulse.impulse", formatVec3(impulse),
+                                 "would change the body's speed by " + detail::ceilingText(dv) +
+                                     " m/s, more than WorldSettings.maxSpeed (" +
+                                     detail::ceilingText(world()->settings().maxSpeed) + " m/s)");
+    }
+    slot.peer->applyLinearImpulse(inPlane(world(), impulse));
 }
 
 void Body::applyAngularImpulse(const Vec3& impulse) {
     auto& slot = ANYPHYS_SLOT("Body.applyAngularImpulse");
     detail::requireFinite("Body.applyAngularImpulse.impulse", impulse);
-    slot.peer->applyAngularImpulse(aboutZ(world_, impulse));
+    if (slot.def.type == BodyType::Dynamic) {
+        // The spin change I^-1 impulse, in the peer's principal frame.
+        const Vec3 local = slot.peer->state().orientation.conjugate() * impulse;
+        const double dw = local.cwiseQuotient(slot.mass.inertia).stableNorm();
+        if (!(dw <= world()->settings().maxAngularSpeed))
+            throw Error::invalid("Body.applyAngularImpulse.impulse", formatVec3(impulse),
+                                 "would change the body's spin by " + detail::ceilingText(dw) +
+                                     " rad/s, more than WorldSettings.maxAngularSpeed (" +
+                                     detail::ceilingText(world()->settings().maxAngularSpeed) + " rad/s)");
+    }
+    slot.peer->applyAngularImpulse(aboutZ(world(), impulse));
 }
 
 #undef ANYPHYS_SLOT

@@ -8,9 +8,13 @@
 namespace anyphys {
 namespace {
 
-World& worldOf(World* world, const char* operation) {
-    if (!world) throw Error(std::string(operation) + ": null joint handle");
-    return *world;
+World& worldOf(const std::shared_ptr<detail::WorldLink>& link, JointId id, const char* operation) {
+    if (!link || id.isNull()) throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": null joint handle");
+    if (!link->world)
+        throw Error(ErrorKind::StaleHandle, "",
+                    std::string(operation) + ": stale joint handle (index " + std::to_string(id.index) + ", generation " +
+                        std::to_string(id.generation) + "): the joint's world was destroyed");
+    return *link->world;
 }
 
 /// Refuses a setter on a type that has no such field, naming the joint and the types that have one.
@@ -22,9 +26,11 @@ void requireField(const JointDef& def, bool JointFields::*field, const char* ope
 
 }  // namespace
 
-#define ANYPHYS_JOINT(op) worldOf(world_, op).jointSlot(id_, op)
+#define ANYPHYS_JOINT(op) worldOf(link_, id_, op).jointSlot(id_, op)
 
-bool Joint::isValid() const { return world_ && world_->isValid(id_); }
+Joint::Joint(World* world, JointId id) : link_(world ? world->link_ : nullptr), id_(id) {}
+
+bool Joint::isValid() const { return world() && world()->isValid(id_); }
 
 const std::string& Joint::name() const { return ANYPHYS_JOINT("Joint.name").def.name; }
 JointType Joint::type() const { return ANYPHYS_JOINT("Joint.type").def.type; }
@@ -56,7 +62,7 @@ void Joint::setMotor(const std::optional<JointMotor>& motor) {
     requireField(j.def, &JointFields::motor, op, "a motor");
     if (motor) validateJointMotor(*motor, op);
     j.def.motor = motor;
-    if (j.peer && world_->honoursJointField(j, "motor", op)) j.peer->setMotor(motor);
+    if (j.peer && world()->honoursJointField(j, "motor", op)) j.peer->setMotor(motor);
 }
 
 void Joint::setLimits(const std::optional<JointLimits>& limits) {
@@ -65,7 +71,7 @@ void Joint::setLimits(const std::optional<JointLimits>& limits) {
     requireField(j.def, &JointFields::limits, op, "limits");
     if (limits) validateJointLimits(*limits, j.def.type, op, false);
     j.def.limits = limits;
-    if (j.peer && world_->honoursJointField(j, "limits", op)) j.peer->setLimits(limits);
+    if (j.peer && world()->honoursJointField(j, "limits", op)) j.peer->setLimits(limits);
 }
 
 void Joint::setSpring(const std::optional<JointSpring>& spring) {
@@ -74,8 +80,8 @@ void Joint::setSpring(const std::optional<JointSpring>& spring) {
     requireField(j.def, &JointFields::spring, op, "a spring");
     if (spring) validateJointSpring(*spring, op);
     j.def.spring = spring;
-    if (j.peer && world_->honoursJointField(j, "spring", op))
-        j.peer->setSpring(spring ? std::optional<JointSpringSI>(world_->jointSpringSI(j, *spring)) : std::nullopt);
+    if (j.peer && world()->honoursJointField(j, "spring", op))
+        j.peer->setSpring(spring ? std::optional<JointSpringSI>(world()->jointSpringSI(j, *spring)) : std::nullopt);
 }
 
 void Joint::setSteeringAngle(double angle) {

@@ -27,7 +27,7 @@ SceneObjects createSceneObjects(World& world, const Scene& scene) {
             made.bodies.push_back(world.createBody(scene.bodies[i]));
         } catch (const Error& e) {
             // The World names the BodyDef field; say which scene body it was.
-            throw Error("bodies[" + std::to_string(i) + "] \"" + scene.bodies[i].name + "\": " + e.what());
+            throw e.within("bodies[" + std::to_string(i) + "] \"" + scene.bodies[i].name + "\"");
         }
         byName.emplace(scene.bodies[i].name, made.bodies.back());
     }
@@ -46,7 +46,7 @@ SceneObjects createSceneObjects(World& world, const Scene& scene) {
         try {
             made.joints.push_back(world.createJoint(def));
         } catch (const Error& e) {
-            throw Error(where + ": " + e.what());
+            throw e.within(where);
         }
     }
     for (std::size_t i = 0; i < scene.fields.size(); ++i) {

@@ -53,18 +53,37 @@ public:
     BodyState state(Body body) const override;
     void addForce(Body body, const Vec3& force) override {
         detail::requireFinite("ForceContext.addForce.force", force);
+        requireWithinCeiling(body, "ForceContext.addForce.force", force, false);
         Vec3 f = force;
         if (world_.settings().planar) f.z() = 0.0;  // the plane holds the body (see Body::applyForce)
         stage_.addForce(resolve_(world_, body), f);
     }
     void addTorque(Body body, const Vec3& torque) override {
         detail::requireFinite("ForceContext.addTorque.torque", torque);
+        requireWithinCeiling(body, "ForceContext.addTorque.torque", torque, true);
         Vec3 t = torque;
         if (world_.settings().planar) t.x() = t.y() = 0.0;
         stage_.addTorque(resolve_(world_, body), t);
     }
 
 private:
+    // A force or torque that would change the body's speed or spin by more than the world's
+    // ceiling within one step is absurd: refused like one given to Body::applyForce, before an
+    // engine integrates it (a torque is bounded about the body's weakest principal axis).
+    void requireWithinCeiling(const Body& body, const char* field, const Vec3& value, bool torque) const {
+        if (value.isZero(0) || body.type() != BodyType::Dynamic) return;
+        const MassProperties m = body.massProperties();
+        const double dt = world_.settings().timeStep;
+        const double change = value.stableNorm() / (torque ? m.inertia.minCoeff() : m.mass) * dt;
+        const double ceiling = torque ? world_.settings().maxAngularSpeed : world_.settings().maxSpeed;
+        if (!(change <= ceiling))
+            throw Error::invalid(field, formatVec3(value),
+                                 std::string("would change the body's ") + (torque ? "spin" : "speed") + " by " +
+                                     detail::ceilingText(change) + (torque ? " rad/s" : " m/s") +
+                                     " in one step (WorldSettings.timeStep), more than WorldSettings." +
+                                     (torque ? "maxAngularSpeed (" : "maxSpeed (") + detail::ceilingText(ceiling) + ")");
+    }
+
     World& world_;
     ForceStage& stage_;
     BodyPeer& (*resolve_)(World&, Body);
@@ -87,20 +106,25 @@ BodyState ForceContextImpl::state(Body body) const {
 }
 
 World::World(const WorldSettings& settings, MaterialLibrary materials)
-    : settings_(settings), materials_(std::move(materials)), impl_(std::make_unique<Impl>()) {
+    : link_(std::make_shared<detail::WorldLink>(detail::WorldLink{this})),
+      settings_(settings),
+      materials_(std::move(materials)),
+      impl_(std::make_unique<Impl>()) {
     validate(settings_, "WorldSettings");
     impl_->backend = &findBackend(settings_.backend);
     const Capabilities& caps = impl_->backend->capabilities;
     if (caps.dimensions == 2 && !settings_.planar)
         throw Error::invalid("WorldSettings.planar", "false",
                              "must be true on backend \"" + settings_.backend +
-                                 "\", which simulates planar worlds only (bodies in the XY plane, rotating about Z)");
+                                 "\", which simulates planar worlds only (bodies in the XY plane, rotating about Z)",
+                             ErrorKind::Unsupported);
     const Effects requested = settings_.effects.value_or(Effects::none());
     const auto missing = missingCapabilities(caps, settings_, requested);
     if (!missing.empty()) {
         const std::string what = "backend \"" + settings_.backend + "\" does not support: " + join(missing);
         if (settings_.capabilityPolicy == CapabilityPolicy::Strict)
-            throw Error("WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
+            throw Error(ErrorKind::Unsupported, "WorldSettings",
+                        "WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
         warn("WorldSettings: " + what + "; running without them");
     }
     // Unset solver knobs take the backend's defaults, so settings() shows what runs.
@@ -147,10 +171,14 @@ MaterialTable World::buildMaterialTable() {
     return table;
 }
 
-World::~World() = default;
+World::~World() {
+    // Handles that outlive the world find it gone (StaleHandle) instead of reading freed memory.
+    link_->world = nullptr;
+}
 
 void World::warn(const std::string& message) {
     if (!impl_->warned.insert(message).second) return;  // each warning once
+    impl_->warningLog.push_back(message);
     if (impl_->warningHandler)
         impl_->warningHandler(message);
     else
@@ -158,6 +186,8 @@ void World::warn(const std::string& message) {
 }
 
 void World::setWarningHandler(WarningHandler handler) { impl_->warningHandler = std::move(handler); }
+
+const std::vector<std::string>& World::warnings() const { return impl_->warningLog; }
 
 void* World::nativeObject(const std::type_info& pointerType) { return impl_->peer->nativeObject(pointerType); }
 
@@ -196,9 +226,10 @@ void World::refreshEffects() {
 // ---- bodies ---------------------------------------------------------------------------------
 
 Body World::createBody(const BodyDef& input) {
-    if (impl_->stepping) throw Error("World.createBody: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileStepping("World.createBody");
     impl_->refuseWhileDrawing("World.createBody");
     validate(input, "BodyDef");
+    validateLimits(input, settings_, "BodyDef", "WorldSettings");
     if (settings_.planar) validatePlanar(input, "BodyDef");
     if (!materials_.contains(input.material))
         throw Error::invalid("BodyDef.material", "\"" + input.material + "\"",
@@ -224,7 +255,7 @@ Body World::createBody(const BodyDef& input) {
                                   std::string(toString(std::max(mine, present))) + " shapes");
     if (!missing.empty()) {
         const std::string what = "backend \"" + settings_.backend + "\" does not support: " + join(missing);
-        if (settings_.capabilityPolicy == CapabilityPolicy::Strict) throw Error("BodyDef: " + what);
+        if (settings_.capabilityPolicy == CapabilityPolicy::Strict) throw Error(ErrorKind::Unsupported, "BodyDef", "BodyDef: " + what);
         warn("BodyDef: " + what + "; ignored");
     }
 
@@ -257,15 +288,20 @@ Body World::createBody(const BodyDef& input) {
     s.def = def;
     s.mass = resolved.mass;
     s.peerFrame = resolved.peerFrame;
+    s.checkedPose = peerPose;
+    s.frozen = false;
     countBody(s.def, +1);
     refreshEffects();
     return Body(this, BodyId{index, s.generation});
 }
 
 void World::destroyBody(Body body) {
-    if (impl_->stepping) throw Error("World.destroyBody: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileStepping("World.destroyBody");
     impl_->refuseWhileDrawing("World.destroyBody");
-    if (body.world() != this) throw Error("World.destroyBody: the body belongs to another world");
+    if (!body.world() && !body.id().isNull())
+        throw Error(ErrorKind::StaleHandle, "", "World.destroyBody: stale body handle: the body's world was destroyed");
+    if (body.world() && body.world() != this)
+        throw Error(ErrorKind::InvalidState, "", "World.destroyBody: the body belongs to another world");
     Slot& s = slot(body.id(), "World.destroyBody");
     // Its joints first: a joint never outlives one of its bodies.
     while (!s.joints.empty()) releaseJoint(s.joints.back());
@@ -275,6 +311,7 @@ void World::destroyBody(Body body) {
     impl_->peer->destroyBody(*s.peer);
     s.peer.reset();
     s.fieldBody.reset();
+    s.frozen = false;
     ++s.generation;
     impl_->freeSlots.push_back(body.id().index);
     countBody(s.def, -1);
@@ -302,10 +339,10 @@ World::Slot& World::slot(BodyId id, const char* operation) {
 }
 
 const World::Slot& World::slot(BodyId id, const char* operation) const {
-    if (id.isNull()) throw Error(std::string(operation) + ": null body handle");
+    if (id.isNull()) throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": null body handle");
     if (id.index >= impl_->slots.size() || !impl_->slots[id.index].peer ||
         impl_->slots[id.index].generation != id.generation)
-        throw Error(std::string(operation) + ": stale body handle (index " + std::to_string(id.index) +
+        throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": stale body handle (index " + std::to_string(id.index) +
                     ", generation " + std::to_string(id.generation) + "): the body was destroyed");
     return impl_->slots[id.index];
 }
@@ -341,9 +378,11 @@ Body World::findBody(const std::string& name) {
 void World::step() { step(settings_.timeStep); }
 
 void World::step(double dt) {
-    if (impl_->stepping) throw Error("World.step: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileStepping("World.step");
     impl_->refuseWhileDrawing("World.step");
     detail::requirePositive("World.step.dt", dt);
+    if (dt > kMaxTimeStep)
+        throw Error::invalid("World.step.dt", dt, "must be <= " + detail::ceilingText(kMaxTimeStep) + " s (anyphys::kMaxTimeStep)");
     {
         SteppingGuard guard(impl_->stepping);
         if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);
@@ -355,12 +394,119 @@ void World::step(double dt) {
     timeCompensation_ = (t - time_) - y;
     time_ = t;
     ++stepCount_;
+    if (!impl_->frozenSlots.empty()) holdFrozen();
+    checkDivergence(dt);  // may throw Diverged: before events, so no listener sees a diverged state
     if (!impl_->breakableJoints.empty() || !impl_->lastJointEvents.empty()) breakJoints();
     if (activeEffects_.has(Effect::Events)) dispatchEvents();
     if (!impl_->lastJointEvents.empty()) {
         // A copy: a listener may step the world, which rewrites the list.
         const std::vector<JointEvent> broken = impl_->lastJointEvents;
         deliverJointBreaks(broken);
+    }
+}
+
+const std::vector<DivergedBody>& World::lastDiverged() const { return impl_->lastDiverged; }
+
+namespace {
+
+// Why a body state has diverged, or nullptr. One branch per body in the common case: every test
+// is written so that a NaN fails it.
+const char* divergence(const BodyState& s, double maxSpeed2, double maxAngularSpeed2) {
+    const double v2 = s.linearVelocity.squaredNorm(), w2 = s.angularVelocity.squaredNorm();
+    const Vec3& p = s.position;
+    const bool sound = v2 <= maxSpeed2 && w2 <= maxAngularSpeed2 && std::abs(p.x()) <= kMaxCoordinate &&
+                       std::abs(p.y()) <= kMaxCoordinate && std::abs(p.z()) <= kMaxCoordinate &&
+                       std::isfinite(s.orientation.w() + s.orientation.x() + s.orientation.y() + s.orientation.z());
+    if (sound) return nullptr;
+    if (!(s.linearVelocity.allFinite() && s.angularVelocity.allFinite() && p.allFinite() &&
+          s.orientation.coeffs().allFinite()))
+        return "non-finite state";
+    if (!(v2 <= maxSpeed2)) return "linearVelocity";
+    if (!(w2 <= maxAngularSpeed2)) return "angularVelocity";
+    return "position";
+}
+
+std::string number(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+}  // namespace
+
+void World::checkDivergence(double dt) {
+    (void)dt;
+    Impl& i = *impl_;
+    i.lastDiverged.clear();
+    // Every dynamic and kinematic body asleep: no state changed since the last check.
+    if (!i.peer->hasAwakeBodies()) return;
+    const double maxSpeed2 = settings_.maxSpeed * settings_.maxSpeed;
+    const double maxAngularSpeed2 = settings_.maxAngularSpeed * settings_.maxAngularSpeed;
+    std::string firstField;
+    for (std::uint32_t k = 0; k < i.slots.size(); ++k) {
+        Slot& s = i.slots[k];
+        if (!s.peer || s.def.type == BodyType::Static || s.frozen) continue;
+        const BodyState state = s.peer->state();
+        const char* what = divergence(state, maxSpeed2, maxAngularSpeed2);
+        if (!what) {
+            s.checkedPose = {state.position, state.orientation};
+            continue;
+        }
+        // Rare: describe it.
+        std::string reason;
+        const std::string who = s.def.name.empty() ? "body #" + std::to_string(k) : "body \"" + s.def.name + "\"";
+        std::string field = who + ".";
+        if (what == std::string_view("non-finite state")) {
+            reason = "non-finite state (position " + formatVec3(state.position) + ", linearVelocity " +
+                     formatVec3(state.linearVelocity) + ", angularVelocity " + formatVec3(state.angularVelocity) + ")";
+            field += !state.position.allFinite() ? "position" : !state.linearVelocity.allFinite() ? "linearVelocity"
+                     : !state.angularVelocity.allFinite() ? "angularVelocity" : "orientation";
+        } else if (what == std::string_view("linearVelocity")) {
+            reason = "speed " + number(state.linearVelocity.stableNorm()) + " m/s > WorldSettings.maxSpeed " + number(settings_.maxSpeed);
+            field += what;
+        } else if (what == std::string_view("angularVelocity")) {
+            reason = "angular speed " + number(state.angularVelocity.stableNorm()) + " rad/s > WorldSettings.maxAngularSpeed " +
+                     number(settings_.maxAngularSpeed);
+            field += what;
+        } else {
+            reason = "position " + formatVec3(state.position) + " beyond +-" + number(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)";
+            field += what;
+        }
+        if (firstField.empty()) firstField = field;
+        i.lastDiverged.push_back({Body(this, BodyId{k, s.generation}), s.def.name, reason});
+    }
+    if (i.lastDiverged.empty()) return;
+    const std::string when = " at step " + std::to_string(stepCount_) + " (t = " + number(time_) + " s)";
+    if (settings_.divergencePolicy == DivergencePolicy::Throw) {
+        std::string message = "World.step: diverged" + when + ":";
+        constexpr std::size_t kNamed = 8;  // one line, even for a pile that exploded
+        for (std::size_t n = 0; n < i.lastDiverged.size() && n < kNamed; ++n) {
+            const DivergedBody& d = i.lastDiverged[n];
+            message += (n ? "; " : " ") + (d.name.empty() ? "body #" + std::to_string(d.body.id().index) : "body \"" + d.name + "\"") +
+                       " " + d.reason;
+        }
+        if (i.lastDiverged.size() > kNamed) message += "; and " + std::to_string(i.lastDiverged.size() - kNamed) + " more";
+        message += " (WorldSettings.divergencePolicy throw; freeze holds such bodies still and keeps stepping)";
+        throw Error(ErrorKind::Diverged, firstField, message);
+    }
+    for (const DivergedBody& d : i.lastDiverged) {
+        Slot& s = i.slots[d.body.id().index];
+        s.frozen = true;
+        i.frozenSlots.push_back(d.body.id().index);
+        warn("World.step: " + (d.name.empty() ? "body #" + std::to_string(d.body.id().index) : "body \"" + d.name + "\"") +
+             " diverged" + when + ": " + d.reason + "; frozen at its last checked pose (WorldSettings.divergencePolicy freeze)");
+    }
+    holdFrozen();
+}
+
+void World::holdFrozen() {
+    Impl& i = *impl_;
+    std::erase_if(i.frozenSlots, [&](std::uint32_t k) { return !i.slots[k].peer || !i.slots[k].frozen; });
+    for (std::uint32_t k : i.frozenSlots) {
+        Slot& s = i.slots[k];
+        s.peer->setTransform(s.checkedPose.position, s.checkedPose.orientation);
+        s.peer->setLinearVelocity(Vec3::Zero());
+        s.peer->setAngularVelocity(Vec3::Zero());
     }
 }
 
@@ -492,9 +638,10 @@ double World::interpolationAlpha() const { return accumulator_ / settings_.timeS
 // ---- forces and events ----------------------------------------------------------------------
 
 void World::setForceCallback(ForceCallback callback) {
-    if (impl_->stepping) throw Error("World.setForceCallback: not allowed while the world is stepping");
+    impl_->refuseWhileStepping("World.setForceCallback", "");
     if (callback && settings_.effects && !settings_.effects->has(Effect::UserForces))
-        throw Error("World.setForceCallback: the world's declared effects exclude \"userForces\"; add it to WorldSettings.effects");
+        throw Error(ErrorKind::Unsupported, "WorldSettings.effects",
+                    "World.setForceCallback: the world's declared effects exclude \"userForces\"; add it to WorldSettings.effects");
     impl_->forceCallback = std::move(callback);
     installForceHook();
     refreshEffects();
@@ -511,7 +658,10 @@ void World::installForceHook() {
         if (!(activeEffects_ & kFieldForceEffects).empty()) applyFieldForces(stage);
         if (!impl_->forceCallback) return;
         ForceContextImpl context(*this, stage, [](World& w, Body b) -> BodyPeer& {
-            if (b.world() != &w) throw Error("ForceContext: the body belongs to another world");
+            if (b.world() != &w)
+                throw Error(b.world() ? ErrorKind::InvalidState : ErrorKind::StaleHandle, "",
+                            b.world() ? "ForceContext: the body belongs to another world"
+                                      : "ForceContext: stale body handle (null, or its world was destroyed)");
             return *w.slot(b.id(), "ForceContext").peer;
         });
         impl_->forceCallback(context);
@@ -530,7 +680,8 @@ void World::removeListener(ContactListener* listener) {
 
 void World::noteForcesUsed() {
     if (settings_.effects && !settings_.effects->has(Effect::UserForces))
-        throw Error("Body.applyForce: the world's declared effects exclude \"userForces\"; add it to WorldSettings.effects");
+        throw Error(ErrorKind::Unsupported, "WorldSettings.effects",
+                    "Body.applyForce: the world's declared effects exclude \"userForces\"; add it to WorldSettings.effects");
     if (!impl_->forcesUsed) {
         impl_->forcesUsed = true;
         refreshEffects();

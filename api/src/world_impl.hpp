@@ -22,6 +22,8 @@ struct World::Slot {
     Transform peerFrame;             // the peer's frame (centre of mass, principal axes) in the body frame
     std::vector<std::uint32_t> joints;  // slots of the live joints holding this body
     std::unique_ptr<FieldBody> fieldBody;  // built on the first field evaluation (world_fields.cpp)
+    Transform checkedPose;           // peer pose at the last divergence check that found it sound (or as set)
+    bool frozen = false;             // diverged under the freeze policy: held at checkedPose after every step
 
     /// The user's view (body origin) of the peer's state (centre of mass frame).
     BodyState userState() const;
@@ -111,12 +113,22 @@ struct World::Impl {
     ContactTracker tracker;
     WarningHandler warningHandler;
     std::set<std::string> warned;
+    std::vector<std::string> warningLog;     // World::warnings(), in order
+    std::vector<DivergedBody> lastDiverged;  // what the last step's divergence check found
+    std::vector<std::uint32_t> frozenSlots;  // slots held still under the freeze policy
     bool stepping = false;  // inside a step: structural changes are refused
     bool drawing = false;   // inside World::debugDraw: a drawer may read, not change the world
 
     /// Throws when called from a DebugDraw callback: `operation` would change what is being drawn.
     void refuseWhileDrawing(const char* operation) const {
-        if (drawing) throw Error(std::string(operation) + ": not allowed inside World::debugDraw (a DebugDraw callback)");
+        if (drawing)
+            throw Error(ErrorKind::InvalidState, "",
+                        std::string(operation) + ": not allowed inside World::debugDraw (a DebugDraw callback)");
+    }
+    void refuseWhileStepping(const char* operation, const char* what = " (inside a force callback)") const {
+        if (stepping)
+            throw Error(ErrorKind::InvalidState, "",
+                        std::string(operation) + ": not allowed while the world is stepping" + what);
     }
 };
 

@@ -52,7 +52,7 @@ Box2dJoint::Box2dJoint(Box2dWorld& world, const JointPeerDef& def, b2Body* groun
       a_(static_cast<Box2dBody*>(def.bodyA)),
       b_(static_cast<Box2dBody*>(def.bodyB)),
       ground_(ground) {
-    if (!b_) throw Error("JointPeerDef.bodyB: is required, got null");
+    if (!b_) throw Error(ErrorKind::Internal, "JointPeerDef.bodyB", "JointPeerDef.bodyB: is required, got null");
     // The joint frames on the Box2D bodies (A's is in the world when A is the world; the ground
     // body sits at the origin with angle 0, so world and ground coordinates agree).
     const Transform frameA = a_ ? a_->embedding().toBody(def.frameA) : def.frameA;
@@ -61,10 +61,10 @@ Box2dJoint::Box2dJoint(Box2dWorld& world, const JointPeerDef& def, b2Body* groun
     const Vec3 y = frameA.orientation * Vec3::UnitY();
     switch (def.type) {
         case JointType::Cone:
-            throw Error("JointPeerDef.type: box2d has no cone joint (its swing cone leaves the plane), got cone");
+            throw Error(ErrorKind::Unsupported, "JointPeerDef.type", "JointPeerDef.type: box2d has no cone joint (its swing cone leaves the plane), got cone");
         case JointType::Hinge:
             if (!alongZ(x))
-                throw Error("JointPeerDef.frameA: a hinge axis (frame X) must be along Z in the plane (box2d)");
+                throw Error(ErrorKind::Unsupported, "JointPeerDef.frameA", "JointPeerDef.frameA: a hinge axis (frame X) must be along Z in the plane (box2d)");
             sign_ = x.z() > 0 ? 1.0 : -1.0;
             break;
         case JointType::Ball:  // turns about Z only in the plane: a hinge about Z
@@ -74,10 +74,10 @@ Box2dJoint::Box2dJoint(Box2dWorld& world, const JointPeerDef& def, b2Body* groun
         case JointType::Slider:
         case JointType::Wheel:
             if (!inPlane(x))
-                throw Error("JointPeerDef.frameA: a slider or wheel axis (frame X) must lie in the XY plane (box2d)");
+                throw Error(ErrorKind::Unsupported, "JointPeerDef.frameA", "JointPeerDef.frameA: a slider or wheel axis (frame X) must lie in the XY plane (box2d)");
             localAxisA_ = planarX(frameA.orientation);
             if (def.type == JointType::Wheel) {
-                if (!alongZ(y)) throw Error("JointPeerDef.frameA: a wheel axle (frame Y) must be along Z (box2d)");
+                if (!alongZ(y)) throw Error(ErrorKind::Unsupported, "JointPeerDef.frameA", "JointPeerDef.frameA: a wheel axle (frame Y) must be along Z (box2d)");
                 sign_ = y.z() > 0 ? 1.0 : -1.0;
             }
             break;

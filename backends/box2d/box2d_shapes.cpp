@@ -148,12 +148,14 @@ std::vector<Vec2> projectedOutline(const std::vector<Vec3>& points, const std::s
         throw Error::invalid(path, std::to_string(outline.size()) + " vertices",
                              std::string("the outline of a ") + what + " in the XY plane must have at most " +
                                  std::to_string(b2_maxPolygonVertices) +
-                                 " vertices on backend \"box2d\" (b2_maxPolygonVertices, capabilities.maxConvexVertices)");
+                                 " vertices on backend \"box2d\" (b2_maxPolygonVertices, capabilities.maxConvexVertices)",
+                             ErrorKind::Unsupported);
     if (outline.size() < 3 || area(outline) < 4.0 * kWeld * kWeld)
         throw Error::invalid(path, std::to_string(outline.size()) + " distinct vertices",
                              std::string("the outline of a ") + what +
                                  " in the XY plane is too thin for a Box2D polygon (needs 3 vertices " +
-                                 std::to_string(kWeld) + " m apart)");
+                                 std::to_string(kWeld) + " m apart)",
+                             ErrorKind::Unsupported);
     return outline;
 }
 
@@ -221,7 +223,8 @@ std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, con
         }
         case ShapeType::Mesh:
         case ShapeType::Compound:
-            throw Error::invalid(path + ".type", toString(s.type), "has no Box2D form (sphere, box, capsule, convex, plane)");
+            throw Error::invalid(path + ".type", toString(s.type), "has no Box2D form (sphere, box, capsule, convex, plane)",
+                                 ErrorKind::Unsupported);
     }
     return pieces;
 }

@@ -85,7 +85,7 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
             for (Piece& p : makePieces(shape, embedding.toBody(shape.local), originInBody, path)) pieces.push_back(std::move(p));
         }
     } catch (const Error& e) {
-        throw Error(std::string(e.what()) + (def.name.empty() ? "" : " (body \"" + def.name + "\")"));
+        throw e.reworded(std::string(e.what()) + (def.name.empty() ? "" : " (body \"" + def.name + "\")"));
     }
 
     b2BodyDef bd;

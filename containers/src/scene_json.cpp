@@ -40,6 +40,8 @@ constexpr std::string_view kRoot = "scene";
 
 constexpr std::pair<CapabilityPolicy, std::string_view> kPolicyNames[] = {
     {CapabilityPolicy::Strict, "strict"}, {CapabilityPolicy::Lenient, "lenient"}};
+constexpr std::pair<DivergencePolicy, std::string_view> kDivergenceNames[] = {
+    {DivergencePolicy::Throw, "throw"}, {DivergencePolicy::Freeze, "freeze"}};
 
 std::string join(const std::string& path, std::string_view key) {
     return path.empty() ? std::string(key) : path + "." + std::string(key);
@@ -58,6 +60,11 @@ std::string show(const json& v) {
     throw Error::invalid(label(path), show(value), rule);
 }
 
+// The document's shape is wrong (a string where a number belongs, an unknown key): a parse error.
+[[noreturn]] void malformed(const std::string& path, const json& value, const std::string& rule) {
+    throw Error::invalid(label(path), show(value), rule, ErrorKind::Parse);
+}
+
 std::string list(const std::vector<std::string_view>& names) {
     std::string out;
     for (auto n : names) out += (out.empty() ? "" : ", ") + std::string(n);
@@ -71,7 +78,7 @@ std::string effectNames() {
 }
 
 void requireObject(const json& v, const std::string& path, const std::string& what = "a JSON object") {
-    if (!v.is_object()) fail(path, v, "must be " + what);
+    if (!v.is_object()) malformed(path, v, "must be " + what);
 }
 
 void checkKeys(const json& obj, const std::string& path, const std::vector<std::string_view>& allowed,
@@ -79,12 +86,14 @@ void checkKeys(const json& obj, const std::string& path, const std::vector<std::
     for (const auto& [key, value] : obj.items()) {
         bool known = false;
         for (auto a : allowed) known = known || key == a;
-        if (!known) throw Error(join(path, key) + ": unknown key" + context + "; allowed keys are " + list(allowed));
+        if (!known)
+            throw Error(ErrorKind::Parse, join(path, key),
+                        join(path, key) + ": unknown key" + context + "; allowed keys are " + list(allowed));
     }
 }
 
 [[noreturn]] void missing(const std::string& path, const std::string& why) {
-    throw Error(path + ": required key is missing; " + why);
+    throw Error(ErrorKind::Parse, path, path + ": required key is missing; " + why);
 }
 
 // Every optional key is read the same way: absent leaves the def's default in place.
@@ -94,7 +103,7 @@ const json* find(const json& obj, std::string_view key) {
 }
 
 double readNumber(const json& v, const std::string& path) {
-    if (!v.is_number()) fail(path, v, "must be a number");
+    if (!v.is_number()) malformed(path, v, "must be a number");
     return v.get<double>();
 }
 
@@ -115,25 +124,25 @@ std::uint32_t readUint32(const json& v, const std::string& path, const std::stri
 }
 
 bool readBool(const json& v, const std::string& path) {
-    if (!v.is_boolean()) fail(path, v, "must be true or false");
+    if (!v.is_boolean()) malformed(path, v, "must be true or false");
     return v.get<bool>();
 }
 
 std::string readString(const json& v, const std::string& path) {
-    if (!v.is_string()) fail(path, v, "must be a string");
+    if (!v.is_string()) malformed(path, v, "must be a string");
     return v.get<std::string>();
 }
 
 Vec3 readVec3(const json& v, const std::string& path) {
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
-        fail(path, v, "must be an array of 3 numbers");
+        malformed(path, v, "must be an array of 3 numbers");
     return Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
 }
 
 Quat readQuat(const json& v, const std::string& path) {
     bool ok = v.is_array() && v.size() == 4;
     for (std::size_t i = 0; ok && i < 4; ++i) ok = v[i].is_number();
-    if (!ok) fail(path, v, "must be an array of 4 numbers [w, x, y, z]");
+    if (!ok) malformed(path, v, "must be an array of 4 numbers [w, x, y, z]");
     // Kept as written (not normalised here) so that save/load reproduces the exact bits.
     return Quat(v[0].get<double>(), v[1].get<double>(), v[2].get<double>(), v[3].get<double>());
 }
@@ -157,12 +166,18 @@ CapabilityPolicy readPolicy(const json& v, const std::string& path) {
     fail(path, v, "must be one of strict, lenient");
 }
 
+DivergencePolicy readDivergencePolicy(const json& v, const std::string& path) {
+    for (const auto& [p, name] : kDivergenceNames)
+        if (v.is_string() && v.get<std::string>() == name) return p;
+    fail(path, v, "must be one of throw, freeze");
+}
+
 // The contact and sleeping knobs: plain numbers, read and written alike, in this order.
 // Settings is WorldSettings or const WorldSettings.
 template <class Settings>
 auto settingsNumbers(Settings& s) {
     using Field = std::pair<std::string_view, decltype(&s.contactHertz)>;
-    return std::array<Field, 10>{{{"contactHertz", &s.contactHertz},
+    return std::array<Field, 12>{{{"contactHertz", &s.contactHertz},
                                   {"contactDampingRatio", &s.contactDampingRatio},
                                   {"contactPushMaxVelocity", &s.contactPushMaxVelocity},
                                   {"baumgarte", &s.baumgarte},
@@ -171,7 +186,9 @@ auto settingsNumbers(Settings& s) {
                                   {"speculativeDistance", &s.speculativeDistance},
                                   {"sleepLinearVelocity", &s.sleepLinearVelocity},
                                   {"sleepAngularVelocity", &s.sleepAngularVelocity},
-                                  {"timeToSleep", &s.timeToSleep}}};
+                                  {"timeToSleep", &s.timeToSleep},
+                                  {"maxSpeed", &s.maxSpeed},
+                                  {"maxAngularSpeed", &s.maxAngularSpeed}}};
 }
 
 WorldSettings readSettings(const json& v, const std::string& path) {
@@ -180,7 +197,7 @@ WorldSettings readSettings(const json& v, const std::string& path) {
                         "contactHertz", "contactDampingRatio", "contactPushMaxVelocity", "baumgarte",
                         "restitutionThreshold", "linearSlop", "speculativeDistance", "sleepLinearVelocity",
                         "sleepAngularVelocity", "timeToSleep", "maxStepsPerUpdate", "workers", "capabilityPolicy",
-                        "backendOptions"});
+                        "maxSpeed", "maxAngularSpeed", "divergencePolicy", "backendOptions"});
     WorldSettings s;
     if (auto* x = find(v, "backend")) s.backend = readString(*x, join(path, "backend"));
     if (auto* x = find(v, "gravity")) s.gravity = readVec3(*x, join(path, "gravity"));
@@ -195,6 +212,8 @@ WorldSettings readSettings(const json& v, const std::string& path) {
     if (auto* x = find(v, "maxStepsPerUpdate")) s.maxStepsPerUpdate = readCount(*x, join(path, "maxStepsPerUpdate"));
     if (auto* x = find(v, "workers")) s.workers = readCount(*x, join(path, "workers"));
     if (auto* x = find(v, "capabilityPolicy")) s.capabilityPolicy = readPolicy(*x, join(path, "capabilityPolicy"));
+    if (auto* x = find(v, "divergencePolicy"))
+        s.divergencePolicy = readDivergencePolicy(*x, join(path, "divergencePolicy"));
     if (auto* x = find(v, "effects")) {
         const std::string p = join(path, "effects");
         if (!x->is_array()) fail(p, *x, "must be an array of effect names (" + effectNames() + ")");
@@ -261,7 +280,7 @@ void readMaterials(const json& doc, MaterialLibrary& lib) {
             const std::string b = readMaterialName(pair["b"], join(path, "b"), lib);
             const auto key = a < b ? std::pair(a, b) : std::pair(b, a);
             if (const auto it = seen.find(key); it != seen.end())
-                throw Error(path + ": duplicate pair (" + a + ", " + b + "); already given at " +
+                throw Error(ErrorKind::InvalidArgument, path, path + ": duplicate pair (" + a + ", " + b + "); already given at " +
                             at("materialPairs", it->second));
             seen.emplace(key, i);
             PairOverride o;
@@ -319,7 +338,7 @@ ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
     allowed.insert(allowed.end(), std::begin(kPlacementKeys), std::end(kPlacementKeys));
     if (child) allowed.push_back("density");
     if (!child && find(v, "density"))
-        throw Error(join(path, "density") + ": allowed only on the children of a compound shape; the body's "
+        throw Error(ErrorKind::Parse, join(path, "density"), join(path, "density") + ": allowed only on the children of a compound shape; the body's "
                                             "\"density\" applies to its whole shape");
     checkKeys(v, path, allowed, " for a " + std::string(toString(s.type)) + " shape");
 
@@ -484,7 +503,7 @@ SceneJoint readJoint(const json& v, const std::string& path, const std::map<std:
         }
         const std::string name = readString(*x, field);
         if (!required && name == "world") return "";
-        if (!bodies.contains(name)) throw Error(field + ": no body named \"" + name + "\"");
+        if (!bodies.contains(name)) throw Error(ErrorKind::InvalidArgument, field, field + ": no body named \"" + name + "\"");
         return name;
     };
     out.bodyA = body("bodyA", false);
@@ -530,7 +549,8 @@ public:
                 Frame& f = stack_.back();
                 f.key = parsed.get<std::string>();
                 if (!f.keys.insert(f.key).second)
-                    throw Error(join(f.path, f.key) + ": duplicate key; each key may appear once in an object");
+                    throw Error(ErrorKind::Parse, join(f.path, f.key),
+                                join(f.path, f.key) + ": duplicate key; each key may appear once in an object");
                 break;
             }
             case json::parse_event_t::object_end:
@@ -574,9 +594,9 @@ json parseJson(const std::string& text) {
         // the position and the reason, drop nlohmann's prefixes.
         std::string what = e.what();
         if (const auto pos = what.find("at line "); pos != std::string::npos)
-            throw Error(std::string(kRoot) + ": invalid JSON " + what.substr(pos));
+            throw Error(ErrorKind::Parse, "", std::string(kRoot) + ": invalid JSON " + what.substr(pos));
         if (const auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);
-        throw Error(std::string(kRoot) + ": invalid JSON: " + what);
+        throw Error(ErrorKind::Parse, "", std::string(kRoot) + ": invalid JSON: " + what);
     }
 }
 
@@ -731,6 +751,8 @@ ojson settingsJson(const WorldSettings& s) {
     if (s.workers != 1) j["workers"] = s.workers;
     for (const auto& [p, name] : kPolicyNames)
         if (p == s.capabilityPolicy) j["capabilityPolicy"] = std::string(name);
+    for (const auto& [p, name] : kDivergenceNames)
+        if (p == s.divergencePolicy) j["divergencePolicy"] = std::string(name);
     j["backendOptions"] = ojson::object();
     for (const auto& [name, value] : s.backendOptions) j["backendOptions"][name] = value;
     return j;
@@ -837,7 +859,7 @@ Scene instanceScene(const json& v, const std::string& path, const LoadContext& c
     try {
         return loadSceneIn(full.string(), inner);
     } catch (const Error& e) {
-        throw Error(path + ": " + e.what());  // "instances[0].scene: parts/arm.json: bodies[2]..."
+        throw e.within(path);  // "instances[0].scene: parts/arm.json: bodies[2]..."
     }
 }
 
@@ -861,7 +883,7 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
             try {
                 regularizeMasses(assembly, options);
             } catch (const Error& e) {
-                throw Error(join(path, "regularize") + ": " + e.what());
+                throw e.within(join(path, "regularize"));
             }
         }
         const std::size_t total = scene.bodies.size() + assembly.bodies.size();
@@ -873,8 +895,10 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
         try {
             appendInstance(scene, assembly, pose, prefix);
         } catch (const Error& e) {
-            throw Error(path + ": " + e.what());
+            throw e.within(path);
         }
+        for (std::size_t b = firstBody; b < scene.bodies.size(); ++b)
+            validateLimits(scene.bodies[b], scene.settings, path + " body \"" + scene.bodies[b].name + "\"", "settings");
         if (scene.settings.planar) {
             for (std::size_t b = firstBody; b < scene.bodies.size(); ++b)
                 validatePlanar(scene.bodies[b], path + " body \"" + scene.bodies[b].name + "\"");
@@ -898,6 +922,7 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
         std::map<std::string, std::size_t> names;
         for (std::size_t i = 0; i < v->size(); ++i) {
             BodyDef b = readBody((*v)[i], at("bodies", i), scene.materials);
+            validateLimits(b, scene.settings, at("bodies", i), "settings");
             if (scene.settings.planar) validatePlanar(b, at("bodies", i));
             if (const auto it = names.find(b.name); it != names.end())
                 fail(at("bodies", i) + ".name", (*v)[i]["name"],
@@ -938,12 +963,13 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
 
 Scene loadSceneIn(const std::string& path, const LoadContext& context) {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error(path + ": cannot read scene file (it is a directory)");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(ErrorKind::Io, "", path + ": cannot read scene file (it is a directory)");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot read scene file (" + std::strerror(errno) + ")");
+    if (!in) throw Error(ErrorKind::Io, "", path + ": cannot read scene file (" + std::strerror(errno) + ")");
     std::ostringstream text;
     text << in.rdbuf();
-    if (in.bad()) throw Error(path + ": cannot read scene file (read error)");
+    if (in.bad()) throw Error(ErrorKind::Io, "", path + ": cannot read scene file (read error)");
     try {
         return parseSceneIn(text.str(), context);
     } catch (const Error& e) {
@@ -951,7 +977,7 @@ Scene loadSceneIn(const std::string& path, const LoadContext& context) {
         std::string what = e.what();
         const std::string root = std::string(kRoot) + ": ";
         if (what.starts_with(root)) what.erase(0, root.size());
-        throw Error(path + ": " + what);
+        throw e.reworded(path + ": " + what);
     }
 }
 
@@ -1008,10 +1034,10 @@ std::string sceneToJson(const Scene& scene) {
 void saveScene(const Scene& scene, const std::string& path) {
     const std::string text = sceneToJson(scene);
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path + ": cannot write scene file (" + std::strerror(errno) + ")");
+    if (!out) throw Error(ErrorKind::Io, "", path + ": cannot write scene file (" + std::strerror(errno) + ")");
     out << text;
     out.flush();
-    if (!out) throw Error(path + ": cannot write scene file (write error)");
+    if (!out) throw Error(ErrorKind::Io, "", path + ": cannot write scene file (write error)");
 }
 
 }  // namespace anyphys

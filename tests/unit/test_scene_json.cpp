@@ -20,6 +20,7 @@ const char* kIssueExample = R"({
   "settings": { "backend": "native", "gravity": [0, -10, 0], "timeStep": 0.0166667,
                 "integrator": "rk4", "solver": "pgs", "substeps": 2, "iterations": 12,
                 "effects": ["gravity", "damping"], "maxStepsPerUpdate": 4,
+                "maxSpeed": 250, "maxAngularSpeed": 400, "divergencePolicy": "freeze",
                 "capabilityPolicy": "lenient", "backendOptions": {"erp": 0.2} },
   "materials": { "rubber": { "friction": 0.9, "restitution": 0.8, "density": 1100 },
                  "ice": { "friction": 0.05 } },
@@ -104,6 +105,9 @@ void expectSameScene(const Scene& a, const Scene& b) {
     EXPECT_EQ(sa.sleepAngularVelocity, sb.sleepAngularVelocity);
     EXPECT_EQ(sa.timeToSleep, sb.timeToSleep);
     EXPECT_EQ(sa.maxStepsPerUpdate, sb.maxStepsPerUpdate);
+    EXPECT_EQ(sa.maxSpeed, sb.maxSpeed);
+    EXPECT_EQ(sa.maxAngularSpeed, sb.maxAngularSpeed);
+    EXPECT_EQ(sa.divergencePolicy, sb.divergencePolicy);
     EXPECT_EQ(sa.capabilityPolicy, sb.capabilityPolicy);
     EXPECT_EQ(sa.backendOptions, sb.backendOptions);
 
@@ -175,6 +179,9 @@ TEST(SceneJson, ParsesEveryField) {
     ASSERT_TRUE(s.settings.effects.has_value());
     EXPECT_EQ(*s.settings.effects, Effect::Gravity | Effect::Damping);
     EXPECT_EQ(s.settings.maxStepsPerUpdate, 4);
+    EXPECT_EQ(s.settings.maxSpeed, 250);
+    EXPECT_EQ(s.settings.maxAngularSpeed, 400);
+    EXPECT_EQ(s.settings.divergencePolicy, DivergencePolicy::Freeze);
     EXPECT_EQ(s.settings.capabilityPolicy, CapabilityPolicy::Lenient);
     EXPECT_EQ(s.settings.backendOptions.at("erp"), 0.2);
 
@@ -235,6 +242,9 @@ TEST(SceneJson, AbsentKeysTakeTheDefsDefaults) {
     EXPECT_EQ(s.settings.substeps, d.substeps);
     EXPECT_FALSE(s.settings.effects.has_value());  // absent: derived from content later
     EXPECT_EQ(s.settings.maxStepsPerUpdate, d.maxStepsPerUpdate);
+    EXPECT_EQ(s.settings.maxSpeed, kDefaultMaxSpeed);
+    EXPECT_EQ(s.settings.maxAngularSpeed, kDefaultMaxAngularSpeed);
+    EXPECT_EQ(s.settings.divergencePolicy, DivergencePolicy::Throw);
     EXPECT_EQ(s.settings.capabilityPolicy, CapabilityPolicy::Strict);
     EXPECT_TRUE(s.settings.backendOptions.empty());
     EXPECT_TRUE(s.materials.names().empty());

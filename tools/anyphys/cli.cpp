@@ -28,10 +28,10 @@ std::string exactNumber(double value) {
 
 void writeFile(const std::string& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
-    if (!out) throw Error(path + ": cannot open for writing");
+    if (!out) throw Error(ErrorKind::Io, "", path + ": cannot open for writing");
     out << text;
     out.close();
-    if (!out) throw Error(path + ": write failed");
+    if (!out) throw Error(ErrorKind::Io, "", path + ": write failed");
 }
 
 }  // namespace anyphys::cli

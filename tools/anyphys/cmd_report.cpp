@@ -23,7 +23,7 @@ struct ReportOptions {
 void makeDirectory(const std::string& path) {
     std::error_code error;
     std::filesystem::create_directories(path, error);
-    if (error || !std::filesystem::is_directory(path)) throw Error(path + ": cannot create directory");
+    if (error || !std::filesystem::is_directory(path)) throw Error(ErrorKind::Io, "", path + ": cannot create directory");
 }
 
 int runReport(const ReportOptions& options) {

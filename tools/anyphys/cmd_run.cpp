@@ -169,17 +169,17 @@ int run(const RunOptions& o) {
     std::ofstream file, eventFile, jointFile;
     if (o.outOption->count()) {
         file.open(o.out, std::ios::binary);
-        if (!file) throw Error(o.out + ": cannot open for writing");
+        if (!file) throw Error(ErrorKind::Io, "", o.out + ": cannot open for writing");
     }
     if (o.eventsOption->count()) {
         eventFile.open(o.events, std::ios::binary);
-        if (!eventFile) throw Error(o.events + ": cannot open for writing");
+        if (!eventFile) throw Error(ErrorKind::Io, "", o.events + ": cannot open for writing");
         eventFile << kEventsHeader << '\n';
         world.addListener(&recorder);
     }
     if (o.jointsOption->count()) {
         jointFile.open(o.joints, std::ios::binary);
-        if (!jointFile) throw Error(o.joints + ": cannot open for writing");
+        if (!jointFile) throw Error(ErrorKind::Io, "", o.joints + ": cannot open for writing");
         jointFile << kJointsHeader << '\n';
         writeJointRows(jointFile, 0, world.time(), joints);
     }
@@ -203,11 +203,11 @@ int run(const RunOptions& o) {
     }
     if (&out == &discard) return 0;
     out.flush();
-    if (!out) throw Error((o.outOption->count() ? o.out : std::string("stdout")) + ": write failed");
+    if (!out) throw Error(ErrorKind::Io, "", (o.outOption->count() ? o.out : std::string("stdout")) + ": write failed");
     eventFile.flush();
-    if (eventFile.is_open() && !eventFile) throw Error(o.events + ": write failed");
+    if (eventFile.is_open() && !eventFile) throw Error(ErrorKind::Io, "", o.events + ": write failed");
     jointFile.flush();
-    if (jointFile.is_open() && !jointFile) throw Error(o.joints + ": write failed");
+    if (jointFile.is_open() && !jointFile) throw Error(ErrorKind::Io, "", o.joints + ": write failed");
     return 0;
 }
 

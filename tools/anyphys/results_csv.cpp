@@ -57,7 +57,7 @@ const std::string& ResultsTable::cell(std::size_t row, const std::string& name) 
 
 ResultsTable readResultsCsv(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read results file \"" + path + "\"");
+    if (!in) throw Error(ErrorKind::Io, "", "cannot read results file \"" + path + "\"");
     std::stringstream buffer;
     buffer << in.rdbuf();
     const std::string text = buffer.str();

@@ -1,6 +1,7 @@
 #pragma once
-// A light handle to a body: a world pointer plus a generational id. Copy freely; every call on a
-// destroyed body throws anyphys::Error.
+// A light handle to a body: a link to its world plus a generational id. Copy freely; every call on
+// a destroyed body, or on any body of a destroyed world, throws anyphys::Error (kind StaleHandle).
+#include <memory>
 #include <typeinfo>
 
 #include "anyphys/defs.hpp"
@@ -10,13 +11,26 @@ namespace anyphys {
 
 class World;
 
+namespace detail {
+/// Shared by a world and every handle to its bodies and joints (a liveness token, like the control
+/// block of a weak_ptr): the world clears `world` when it is destroyed, so a handle that outlives
+/// its world reports it instead of reading freed memory. Not thread-safe against a world being
+/// destroyed on another thread while a handle is used (no World call is).
+struct WorldLink {
+    World* world = nullptr;
+};
+}  // namespace detail
+
 class Body {
 public:
     Body() = default;
-    Body(World* world, BodyId id) : world_(world), id_(id) {}
+    /// The handle of body `id` of `world` (World makes these; a null world gives a null handle).
+    Body(World* world, BodyId id);
 
     BodyId id() const { return id_; }
-    World* world() const { return world_; }
+    /// The body's world; nullptr for a null handle or once the world was destroyed.
+    World* world() const { return link_ ? link_->world : nullptr; }
+    /// False for a null handle, a destroyed body, or a body of a destroyed world.
     bool isValid() const;
 
     const std::string& name() const;
@@ -57,10 +71,14 @@ public:
     T* native() const { return static_cast<T*>(nativeObject(typeid(T*))); }
     void* nativeObject(const std::type_info& pointerType) const;
 
-    friend bool operator==(const Body& a, const Body& b) { return a.world_ == b.world_ && a.id_ == b.id_; }
+    /// Diverged under WorldSettings::divergencePolicy freeze: the layer holds the body still at its
+    /// last checked pose after every step (see World::lastDiverged).
+    bool isFrozen() const;
+
+    friend bool operator==(const Body& a, const Body& b) { return a.link_ == b.link_ && a.id_ == b.id_; }
 
 private:
-    World* world_ = nullptr;
+    std::shared_ptr<detail::WorldLink> link_;
     BodyId id_;
 };
 

@@ -1,25 +1,75 @@
 #pragma once
-// The one exception type of anyphys. A rejected call changes nothing.
+// The one exception type of anyphys. A rejected call changes nothing (World::step's Diverged is
+// the exception: the step has run; see docs/errors.md).
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace anyphys {
 
-/// Thrown for bad input, stale handles and unsupported requests. The message names the field,
-/// the offending value and what is allowed, e.g. "BodyDef.shape.radius: must be > 0, got -1".
+/// What went wrong, for code that reacts to errors (the message is for people). See docs/errors.md.
+enum class ErrorKind {
+    InvalidArgument,  ///< a value breaks a documented rule: out of range, non-finite, beyond a ceiling, unknown name
+    InvalidState,     ///< the call is not allowed now: while stepping or drawing, or a handle of another world
+    StaleHandle,      ///< a null handle, or one whose body, joint or world was destroyed
+    Unsupported,      ///< the backend lacks a capability the call or the settings need (strict policy)
+    Parse,            ///< a scene file or text that is not the expected JSON: syntax, unknown or duplicate key, missing key
+    Diverged,         ///< World::step found non-finite or absurd body states (WorldSettings::divergencePolicy throw)
+    Io,               ///< a file could not be read or written
+    Internal,         ///< a broken invariant inside anyphys or an engine: a bug to report
+};
+
+/// "invalid_argument", "stale_handle", ...: the kind as one word, as the tool prints it.
+constexpr std::string_view toString(ErrorKind kind) {
+    switch (kind) {
+        case ErrorKind::InvalidArgument: return "invalid_argument";
+        case ErrorKind::InvalidState: return "invalid_state";
+        case ErrorKind::StaleHandle: return "stale_handle";
+        case ErrorKind::Unsupported: return "unsupported";
+        case ErrorKind::Parse: return "parse";
+        case ErrorKind::Diverged: return "diverged";
+        case ErrorKind::Io: return "io";
+        case ErrorKind::Internal: return "internal";
+    }
+    return "internal";
+}
+
+/// Thrown for bad input, stale handles, unsupported requests, unreadable scene files and diverged
+/// steps. The message names the field, the offending value and what is allowed, e.g.
+/// "BodyDef.shape.radius: must be > 0, got -1"; kind() says what went wrong and field() the path
+/// of the value concerned ("BodyDef.shape.radius", "bodies[3].shape.radius", "settings.timeStep"),
+/// empty when no single value is to blame.
 class Error : public std::runtime_error {
 public:
+    /// A message only: kind InvalidArgument, no field (what most older call sites meant).
     explicit Error(const std::string& message) : std::runtime_error(message) {}
+    Error(ErrorKind kind, std::string field, const std::string& message)
+        : std::runtime_error(message), kind_(kind), field_(std::move(field)) {}
 
-    /// Builds "<field>: <rule>, got <value>".
+    ErrorKind kind() const noexcept { return kind_; }
+    /// The path of the value concerned, in the words of the message; empty when none.
+    const std::string& field() const noexcept { return field_; }
+
+    /// Builds "<field>: <rule>, got <value>" of kind InvalidArgument (or `kind`) naming `field`.
     template <class T>
-    static Error invalid(const std::string& field, const T& value, const std::string& rule) {
+    static Error invalid(const std::string& field, const T& value, const std::string& rule,
+                         ErrorKind kind = ErrorKind::InvalidArgument) {
         std::ostringstream os;
         os.precision(17);
         os << field << ": " << rule << ", got " << value;
-        return Error(os.str());
+        return Error(kind, field, os.str());
     }
+
+    /// The same error with "<prefix>: " in front of the message (a file name, an instance path);
+    /// kind and field are kept.
+    Error within(const std::string& prefix) const { return Error(kind_, field_, prefix + ": " + what()); }
+    /// The same error with the message replaced; kind and field are kept.
+    Error reworded(const std::string& message) const { return Error(kind_, field_, message); }
+
+private:
+    ErrorKind kind_ = ErrorKind::InvalidArgument;
+    std::string field_;
 };
 
 }  // namespace anyphys

@@ -1,6 +1,7 @@
 #pragma once
-// A light handle to a joint: a world pointer plus a generational id, like Body. Copy freely;
-// every call on a destroyed joint throws anyphys::Error naming the operation. A joint is destroyed
+// A light handle to a joint: a link to its world plus a generational id, like Body. Copy freely;
+// every call on a destroyed joint, or on any joint of a destroyed world, throws anyphys::Error
+// (kind StaleHandle) naming the operation. A joint is destroyed
 // by World::destroyJoint, or with either of its bodies (World::destroyBody destroys the body's
 // joints first). A broken joint is not destroyed: its handle stays valid and reports isBroken().
 #include <optional>
@@ -19,11 +20,13 @@ class World;
 class Joint {
 public:
     Joint() = default;
-    Joint(World* world, JointId id) : world_(world), id_(id) {}
+    /// The handle of joint `id` of `world` (World makes these; a null world gives a null handle).
+    Joint(World* world, JointId id);
 
     JointId id() const { return id_; }
-    World* world() const { return world_; }
-    /// False once the joint was destroyed (a broken joint stays valid).
+    /// The joint's world; nullptr for a null handle or once the world was destroyed.
+    World* world() const { return link_ ? link_->world : nullptr; }
+    /// False once the joint or its world was destroyed (a broken joint stays valid).
     bool isValid() const;
 
     const std::string& name() const;
@@ -67,10 +70,10 @@ public:
     T* native() const { return static_cast<T*>(nativeObject(typeid(T*))); }
     void* nativeObject(const std::type_info& pointerType) const;
 
-    friend bool operator==(const Joint& a, const Joint& b) { return a.world_ == b.world_ && a.id_ == b.id_; }
+    friend bool operator==(const Joint& a, const Joint& b) { return a.link_ == b.link_ && a.id_ == b.id_; }
 
 private:
-    World* world_ = nullptr;
+    std::shared_ptr<detail::WorldLink> link_;
     JointId id_;
 };
 

@@ -99,7 +99,7 @@ inline void validateRange(const JointLimits& l, const std::string& field, double
     requireFinite(field + ".lower", l.lower);
     requireFinite(field + ".upper", l.upper);
     if (!(l.lower <= l.upper))
-        throw Error(field + ": lower must be <= upper, got " + formatNumber(l.lower) + " > " + formatNumber(l.upper));
+        throw Error(ErrorKind::InvalidArgument, field, field + ": lower must be <= upper, got " + formatNumber(l.lower) + " > " + formatNumber(l.upper));
     if (l.lower < -bound) throw Error::invalid(field + ".lower", l.lower, "must be >= -" + boundName);
     if (l.upper > bound) throw Error::invalid(field + ".upper", l.upper, "must be <= " + boundName);
 }
@@ -205,7 +205,7 @@ inline void validate(const JointDef& j, const std::string& path) {
         if (j.minLength) requireNonNegative(path + ".minLength", *j.minLength);
         if (j.maxLength) requirePositive(path + ".maxLength", *j.maxLength);
         if (j.minLength && j.maxLength && !(*j.minLength <= *j.maxLength))
-            throw Error(path + ".maxLength: must be >= minLength, got " + formatNumber(*j.maxLength) + " < " +
+            throw Error(ErrorKind::InvalidArgument, path + ".maxLength", path + ".maxLength: must be >= minLength, got " + formatNumber(*j.maxLength) + " < " +
                         formatNumber(*j.minLength));
         // The anchors' distance at creation lies in the range, as every position starts in its limits.
         if (j.minLength && *j.minLength > d)

@@ -30,6 +30,20 @@ inline std::string formatQuat(const Quat& q) {
 /// Largest WorldSettings::workers accepted.
 inline constexpr int kMaxWorkers = 256;
 
+// ---- ceilings on absurd finite values (see docs/errors.md) -----------------------------------
+// Finite is not enough: a body 1e308 m away or a gravity of 1e19 m/s^2 overflows inside an
+// engine's collision code. Like Box2D's b2_huge, the layer refuses such values up front.
+
+/// m: largest coordinate of a position, plane offset, shape point or size. The Earth's diameter;
+/// at 1e7 m a double still resolves 2e-9 m, a millionth of the default linearSlop.
+inline constexpr double kMaxCoordinate = 1e7;
+/// m/s^2: largest magnitude of WorldSettings::gravity, 1000 g; at the default step it adds
+/// 170 m/s per step, far below the default maxSpeed.
+inline constexpr double kMaxGravity = 1e4;
+/// s: longest time step (WorldSettings::timeStep, World::step dt). A step longer than a second is
+/// a units mistake, and moves a body at maxSpeed farther than the world is wide.
+inline constexpr double kMaxTimeStep = 1.0;
+
 namespace detail {
 inline void requireFinite(const std::string& field, double v) {
     if (!std::isfinite(v)) throw Error::invalid(field, v, "must be finite");
@@ -42,6 +56,37 @@ inline void requirePositive(const std::string& field, double v) {
 }
 inline void requireNonNegative(const std::string& field, double v) {
     if (!(std::isfinite(v) && v >= 0)) throw Error::invalid(field, v, "must be >= 0");
+}
+inline std::string ceilingText(double ceiling) {
+    std::ostringstream os;
+    os << ceiling;
+    return os.str();
+}
+/// A position or offset: finite and every coordinate within +-kMaxCoordinate.
+inline void requireCoordinate(const std::string& field, const Vec3& v) {
+    requireFinite(field, v);
+    if (v.cwiseAbs().maxCoeff() > kMaxCoordinate)
+        throw Error::invalid(field, formatVec3(v),
+                             "every coordinate must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+inline void requireCoordinate(const std::string& field, double v) {
+    requireFinite(field, v);
+    if (std::abs(v) > kMaxCoordinate)
+        throw Error::invalid(field, v, "must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+/// A size: > 0 and at most kMaxCoordinate.
+inline void requireLength(const std::string& field, double v, bool allowZero = false) {
+    allowZero ? requireNonNegative(field, v) : requirePositive(field, v);
+    if (v > kMaxCoordinate)
+        throw Error::invalid(field, v, "must be <= " + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+/// A speed against its ceiling: `setting` names it ("WorldSettings.maxSpeed").
+inline void requireSpeed(const std::string& field, const Vec3& v, double ceiling, const std::string& setting,
+                         const char* unit) {
+    requireFinite(field, v);
+    if (v.norm() > ceiling)
+        throw Error::invalid(field, formatVec3(v),
+                             "magnitude must be <= " + setting + " (" + ceilingText(ceiling) + " " + unit + ")");
 }
 }  // namespace detail
 
@@ -76,24 +121,24 @@ inline bool spansVolume(const std::vector<Vec3>& p) {
 inline void validate(const ShapeDef& s, const std::string& path, bool isChild = false) {
     using namespace detail;
     switch (s.type) {
-        case ShapeType::Sphere: requirePositive(path + ".radius", s.radius); break;
+        case ShapeType::Sphere: requireLength(path + ".radius", s.radius); break;
         case ShapeType::Box:
-            requirePositive(path + ".halfExtents[0]", s.halfExtents.x());
-            requirePositive(path + ".halfExtents[1]", s.halfExtents.y());
-            requirePositive(path + ".halfExtents[2]", s.halfExtents.z());
+            requireLength(path + ".halfExtents[0]", s.halfExtents.x());
+            requireLength(path + ".halfExtents[1]", s.halfExtents.y());
+            requireLength(path + ".halfExtents[2]", s.halfExtents.z());
             break;
         case ShapeType::Capsule:
-            requirePositive(path + ".radius", s.radius);
-            requireNonNegative(path + ".halfHeight", s.halfHeight);
+            requireLength(path + ".radius", s.radius);
+            requireLength(path + ".halfHeight", s.halfHeight, true);
             break;
         case ShapeType::Plane:
             requireFinite(path + ".normal", s.normal);
             if (s.normal.norm() < 1e-12) throw Error::invalid(path + ".normal", formatVec3(s.normal), "must be non-zero");
-            requireFinite(path + ".offset", s.offset);
+            requireCoordinate(path + ".offset", s.offset);
             break;
         case ShapeType::Convex:
             for (std::size_t i = 0; i < s.points.size(); ++i)
-                requireFinite(path + ".points[" + std::to_string(i) + "]", s.points[i]);
+                requireCoordinate(path + ".points[" + std::to_string(i) + "]", s.points[i]);
             if (!spansVolume(s.points))
                 throw Error::invalid(path + ".points", std::to_string(s.points.size()) + " points",
                                      "must hold at least 4 points that are not all in one plane");
@@ -101,7 +146,7 @@ inline void validate(const ShapeDef& s, const std::string& path, bool isChild = 
         case ShapeType::Mesh: {
             if (s.vertices.empty()) throw Error::invalid(path + ".vertices", "[]", "must not be empty");
             for (std::size_t i = 0; i < s.vertices.size(); ++i)
-                requireFinite(path + ".vertices[" + std::to_string(i) + "]", s.vertices[i]);
+                requireCoordinate(path + ".vertices[" + std::to_string(i) + "]", s.vertices[i]);
             if (s.indices.empty() || s.indices.size() % 3 != 0)
                 throw Error::invalid(path + ".indices", std::to_string(s.indices.size()) + " indices",
                                      "must be a non-empty multiple of 3 (three per triangle)");
@@ -130,7 +175,7 @@ inline void validate(const ShapeDef& s, const std::string& path, bool isChild = 
             }
             break;
     }
-    requireFinite(path + ".position", s.position);
+    requireCoordinate(path + ".position", s.position);
     if (!s.orientation.coeffs().allFinite() || std::abs(s.orientation.norm() - 1.0) > 1e-4)
         throw Error::invalid(path + ".orientation", formatQuat(s.orientation), "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
     if (s.density) requirePositive(path + ".density", *s.density);
@@ -138,7 +183,7 @@ inline void validate(const ShapeDef& s, const std::string& path, bool isChild = 
 
 inline void validate(const BodyDef& b, const std::string& path) {
     using namespace detail;
-    requireFinite(path + ".position", b.position);
+    requireCoordinate(path + ".position", b.position);
     const Vec3 qv(b.orientation.x(), b.orientation.y(), b.orientation.z());
     if (!qv.allFinite() || !std::isfinite(b.orientation.w()) ||
         std::abs(b.orientation.norm() - 1.0) > kUnitQuaternionTolerance)
@@ -165,6 +210,17 @@ inline void validate(const BodyDef& b, const std::string& path) {
     requireNonNegative(path + ".angularDamping", b.angularDamping);
     requireFinite(path + ".gravityScale", b.gravityScale);
     if (b.dragCoefficient) requireNonNegative(path + ".dragCoefficient", *b.dragCoefficient);
+    if (std::abs(b.gravityScale) > 1e3)
+        throw Error::invalid(path + ".gravityScale", b.gravityScale, "must be within +-1000");
+}
+
+/// The rules of a body that depend on the world's settings: its initial velocities within the
+/// speed ceilings. `settingsPath` names the settings in messages ("WorldSettings", "settings").
+inline void validateLimits(const BodyDef& b, const WorldSettings& s, const std::string& path,
+                           const std::string& settingsPath) {
+    detail::requireSpeed(path + ".linearVelocity", b.linearVelocity, s.maxSpeed, settingsPath + ".maxSpeed", "m/s");
+    detail::requireSpeed(path + ".angularVelocity", b.angularVelocity, s.maxAngularSpeed,
+                         settingsPath + ".maxAngularSpeed", "rad/s");
 }
 
 namespace detail {
@@ -213,9 +269,16 @@ inline void validate(const WorldSettings& s, const std::string& path) {
     using namespace detail;
     if (s.backend.empty()) throw Error::invalid(path + ".backend", "\"\"", "must name a backend");
     requireFinite(path + ".gravity", s.gravity);
+    if (s.gravity.norm() > kMaxGravity)
+        throw Error::invalid(path + ".gravity", formatVec3(s.gravity),
+                             "magnitude must be <= " + ceilingText(kMaxGravity) + " m/s^2 (anyphys::kMaxGravity)");
     if (s.planar && std::abs(s.gravity.z()) > kPlanarTolerance)
         throw Error::invalid(path + ".gravity", formatVec3(s.gravity), "must have z = 0 in a planar world");
     requirePositive(path + ".timeStep", s.timeStep);
+    if (s.timeStep > kMaxTimeStep)
+        throw Error::invalid(path + ".timeStep", s.timeStep, "must be <= " + ceilingText(kMaxTimeStep) + " s (anyphys::kMaxTimeStep)");
+    requirePositive(path + ".maxSpeed", s.maxSpeed);
+    requirePositive(path + ".maxAngularSpeed", s.maxAngularSpeed);
     if (s.iterations && *s.iterations < 1) throw Error::invalid(path + ".iterations", *s.iterations, "must be >= 1");
     if (s.substeps && *s.substeps < 1) throw Error::invalid(path + ".substeps", *s.substeps, "must be >= 1");
     if (s.maxStepsPerUpdate < 1) throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate, "must be >= 1");

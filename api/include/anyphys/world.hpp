@@ -51,6 +51,13 @@ struct RayHit {
 };
 using WarningHandler = std::function<void(const std::string&)>;
 
+/// A body a step found diverged (see WorldSettings::divergencePolicy).
+struct DivergedBody {
+    Body body;
+    std::string name;    ///< the body's name ("" if unnamed)
+    std::string reason;  ///< e.g. "linear speed 2.5e5 m/s > maxSpeed 1e5", "non-finite state"
+};
+
 class World {
 public:
     /// Creates a world on settings.backend. Throws anyphys::Error for invalid settings, an
@@ -97,8 +104,15 @@ public:
     // ---- stepping -----------------------------------------------------------------------
     /// One step of settings().timeStep.
     void step();
-    /// One step of dt seconds (> 0, finite).
+    /// One step of dt seconds (> 0, <= kMaxTimeStep). After the engine stepped, the layer checks
+    /// every dynamic and kinematic body: a non-finite state, a speed above settings().maxSpeed or
+    /// maxAngularSpeed, or a position beyond kMaxCoordinate has diverged. Under the throw policy
+    /// (default) the step throws anyphys::Error of kind Diverged naming those bodies (the states
+    /// stay as the engine made them, events are not dispatched); under freeze they are held still
+    /// at their last checked pose, a warning is given once per body, and the step completes.
     void step(double dt);
+    /// The bodies the last step found diverged (empty when none), in slot order.
+    const std::vector<DivergedBody>& lastDiverged() const;
     /// Fixed-step accumulator for frame loops: adds `elapsed` seconds and takes as many fixed
     /// steps as fit (at most settings().maxStepsPerUpdate; the rest is dropped so a slow frame
     /// cannot snowball). Returns the number of steps taken.
@@ -161,8 +175,10 @@ public:
     /// The effects being simulated now (declared, or derived from content).
     Effects activeEffects() const { return activeEffects_; }
     const MaterialLibrary& materials() const { return materials_; }
-    /// Receives lenient-policy warnings; default: one line on stderr.
+    /// Receives lenient-policy and freeze-policy warnings; default: one line on stderr.
     void setWarningHandler(WarningHandler handler);
+    /// Every warning this world has given, in order, each once.
+    const std::vector<std::string>& warnings() const;
 
     // ---- escape hatch -------------------------------------------------------------------
     /// The engine's own world object when this world runs on the engine that has a T, else
@@ -201,7 +217,10 @@ private:
     void applyFieldForces(ForceStage& stage);  // world_fields.cpp: buoyancy, drag, wind
     void fireExplosions(double dt);             // world_fields.cpp: explosions due in this step
     void warn(const std::string& message);
+    void checkDivergence(double dt);  // after a step: non-finite or over-ceiling states (settings_.divergencePolicy)
+    void holdFrozen();                // after a step: frozen bodies back to their held pose
 
+    std::shared_ptr<detail::WorldLink> link_;  // shared with every handle; cleared by ~World
     WorldSettings settings_;
     MaterialLibrary materials_;
     Effects activeEffects_;

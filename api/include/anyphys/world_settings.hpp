@@ -17,6 +17,20 @@ enum class CapabilityPolicy {
     Lenient,  ///< proceed, and report each missing feature once through the warning handler
 };
 
+/// What World::step does when, after the engine stepped, a body's state is non-finite or beyond
+/// the ceilings (WorldSettings::maxSpeed, maxAngularSpeed, anyphys::kMaxCoordinate).
+enum class DivergencePolicy {
+    Throw,   ///< throw anyphys::Error of kind Diverged naming the bodies (default); the world keeps the states the engine made
+    Freeze,  ///< hold each such body still at its last checked pose (zero velocity), warn once per body, keep stepping
+};
+
+/// Default ceiling of WorldSettings::maxSpeed, m/s: 100 km/s, beyond any rigid body a game or a
+/// test simulates (a rifle bullet ~1e3, low orbit ~8e3 m/s), yet caught long before it overflows.
+inline constexpr double kDefaultMaxSpeed = 1e5;
+/// Default ceiling of WorldSettings::maxAngularSpeed, rad/s: above the fastest real machinery
+/// (a dental turbine spins ~4e4 rad/s).
+inline constexpr double kDefaultMaxAngularSpeed = 1e5;
+
 struct WorldSettings {
     std::string backend = "native";                 ///< registered backend name; default "native"
     Vec3 gravity = Vec3(0, -9.81, 0);               ///< m/s^2, world frame; default (0, -9.81, 0)
@@ -54,6 +68,15 @@ struct WorldSettings {
     double sleepAngularVelocity = 0.05;             ///< rad/s, slower-spinning bodies may sleep, >= 0; default 0.05
     double timeToSleep = 0.5;                       ///< s, an island at rest this long falls asleep, >= 0; default 0.5
     int maxStepsPerUpdate = 8;                      ///< cap on fixed steps one update() may take, >= 1; default 8
+    // ---- divergence (checked by the layer after every step, on every backend) ----
+    /// m/s, > 0: a body faster than this has diverged; initial and set velocities, impulses and
+    /// one step's worth of force beyond it are refused. Default kDefaultMaxSpeed (1e5).
+    double maxSpeed = kDefaultMaxSpeed;
+    /// rad/s, > 0: the same for spin. Default kDefaultMaxAngularSpeed (1e5).
+    double maxAngularSpeed = kDefaultMaxAngularSpeed;
+    /// What a step does with a body whose state is non-finite, faster than maxSpeed or
+    /// maxAngularSpeed, or farther than kMaxCoordinate from the origin. Default throw.
+    DivergencePolicy divergencePolicy = DivergencePolicy::Throw;
     /// Threads that step the world, the calling thread included, in [1, 256]; default 1. With more
     /// than one the world runs a ThreadPool of its own (unless `taskSystem` is set). Results do
     /// not depend on the count. Backends whose engine steps on one thread ignore it (they do not

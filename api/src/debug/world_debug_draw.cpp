@@ -97,7 +97,7 @@ void forEachLimit(const JointDef& def, JointType running, const Transform& frame
 }  // namespace
 
 void World::debugDraw(DebugDraw& drawer, const DebugDrawOptions& options) const {
-    if (impl_->stepping) throw Error("World.debugDraw: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileStepping("World.debugDraw");
     impl_->refuseWhileDrawing("World.debugDraw");
     validate(options);
     DrawingGuard guard(impl_->drawing);

@@ -48,13 +48,16 @@ void dropParameter(JointDef& def, const std::string& field) {
 }  // namespace
 
 Joint World::createJoint(const JointDef& input) {
-    if (impl_->stepping) throw Error("World.createJoint: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileStepping("World.createJoint");
     impl_->refuseWhileDrawing("World.createJoint");
     validate(input, "JointDef");
     // The bodies: B required, A null for the world; both live bodies of this world.
     const auto bodySlot = [this](const Body& body, const char* field) -> Slot* {
-        if (body.world() && body.world() != this)
-            throw Error::invalid(field, "a body of another world", "must be a body of this world");
+        if (!body.world())
+            throw Error(ErrorKind::StaleHandle, field,
+                        std::string(field) + ": stale body handle: the body's world was destroyed");
+        if (body.world() != this)
+            throw Error::invalid(field, "a body of another world", "must be a body of this world", ErrorKind::InvalidState);
         std::string operation = field;
         return &slot(body.id(), operation.c_str());
     };
@@ -66,7 +69,8 @@ Joint World::createJoint(const JointDef& input) {
     validateJointBodies(a ? std::optional<JointBodyView>(view(*a)) : std::nullopt, view(*b), a == b, "JointDef");
     if (settings_.planar) validatePlanar(input, "JointDef");
     if (settings_.effects && !settings_.effects->has(Effect::Joints))
-        throw Error("World.createJoint: the world's declared effects exclude \"joints\"; add it to WorldSettings.effects");
+        throw Error(ErrorKind::Unsupported, "WorldSettings.effects",
+                    "World.createJoint: the world's declared effects exclude \"joints\"; add it to WorldSettings.effects");
 
     // Capabilities: strict refuses; lenient runs without what is missing (the joint itself if its
     // type is), saying so once.
@@ -79,7 +83,7 @@ Joint World::createJoint(const JointDef& input) {
         const std::string what = "JointDef" + quotedName(input) + ": backend \"" + settings_.backend +
                                  "\" does not support: " + join(missing);
         if (settings_.capabilityPolicy == CapabilityPolicy::Strict)
-            throw Error(what + " (capabilityPolicy strict; choose lenient to run without them)");
+            throw Error(ErrorKind::Unsupported, "JointDef", what + " (capabilityPolicy strict; choose lenient to run without them)");
         simulated = caps.effects.has(Effect::Joints) &&
                     caps.jointTypes.contains(std::string(toString(peerJointType(input.type, planar))));
         for (const auto& [field, parameter] : usedJointParameters(input, planar))
@@ -99,7 +103,8 @@ Joint World::createJoint(const JointDef& input) {
     std::unique_ptr<JointPeer> peer;
     if (simulated) {
         peer = impl_->peer->createJoint(peerDef);  // may throw: nothing changed yet
-        if (!peer) throw Error("World.createJoint: backend \"" + settings_.backend + "\" returned no joint");
+        if (!peer)
+            throw Error(ErrorKind::Internal, "", "World.createJoint: backend \"" + settings_.backend + "\" returned no joint");
     }
 
     if (reuse)
@@ -131,9 +136,11 @@ Joint World::createJoint(const JointDef& input) {
 }
 
 void World::destroyJoint(Joint joint) {
-    if (impl_->stepping) throw Error("World.destroyJoint: not allowed while the world is stepping (inside a force callback)");
+    impl_->refuseWhileStepping("World.destroyJoint");
     impl_->refuseWhileDrawing("World.destroyJoint");
-    if (joint.world() != this) throw Error("World.destroyJoint: the joint belongs to another world");
+    if (!joint.world())
+        throw Error(ErrorKind::StaleHandle, "", "World.destroyJoint: stale joint handle: the joint's world was destroyed");
+    if (joint.world() != this) throw Error(ErrorKind::InvalidState, "", "World.destroyJoint: the joint belongs to another world");
     jointSlot(joint.id(), "World.destroyJoint");
     releaseJoint(joint.id().index);
     refreshEffects();
@@ -165,9 +172,9 @@ World::JointSlot& World::jointSlot(JointId id, const char* operation) {
 }
 
 const World::JointSlot& World::jointSlot(JointId id, const char* operation) const {
-    if (id.isNull()) throw Error(std::string(operation) + ": null joint handle");
+    if (id.isNull()) throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": null joint handle");
     if (!isValid(id))
-        throw Error(std::string(operation) + ": stale joint handle (index " + std::to_string(id.index) + ", generation " +
+        throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": stale joint handle (index " + std::to_string(id.index) + ", generation " +
                     std::to_string(id.generation) + "): the joint was destroyed, or one of its bodies was");
     return impl_->joints[id.index];
 }
@@ -204,7 +211,7 @@ bool World::honoursJointField(const JointSlot& j, const char* field, const char*
     const std::string what = std::string(operation) + quotedName(j.def) + ": backend \"" + settings_.backend +
                              "\" does not support " + parameter;
     if (settings_.capabilityPolicy == CapabilityPolicy::Strict)
-        throw Error(what + " (capabilityPolicy strict; choose lenient to run without it)");
+        throw Error(ErrorKind::Unsupported, "", what + " (capabilityPolicy strict; choose lenient to run without it)");
     warn(what + "; ignored");
     return false;
 }

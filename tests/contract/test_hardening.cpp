@@ -1,0 +1,313 @@
+// Reliability on every backend: errors say what kind they are and which field they concern,
+// handles that outlive their body, joint or world throw StaleHandle, absurd finite inputs are
+// refused up front, and a step never hands back a diverged state silently.
+#include <gmock/gmock.h>
+
+#include <limits>
+#include <memory>
+
+#include "anyphys/containers/scene.hpp"
+#include "contract_fixture.hpp"
+
+namespace anyphys::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+class HardeningTest : public ContractTest {
+protected:
+    bool runsPlanarWithout3D() const override { return true; }
+
+    BodyDef ball(const std::string& name, const Vec3& position) const {
+        BodyDef d;
+        d.name = name;
+        d.position = position;
+        d.shape = ShapeDef::sphere(0.5);
+        return d;
+    }
+};
+
+// Runs `call`; expects an Error of `kind` whose field is `field` and whose message holds every fragment.
+template <class F>
+void expectError(F&& call, ErrorKind kind, const std::string& field, std::initializer_list<const char*> fragments = {}) {
+    try {
+        call();
+        ADD_FAILURE() << "expected anyphys::Error of kind " << toString(kind);
+    } catch (const Error& e) {
+        EXPECT_EQ(toString(e.kind()), toString(kind)) << e.what();
+        EXPECT_EQ(e.field(), field) << e.what();
+        for (const char* f : fragments) EXPECT_THAT(e.what(), HasSubstr(f));
+    }
+}
+
+TEST_P(HardeningTest, ErrorsCarryKindAndField) {
+    World world(settings());
+    BodyDef bad = ball("b", Vec3(0, 1, 0));
+    bad.shape = ShapeDef::sphere(-1);
+    expectError([&] { world.createBody(bad); }, ErrorKind::InvalidArgument, "BodyDef.shape.radius", {"must be > 0", "got -1"});
+
+    WorldSettings s = settings();
+    s.timeStep = -1;
+    expectError([&] { World w(s); }, ErrorKind::InvalidArgument, "WorldSettings.timeStep", {"must be > 0"});
+
+    s = settings();
+    s.backendOptions["no_such_option"] = 1.0;  // no backend has it: a missing capability
+    expectError([&] { World w(s); }, ErrorKind::Unsupported, "WorldSettings", {"no_such_option"});
+
+    expectError([&] { world.step(-0.5); }, ErrorKind::InvalidArgument, "World.step.dt");
+    expectError([&] { Body().position(); }, ErrorKind::StaleHandle, "", {"null body handle"});
+
+    // Scene text: syntax and shape are Parse errors, broken rules InvalidArgument, both with the JSON path.
+    expectError([] { (void)parseScene("{ \"settings\": "); }, ErrorKind::Parse, "", {"invalid JSON"});
+    expectError([] { (void)parseScene(R"({"settings": {"gravityy": [0, 0, 0]}})"); }, ErrorKind::Parse, "settings.gravityy",
+                {"unknown key"});
+    expectError([] { (void)parseScene(R"({"settings": {"timeStep": "fast"}})"); }, ErrorKind::Parse, "settings.timeStep",
+                {"must be a number"});
+    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0}}]})"); },
+                ErrorKind::InvalidArgument, "bodies[0].shape.radius", {"must be > 0"});
+    expectError([] { (void)parseScene(R"({"settings": {"divergencePolicy": "explode"}})"); }, ErrorKind::InvalidArgument,
+                "settings.divergencePolicy", {"throw, freeze"});
+    EXPECT_EQ(world.bodyCount(), 0u);
+}
+
+TEST_P(HardeningTest, ErrorsWhileSteppingAreInvalidState) {
+    World world(settings());
+    Body b = world.createBody(ball("b", Vec3(0, 1, 0)));
+    bool called = false;
+    world.setForceCallback([&](ForceContext&) {
+        if (called) return;
+        called = true;
+        expectError([&] { world.createBody(ball("c", Vec3(0, 3, 0))); }, ErrorKind::InvalidState, "",
+                    {"while the world is stepping"});
+    });
+    world.step();
+    EXPECT_TRUE(called);
+    EXPECT_TRUE(b.isValid());
+}
+
+TEST_P(HardeningTest, AbsurdFiniteValuesAreRefusedNamingTheField) {
+    World world(settings());
+    BodyDef far = ball("far", Vec3(1e308, 0, 0));
+    expectError([&] { world.createBody(far); }, ErrorKind::InvalidArgument, "BodyDef.position",
+                {"e+308", "within +-1e+07 m", "kMaxCoordinate"});
+    BodyDef spin = ball("spin", Vec3(0, 1, 0));
+    spin.angularVelocity = Vec3(0, 0, 1e308);
+    expectError([&] { world.createBody(spin); }, ErrorKind::InvalidArgument, "BodyDef.angularVelocity",
+                {"WorldSettings.maxAngularSpeed", "100000 rad/s"});
+    BodyDef fast = ball("fast", Vec3(0, 1, 0));
+    fast.linearVelocity = Vec3(2e5, 0, 0);
+    expectError([&] { world.createBody(fast); }, ErrorKind::InvalidArgument, "BodyDef.linearVelocity",
+                {"WorldSettings.maxSpeed"});
+    BodyDef huge = ball("huge", Vec3(0, 1, 0));
+    huge.shape = ShapeDef::sphere(1e300);
+    expectError([&] { world.createBody(huge); }, ErrorKind::InvalidArgument, "BodyDef.shape.radius", {"kMaxCoordinate"});
+    EXPECT_EQ(world.bodyCount(), 0u);
+
+    WorldSettings s = settings();
+    s.gravity = Vec3(0, -1e19, 0);
+    expectError([&] { World w(s); }, ErrorKind::InvalidArgument, "WorldSettings.gravity", {"kMaxGravity"});
+    s = settings();
+    s.timeStep = 1e300;
+    expectError([&] { World w(s); }, ErrorKind::InvalidArgument, "WorldSettings.timeStep", {"kMaxTimeStep"});
+
+    // Setters and impulses on a live body: refused, and the body is untouched.
+    Body b = world.createBody(ball("b", Vec3(0, 1, 0)));
+    const BodyState before = b.state();
+    expectError([&] { b.setTransform(Vec3(0, 1e308, 0), Quat::Identity()); }, ErrorKind::InvalidArgument,
+                "Body.setTransform.position");
+    expectError([&] { b.setLinearVelocity(Vec3(1e308, 0, 0)); }, ErrorKind::InvalidArgument,
+                "Body.setLinearVelocity.velocity", {"WorldSettings.maxSpeed"});
+    expectError([&] { b.setAngularVelocity(Vec3(0, 0, 1e308)); }, ErrorKind::InvalidArgument,
+                "Body.setAngularVelocity.velocity", {"WorldSettings.maxAngularSpeed"});
+    expectError([&] { b.applyLinearImpulse(Vec3(1e300, 0, 0)); }, ErrorKind::InvalidArgument,
+                "Body.applyLinearImpulse.impulse", {"WorldSettings.maxSpeed"});
+    expectError([&] { b.applyAngularImpulse(Vec3(0, 0, 1e300)); }, ErrorKind::InvalidArgument,
+                "Body.applyAngularImpulse.impulse", {"WorldSettings.maxAngularSpeed"});
+    expectError([&] { b.applyForce(Vec3(1e300, 0, 0)); }, ErrorKind::InvalidArgument, "Body.applyForce.force",
+                {"in one step"});
+    expectError([&] { b.applyTorque(Vec3(0, 0, 1e300)); }, ErrorKind::InvalidArgument, "Body.applyTorque.torque",
+                {"in one step", "WorldSettings.maxAngularSpeed"});
+    const BodyState after = b.state();
+    EXPECT_EQ(after.position, before.position);
+    EXPECT_EQ(after.linearVelocity, before.linearVelocity);
+    EXPECT_EQ(after.angularVelocity, before.angularVelocity);
+
+    // A force callback's absurd force is refused inside the step, before the engine integrates it
+    // (ODE aborted the process on a 1e300 N force).
+    world.setForceCallback([&](ForceContext& c) { c.addForce(b, Vec3(1e300, 0, 0)); });
+    expectError([&] { world.step(); }, ErrorKind::InvalidArgument, "ForceContext.addForce.force", {"in one step"});
+    world.setForceCallback([&](ForceContext& c) { c.addTorque(b, Vec3(0, 0, 1e300)); });
+    expectError([&] { world.step(); }, ErrorKind::InvalidArgument, "ForceContext.addTorque.torque", {"in one step"});
+    world.setForceCallback({});
+
+    // The same values in a scene file name the JSON path.
+    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "position": [1e308, 0, 0], "shape": {"type": "sphere"}}]})"); },
+                ErrorKind::InvalidArgument, "bodies[0].position", {"kMaxCoordinate"});
+    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "angularVelocity": [0, 0, 1e308], "shape": {"type": "sphere"}}]})"); },
+                ErrorKind::InvalidArgument, "bodies[0].angularVelocity", {"settings.maxAngularSpeed"});
+    expectError([] { (void)parseScene(R"({"settings": {"gravity": [0, -1e19, 0]}})"); }, ErrorKind::InvalidArgument,
+                "settings.gravity", {"kMaxGravity"});
+}
+
+TEST_P(HardeningTest, BodyHandleOfDestroyedBodyOrWorldIsStale) {
+    Body kept;
+    {
+        World world(settings());
+        Body gone = world.createBody(ball("gone", Vec3(0, 1, 0)));
+        kept = world.createBody(ball("kept", Vec3(2, 1, 0)));
+        world.destroyBody(gone);
+        EXPECT_FALSE(gone.isValid());
+        expectError([&] { gone.position(); }, ErrorKind::StaleHandle, "", {"Body.position", "stale body handle"});
+        world.createBody(ball("reuses the slot", Vec3(0, 1, 0)));
+        EXPECT_FALSE(gone.isValid());
+        expectError([&] { gone.setLinearVelocity(Vec3(1, 0, 0)); }, ErrorKind::StaleHandle, "");
+        EXPECT_TRUE(kept.isValid());
+    }
+    // The world is gone: every use throws instead of touching freed memory.
+    EXPECT_FALSE(kept.isValid());
+    EXPECT_EQ(kept.world(), nullptr);
+    expectError([&] { kept.position(); }, ErrorKind::StaleHandle, "", {"Body.position", "world was destroyed"});
+    expectError([&] { kept.applyForce(Vec3(1, 0, 0)); }, ErrorKind::StaleHandle, "", {"world was destroyed"});
+    expectError([&] { kept.name(); }, ErrorKind::StaleHandle, "");
+
+    // A new world (perhaps at the same address, with a body in the same slot) does not revive it.
+    auto again = std::make_unique<World>(settings());
+    again->createBody(ball("first", Vec3(0, 1, 0)));
+    Body fresh = again->createBody(ball("fresh", Vec3(2, 1, 0)));
+    EXPECT_TRUE(fresh.id() == kept.id());
+    EXPECT_FALSE(kept.isValid());
+    EXPECT_FALSE(kept == fresh);
+    expectError([&] { again->destroyBody(kept); }, ErrorKind::StaleHandle, "", {"world was destroyed"});
+    JointDef def;
+    def.type = JointType::Hinge;
+    def.bodyB = kept;
+    def.axis = Vec3::UnitZ();
+    expectError([&] { again->createJoint(def); }, ErrorKind::StaleHandle, "JointDef.bodyB", {"world was destroyed"});
+    EXPECT_EQ(again->bodyCount(), 2u);
+}
+
+TEST_P(HardeningTest, JointHandleOfDestroyedJointBodyOrWorldIsStale) {
+    ANYPHYS_REQUIRE(caps().effects.has(Effect::Joints) && caps().jointTypes.contains("hinge"), "hinge joints");
+    Joint kept;
+    {
+        World world(settings());
+        Body a = world.createBody(ball("a", Vec3(0, 1, 0)));
+        Body b = world.createBody(ball("b", Vec3(3, 1, 0)));
+        JointDef def;
+        def.type = JointType::Hinge;
+        def.axis = Vec3::UnitZ();
+        def.bodyB = a;
+        def.anchor = Vec3(0, 2, 0);
+        Joint j = world.createJoint(def);
+        world.destroyJoint(j);
+        EXPECT_FALSE(j.isValid());
+        expectError([&] { j.position(); }, ErrorKind::StaleHandle, "", {"Joint.position", "stale joint handle"});
+
+        Joint viaBody = world.createJoint(def);
+        world.destroyBody(a);
+        EXPECT_FALSE(viaBody.isValid());
+        expectError([&] { viaBody.reactionForce(); }, ErrorKind::StaleHandle, "");
+
+        def.bodyB = b;
+        def.anchor = Vec3(3, 2, 0);
+        kept = world.createJoint(def);
+        world.step();
+        EXPECT_TRUE(kept.isValid());
+    }
+    EXPECT_FALSE(kept.isValid());
+    EXPECT_EQ(kept.world(), nullptr);
+    expectError([&] { kept.position(); }, ErrorKind::StaleHandle, "", {"Joint.position", "world was destroyed"});
+    expectError([&] { kept.bodyB(); }, ErrorKind::StaleHandle, "");
+    expectError([&] { kept.setMotor(std::nullopt); }, ErrorKind::StaleHandle, "");
+    World other(settings());
+    expectError([&] { other.destroyJoint(kept); }, ErrorKind::StaleHandle, "", {"world was destroyed"});
+}
+
+// A rocket gains 10 m/s every step (one step's force stays below the ceiling, so each call is
+// accepted); with maxSpeed 25 m/s it passes the ceiling on its third step. Every backend can
+// reach that speed (Box2D clamps at 2 m per step, 120 m/s at 60 Hz).
+class DivergenceTest : public HardeningTest {
+protected:
+    static constexpr double kMaxSpeed = 25.0;
+    static constexpr double kGain = 10.0;  // m/s per step
+
+    WorldSettings divergenceSettings(DivergencePolicy policy) const {
+        WorldSettings s = settings();
+        s.gravity = Vec3::Zero();
+        s.maxSpeed = kMaxSpeed;
+        s.divergencePolicy = policy;
+        return s;
+    }
+    void push(World& world, Body rocket) const {
+        rocket.applyForce(Vec3(rocket.massProperties().mass * kGain / world.settings().timeStep, 0, 0));
+    }
+};
+
+TEST_P(DivergenceTest, ThrowPolicyNamesTheBody) {
+    World world(divergenceSettings(DivergencePolicy::Throw));
+    Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
+    BodyDef walkerDef = ball("walker", Vec3(0, 10, 0));
+    walkerDef.linearVelocity = Vec3(1, 0, 0);
+    world.createBody(walkerDef);
+    int steps = 0;
+    try {
+        for (; steps < 10; ++steps) {
+            push(world, rocket);
+            world.step();
+        }
+        ADD_FAILURE() << "no Diverged error after 10 steps; speed " << rocket.linearVelocity().norm();
+    } catch (const Error& e) {
+        EXPECT_EQ(toString(e.kind()), toString(ErrorKind::Diverged)) << e.what();
+        EXPECT_EQ(e.field(), "body \"rocket\".linearVelocity");
+        EXPECT_THAT(e.what(), HasSubstr("body \"rocket\""));
+        EXPECT_THAT(e.what(), HasSubstr("WorldSettings.maxSpeed 25"));
+        EXPECT_THAT(e.what(), ::testing::Not(HasSubstr("walker")));
+        EXPECT_EQ(steps, 2) << e.what();  // 10, 20, then 30 m/s
+    }
+    ASSERT_EQ(world.lastDiverged().size(), 1u);
+    EXPECT_EQ(world.lastDiverged()[0].name, "rocket");
+    EXPECT_TRUE(world.lastDiverged()[0].body == rocket);
+    EXPECT_FALSE(rocket.isFrozen());
+}
+
+TEST_P(DivergenceTest, FreezePolicyHoldsTheBodyAndWarns) {
+    World world(divergenceSettings(DivergencePolicy::Freeze));
+    std::vector<std::string> warnings;
+    world.setWarningHandler([&](const std::string& w) { warnings.push_back(w); });
+    Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
+    BodyDef walkerDef = ball("walker", Vec3(0, 10, 0));
+    walkerDef.linearVelocity = Vec3(1, 0, 0);
+    Body walker = world.createBody(walkerDef);
+    Vec3 frozenAt = Vec3::Zero();
+    for (int step = 0; step < 60; ++step) {
+        push(world, rocket);  // the game keeps pushing: the frozen body stays put
+        ASSERT_NO_THROW(world.step());
+        const BodyState s = rocket.state();
+        ASSERT_TRUE(s.position.allFinite() && s.linearVelocity.allFinite());
+        EXPECT_LE(s.linearVelocity.norm(), kMaxSpeed);
+        if (step == 2) {
+            ASSERT_EQ(world.lastDiverged().size(), 1u);
+            EXPECT_EQ(world.lastDiverged()[0].name, "rocket");
+            frozenAt = s.position;
+        }
+        if (step >= 2) {
+            EXPECT_TRUE(rocket.isFrozen());
+            EXPECT_EQ(s.position, frozenAt) << "step " << step;
+            EXPECT_TRUE(s.linearVelocity.isZero(0));
+        }
+    }
+    EXPECT_TRUE(world.lastDiverged().empty());  // frozen bodies are not found again
+    EXPECT_NEAR(frozenAt.x(), (10 + 20) * world.settings().timeStep, 1e-3);  // held where the last check found it
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_THAT(warnings[0], HasSubstr("body \"rocket\""));
+    EXPECT_THAT(warnings[0], HasSubstr("frozen"));
+    EXPECT_EQ(world.warnings(), warnings);
+    EXPECT_FALSE(walker.isFrozen());
+    EXPECT_NEAR(walker.position().x(), world.time(), 1e-3);  // the rest of the world keeps stepping
+}
+
+ANYPHYS_CONTRACT_SUITE(HardeningTest);
+ANYPHYS_CONTRACT_SUITE(DivergenceTest);
+
+}  // namespace
+}  // namespace anyphys::test
