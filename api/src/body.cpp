@@ -2,18 +2,14 @@
 #include "anyphys/body.hpp"
 
 #include "anyphys/validation.hpp"
+#include "handle_link.hpp"
 #include "world_impl.hpp"
 
 namespace anyphys {
 namespace {
 
 World& worldOf(const std::shared_ptr<detail::WorldLink>& link, BodyId id, const char* operation) {
-    if (!link || id.isNull()) throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": null body handle");
-    if (!link->world)
-        throw Error(ErrorKind::StaleHandle, "",
-                    std::string(operation) + ": stale body handle (index " + std::to_string(id.index) + ", generation " +
-                        std::to_string(id.generation) + "): the body's world was destroyed");
-    return *link->world;
+    return detail::linkedWorld(link, id, "body", operation);
 }
 
 // A planar world keeps motion in the XY plane: pushes out of it are dropped (the plane holds the

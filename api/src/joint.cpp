@@ -3,18 +3,14 @@
 #include "anyphys/joint.hpp"
 
 #include "anyphys/joint_validation.hpp"
+#include "handle_link.hpp"
 #include "world_impl.hpp"
 
 namespace anyphys {
 namespace {
 
 World& worldOf(const std::shared_ptr<detail::WorldLink>& link, JointId id, const char* operation) {
-    if (!link || id.isNull()) throw Error(ErrorKind::StaleHandle, "", std::string(operation) + ": null joint handle");
-    if (!link->world)
-        throw Error(ErrorKind::StaleHandle, "",
-                    std::string(operation) + ": stale joint handle (index " + std::to_string(id.index) + ", generation " +
-                        std::to_string(id.generation) + "): the joint's world was destroyed");
-    return *link->world;
+    return detail::linkedWorld(link, id, "joint", operation);
 }
 
 /// Refuses a setter on a type that has no such field, naming the joint and the types that have one.
