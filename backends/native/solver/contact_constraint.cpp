@@ -106,8 +106,8 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
     wc.manifold[lane] = &m;
     wc.pointCount = std::max(wc.pointCount, m.pointCount);
 
-    setLane(wc.invMassA, lane, a.invMass);
-    setLane(wc.invMassB, lane, b.invMass);
+    wc.invMassA[lane] = a.invMass.x();
+    wc.invMassB[lane] = b.invMass.x();
     setLane(wc.invIA, lane, a.invI);
     setLane(wc.invIB, lane, b.invI);
     const Vec3 n = m.normal;
@@ -144,13 +144,13 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         cp.stepImpulse[lane] = 0.0;
         cp.maxImpulse[lane] = 0.0;
         const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
-        cp.relativeVelocity[lane] = vn;
+        wc.cold[i].relativeVelocity[lane] = vn;
         // Gravity (or any relative acceleration) speeds the approach until the surfaces meet,
         // part way into the step: a bounce off the step-start speed rebounds low (2 % of the
         // height for a ball landing at 9 m/s, on every integrator).
         const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
         const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
-        cp.restitutionTarget[lane] =
+        wc.cold[i].restitutionTarget[lane] =
             bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact);
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.

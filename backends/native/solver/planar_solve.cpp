@@ -96,13 +96,25 @@ ANYPHYS_KERNEL void warmStartImpl(PlanarContact* contacts, int count, SolverStat
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
         PlanarBodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        // The accumulated impulses summed into one impulse and one moment per body, applied once.
+        const FloatW nx = c.normalX, ny = c.normalY;
+        const FloatW f = c.frictionImpulse;
+        FloatW normalTotal = zero();
+        // Moments r x P of the friction impulse f (-ny, nx) and of each point's impulse l (nx, ny).
+        FloatW momentA = f * (c.centerAx * nx + c.centerAy * ny), momentB = f * (c.centerBx * nx + c.centerBy * ny);
         for (int j = 0; j < c.pointCount; ++j) {
             const PlanarContactPoint& cp = c.points[j];
-            applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, cp.normalImpulse * c.normalX,
-                         cp.normalImpulse * c.normalY);
+            normalTotal += cp.normalImpulse;
+            momentA += cp.normalImpulse * (cp.anchorAx * ny - cp.anchorAy * nx);
+            momentB += cp.normalImpulse * (cp.anchorBx * ny - cp.anchorBy * nx);
         }
-        applyImpulse(a, b, c, c.centerAx, c.centerAy, c.centerBx, c.centerBy, -c.frictionImpulse * c.normalY,
-                     c.frictionImpulse * c.normalX);
+        const FloatW px = normalTotal * nx - f * ny, py = normalTotal * ny + f * nx;
+        a.vx -= c.invMassA * px;
+        a.vy -= c.invMassA * py;
+        a.w -= c.invIA * momentA;
+        b.vx += c.invMassB * px;
+        b.vy += c.invMassB * py;
+        b.w += c.invIB * momentB;
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
