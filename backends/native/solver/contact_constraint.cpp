@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "contacts.hpp"
+#include "solver/restitution_math.hpp"
 
 namespace anyphys::native {
 
@@ -28,26 +29,6 @@ Vec3 perpendicular(const Vec3& n) {
     // locked Z direction second.
     const Vec3 axis = std::abs(n.z()) < 0.57735 ? Vec3::UnitZ() : Vec3::UnitX();
     return axis.cross(n).normalized();
-}
-
-/// The normal velocity after a bounce of restitution e, from the stored approach velocity `vn`.
-/// Restitution acts at the instant of impact, `impact` seconds into the step: under a constant
-/// relative acceleration `an` along the normal the true velocity then is vn - an * offset +
-/// an * impact; it reverses to -e times that, and is stored back with the integrator's offset.
-/// Semi-implicit Euler's velocity lags its position by half a step (offset -h/2), explicit
-/// Euler's leads (+h/2); exact flights have offset 0.
-double bounceVelocity(double e, double vn, double an, double offset, double impact) {
-    return -e * (vn - an * offset + an * impact) + an * offset;
-}
-
-/// Seconds into the step at which a point `separation` apart meets, closing at `closing` (> 0)
-/// and accelerating together at `accel`: the root of s = c t + a t^2 / 2, in the form that
-/// stays accurate as a goes to 0; within [0, h]. Overlapping points meet at once.
-double timeToImpact(double separation, double closing, double accel, double h) {
-    if (separation <= 0.0) return 0.0;
-    const double root = std::sqrt(std::max(closing * closing + 2.0 * accel * separation, 0.0));
-    const double denominator = closing + root;
-    return denominator > 0.0 ? std::min(2.0 * separation / denominator, h) : h;
 }
 
 // Inverse of a symmetric 2x2 matrix; a direction with no mass (a planar body's Z) gets none.
@@ -125,8 +106,8 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
     wc.manifold[lane] = &m;
     wc.pointCount = std::max(wc.pointCount, m.pointCount);
 
-    setLane(wc.invMassA, lane, a.invMass);
-    setLane(wc.invMassB, lane, b.invMass);
+    wc.invMassA[lane] = a.invMass.x();
+    wc.invMassB[lane] = b.invMass.x();
     setLane(wc.invIA, lane, a.invI);
     setLane(wc.invIB, lane, b.invI);
     const Vec3 n = m.normal;
@@ -163,13 +144,13 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         cp.stepImpulse[lane] = 0.0;
         cp.maxImpulse[lane] = 0.0;
         const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
-        cp.relativeVelocity[lane] = vn;
+        wc.cold[i].relativeVelocity[lane] = vn;
         // Gravity (or any relative acceleration) speeds the approach until the surfaces meet,
         // part way into the step: a bounce off the step-start speed rebounds low (2 % of the
         // height for a ball landing at 9 m/s, on every integrator).
         const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
         const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
-        cp.restitutionTarget[lane] =
+        wc.cold[i].restitutionTarget[lane] =
             bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact);
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.

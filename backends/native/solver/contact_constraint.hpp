@@ -28,9 +28,14 @@ struct WideContactPoint {
     wide::FloatW normalImpulse;        // accumulated within the substep, N s
     wide::FloatW stepImpulse;          // sum over the step's substeps (what events report)
     wide::FloatW maxImpulse;           // largest accumulated impulse seen (did it push at all?)
+    wide::FloatW leverArm;             // distance to the friction centre (twist friction limit)
+};
+
+/// Per point, read only when preparing and in the restitution stage: kept apart from the points
+/// so the passes, which stream the points, do not load them.
+struct WideContactPointCold {
     wide::FloatW relativeVelocity;     // normal velocity at the step start (< 0: approaching)
     wide::FloatW restitutionTarget;    // normal velocity a bounce aims for
-    wide::FloatW leverArm;             // distance to the friction centre (twist friction limit)
 };
 
 struct WideContact {
@@ -41,7 +46,7 @@ struct WideContact {
     ContactManifold* manifold[wide::kLanes];  // source of each lane; null in padding lanes
     int pointCount;                    // most points in any lane
     bool reverse = false;              // the next solve visits the points last to first
-    wide::Vec3W invMassA, invMassB;    // per axis
+    wide::FloatW invMassA, invMassB;   // the same along every axis (a planar world has PlanarContact)
     wide::SymMat3W invIA, invIB;
     wide::Vec3W normal, tangent1, tangent2;
     wide::Vec3W centerA, centerB;      // friction centre relative to each centre of mass
@@ -51,6 +56,7 @@ struct WideContact {
     wide::FloatW frictionImpulse1, frictionImpulse2, twistImpulse;
     wide::FloatW biasRate, massScale, impulseScale;  // soft-contact coefficients of the lane
     WideContactPoint points[4];
+    WideContactPointCold cold[4];
 };
 
 /// One manifold to place in a lane: its solver bodies (kStaticBody for static or asleep) and

@@ -73,9 +73,9 @@ ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* i
 
 // Applies impulse P at anchors rA (on A, negated) and rB.
 ANYPHYS_KERNEL void applyImpulse(BodyW& a, BodyW& b, const WideContact& c, const Vec3W& rA, const Vec3W& rB, const Vec3W& P) {
-    a.v = a.v - scale(c.invMassA, P);
+    a.v = a.v - c.invMassA * P;
     a.w = a.w - c.invIA * cross(rA, P);
-    b.v = b.v + scale(c.invMassB, P);
+    b.v = b.v + c.invMassB * P;
     b.w = b.w + c.invIB * cross(rB, P);
 }
 
@@ -122,14 +122,27 @@ ANYPHYS_KERNEL void warmStartImpl(WideContact* contacts, int count, SolverState*
     for (int i = 0; i < count; ++i) {
         WideContact& c = contacts[i];
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        // The manifold's accumulated impulses summed into one linear impulse and one angular
+        // impulse per body, applied once: the inverse inertia is multiplied twice per manifold
+        // instead of twice per point and row.
+        const Vec3W friction = c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * c.tangent2;
+        FloatW normalTotal = zero();
+        Vec3W angularA = cross(c.centerA, friction), angularB = cross(c.centerB, friction);
         for (int j = 0; j < c.pointCount; ++j) {
             const WideContactPoint& cp = c.points[j];
-            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, cp.normalImpulse * c.normal);
+            const Vec3W P = cp.normalImpulse * c.normal;
+            normalTotal += cp.normalImpulse;
+            angularA = angularA + cross(cp.anchorA, P);
+            angularB = angularB + cross(cp.anchorB, P);
         }
-        applyImpulse(a, b, c, c.centerA, c.centerB, c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * c.tangent2);
-        const Vec3W L = c.twistImpulse * c.normal;
-        a.w = a.w - c.invIA * L;
-        b.w = b.w + c.invIB * L;
+        const Vec3W twist = c.twistImpulse * c.normal;
+        angularA = angularA + twist;
+        angularB = angularB + twist;
+        const Vec3W linear = friction + normalTotal * c.normal;
+        a.v = a.v - c.invMassA * linear;
+        a.w = a.w - c.invIA * angularA;
+        b.v = b.v + c.invMassB * linear;
+        b.w = b.w + c.invIB * angularB;
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
@@ -204,11 +217,12 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, int count, SolverStat
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         for (int j = 0; j < c.pointCount; ++j) {
             WideContactPoint& cp = c.points[j];
+            const WideContactPointCold& cold = c.cold[j];
             // Only where the approach was fast and the contact pushed (not speculative points
             // that never closed).
-            const MaskW bounces = (cp.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            const MaskW bounces = (cold.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
             const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cp.restitutionTarget), zero());
+            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget), zero());
             const FloatW total = max(cp.normalImpulse + impulse, zero());
             const FloatW applied = total - cp.normalImpulse;
             cp.normalImpulse = total;

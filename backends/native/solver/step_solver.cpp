@@ -193,7 +193,11 @@ void StepSolver::buildConstraints() {
         colorWideCount_[c] = overflow ? colors[c].laneCount : (colors[c].laneCount + wide::kLanes - 1) / wide::kLanes;
         total += colorWideCount_[c];
     }
-    wide_.resize(static_cast<std::size_t>(total));
+    wideCount_ = total;
+    if (planarWorld_)
+        planar_.resize(static_cast<std::size_t>(total));
+    else
+        wide_.resize(static_cast<std::size_t>(total));
     wideSource_.resize(static_cast<std::size_t>(total));
     for (std::size_t c = 0; c < colorCount; ++c) {
         const bool overflow = graph_.hasOverflow() && c + 1 == colorCount;
@@ -233,7 +237,7 @@ void StepSolver::planStages(const NativeWorld& world) {
     const bool soft = *settings.solver != Solver::ProjectedGaussSeidel;
     const int substeps = *settings.substeps, iterations = *settings.iterations;
     const bool hook = world.forceHook() && world.effects().has(Effect::UserForces);
-    const int bodies = static_cast<int>(bodies_.size()), wide = static_cast<int>(wide_.size());
+    const int bodies = static_cast<int>(bodies_.size()), wide = wideCount_;
     const int colors = static_cast<int>(colorWideCount_.size());
     plan_.clear();
     stages_.clear();
@@ -302,6 +306,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     jointParams_.softness = makeSoftness(2.0 * hertz, kJointDampingRatio, h_);
     jointParams_.baumgarte = settings.baumgarte;
 
+    planarWorld_ = settings.planar;
     buildBodies(world, step);
     buildConstraints();
     planStages(world);
@@ -313,8 +318,9 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     const StagePlan& p = plan_[static_cast<std::size_t>(stage)];
     const int begin = block * p.blockSize, end = std::min(p.items, begin + p.blockSize);
     const int count = end - begin;
-    WideContact* colour = p.color < static_cast<int>(colorFirstWide_.size()) ? wide_.data() + colorFirstWide_[p.color] + begin
-                                                                            : nullptr;
+    const int first = p.color < static_cast<int>(colorFirstWide_.size()) ? colorFirstWide_[p.color] + begin : 0;
+    if (planarWorld_ && runPlanarBlock(p, first, begin, end)) return;
+    WideContact* colour = wide_.data() + first;
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
@@ -351,6 +357,27 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             for (const JointConstraint& c : joints_) reportJoint(c, bodies_.data(), states_.data(), step_.dt);
             break;
         case StageKind::ForceCallback: break;  // main thread only
+    }
+}
+
+bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int end) {
+    const int count = end - begin;
+    PlanarContact* colour = planar_.data() + first;
+    switch (p.kind) {
+        case StageKind::PrepareContacts:
+            for (int w = begin; w < end; ++w) {
+                ContactLane lanes[wide::kLanes];
+                const WideSource& src = wideSource_[w];
+                for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[src.first + k]];
+                preparePlanarContacts(planar_[w], lanes, src.count, bodies_.data(), states_.data(), prepareParams_);
+            }
+            return true;
+        case StageKind::WarmStart: warmStartPlanarContacts(colour, count, states_.data()); return true;
+        case StageKind::Solve: solvePlanarContacts(colour, count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
+        case StageKind::Relax: solvePlanarContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
+        case StageKind::Restitution: applyPlanarRestitution(colour, count, states_.data(), solveParams_); return true;
+        case StageKind::StoreImpulses: storePlanarImpulses(planar_.data() + begin, count); return true;
+        default: return false;  // body and joint stages are shared with 3D worlds
     }
 }
 

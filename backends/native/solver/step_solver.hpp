@@ -18,8 +18,9 @@
 //   restitution (per colour)              once
 //   store_impulses                        once
 //   finalize_bodies                       once: poses and velocities back to the bodies
-// Constraints are coloured (ConstraintGraph) and grouped four to a WideContact, so the colour
-// stages run in SIMD lanes and on several workers with identical results.
+// Constraints are coloured (ConstraintGraph) and grouped four to a WideContact (a PlanarContact in
+// a planar world: 3 degrees of freedom per body), so the colour stages run in SIMD lanes and on
+// several workers with identical results.
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "solver/constraint_graph.hpp"
 #include "solver/contact_constraint.hpp"
 #include "solver/joint_solver.hpp"
+#include "solver/planar_contact.hpp"
 #include "solver/solver_body.hpp"
 #include "solver/stage_runner.hpp"
 
@@ -82,6 +84,8 @@ private:
 
     void runBlock(int stage, int block, int worker) override;
     void runOnMain(int stage) override;
+    /// The contact stages of a planar world; false for the stages it shares with 3D worlds.
+    bool runPlanarBlock(const StagePlan& p, int first, int begin, int end);
     /// Writes solver poses and velocities back to the world's bodies.
     void finalizeBodies(int begin, int end);
     /// Solver-body forces from the user's callback at the current states.
@@ -96,7 +100,10 @@ private:
     std::vector<SolverBody> bodies_;
     std::vector<SolverState> states_;
     ConstraintGraph graph_;
-    std::vector<WideContact> wide_;
+    std::vector<WideContact> wide_;       // 3D worlds
+    std::vector<PlanarContact> planar_;   // planar worlds: the same constraints with 3 degrees of freedom
+    int wideCount_ = 0;                   // of whichever is in use
+    bool planarWorld_ = false;
     struct WideSource {
         int first = 0;  // into graph_.lanes()
         int count = 0;  // lanes used (1 to 4)

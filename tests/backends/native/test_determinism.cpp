@@ -43,9 +43,11 @@ private:
     std::vector<Pending> pending_;
 };
 
-/// Every body's state, bit for bit, after `steps` steps of a tumbling pile.
-std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps) {
+/// Every body's state, bit for bit, after `steps` steps of a tumbling pile. `planar`: the pile
+/// in the XY plane (a planar world, which has its own contact kernels).
+std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps, bool planar = false) {
     WorldSettings settings;
+    settings.planar = planar;
     settings.workers = workers;
     settings.taskSystem = tasks;
     MaterialLibrary materials;
@@ -57,7 +59,7 @@ std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps) {
     ground.position = {0, -1, 0};
     world.createBody(ground);
     std::vector<Body> bodies;
-    for (int i = 0; i < 240; ++i) {
+    for (int i = 0; i < (planar ? 96 : 240); ++i) {
         BodyDef d;
         d.allowSleep = false;
         const int kind = i % 4;
@@ -65,9 +67,15 @@ std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps) {
                   : kind == 1 ? ShapeDef::capsule(0.2, 0.3)
                               : ShapeDef::box({0.4, 0.25, 0.3});
         d.material = i % 5 == 0 ? "bouncy" : "";
-        d.position = {(i % 6) * 0.9 - 2.2, 0.5 + (i / 36) * 0.8, ((i / 6) % 6) * 0.9 - 2.2};
-        d.orientation = Quat(Eigen::AngleAxisd(0.3 * i, Vec3(1, 2, 3).normalized()));
-        d.angularVelocity = {0.1 * (i % 3), 0.2, -0.1 * (i % 2)};
+        if (planar) {
+            d.position = {(i % 8) * 0.9 - 3.1, 0.5 + (i / 8) * 0.8, 0.0};
+            d.orientation = Quat(Eigen::AngleAxisd(0.3 * i, Vec3::UnitZ()));
+            d.angularVelocity = {0.0, 0.0, 0.1 * (i % 3) - 0.1};
+        } else {
+            d.position = {(i % 6) * 0.9 - 2.2, 0.5 + (i / 36) * 0.8, ((i / 6) % 6) * 0.9 - 2.2};
+            d.orientation = Quat(Eigen::AngleAxisd(0.3 * i, Vec3(1, 2, 3).normalized()));
+            d.angularVelocity = {0.1 * (i % 3), 0.2, -0.1 * (i % 2)};
+        }
         bodies.push_back(world.createBody(d));
     }
     for (int s = 0; s < steps; ++s) world.step();
@@ -107,6 +115,16 @@ TEST(NativeDeterminism, WorkerCountDoesNotChangeTheResult) {
     expectIdentical(one, runPile(1, &shared, kSteps), "a game's pool of 3");
 }
 
+TEST(NativeDeterminism, PlanarWorkerCountDoesNotChangeTheResult) {
+    const auto one = runPile(1, nullptr, kSteps, true);
+    expectIdentical(one, runPile(2, nullptr, kSteps, true), "planar, 2 workers");
+    LateReverseTasks tasks(3);
+    expectIdentical(one, runPile(1, &tasks, kSteps, true), "planar, late, reversed task system");
+    double lowest = 1e9;  // the planar pile fell and piled up too
+    for (const BodyState& s : one) lowest = std::min(lowest, s.position.y());
+    EXPECT_LT(lowest, 0.5);
+}
+
 TEST(NativeDeterminism, LateAndReversedTasksGiveTheSameResult) {
     LateReverseTasks tasks(3);
     expectIdentical(runPile(1, nullptr, kSteps), runPile(1, &tasks, kSteps), "late, reversed task system");
@@ -123,8 +141,13 @@ TEST(NativeDeterminism, InstructionSetDoesNotChangeTheResult) {
         GTEST_SKIP() << "this CPU has no AVX2: only the baseline kernels can run";
     }
     const auto avx2 = runPile(1, nullptr, kSteps);
+    native::setContactKernelsAvx2(false);
+    const auto planarBaseline = runPile(1, nullptr, kSteps, true);
+    native::setContactKernelsAvx2(true);
+    const auto planarAvx2 = runPile(1, nullptr, kSteps, true);
     native::setContactKernelsAvx2(initial);
     expectIdentical(baseline, avx2, "AVX2 kernels");
+    expectIdentical(planarBaseline, planarAvx2, "planar AVX2 kernels");
 }
 
 }  // namespace

@@ -1,0 +1,147 @@
+// Preparing and storing planar contact constraints (scalar, once per step; see planar_contact.hpp).
+#include "solver/planar_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contacts.hpp"
+#include "solver/restitution_math.hpp"
+
+namespace anyphys::native {
+
+namespace {
+
+struct PlanarView {
+    double invMass = 0.0, invI = 0.0;
+    double cx = 0.0, cy = 0.0;             // centre of mass
+    double vx = 0.0, vy = 0.0, w = 0.0;
+    double ax = 0.0, ay = 0.0;             // linear acceleration
+    bool moves = false;
+};
+
+PlanarView viewOf(std::int32_t index, const SolverBody* bodies, const SolverState* states) {
+    PlanarView view;
+    if (index == kStaticBody) return view;
+    const SolverBody& b = bodies[index];
+    const SolverState& s = states[index];
+    view.invMass = b.invMass.x();
+    view.invI = b.invInertia(2, 2);
+    view.cx = b.position0.x();
+    view.cy = b.position0.y();
+    view.vx = s.v[0];
+    view.vy = s.v[1];
+    view.w = s.w[2];
+    view.ax = b.linearAcceleration.x();
+    view.ay = b.linearAcceleration.y();
+    view.moves = true;
+    return view;
+}
+
+double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
+                 const ContactPrepareParams& params) {
+    ContactManifold& m = *in.manifold;
+    const PlanarView a = viewOf(in.bodyA, bodies, states), b = viewOf(in.bodyB, bodies, states);
+    pc.bodyA[lane] = in.bodyA;
+    pc.bodyB[lane] = in.bodyB;
+    pc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
+    pc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
+    pc.manifold[lane] = &m;
+    pc.pointCount = std::max(pc.pointCount, m.pointCount);
+    pc.invMassA[lane] = a.invMass;
+    pc.invMassB[lane] = b.invMass;
+    pc.invIA[lane] = a.invI;
+    pc.invIB[lane] = b.invI;
+    // The narrow phase put the normal in the plane (flattenPlanarManifold).
+    const double nx = m.normal.x(), ny = m.normal.y();
+    const double tx = -ny, ty = nx;
+    pc.normalX[lane] = nx;
+    pc.normalY[lane] = ny;
+    pc.friction[lane] = in.friction;
+    pc.restitution[lane] = in.restitution;
+    const bool againstStatic = a.invMass == 0.0 || b.invMass == 0.0;
+    const Softness& soft = againstStatic ? params.staticSoftness : params.dynamicSoftness;
+    pc.biasRate[lane] = soft.biasRate;
+    pc.massScale[lane] = soft.massScale;
+    pc.impulseScale[lane] = soft.impulseScale;
+
+    const double normalAcceleration = nx * (b.ax - a.ax) + ny * (b.ay - a.ay);
+    const double invTau = params.speculativeDistance > 0.0 ? 1.0 / params.speculativeDistance : 0.0;
+    double centerX = 0.0, centerY = 0.0, totalWeight = 0.0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        const ContactPointState& mp = m.points[i];
+        PlanarContactPoint& cp = pc.points[i];
+        PlanarContactPointCold& cold = pc.cold[i];
+        const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
+        // A static body's anchor is the point itself (zero offset): it never moves or turns.
+        const double rAx = a.moves ? px - a.cx : 0.0, rAy = a.moves ? py - a.cy : 0.0;
+        const double rBx = b.moves ? px - b.cx : 0.0, rBy = b.moves ? py - b.cy : 0.0;
+        cp.anchorAx[lane] = rAx;
+        cp.anchorAy[lane] = rAy;
+        cp.anchorBx[lane] = rBx;
+        cp.anchorBy[lane] = rBy;
+        const double s = mp.geometry.separation;
+        cp.baseSeparation[lane] = s - (nx * (rBx - rAx) + ny * (rBy - rAy));
+        const double rnA = cross2(rAx, rAy, nx, ny), rnB = cross2(rBx, rBy, nx, ny);
+        const double k = a.invMass + b.invMass + a.invI * rnA * rnA + b.invI * rnB * rnB;
+        cp.normalMass[lane] = k > 0.0 ? 1.0 / k : 0.0;
+        cp.normalImpulse[lane] = params.warmStart ? mp.normalImpulse : 0.0;
+        cp.maxImpulse[lane] = 0.0;
+        cold.stepImpulse[lane] = 0.0;
+        const double vn = nx * ((b.vx - b.w * rBy) - (a.vx - a.w * rAy)) + ny * ((b.vy + b.w * rBx) - (a.vy + a.w * rAx));
+        cold.relativeVelocity[lane] = vn;
+        const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
+        const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
+        cold.restitutionTarget[lane] =
+            bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact);
+        // Points well beyond the speculative distance must not pull the friction centre around.
+        const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
+        centerX += weight * px;
+        centerY += weight * py;
+        totalWeight += weight;
+    }
+    centerX /= totalWeight;
+    centerY /= totalWeight;
+    const double cAx = a.moves ? centerX - a.cx : 0.0, cAy = a.moves ? centerY - a.cy : 0.0;
+    const double cBx = b.moves ? centerX - b.cx : 0.0, cBy = b.moves ? centerY - b.cy : 0.0;
+    pc.centerAx[lane] = cAx;
+    pc.centerAy[lane] = cAy;
+    pc.centerBx[lane] = cBx;
+    pc.centerBy[lane] = cBy;
+    const double rtA = cross2(cAx, cAy, tx, ty), rtB = cross2(cBx, cBy, tx, ty);
+    const double kt = a.invMass + b.invMass + a.invI * rtA * rtA + b.invI * rtB * rtB;
+    pc.tangentMass[lane] = kt > 0.0 ? 1.0 / kt : 0.0;
+    pc.frictionImpulse[lane] = params.warmStart ? tx * m.frictionImpulse.x() + ty * m.frictionImpulse.y() : 0.0;
+}
+
+}  // namespace
+
+void preparePlanarContacts(PlanarContact& pc, const ContactLane* lanes, int count, const SolverBody* bodies,
+                           const SolverState* states, const ContactPrepareParams& params) {
+    pc = PlanarContact{};
+    for (int lane = 0; lane < wide::kLanes; ++lane) {
+        pc.bodyA[lane] = pc.bodyB[lane] = kStaticBody;
+        pc.massScale[lane] = 1.0;
+    }
+    for (int lane = 0; lane < count; ++lane) prepareLane(pc, lane, lanes[lane], bodies, states, params);
+}
+
+void storePlanarImpulses(const PlanarContact* contacts, int count) {
+    for (int i = 0; i < count; ++i) {
+        const PlanarContact& c = contacts[i];
+        for (int lane = 0; lane < wide::kLanes; ++lane) {
+            ContactManifold* m = c.manifold[lane];
+            if (!m) continue;
+            for (int j = 0; j < m->pointCount; ++j) {
+                m->points[j].normalImpulse = c.points[j].normalImpulse[lane];
+                m->points[j].stepImpulse = c.cold[j].stepImpulse[lane];
+            }
+            const double f = c.frictionImpulse[lane];
+            m->frictionImpulse = Vec3(-c.normalY[lane] * f, c.normalX[lane] * f, 0.0);
+            m->twistImpulse = 0.0;
+        }
+    }
+}
+
+}  // namespace anyphys::native

@@ -1,0 +1,64 @@
+#pragma once
+// Contact constraints of a planar world (WorldSettings::planar), in the wide layout of
+// contact_constraint.hpp but with three degrees of freedom per body: x, y and the angle about Z.
+// A planar body has no inverse mass along Z and no inverse inertia about X or Y (the plane holds
+// it), so the 3D rows along Z and the twist about an in-plane normal move nothing; this path
+// leaves them out. Per manifold: a normal impulse per point and one friction row at the
+// manifold's centre along the in-plane tangent, clamped to mu * the sum of the normal impulses
+// (the 3D friction circle with its Z part always zero). A lane costs about a third of a 3D lane
+// in arithmetic and in memory, which is what every pass streams.
+//
+// The bodies' solver states stay the 3D ones (SolverState), so integration, joints and the
+// force callback are shared: the kernels read v.x, v.y, w.z, dp.x, dp.y and the rotation about
+// Z of dq (w, 0, 0, z), and write v.x, v.y, w.z.
+#include <cstdint>
+
+#include "solver/contact_constraint.hpp"
+
+namespace anyphys::native {
+
+/// What every pass reads and writes for one point (four lanes).
+struct PlanarContactPoint {
+    wide::FloatW anchorAx, anchorAy, anchorBx, anchorBy;  // point - centre of mass, step start
+    wide::FloatW baseSeparation;                           // s = base + n . (dpB - dpA + qB rB - qA rA)
+    wide::FloatW normalMass;
+    wide::FloatW normalImpulse;                            // accumulated within the substep, N s
+    wide::FloatW maxImpulse;                               // largest accumulated impulse seen
+};
+
+/// Read or written once per substep or step.
+struct PlanarContactPointCold {
+    wide::FloatW stepImpulse;        // sum over the step's substeps (what events report)
+    wide::FloatW relativeVelocity;   // normal velocity at the step start
+    wide::FloatW restitutionTarget;  // normal velocity a bounce aims for
+};
+
+struct PlanarContact {
+    std::int32_t bodyA[wide::kLanes];  // solver body index or kStaticBody
+    std::int32_t bodyB[wide::kLanes];
+    bool writeA[wide::kLanes];
+    bool writeB[wide::kLanes];
+    int pointCount;
+    bool reverse = false;  // PGS: the next solve visits the points last to first
+    wide::FloatW invMassA, invMassB, invIA, invIB;  // in-plane mass, inverse inertia about Z
+    wide::FloatW normalX, normalY;                  // tangent = (-normalY, normalX)
+    wide::FloatW centerAx, centerAy, centerBx, centerBy;  // friction centre relative to each centre of mass
+    wide::FloatW tangentMass, friction, frictionImpulse;
+    wide::FloatW biasRate, massScale, impulseScale;
+    PlanarContactPoint points[4];
+    // Cold: restitution and the step's bookkeeping.
+    wide::FloatW restitution;
+    PlanarContactPointCold cold[4];
+    ContactManifold* manifold[wide::kLanes];
+};
+
+/// Fills `pc` from up to four lanes (the rest are padding with no effect).
+void preparePlanarContacts(PlanarContact& pc, const ContactLane* lanes, int count, const SolverBody* bodies,
+                           const SolverState* states, const ContactPrepareParams& params);
+void warmStartPlanarContacts(PlanarContact* contacts, int count, SolverState* states);
+void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
+                         bool useBias, bool endOfSubstep);
+void applyPlanarRestitution(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params);
+void storePlanarImpulses(const PlanarContact* contacts, int count);
+
+}  // namespace anyphys::native

@@ -1,0 +1,246 @@
+// The planar contact kernels that run every pass (warm start, solve and relax, restitution), built
+// for the x86-64 baseline and for AVX2 like contact_solve.cpp, same bits either way. Three
+// degrees of freedom per body: x, y and the angle about Z (see planar_contact.hpp).
+#include "solver/planar_contact.hpp"
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define ANYPHYS_HAS_AVX2_KERNELS 1
+#endif
+
+#define ANYPHYS_KERNEL [[gnu::always_inline]] inline
+
+namespace anyphys::native {
+
+using namespace wide;
+
+namespace {
+
+struct PlanarBodyW {
+    FloatW vx, vy, w;
+    FloatW dpx, dpy;  // displacement since the step began
+    FloatW c, s;      // cosine and sine of the turn since the step began
+};
+
+ANYPHYS_KERNEL PlanarBodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
+    PlanarBodyW b{};
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (index[lane] == kStaticBody) continue;
+        const SolverState& st = states[index[lane]];
+        b.vx[lane] = st.v[0];
+        b.vy[lane] = st.v[1];
+        b.w[lane] = st.w[2];
+    }
+    return b;
+}
+
+ANYPHYS_KERNEL PlanarBodyW gatherMotion(const SolverState* states, const std::int32_t* index) {
+    PlanarBodyW b = gatherVelocities(states, index);
+    b.c = splat(1.0);
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (index[lane] == kStaticBody) continue;
+        const SolverState& st = states[index[lane]];
+        b.dpx[lane] = st.dp[0];
+        b.dpy[lane] = st.dp[1];
+        // dq = (cos t/2, 0, 0, sin t/2): cos t = 1 - 2 z^2, sin t = 2 w z.
+        const double qw = st.dq[0], qz = st.dq[3];
+        b.c[lane] = 1.0 - 2.0 * qz * qz;
+        b.s[lane] = 2.0 * qw * qz;
+    }
+    return b;
+}
+
+ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write,
+                                      const PlanarBodyW& b) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+        if (!write[lane]) continue;
+        SolverState& st = states[index[lane]];
+        st.v[0] = b.vx[lane];
+        st.v[1] = b.vy[lane];
+        st.w[2] = b.w[lane];
+    }
+}
+
+// Applies the impulse (px, py) at anchors r on A (negated) and on B.
+ANYPHYS_KERNEL void applyImpulse(PlanarBodyW& a, PlanarBodyW& b, const PlanarContact& c, FloatW rAx, FloatW rAy,
+                                 FloatW rBx, FloatW rBy, FloatW px, FloatW py) {
+    a.vx -= c.invMassA * px;
+    a.vy -= c.invMassA * py;
+    a.w -= c.invIA * (rAx * py - rAy * px);
+    b.vx += c.invMassB * px;
+    b.vy += c.invMassB * py;
+    b.w += c.invIB * (rBx * py - rBy * px);
+}
+
+// Normal velocity of B relative to A at anchors rA, rB: n . ((vB + wB x rB) - (vA + wA x rA)).
+ANYPHYS_KERNEL FloatW normalVelocity(const PlanarBodyW& a, const PlanarBodyW& b, FloatW nx, FloatW ny, FloatW rAx,
+                                     FloatW rAy, FloatW rBx, FloatW rBy) {
+    const FloatW dvx = (b.vx - b.w * rBy) - (a.vx - a.w * rAy);
+    const FloatW dvy = (b.vy + b.w * rBx) - (a.vy + a.w * rAx);
+    return nx * dvx + ny * dvy;
+}
+
+// Friction at the manifold's centre along the tangent (-ny, nx), in [-mu N, mu N].
+ANYPHYS_KERNEL void solveFriction(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b) {
+    FloatW totalNormal = zero();
+    for (int j = 0; j < c.pointCount; ++j) totalNormal += c.points[j].normalImpulse;
+    const FloatW tx = -c.normalY, ty = c.normalX;
+    const FloatW vt = normalVelocity(a, b, tx, ty, c.centerAx, c.centerAy, c.centerBx, c.centerBy);
+    const FloatW maxImpulse = c.friction * totalNormal;
+    const FloatW old = c.frictionImpulse;
+    c.frictionImpulse = clamp(old - c.tangentMass * vt, -maxImpulse, maxImpulse);
+    const FloatW P = c.frictionImpulse - old;
+    applyImpulse(a, b, c, c.centerAx, c.centerAy, c.centerBx, c.centerBy, P * tx, P * ty);
+}
+
+ANYPHYS_KERNEL void warmStartImpl(PlanarContact* contacts, int count, SolverState* states) {
+    for (int i = 0; i < count; ++i) {
+        PlanarContact& c = contacts[i];
+        PlanarBodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        // The accumulated impulses summed into one impulse and one moment per body, applied once.
+        const FloatW nx = c.normalX, ny = c.normalY;
+        const FloatW f = c.frictionImpulse;
+        FloatW normalTotal = zero();
+        // Moments r x P of the friction impulse f (-ny, nx) and of each point's impulse l (nx, ny).
+        FloatW momentA = f * (c.centerAx * nx + c.centerAy * ny), momentB = f * (c.centerBx * nx + c.centerBy * ny);
+        for (int j = 0; j < c.pointCount; ++j) {
+            const PlanarContactPoint& cp = c.points[j];
+            normalTotal += cp.normalImpulse;
+            momentA += cp.normalImpulse * (cp.anchorAx * ny - cp.anchorAy * nx);
+            momentB += cp.normalImpulse * (cp.anchorBx * ny - cp.anchorBy * nx);
+        }
+        const FloatW px = normalTotal * nx - f * ny, py = normalTotal * ny + f * nx;
+        a.vx -= c.invMassA * px;
+        a.vy -= c.invMassA * py;
+        a.w -= c.invIA * momentA;
+        b.vx += c.invMassB * px;
+        b.vy += c.invMassB * py;
+        b.w += c.invIB * momentB;
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
+                              bool useBias, bool endOfSubstep) {
+    const FloatW invH = splat(params.invH);
+    const FloatW maxPush = splat(-params.pushMaxVelocity);
+    const FloatW one = splat(1.0);
+    const FloatW baumgarte = splat(params.baumgarte * params.invH);
+    const FloatW slop = splat(params.linearSlop);
+    for (int i = 0; i < count; ++i) {
+        PlanarContact& c = contacts[i];
+        PlanarBodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
+        // Friction first; non-penetration has the last word in each pass.
+        if (params.friction) solveFriction(c, a, b);
+        FloatW biasRate = zero(), massScale = one, impulseScale = zero();
+        if (useBias && params.soft) {
+            biasRate = c.biasRate;
+            massScale = c.massScale;
+            impulseScale = c.impulseScale;
+        }
+        const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
+        // PGS alternates the order of the points from pass to pass, as the 3D path does.
+        const bool reverse = !params.soft && c.reverse;
+        c.reverse = !c.reverse;
+        for (int n = 0; n < c.pointCount; ++n) {
+            const int k = reverse ? c.pointCount - 1 - n : n;
+            PlanarContactPoint& cp = c.points[k];
+            // Current separation from the bodies' motion since the step began.
+            const FloatW movedX = dpx + (b.c * cp.anchorBx - b.s * cp.anchorBy) - (a.c * cp.anchorAx - a.s * cp.anchorAy);
+            const FloatW movedY = dpy + (b.s * cp.anchorBx + b.c * cp.anchorBy) - (a.s * cp.anchorAx + a.c * cp.anchorAy);
+            const FloatW s = c.normalX * movedX + c.normalY * movedY + cp.baseSeparation;
+            const MaskW speculative = s > zero();
+            FloatW bias;
+            if (!useBias) {
+                bias = zero();
+            } else if (params.soft) {
+                bias = max(biasRate * s, maxPush);
+            } else {
+                bias = max(baumgarte * min(zero(), s + slop), maxPush);
+            }
+            bias = select(speculative, s * invH, bias);
+            const FloatW pointMassScale = select(speculative, one, massScale);
+            const FloatW pointImpulseScale = select(speculative, zero(), impulseScale);
+            const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
+            const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
+            const FloatW total = max(cp.normalImpulse + impulse, zero());
+            const FloatW applied = total - cp.normalImpulse;
+            cp.normalImpulse = total;
+            cp.maxImpulse = max(cp.maxImpulse, total);
+            if (endOfSubstep) c.cold[k].stepImpulse += total;
+            applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
+                         applied * c.normalY);
+        }
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, int count, SolverState* states,
+                                    const ContactSolveParams& params) {
+    const FloatW threshold = splat(-params.restitutionThreshold);
+    for (int i = 0; i < count; ++i) {
+        PlanarContact& c = contacts[i];
+        if (allZero(c.restitution)) continue;
+        PlanarBodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        for (int j = 0; j < c.pointCount; ++j) {
+            PlanarContactPoint& cp = c.points[j];
+            PlanarContactPointCold& cold = c.cold[j];
+            const MaskW bounces =
+                (cold.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
+            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget), zero());
+            const FloatW total = max(cp.normalImpulse + impulse, zero());
+            const FloatW applied = total - cp.normalImpulse;
+            cp.normalImpulse = total;
+            cold.stepImpulse += applied;
+            applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
+                         applied * c.normalY);
+        }
+        scatterVelocities(states, c.bodyA, c.writeA, a);
+        scatterVelocities(states, c.bodyB, c.writeB, b);
+    }
+}
+
+#if ANYPHYS_HAS_AVX2_KERNELS
+#define ANYPHYS_AVX2 __attribute__((target("avx2")))
+ANYPHYS_AVX2 void warmStartAvx2(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
+ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
+    solveImpl(c, n, s, p, bias, end);
+}
+ANYPHYS_AVX2 void restitutionAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p) {
+    restitutionImpl(c, n, s, p);
+}
+#endif
+
+void warmStartBase(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
+void solveBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
+    solveImpl(c, n, s, p, bias, end);
+}
+void restitutionBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p) { restitutionImpl(c, n, s, p); }
+
+}  // namespace
+
+void warmStartPlanarContacts(PlanarContact* contacts, int count, SolverState* states) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (contactKernelsUseAvx2()) return warmStartAvx2(contacts, count, states);
+#endif
+    warmStartBase(contacts, count, states);
+}
+
+void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
+                         bool useBias, bool endOfSubstep) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (contactKernelsUseAvx2()) return solveAvx2(contacts, count, states, params, useBias, endOfSubstep);
+#endif
+    solveBase(contacts, count, states, params, useBias, endOfSubstep);
+}
+
+void applyPlanarRestitution(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (contactKernelsUseAvx2()) return restitutionAvx2(contacts, count, states, params);
+#endif
+    restitutionBase(contacts, count, states, params);
+}
+
+}  // namespace anyphys::native
