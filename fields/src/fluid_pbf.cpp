@@ -108,12 +108,12 @@ double FluidSystem::kernelSlope(double r) const {
 
 void FluidSystem::step(double dt, const ParticleEnvironment& env, std::vector<ParticleCollider>& colliders) {
     if (x_.empty()) return;
-    // Substeps: a particle moves at most a quarter spacing per substep (the grid and the
+    // Substeps: a particle moves at most half a spacing per substep (the grid and the
     // constraints assume small moves), and at least two per step at game rates.
     double fastest = 0.0;
     for (const Vec3& v : v_) fastest = std::max(fastest, v.squaredNorm());
     fastest = std::sqrt(fastest) + env.gravity.norm() * dt;
-    lastSubsteps_ = std::clamp(static_cast<int>(std::ceil(fastest * dt / (0.25 * def_.spacing))), 2, 16);
+    lastSubsteps_ = std::clamp(static_cast<int>(std::ceil(fastest * dt / (0.5 * def_.spacing))), 2, 16);
     const double h = dt / lastSubsteps_;
     for (int k = 0; k < lastSubsteps_; ++k) substep(h, env, colliders);
 }
@@ -156,7 +156,8 @@ void FluidSystem::substep(double dt, const ParticleEnvironment& env, std::vector
                 const double r2 = d.squaredNorm();
                 if (r2 >= h_ * h_) continue;
                 const double r = std::sqrt(r2);
-                rho += mass_ * kernel(r2);
+                const double q = 1.0 - r / h_;
+                rho += mass_ * kernelScale_ * q * q * q;
                 if (r > 0.0) {
                     const Vec3 g = massOverRho * kernelSlope(r) / r * d;
                     gradI += g;
