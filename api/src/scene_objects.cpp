@@ -56,6 +56,20 @@ SceneObjects createSceneObjects(World& world, const Scene& scene) {
             throw Error("fields[" + std::to_string(i) + "]: " + e.what());
         }
     }
+    for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
+        try {
+            world.addFluid(scene.fluids[i]);
+        } catch (const Error& e) {
+            throw e.within("fluids[" + std::to_string(i) + "]");
+        }
+    }
+    for (std::size_t i = 0; i < scene.cloths.size(); ++i) {
+        try {
+            world.addCloth(scene.cloths[i]);
+        } catch (const Error& e) {
+            throw e.within("cloths[" + std::to_string(i) + "]");
+        }
+    }
     return made;
 }
 

@@ -201,7 +201,7 @@ void World::refreshEffects() {
         if (impl_->gyroscopicBodies > 0) wanted.add(Effect::Gyroscopic);
         if (impl_->forcesUsed || impl_->forceCallback) wanted.add(Effect::UserForces);
         if (impl_->simulatedJoints > 0) wanted.add(Effect::Joints);
-        wanted = wanted | impl_->fieldEffects;
+        wanted = wanted | impl_->fieldEffects | impl_->particleEffects;
         // Contacts need two bodies, one of which responds (or a sensor and something moving).
         const Impl& i = *impl_;
         const bool contacts = i.liveBodies >= 2 && (i.dynamicBodies > 0 || (i.triggerBodies > 0 && i.movingBodies > 0));
@@ -387,6 +387,7 @@ void World::step(double dt) {
         SteppingGuard guard(impl_->stepping);
         if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);
         impl_->peer->step(time_, dt);
+        if (activeEffects_.has(Effect::Fluid) || activeEffects_.has(Effect::Cloth)) stepParticles(dt);
     }
     // Compensated summation keeps time == n * dt to the last bit over long runs.
     const double y = dt - timeCompensation_;

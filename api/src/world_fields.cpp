@@ -23,6 +23,8 @@ std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperti
         s.radius = p.def.radius;
         s.halfExtents = p.def.halfExtents;
         s.halfHeight = p.def.halfHeight;
+        s.normal = p.def.normal;
+        s.offset = p.def.offset;
         if (p.hull) s.hull = std::make_shared<const ConvexFaces>(ConvexFaces{p.hull->vertices, p.hull->faces});
         s.local.position = toPeer * (p.local.position - peerFrame.position);
         s.local.orientation = toPeer * p.local.orientation;
@@ -37,15 +39,14 @@ std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperti
     return body;
 }
 
-const FieldBody& fieldBodyOf(std::unique_ptr<FieldBody>& cached, const BodyDef& def, const MassProperties& mass,
-                             const Transform& peerFrame) {
-    if (!cached) cached = buildFieldBody(def, mass, peerFrame);
-    return *cached;
-}
-
 FieldState fieldState(const BodyState& s) { return {{s.position, s.orientation}, s.linearVelocity, s.angularVelocity}; }
 
 }  // namespace
+
+const FieldBody& World::Slot::fieldGeometry() {
+    if (!fieldBody) fieldBody = buildFieldBody(def, mass, peerFrame);
+    return *fieldBody;
+}
 
 void World::addField(const FieldDef& input) {
     if (impl_->stepping) throw Error("World.addField: not allowed while the world is stepping (inside a force callback)");
@@ -88,7 +89,7 @@ void World::applyFieldForces(ForceStage& stage) {
     const bool planar = settings_.planar;
     for (Slot& slot : impl_->slots) {
         if (!slot.peer || slot.def.type != BodyType::Dynamic || !slot.peer->isAwake()) continue;
-        const FieldBody& body = fieldBodyOf(slot.fieldBody, slot.def, slot.mass, slot.peerFrame);
+        const FieldBody& body = slot.fieldGeometry();
         const FieldState state = fieldState(stage.state(*slot.peer));
         FieldForce total;
         for (const FieldDef& field : impl_->fields) {
@@ -124,7 +125,7 @@ void World::fireExplosions(double dt) {
             Slot& slot = impl_->slots[id.index];
             if (slot.def.type != BodyType::Dynamic) continue;
             const FieldState state = fieldState(slot.peer->state());
-            const auto hit = explosionHit(field, fieldBodyOf(slot.fieldBody, slot.def, slot.mass, slot.peerFrame), state);
+            const auto hit = explosionHit(field, slot.fieldGeometry(), state);
             if (!hit) continue;
             // Static geometry between the centre and the point shields the body.
             const Vec3 ray = hit->point - field.center;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "anyphys/fields/field_forces.hpp"
+#include "anyphys/fields/particles.hpp"
 #include "anyphys/listeners/contact_tracker.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "anyphys/thread_pool.hpp"
@@ -24,6 +25,10 @@ struct World::Slot {
     std::unique_ptr<FieldBody> fieldBody;  // built on the first field evaluation (world_fields.cpp)
     Transform checkedPose;           // peer pose at the last divergence check that found it sound (or as set)
     bool frozen = false;             // diverged under the freeze policy: held at checkedPose after every step
+    Vec3 particleForce = Vec3::Zero();  // what fluids and cloths did to it in the last step (world_particles.cpp)
+
+    /// The body's geometry as the fields see it, built on first use (world_fields.cpp).
+    const FieldBody& fieldGeometry();
 
     /// The user's view (body origin) of the peer's state (centre of mass frame).
     BodyState userState() const;
@@ -109,6 +114,13 @@ struct World::Impl {
     ForceCallback forceCallback;
     std::vector<FieldDef> fields;  // World::addField, in order
     Effects fieldEffects;          // the effects of the fields held
+    std::vector<FluidDef> fluidDefs;                    // World::addFluid, in order
+    std::vector<std::unique_ptr<FluidSystem>> fluids;
+    std::vector<ClothDef> clothDefs;                    // World::addCloth, in order
+    std::vector<std::unique_ptr<ClothSystem>> cloths;
+    Effects particleEffects;                            // fluid and cloth, while any is held
+    std::vector<ParticleCollider> colliders;            // reused by every particle step
+    std::vector<std::uint32_t> colliderSlots;
     std::vector<ContactListener*> listeners;
     ContactTracker tracker;
     WarningHandler warningHandler;

@@ -25,6 +25,7 @@
 #include "anyphys/enums.hpp"
 #include "anyphys/error.hpp"
 #include "anyphys/fields/field_def.hpp"
+#include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/joint_validation.hpp"
 #include "anyphys/validation.hpp"
 
@@ -449,6 +450,77 @@ FieldDef readField(const json& v, const std::string& path, bool planar) {
     return f;
 }
 
+// ---- fluids and cloths --------------------------------------------------------------------------
+
+FluidDef readFluid(const json& v, const std::string& path, bool planar) {
+    requireObject(v, path);
+    checkKeys(v, path, {"name", "box", "spacing", "density", "viscosity"}, " for a fluid");
+    FluidDef f;
+    if (auto* x = find(v, "name")) f.name = readString(*x, join(path, "name"));
+    const auto* box = find(v, "box");
+    if (!box) missing(join(path, "box"), "a fluid fills a box {\"min\": [x, y, z], \"max\": [x, y, z]}");
+    const std::string p = join(path, "box");
+    requireObject(*box, p, "an object {\"min\": [x, y, z], \"max\": [x, y, z]}");
+    checkKeys(*box, p, {"min", "max"});
+    if (!find(*box, "min") || !find(*box, "max")) missing(p, "a box needs both \"min\" and \"max\"");
+    f.boxMin = readVec3((*box)["min"], join(p, "min"));
+    f.boxMax = readVec3((*box)["max"], join(p, "max"));
+    if (auto* x = find(v, "spacing")) f.spacing = readNumber(*x, join(path, "spacing"));
+    if (auto* x = find(v, "density")) f.density = readNumber(*x, join(path, "density"));
+    if (auto* x = find(v, "viscosity")) f.viscosity = readNumber(*x, join(path, "viscosity"));
+    validate(f, path);  // the same rules, in the same words, as World::addFluid
+    (void)planar;       // a planar fluid is the slab of its box's depth: any box will do
+    return f;
+}
+
+std::array<int, 2> readIndexPair(const json& v, const std::string& path, const std::string& what) {
+    const auto integral = [](const json& x) {
+        return x.is_number() && std::floor(x.get<double>()) == x.get<double>() && std::abs(x.get<double>()) < 1e9;
+    };
+    if (!v.is_array() || v.size() != 2 || !integral(v[0]) || !integral(v[1])) malformed(path, v, "must be " + what);
+    return {static_cast<int>(v[0].get<double>()), static_cast<int>(v[1].get<double>())};
+}
+
+ClothDef readCloth(const json& v, const std::string& path, bool planar) {
+    requireObject(v, path);
+    checkKeys(v, path, {"name", "corner", "size", "resolution", "axisU", "axisV", "areaDensity", "stiffness", "bending",
+                        "damping", "thickness", "pinned"},
+              " for a cloth");
+    ClothDef c;
+    if (auto* x = find(v, "name")) c.name = readString(*x, join(path, "name"));
+    if (auto* x = find(v, "corner")) c.corner = readVec3(*x, join(path, "corner"));
+    if (auto* x = find(v, "size")) {
+        if (!x->is_array() || x->size() != 2 || !(*x)[0].is_number() || !(*x)[1].is_number())
+            malformed(join(path, "size"), *x, "must be an array of 2 numbers [along axisU, along axisV]");
+        c.size = {(*x)[0].get<double>(), (*x)[1].get<double>()};
+    }
+    if (auto* x = find(v, "resolution")) c.resolution = readIndexPair(*x, join(path, "resolution"), "an array of 2 integers [cells along U, cells along V]");
+    if (auto* x = find(v, "axisU")) c.axisU = readVec3(*x, join(path, "axisU"));
+    if (auto* x = find(v, "axisV")) c.axisV = readVec3(*x, join(path, "axisV"));
+    if (auto* x = find(v, "areaDensity")) c.areaDensity = readNumber(*x, join(path, "areaDensity"));
+    if (auto* x = find(v, "stiffness")) c.stiffness = readNumber(*x, join(path, "stiffness"));
+    if (auto* x = find(v, "bending")) c.bending = readNumber(*x, join(path, "bending"));
+    if (auto* x = find(v, "damping")) c.damping = readNumber(*x, join(path, "damping"));
+    if (auto* x = find(v, "thickness")) c.thickness = readNumber(*x, join(path, "thickness"));
+    if (auto* x = find(v, "pinned")) {
+        if (!x->is_array()) malformed(join(path, "pinned"), *x, "must be an array of node indices [[i, j], ...]");
+        for (std::size_t n = 0; n < x->size(); ++n)
+            c.pinned.push_back(readIndexPair((*x)[n], at(join(path, "pinned"), n), "a node index pair [i, j]"));
+    }
+    validate(c, path);  // the same rules, in the same words, as World::addCloth
+    if (planar) {
+        const auto inPlane = [&](const char* key, const Vec3& value) {
+            if (std::abs(value.z()) > 1e-9 * std::max(1.0, value.norm()))
+                throw Error::invalid(join(path, key), formatVec3(value),
+                                     "must lie in the XY plane (z = 0) in a planar world: the sheet then moves in the plane");
+        };
+        inPlane("corner", c.corner);
+        inPlane("axisU", c.axisU);
+        inPlane("axisV", c.axisV);
+    }
+    return c;
+}
+
 // ---- joints -----------------------------------------------------------------------------------
 
 JointLimits readLimits(const json& v, const std::string& path) {
@@ -692,6 +764,34 @@ ojson fieldJson(const FieldDef& f) {
     return j;
 }
 
+ojson fluidJson(const FluidDef& f) {
+    ojson j;
+    j["name"] = f.name;
+    j["box"] = ojson{{"min", vec(f.boxMin)}, {"max", vec(f.boxMax)}};
+    j["spacing"] = f.spacing;
+    j["density"] = f.density;
+    j["viscosity"] = f.viscosity;
+    return j;
+}
+
+ojson clothJson(const ClothDef& c) {
+    ojson j;
+    j["name"] = c.name;
+    j["corner"] = vec(c.corner);
+    j["size"] = ojson::array({c.size[0], c.size[1]});
+    j["resolution"] = ojson::array({c.resolution[0], c.resolution[1]});
+    j["axisU"] = vec(c.axisU);
+    j["axisV"] = vec(c.axisV);
+    j["areaDensity"] = c.areaDensity;
+    j["stiffness"] = c.stiffness;
+    j["bending"] = c.bending;
+    j["damping"] = c.damping;
+    j["thickness"] = c.thickness;
+    j["pinned"] = ojson::array();
+    for (const auto& p : c.pinned) j["pinned"].push_back(ojson::array({p[0], p[1]}));
+    return j;
+}
+
 ojson limitsJson(const JointLimits& l) { return ojson{{"lower", l.lower}, {"upper", l.upper}}; }
 
 ojson jointJson(const SceneJoint& sj) {
@@ -911,7 +1011,8 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
 Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
     const json doc = parseJson(jsonText);
     requireObject(doc, "", "a JSON object with \"settings\", \"materials\", \"bodies\", ...");
-    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "instances", "joints", "fields"},
+    checkKeys(doc, "", {"settings", "materials", "materialRules", "materialPairs", "bodies", "instances", "joints", "fields",
+                    "fluids", "cloths"},
               " at the top level");
 
     Scene scene;
@@ -957,6 +1058,14 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
     if (auto* v = find(doc, "fields")) {
         if (!v->is_array()) fail("fields", *v, "must be an array of field objects (" + fieldTypeNames() + ")");
         for (std::size_t i = 0; i < v->size(); ++i) scene.fields.push_back(readField((*v)[i], at("fields", i), scene.settings.planar));
+    }
+    if (auto* v = find(doc, "fluids")) {
+        if (!v->is_array()) fail("fluids", *v, "must be an array of fluid objects");
+        for (std::size_t i = 0; i < v->size(); ++i) scene.fluids.push_back(readFluid((*v)[i], at("fluids", i), scene.settings.planar));
+    }
+    if (auto* v = find(doc, "cloths")) {
+        if (!v->is_array()) fail("cloths", *v, "must be an array of cloth objects");
+        for (std::size_t i = 0; i < v->size(); ++i) scene.cloths.push_back(readCloth((*v)[i], at("cloths", i), scene.settings.planar));
     }
     return scene;
 }
@@ -1024,6 +1133,14 @@ std::string sceneToJson(const Scene& scene) {
     if (!scene.fields.empty()) {
         doc["fields"] = ojson::array();
         for (const auto& f : scene.fields) doc["fields"].push_back(fieldJson(f));
+    }
+    if (!scene.fluids.empty()) {
+        doc["fluids"] = ojson::array();
+        for (const auto& f : scene.fluids) doc["fluids"].push_back(fluidJson(f));
+    }
+    if (!scene.cloths.empty()) {
+        doc["cloths"] = ojson::array();
+        for (const auto& c : scene.cloths) doc["cloths"].push_back(clothJson(c));
     }
 
     std::string out;

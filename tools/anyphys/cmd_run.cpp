@@ -1,5 +1,6 @@
 // `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV, with
-// --events the collision and trigger events of each step, and with --joints every joint's state.
+// --events the collision and trigger events of each step, with --joints every joint's state, and
+// with --particles every fluid particle and cloth node.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +25,7 @@ struct RunOptions {
     std::string out;
     std::string events;
     std::string joints;
+    std::string particles;
     bool hash = false;
     // Set after parsing: which optional flags were given.
     const CLI::Option* backendOption = nullptr;
@@ -33,11 +35,13 @@ struct RunOptions {
     const CLI::Option* outOption = nullptr;
     const CLI::Option* eventsOption = nullptr;
     const CLI::Option* jointsOption = nullptr;
+    const CLI::Option* particlesOption = nullptr;
 };
 
 constexpr const char* kCsvHeader = "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
 constexpr const char* kEventsHeader = "step,time,phase,bodyA,bodyB";
 constexpr const char* kJointsHeader = "step,time,joint,position,speed,fx,fy,fz,tx,ty,tz";
+constexpr const char* kParticlesHeader = "step,time,system,index,px,py,pz,vx,vy,vz";
 
 /// A body name as one CSV field: quoted (RFC 4180) only if it holds a comma, quote or line break.
 std::string csvField(const std::string& text) {
@@ -113,6 +117,25 @@ void writeJointRows(std::ostream& out, long long step, double time, const std::v
     }
 }
 
+/// One row per fluid particle and cloth node: its system's name (or #k, its place among the
+/// world's fluids then cloths), its index (a cloth's node (i, j) is j (resolution[0] + 1) + i).
+void writeParticleRows(std::ostream& out, long long step, double time, const World& world) {
+    const std::string head = prefix(step, time);
+    char buffer[512];
+    const std::vector<ParticleSystemView> systems = world.particleSystems();
+    for (std::size_t k = 0; k < systems.size(); ++k) {
+        const ParticleSystemView& s = systems[k];
+        const std::string name = s.name.empty() ? "#" + std::to_string(k) : csvField(s.name);
+        for (std::size_t i = 0; i < s.positions->size(); ++i) {
+            const Vec3& p = (*s.positions)[i];
+            const Vec3& v = (*s.velocities)[i];
+            std::snprintf(buffer, sizeof buffer, ",%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", i, p.x(), p.y(), p.z(),
+                          v.x(), v.y(), v.z());
+            out << head << name << buffer;
+        }
+    }
+}
+
 /// FNV-1a over the bit patterns of every body's final state, in scene order: equal hashes mean
 /// bit-identical runs (determinism), any difference changes it.
 std::uint64_t stateHash(const std::vector<Body>& bodies) {
@@ -166,7 +189,7 @@ int run(const RunOptions& o) {
     std::map<BodyId, std::string> names;
     for (const Body& body : bodies) names[body.id()] = body.name();
 
-    std::ofstream file, eventFile, jointFile;
+    std::ofstream file, eventFile, jointFile, particleFile;
     if (o.outOption->count()) {
         file.open(o.out, std::ios::binary);
         if (!file) throw Error(ErrorKind::Io, "", o.out + ": cannot open for writing");
@@ -183,6 +206,12 @@ int run(const RunOptions& o) {
         jointFile << kJointsHeader << '\n';
         writeJointRows(jointFile, 0, world.time(), joints);
     }
+    if (o.particlesOption->count()) {
+        particleFile.open(o.particles, std::ios::binary);
+        if (!particleFile) throw Error(ErrorKind::Io, "", o.particles + ": cannot open for writing");
+        particleFile << kParticlesHeader << '\n';
+        writeParticleRows(particleFile, 0, world.time(), world);
+    }
     // With --hash and no --out, stdout carries the hash alone.
     std::ostringstream discard;
     discard.setstate(std::ios::badbit);  // writes are dropped
@@ -195,6 +224,7 @@ int run(const RunOptions& o) {
         writeRows(out, step, world.time(), bodies);
         if (eventFile.is_open()) recorder.writeRows(eventFile, step, world.time(), names);
         if (jointFile.is_open()) writeJointRows(jointFile, step, world.time(), joints);
+        if (particleFile.is_open()) writeParticleRows(particleFile, step, world.time(), world);
     }
     if (o.hash) {
         char text[32];
@@ -208,6 +238,8 @@ int run(const RunOptions& o) {
     if (eventFile.is_open() && !eventFile) throw Error(ErrorKind::Io, "", o.events + ": write failed");
     jointFile.flush();
     if (jointFile.is_open() && !jointFile) throw Error(ErrorKind::Io, "", o.joints + ": write failed");
+    particleFile.flush();
+    if (particleFile.is_open() && !particleFile) throw Error(ErrorKind::Io, "", o.particles + ": write failed");
     return 0;
 }
 
@@ -230,6 +262,9 @@ Command addRunCommand(CLI::App& parent) {
                                       "Also write every joint per step as CSV (step,time,joint,position,speed,fx,fy,fz,"
                                       "tx,ty,tz: angle in rad or offset in m, its rate, the reaction on bodyB in N and "
                                       "N m, world frame)");
+    o->particlesOption = app->add_option("--particles", o->particles,
+                                         "Also write every fluid particle and cloth node per step as CSV (step,time,"
+                                         "system,index,px,py,pz,vx,vy,vz; system: the fluid's or cloth's name)");
     app->add_flag("--hash", o->hash,
                   "Print `state-hash <16 hex digits>`: a hash of every body's final state (bit-exact; equal for "
                   "two runs of one scene on one backend). Without --out the CSV is then not printed");

@@ -26,6 +26,9 @@ enum class Effect : std::uint32_t {
     Drag = 1u << 12,                ///< quadratic air drag
     Wind = 1u << 13,                ///< quadratic drag relative to moving air
     Explosion = 1u << 14,           ///< impulses from a point at a given time
+    // Particle effects (fields/): simulated by the layer, coupled to bodies through impulses.
+    Fluid = 1u << 15,               ///< position-based fluid particles
+    Cloth = 1u << 16,               ///< position-based cloth sheets
 };
 
 /// A set of effects. Bitwise, cheap to copy.
@@ -53,7 +56,7 @@ public:
     std::vector<std::string> names() const;
 
 private:
-    static constexpr std::uint32_t allBits() { return (1u << 15) - 1; }  // one bit per Effect
+    static constexpr std::uint32_t allBits() { return (1u << 17) - 1; }  // one bit per Effect
     std::uint32_t bits_ = 0;
 };
 
@@ -61,7 +64,7 @@ constexpr Effects operator|(Effect a, Effect b) { return Effects(a) | Effects(b)
 
 /// Every effect with its scene-file name ("gravity", "damping", "gyroscopic", "userForces",
 /// "contacts", "friction", "restitution", "joints", "sleeping", "continuousCollision", "events",
-/// "buoyancy", "drag", "wind", "explosion").
+/// "buoyancy", "drag", "wind", "explosion", "fluid", "cloth").
 struct EffectName {
     Effect effect;
     std::string_view name;
@@ -82,6 +85,8 @@ inline constexpr EffectName kEffectNames[] = {
     {Effect::Drag, "drag"},
     {Effect::Wind, "wind"},
     {Effect::Explosion, "explosion"},
+    {Effect::Fluid, "fluid"},
+    {Effect::Cloth, "cloth"},
 };
 
 std::string_view toString(Effect e);

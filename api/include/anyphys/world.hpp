@@ -16,6 +16,7 @@
 #include "anyphys/effects.hpp"
 #include "anyphys/error.hpp"
 #include "anyphys/fields/field_def.hpp"
+#include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/ids.hpp"
 #include "anyphys/joint.hpp"
 #include "anyphys/joint_def.hpp"
@@ -50,6 +51,16 @@ struct RayHit {
     double distance = 0.0;        ///< m from the ray origin
 };
 using WarningHandler = std::function<void(const std::string&)>;
+
+/// One fluid or cloth as the world holds it now (World::particleSystems). The pointers stay valid
+/// until the world adds or removes a fluid or cloth.
+struct ParticleSystemView {
+    std::string name;
+    const char* kind = "fluid";                   ///< "fluid" or "cloth"
+    const std::vector<Vec3>* positions = nullptr;  ///< m, world frame; a cloth's node (i, j) at j (resolution[0] + 1) + i
+    const std::vector<Vec3>* velocities = nullptr; ///< m/s
+    double particleRadius = 0.0;                   ///< m: how far particles keep from rigid shapes
+};
 
 /// A body a step found diverged (see WorldSettings::divergencePolicy).
 struct DivergedBody {
@@ -137,6 +148,29 @@ public:
     /// Removes every field; their effects are no longer derived. Not while stepping.
     void clearFields();
 
+    // ---- fluids and cloths (docs/fields.md) -----------------------------------------------
+    /// Adds a block of position-based fluid filling def's box, validated like scene files
+    /// ("FluidDef.spacing: must be > 0, got 0"); the `fluid` effect is derived from then on (under
+    /// declared effects that exclude it, throws). Its particles collide both ways with every
+    /// non-trigger body. In a planar world it is a slab in the XY plane as deep as its box along
+    /// Z. Runs after each rigid step. Not while stepping.
+    void addFluid(const FluidDef& fluid);
+    /// The fluids added, in order.
+    const std::vector<FluidDef>& fluids() const;
+    /// Adds a cloth sheet (`cloth` effect), validated like scene files. In a planar world it must
+    /// lie in the XY plane (corner z = 0, axes without Z). Not while stepping.
+    void addCloth(const ClothDef& cloth);
+    /// The cloths added, in order.
+    const std::vector<ClothDef>& cloths() const;
+    /// Removes every fluid and cloth; their effects are no longer derived. Not while stepping.
+    void clearParticles();
+    /// Every fluid (in order added), then every cloth, with their particles as they are now.
+    std::vector<ParticleSystemView> particleSystems() const;
+    /// The mean force (N, world frame, at the centre of mass) fluids and cloths exerted on the body
+    /// over the last step: on a dynamic body it was applied as an impulse after the rigid step;
+    /// static and kinematic bodies report it without moving. Zero when no particles touched it.
+    Vec3 particleForce(Body body) const;
+
     // ---- queries ------------------------------------------------------------------------
     /// Closest hit of the ray origin + t direction, 0 <= t <= maxDistance (direction need not
     /// be unit), on bodies whose layer is in `mask`. Triggers are not hit.
@@ -216,6 +250,7 @@ private:
     void installForceHook();  // the peer's hook: the field stage and the force callback, when either runs
     void applyFieldForces(ForceStage& stage);  // world_fields.cpp: buoyancy, drag, wind
     void fireExplosions(double dt);             // world_fields.cpp: explosions due in this step
+    void stepParticles(double dt);              // world_particles.cpp: fluids and cloths after the rigid step
     void warn(const std::string& message);
     void checkDivergence(double dt);  // after a step: non-finite or over-ceiling states (settings_.divergencePolicy)
     void holdFrozen();                // after a step: frozen bodies back to their held pose

@@ -6,6 +6,7 @@
 #include "anyphys/containers/material_library.hpp"
 #include "anyphys/defs.hpp"
 #include "anyphys/fields/field_def.hpp"
+#include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/joint_def.hpp"
 #include "anyphys/world_settings.hpp"
 
@@ -24,6 +25,8 @@ struct Scene {
     std::vector<BodyDef> bodies;  ///< each with a unique, non-empty name
     std::vector<SceneJoint> joints;  ///< created after the bodies, in this order
     std::vector<FieldDef> fields;    ///< force fields (buoyancy, drag, wind, explosion), added in this order
+    std::vector<FluidDef> fluids;    ///< fluid blocks, added in this order
+    std::vector<ClothDef> cloths;    ///< cloth sheets, added in this order
 };
 
 

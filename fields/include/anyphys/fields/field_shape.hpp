@@ -15,13 +15,15 @@ struct ConvexFaces {
     std::vector<std::vector<int>> faces;
 };
 
-/// One primitive (sphere, box, capsule or convex) placed in the body frame the caller chooses.
+/// One primitive (sphere, box, capsule, convex or plane) placed in the body frame the caller chooses.
 struct FieldShape {
     ShapeType type = ShapeType::Sphere;
     double radius = 0.0;                     ///< sphere, capsule
     Vec3 halfExtents = Vec3::Zero();         ///< box
     double halfHeight = 0.0;                 ///< capsule: half the core segment, along the shape's Y
     std::shared_ptr<const ConvexFaces> hull; ///< convex: the hull, in the shape frame
+    Vec3 normal = Vec3::UnitY();             ///< plane: unit normal, world frame (a plane is static)
+    double offset = 0.0;                     ///< plane: normal . x == offset, world frame
     Transform local;                         ///< the shape's pose in the body frame
 };
 
