@@ -341,10 +341,11 @@ ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
         throw Error(ErrorKind::Parse, join(path, "density"), join(path, "density") + ": allowed only on the children of a compound shape; the body's "
                                             "\"density\" applies to its whole shape");
     checkKeys(v, path, allowed, " for a " + std::string(toString(s.type)) + " shape");
-    // The sizes (and a plane's normal, a hull's points, ...) have no default: a box without
-    // halfExtents is a mistake to report, not a 1 m cube.
+    // The sizes (and a hull's points, ...) have no default: a box without halfExtents is a
+    // mistake to report, not a 1 m cube. A plane has no size: its normal defaults to up (+Y,
+    // against the default gravity) and its offset to 0.
     for (std::string_view key : shapeKeys(s.type))
-        if (key != "offset" && !find(v, key))
+        if (key != "offset" && key != "normal" && !find(v, key))
             missing(join(path, std::string(key)),
                     "a " + std::string(toString(s.type)) + " shape needs it (there is no default)");
 

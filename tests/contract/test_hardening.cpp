@@ -337,8 +337,9 @@ TEST_P(HardeningTest, ShapesWithoutTheirSizesAreRefusedNamingTheField) {
 
     BodyDef ground;
     ground.type = BodyType::Static;
-    ground.shape.type = ShapeType::Plane;  // without a normal
-    expectError([&] { world.createBody(ground); }, ErrorKind::InvalidArgument, "BodyDef.shape.normal[0]", {"not set"});
+    ground.shape.type = ShapeType::Plane;  // a plane has no size: without a normal it faces up (+Y)
+    ground.shape.normal = Vec3(0, 0, 0);
+    expectError([&] { world.createBody(ground); }, ErrorKind::InvalidArgument, "BodyDef.shape.normal", {"non-zero"});
     EXPECT_EQ(world.bodyCount(), 0u);
     // The same shapes in queries.
     expectError([&] { world.overlap(ShapeDef(), Transform{}); }, ErrorKind::InvalidArgument, "World.overlap.shape.radius");

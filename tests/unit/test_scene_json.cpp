@@ -755,7 +755,6 @@ TEST(SceneJson, ShapeSizesAreRequiredKeys) {
         {R"({"type": "box"})", "bodies[0].shape.halfExtents"},
         {R"({"type": "capsule", "radius": 0.2})", "bodies[0].shape.halfHeight"},
         {R"({"type": "capsule", "halfHeight": 0.2})", "bodies[0].shape.radius"},
-        {R"({"type": "plane", "offset": 1})", "bodies[0].shape.normal"},
         {R"({"type": "convex"})", "bodies[0].shape.points"},
         {R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]]})", "bodies[0].shape.indices"},
         {R"({"type": "compound"})", "bodies[0].shape.shapes"},
@@ -771,8 +770,9 @@ TEST(SceneJson, ShapeSizesAreRequiredKeys) {
             EXPECT_NE(std::string(e.what()).find("no default"), std::string::npos) << e.what();
         }
     }
-    // A plane's offset keeps its default (0), as a body's position does.
+    // A plane has no size: its offset defaults to 0 and its normal to up (+Y), as a ground means.
     EXPECT_EQ(parseScene(bodyWithShape(R"({"type": "plane", "normal": [0, 1, 0]})")).bodies[0].shape.offset, 0.0);
+    EXPECT_EQ(parseScene(bodyWithShape(R"({"type": "plane", "offset": 1})")).bodies[0].shape.normal, Vec3(0, 1, 0));
 }
 
 // "userData" is any JSON value, kept as text and saved back as it came; an unsigned integer is

@@ -24,7 +24,7 @@ struct ShapeDef {
     double radius = kUnset;                     ///< m, sphere and capsule, > 0; required
     Vec3 halfExtents = Vec3::Constant(kUnset);  ///< m, box half sizes along body x, y, z, each > 0; required
     double halfHeight = kUnset;                 ///< m, capsule: half length of the core segment along body Y, >= 0; required
-    Vec3 normal = Vec3::Constant(kUnset);       ///< plane: normal (world frame), non-zero, normalised by the layer; required
+    Vec3 normal = Vec3::UnitY();                ///< plane: normal (world frame), non-zero, normalised by the layer; default up (a plane has no size to forget)
     double offset = 0.0;                        ///< m, plane: points p with normal.dot(p) == offset; default 0
     std::vector<Vec3> points;                   ///< m, convex: points (body frame) whose hull is the shape; >= 4, not coplanar
     std::vector<Vec3> vertices;                 ///< m, mesh: vertex positions (body frame)
