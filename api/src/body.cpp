@@ -65,6 +65,8 @@ MassProperties Body::massProperties() const { return ANYPHYS_SLOT("Body.massProp
 const std::string& Body::material() const { return ANYPHYS_SLOT("Body.material").def.material; }
 
 bool Body::isTrigger() const { return ANYPHYS_SLOT("Body.isTrigger").def.isTrigger; }
+std::uint64_t Body::userData() const { return ANYPHYS_SLOT("Body.userData").def.userData; }
+void Body::setUserData(std::uint64_t value) { ANYPHYS_SLOT("Body.setUserData").def.userData = value; }
 bool Body::isAwake() const { return ANYPHYS_SLOT("Body.isAwake").peer->isAwake(); }
 void Body::wake() { ANYPHYS_SLOT("Body.wake").peer->setAwake(true); }
 void* Body::nativeObject(const std::type_info& pointerType) const {

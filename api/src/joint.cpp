@@ -34,6 +34,8 @@ Body Joint::bodyA() const { return ANYPHYS_JOINT("Joint.bodyA").def.bodyA; }
 Body Joint::bodyB() const { return ANYPHYS_JOINT("Joint.bodyB").def.bodyB; }
 JointDef Joint::def() const { return ANYPHYS_JOINT("Joint.def").def; }
 bool Joint::isBroken() const { return ANYPHYS_JOINT("Joint.isBroken").broken; }
+std::uint64_t Joint::userData() const { return ANYPHYS_JOINT("Joint.userData").def.userData; }
+void Joint::setUserData(std::uint64_t value) { ANYPHYS_JOINT("Joint.setUserData").def.userData = value; }
 
 double Joint::position() const {
     const auto& j = ANYPHYS_JOINT("Joint.position");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "anyphys/backends.hpp"
 #include "body_shapes.hpp"
@@ -225,6 +226,27 @@ void World::refreshEffects() {
 
 // ---- bodies ---------------------------------------------------------------------------------
 
+namespace {
+// A dynamic body's resolved mass and principal inertia must lie in [kMinMass, kMaxMass]: a 1e-300 kg
+// body's inertia underflows to 0 and its principal axes to NaN (Box2D aborted on it), a 1e308 kg
+// one's overflows. Names the def field that made it: mass, inertia, else density.
+void requireUsableMass(const BodyDef& def, const ResolvedShapes& resolved, double density) {
+    const MassProperties& m = resolved.mass;
+    const auto usable = [](double v) { return v >= kMinMass && v <= kMaxMass; };
+    if (usable(m.mass) && usable(m.inertia.x()) && usable(m.inertia.y()) && usable(m.inertia.z()) &&
+        resolved.peerFrame.position.allFinite() && resolved.peerFrame.orientation.coeffs().allFinite())
+        return;
+    const char* field = def.mass ? "BodyDef.mass" : def.inertia ? "BodyDef.inertia" : "BodyDef.density";
+    std::ostringstream os;
+    os.precision(6);
+    os << "gives a mass of " << m.mass << " kg and principal inertia [" << m.inertia.x() << ", " << m.inertia.y() << ", "
+       << m.inertia.z() << "] kg m^2 for this shape; each must be in [" << kMinMass << ", " << kMaxMass
+       << "] (anyphys::kMinMass, kMaxMass)";
+    const double value = def.mass ? *def.mass : def.inertia ? def.inertia->minCoeff() : density;
+    throw Error::invalid(field, value, os.str());
+}
+}  // namespace
+
 Body World::createBody(const BodyDef& input) {
     impl_->refuseWhileStepping("World.createBody");
     impl_->refuseWhileDrawing("World.createBody");
@@ -261,7 +283,9 @@ Body World::createBody(const BodyDef& input) {
 
     BodyDef def = input;
     def.orientation.normalize();
-    ResolvedShapes resolved = resolveShapes(def, def.density.value_or(materials_.get(def.material).density));
+    const double density = def.density.value_or(materials_.get(def.material).density);
+    ResolvedShapes resolved = resolveShapes(def, density);
+    if (def.type == BodyType::Dynamic) requireUsableMass(def, resolved, density);
     BodyPeerDef peerDef;
     peerDef.def = def;
     const Transform peerPose{def.position + def.orientation * resolved.peerFrame.position,
@@ -585,26 +609,41 @@ const std::vector<ContactEvent>& World::lastEvents() const { return impl_->lastE
 // ---- queries --------------------------------------------------------------------------------
 
 namespace {
-void validateRay(const Vec3& origin, const Vec3& direction, double maxDistance, const char* what) {
+// m: longest ray handed to a peer. Everything a world holds lies within kMaxCoordinate of the
+// origin (3.5e7 m corner to corner), so a longer ray finds nothing more, while 1e308 overflows
+// inside an engine's ray code.
+constexpr double kMaxRayLength = 1e8;
+
+struct Ray {
+    Vec3 direction;      // unit
+    double maxDistance;  // clamped to kMaxRayLength
+};
+
+// Checks a ray and returns its unit direction. The direction is scaled by its largest component
+// before normalising: the norm of (1e308, 1e308, 0) overflows to inf, and dividing by it gave a
+// zero direction that ODE aborted on (found by tests/fuzz).
+Ray validateRay(const Vec3& origin, const Vec3& direction, double maxDistance, const char* what) {
     const std::string w(what);
-    detail::requireFinite(w + ".origin", origin);
+    detail::requireCoordinate(w + ".origin", origin);
     detail::requireFinite(w + ".direction", direction);
-    if (direction.norm() < 1e-12) throw Error::invalid(w + ".direction", formatVec3(direction), "must be non-zero");
+    const double scale = direction.cwiseAbs().maxCoeff();
+    if (!(scale >= 1e-12)) throw Error::invalid(w + ".direction", formatVec3(direction), "must be non-zero (a component >= 1e-12)");
     detail::requireNonNegative(w + ".maxDistance", maxDistance);
+    return {(direction / scale).normalized(), std::min(maxDistance, kMaxRayLength)};
 }
 }  // namespace
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
-    validateRay(origin, direction, maxDistance, "World.raycast");
-    const auto hits = impl_->peer->raycast(origin, direction.normalized(), maxDistance, true, mask);
+    const Ray ray = validateRay(origin, direction, maxDistance, "World.raycast");
+    const auto hits = impl_->peer->raycast(origin, ray.direction, ray.maxDistance, true, mask);
     if (hits.empty()) return std::nullopt;
     return RayHit{Body(this, unpackId(hits.front().body)), hits.front().point, hits.front().normal, hits.front().distance};
 }
 
 std::vector<RayHit> World::raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
-    validateRay(origin, direction, maxDistance, "World.raycastAll");
+    const Ray ray = validateRay(origin, direction, maxDistance, "World.raycastAll");
     std::vector<RayHit> out;
-    for (const PeerRayHit& h : impl_->peer->raycast(origin, direction.normalized(), maxDistance, false, mask))
+    for (const PeerRayHit& h : impl_->peer->raycast(origin, ray.direction, ray.maxDistance, false, mask))
         out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, h.distance});
     return out;
 }
@@ -613,7 +652,12 @@ std::vector<Body> World::overlap(const ShapeDef& shape, const Transform& pose, s
     validate(shape, "World.overlap.shape");
     if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh)
         throw Error::invalid("World.overlap.shape.type", toString(shape.type), "must be sphere, box, capsule, convex or compound");
-    detail::requireFinite("World.overlap.pose.position", pose.position);
+    detail::requireCoordinate("World.overlap.pose.position", pose.position);
+    // As setTransform: a zero or far from unit quaternion is a mistake (normalising a zero one
+    // handed NaN to the engines).
+    if (!pose.orientation.coeffs().allFinite() || std::abs(pose.orientation.norm() - 1.0) > kUnitQuaternionTolerance)
+        throw Error::invalid("World.overlap.pose.orientation", formatQuat(pose.orientation),
+                             "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
     const Transform unit{pose.position, pose.orientation.normalized()};
     std::vector<Body> out;
     for (std::uint64_t key : impl_->peer->overlap(flattenShape(shape), unit, mask)) out.emplace_back(this, unpackId(key));

@@ -45,9 +45,23 @@ void ensureOdeInitialised() {
         return true;
     }();
     (void)initialised;
-    // Collision caches are per thread: a world stepped from another thread needs its own.
-    // Cheap when already allocated for this thread.
-    dAllocateODEDataForThread(dAllocateMaskAll);
+    ensureOdeThreadData();
+}
+
+void ensureOdeThreadData() {
+    // Collision caches are per thread: a world stepped from another thread needs its own. The
+    // thread_local's destructor frees them when the thread ends (no leak per worker thread).
+    struct ThreadData {
+        ThreadData() { dAllocateODEDataForThread(dAllocateMaskAll); }
+        ~ThreadData() { dCleanupODEAllDataForThread(); }
+    };
+    thread_local ThreadData data;
+    (void)data;
+}
+
+std::mutex& odeRandomMutex() {
+    static std::mutex mutex;
+    return mutex;
 }
 
 }  // namespace anyphys::ode

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "ode_init.hpp"
 #include "ode_math.hpp"
 #include "ode_world.hpp"
 
@@ -57,6 +58,7 @@ void overlapCallback(void* data, dGeomID o1, dGeomID o2) {
 std::vector<PeerRayHit> OdeWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
                                           bool closestOnly, std::uint32_t mask) {
     if (!(maxDistance > 0.0)) return {};  // ODE rays need a length
+    ensureOdeThreadData();
     dGeomRaySetLength(ray_, maxDistance);
     dGeomRaySet(ray_, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(), direction.z());
     dGeomRaySetFirstContact(ray_, 0);  // the nearest hit per geom, not the first found
@@ -74,6 +76,7 @@ std::vector<PeerRayHit> OdeWorld::raycast(const Vec3& origin, const Vec3& direct
 
 std::vector<std::uint64_t> OdeWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
                                              std::uint32_t mask) {
+    ensureOdeThreadData();
     std::vector<std::uint64_t> found;
     for (const PeerShape& ps : shapes) {
         OdeShape probe(ps, nullptr);  // in no space: never part of the simulation

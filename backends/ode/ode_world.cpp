@@ -194,8 +194,11 @@ void OdeWorld::step(double time, double dt) {
     const bool contacts = effects_.has(Effect::Contacts);
     const bool continuous = contacts && effects_.has(Effect::ContinuousCollision);
     const Vec3 g = settings_.gravity;
+    ensureOdeThreadData();
     // Quickstep shuffles constraint rows with ODE's one global generator: each world keeps its own
-    // stream, so a world's results never depend on what other worlds (or users of ODE) did.
+    // stream, so a world's results never depend on what other worlds (or users of ODE) did. Worlds
+    // on other threads wait for the generator (docs/threads.md: ODE worlds step one at a time).
+    const std::lock_guard randomLock(odeRandomMutex());
     const unsigned long outsideSeed = dRandGetSeed();
     dRandSetSeed(randomSeed_);
     if (!contacts) {

@@ -1,7 +1,6 @@
 // The built-in assemblies: a humanoid ragdoll and a car, each also for planar worlds. Built once,
 // in code, from the dimensions and limits documented in docs/assemblies.md.
 #include <map>
-#include <numbers>
 
 #include "anyphys/containers/assembly.hpp"
 #include "anyphys/error.hpp"
@@ -9,7 +8,6 @@
 namespace anyphys {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 BodyDef capsule(const std::string& name, const Vec3& at, double radius, double length, double mass) {
     BodyDef b;

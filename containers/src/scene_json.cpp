@@ -342,6 +342,13 @@ ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
         throw Error(ErrorKind::Parse, join(path, "density"), join(path, "density") + ": allowed only on the children of a compound shape; the body's "
                                             "\"density\" applies to its whole shape");
     checkKeys(v, path, allowed, " for a " + std::string(toString(s.type)) + " shape");
+    // The sizes (and a hull's points, ...) have no default: a box without halfExtents is a
+    // mistake to report, not a 1 m cube. A plane has no size: its normal defaults to up (+Y,
+    // against the default gravity) and its offset to 0.
+    for (std::string_view key : shapeKeys(s.type))
+        if (key != "offset" && key != "normal" && !find(v, key))
+            missing(join(path, std::string(key)),
+                    "a " + std::string(toString(s.type)) + " shape needs it (there is no default)");
 
     if (auto* x = find(v, "radius")) s.radius = readNumber(*x, join(path, "radius"));
     if (auto* x = find(v, "halfExtents")) s.halfExtents = readVec3(*x, join(path, "halfExtents"));
@@ -367,7 +374,8 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     requireObject(v, path);
     checkKeys(v, path, {"name", "type", "position", "orientation", "linearVelocity", "angularVelocity", "shape", "mass",
                         "density", "inertia", "material", "linearDamping", "angularDamping", "gravityScale",
-                        "gyroscopic", "isTrigger", "layer", "mask", "allowSleep", "isAwake", "dragCoefficient"});
+                        "gyroscopic", "isTrigger", "layer", "mask", "allowSleep", "isAwake", "dragCoefficient",
+                        "userData"});
     BodyDef b;
     const auto* name = find(v, "name");
     if (!name) missing(join(path, "name"), "every body needs a non-empty, unique name");
@@ -553,13 +561,28 @@ JointSpring readSpring(const json& v, const std::string& path) {
     return sp;
 }
 
+/// A body's or joint's "userData": any JSON value, kept as text for the game and saved back; an
+/// unsigned integer is also the def's userData (what Body::userData returns).
+std::uint64_t readUserData(const json& v, std::string& text) {
+    text = v.dump();
+    return v.is_number_unsigned() ? v.get<std::uint64_t>() : 0;
+}
+
+// The userData a body or joint is saved with: its JSON text, else a non-zero def value.
+void writeUserData(ojson& j, const std::string& text, std::uint64_t value) {
+    if (!text.empty())
+        j["userData"] = ojson::parse(text);
+    else if (value != 0)
+        j["userData"] = value;
+}
+
 /// One joint; its bodies must name bodies of the scene (`bodies`: name -> def).
 SceneJoint readJoint(const json& v, const std::string& path, const std::map<std::string, const BodyDef*>& bodies,
                      bool planar) {
     requireObject(v, path);
     checkKeys(v, path, {"name", "type", "bodyA", "bodyB", "anchor", "axis", "anchorA", "anchorB", "length",
                         "minLength", "maxLength", "swingLimit", "twistLimits", "spinAxis", "steering", "limits",
-                        "motor", "spring", "breakForce", "breakTorque", "collideConnected"});
+                        "motor", "spring", "breakForce", "breakTorque", "collideConnected", "userData"});
     SceneJoint out;
     JointDef& d = out.def;
     if (auto* x = find(v, "name")) d.name = readString(*x, join(path, "name"));
@@ -832,6 +855,7 @@ ojson jointJson(const SceneJoint& sj) {
     if (d.breakForce < defaults.breakForce) j["breakForce"] = d.breakForce;
     if (d.breakTorque < defaults.breakTorque) j["breakTorque"] = d.breakTorque;
     j["collideConnected"] = d.collideConnected;
+    writeUserData(j, sj.userData, d.userData);
     return j;
 }
 
@@ -1029,6 +1053,7 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
                 fail(at("bodies", i) + ".name", (*v)[i]["name"],
                      "must be unique (already used by " + at("bodies", it->second) + ")");
             names.emplace(b.name, i);
+            if (auto* x = find((*v)[i], "userData")) b.userData = readUserData(*x, scene.bodyUserData[b.name]);
             scene.bodies.push_back(std::move(b));
         }
     }
@@ -1043,6 +1068,7 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
             if (!j.def.name.empty()) names.emplace(j.def.name, std::numeric_limits<std::size_t>::max());
         for (std::size_t i = 0; i < v->size(); ++i) {
             SceneJoint j = readJoint((*v)[i], at("joints", i), bodies, scene.settings.planar);
+            if (auto* x = find((*v)[i], "userData")) j.def.userData = readUserData(*x, j.userData);
             if (!j.def.name.empty()) {
                 if (const auto it = names.find(j.def.name); it != names.end())
                     fail(at("joints", i) + ".name", (*v)[i]["name"],
@@ -1127,7 +1153,11 @@ std::string sceneToJson(const Scene& scene) {
         doc["materialPairs"].push_back(pair);
     }
     doc["bodies"] = ojson::array();
-    for (const auto& b : scene.bodies) doc["bodies"].push_back(bodyJson(b));
+    for (const auto& b : scene.bodies) {
+        doc["bodies"].push_back(bodyJson(b));
+        const auto text = scene.bodyUserData.find(b.name);
+        writeUserData(doc["bodies"].back(), text == scene.bodyUserData.end() ? std::string() : text->second, b.userData);
+    }
     doc["joints"] = ojson::array();
     for (const auto& j : scene.joints) doc["joints"].push_back(jointJson(j));
     if (!scene.fields.empty()) {

@@ -21,7 +21,7 @@ fi
 cat > "$work/bounce.json" <<'JSON'
 { "settings": { "restitutionThreshold": 2 },
   "materials": { "rubber": { "restitution": 0.5 } },
-  "bodies": [ { "name": "ground", "type": "static", "shape": { "type": "plane" } },
+  "bodies": [ { "name": "ground", "type": "static", "shape": { "type": "plane", "normal": [0, 1, 0] } },
               { "name": "gate", "type": "static", "isTrigger": true, "position": [0, 1.5, 0],
                 "shape": { "type": "box", "halfExtents": [1, 0.1, 1] } },
               { "name": "ball, red", "position": [0, 2.084862385321101, 0], "material": "rubber",

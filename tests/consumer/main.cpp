@@ -14,6 +14,7 @@ int main() {
         anyphys::World world;
         anyphys::BodyDef def;
         def.position = anyphys::Vec3(0.0, 10.0, 0.0);
+        def.shape = anyphys::ShapeDef::sphere(0.5);
         anyphys::Body ball = world.createBody(def);
 
         constexpr int steps = 60;

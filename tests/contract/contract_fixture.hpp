@@ -13,6 +13,13 @@
 
 namespace anyphys::test {
 
+/// A dynamic body at the origin with a sphere of `radius` (a def has no default shape).
+inline BodyDef sphereDef(double radius) {
+    BodyDef d;
+    d.shape = ShapeDef::sphere(radius);
+    return d;
+}
+
 inline std::vector<std::string> builtBackendNames() {
     std::vector<std::string> names;
     for (const auto& info : availableBackends()) names.push_back(info.name);

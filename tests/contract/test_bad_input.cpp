@@ -33,6 +33,7 @@ TEST_P(BadInputTest, RejectedBodyLeavesWorldUnchanged) {
     World reference(settings());
     BodyDef good;
     good.position = Vec3(0, 5, 0);
+    good.shape = ShapeDef::sphere(0.5);
     Body a = world.createBody(good);
     Body r = reference.createBody(good);
 
@@ -91,7 +92,16 @@ TEST_P(BadInputTest, InvalidSettingsAreRefused) {
     expectError([&] { World w(s); }, {"WorldSettings.timeStep", "must be > 0", "got 0"});
     s = settings();
     s.substeps = 0;
-    expectError([&] { World w(s); }, {"WorldSettings.substeps", "must be >= 1", "got 0"});
+    expectError([&] { World w(s); }, {"WorldSettings.substeps", "must be in [1, 1000]", "got 0"});
+    // A count a typo makes absurd (2e9 substeps) would hang the step: refused up front.
+    s.substeps = 2000000000;
+    expectError([&] { World w(s); }, {"WorldSettings.substeps", "kMaxSubsteps", "got 2000000000"});
+    s = settings();
+    s.iterations = 100001;
+    expectError([&] { World w(s); }, {"WorldSettings.iterations", "kMaxIterations"});
+    s = settings();
+    s.maxStepsPerUpdate = 1001;
+    expectError([&] { World w(s); }, {"WorldSettings.maxStepsPerUpdate", "kMaxStepsPerUpdate"});
     s = settings();
     s.gravity = Vec3(0, std::numeric_limits<double>::infinity(), 0);
     expectError([&] { World w(s); }, {"WorldSettings.gravity", "must be finite"});
@@ -105,9 +115,9 @@ TEST_P(BadInputTest, UnknownBackendListsKnownOnes) {
 
 TEST_P(BadInputTest, StaleHandlesThrowEvenAfterSlotReuse) {
     World world(settings());
-    Body first = world.createBody(BodyDef{});
+    Body first = world.createBody(sphereDef(0.5));
     world.destroyBody(first);
-    Body second = world.createBody(BodyDef{});  // may reuse the slot
+    Body second = world.createBody(sphereDef(0.5));  // may reuse the slot
     EXPECT_FALSE(first.isValid());
     EXPECT_TRUE(second.isValid());
     expectError([&] { first.position(); }, {"Body.position", "stale body handle"});
@@ -118,11 +128,11 @@ TEST_P(BadInputTest, StaleHandlesThrowEvenAfterSlotReuse) {
 
 TEST_P(BadInputTest, StructuralChangesInsideForceCallbackAreRefused) {
     World world(settings());
-    Body b = world.createBody(BodyDef{});
+    Body b = world.createBody(sphereDef(0.5));
     bool refused = false;
     world.setForceCallback([&](ForceContext&) {
         try {
-            world.createBody(BodyDef{});
+            world.createBody(sphereDef(0.5));
         } catch (const Error&) {
             refused = true;
         }

@@ -63,7 +63,7 @@ TEST_P(ConvergenceTest, SpringThroughForceCallback) {
             s.integrator = m.integrator;
             s.timeStep = dt;
             World world(s);
-            BodyDef def;
+            BodyDef def = sphereDef(0.5);
             def.position = Vec3(1, 0, 0);
             def.mass = 1.0;
             Body mass = world.createBody(def);

@@ -20,7 +20,7 @@ protected:
 // Newton's second law over one step: dv = F dt / m, and the force lasts one step only.
 TEST_P(DynamicsTest, ForceActsForOneStep) {
     World world(weightless());
-    BodyDef def;
+    BodyDef def = sphereDef(0.5);
     def.mass = 2.0;
     Body b = world.createBody(def);
     b.applyForce(Vec3(4, 0, 0));
@@ -53,7 +53,7 @@ TEST_P(DynamicsTest, ImpulsesChangeVelocityImmediately) {
 // A torque about a principal axis spins the body at w = tau t / I.
 TEST_P(DynamicsTest, TorqueAboutPrincipalAxis) {
     World world(weightless());
-    BodyDef def;
+    BodyDef def = sphereDef(0.5);
     def.mass = 1.0;
     def.inertia = Vec3(0.5, 0.5, 0.25);
     Body b = world.createBody(def);
@@ -76,7 +76,7 @@ TEST_P(DynamicsTest, MassPropertiesFromShapeAndDensity) {
     EXPECT_NEAR(m.mass, 500.0, 1e-9);
     EXPECT_NEAR(m.inertia.x(), 500.0 * 2.0 / 12.0, 1e-9);
     // Sphere of radius 0.5 with the default density 1000: m = 4/3 pi r^3 rho, I = 2/5 m r^2.
-    const MassProperties s = world.createBody(BodyDef{}).massProperties();
+    const MassProperties s = world.createBody(sphereDef(0.5)).massProperties();
     EXPECT_NEAR(s.mass, 4.0 / 3.0 * M_PI * 0.125 * 1000.0, 1e-9);
     EXPECT_NEAR(s.inertia.y(), 0.4 * s.mass * 0.25, 1e-9);
     // What the backend simulates, not what the layer computed: impulses on the 500 kg box give
@@ -99,7 +99,7 @@ TEST_P(DynamicsTest, DampingDecaysExponentially) {
     WorldSettings s = weightless();
     s.integrator = Integrator::RK4;
     World world(s);
-    BodyDef def;
+    BodyDef def = sphereDef(0.5);
     def.linearVelocity = Vec3(5, 0, 0);
     def.linearDamping = 0.8;
     Body b = world.createBody(def);
@@ -153,7 +153,7 @@ TEST_P(DynamicsTest, GravityScale) {
     WorldSettings s = settings();
     s.integrator = semiImplicit ? Integrator::SemiImplicitEuler : Integrator::Verlet;
     World world(s);
-    BodyDef def;
+    BodyDef def = sphereDef(0.5);
     def.position = Vec3(0, 10, 0);
     def.gravityScale = 0.5;
     Body b = world.createBody(def);
@@ -171,7 +171,7 @@ TEST_P(DynamicsTest, GravityScale) {
 TEST_P(DynamicsTest, KinematicBodyIgnoresGravityAndForces) {
     ANYPHYS_REQUIRE(caps().bodyTypes.count(BodyType::Kinematic), "kinematic bodies");
     World world(settings());
-    BodyDef def;
+    BodyDef def = sphereDef(0.5);
     def.type = BodyType::Kinematic;
     def.linearVelocity = Vec3(1, 0, 0);
     const Vec3 axis = planarWorld() ? Vec3::UnitZ() : Vec3::UnitY();
@@ -228,14 +228,14 @@ TEST_P(DynamicsTest, FixedStepAccumulator) {
 TEST_P(DynamicsTest, EffectsDerivedOrDeclared) {
     World derived(settings());
     EXPECT_FALSE(derived.activeEffects().has(Effect::Gravity));  // no bodies yet
-    derived.createBody(BodyDef{});
+    derived.createBody(sphereDef(0.5));
     EXPECT_TRUE(derived.activeEffects().has(Effect::Gravity));
     EXPECT_FALSE(derived.activeEffects().has(Effect::Damping));
 
     WorldSettings s = settings();
     s.effects = Effects::none();  // gravity declared off
     World declared(s);
-    Body b = declared.createBody(BodyDef{});
+    Body b = declared.createBody(sphereDef(0.5));
     for (int i = 0; i < 10; ++i) declared.step();
     EXPECT_EQ(b.position(), Vec3::Zero());
     EXPECT_THROW(b.applyForce(Vec3(1, 0, 0)), Error);  // userForces not declared

@@ -242,7 +242,7 @@ TEST_P(FieldsTest, TiltedFlatBoxRightsItself) {
 // without fields derives none of them.
 TEST_P(FieldsTest, EffectsFollowTheFields) {
     World world(settings());
-    BodyDef def;
+    BodyDef def = sphereDef(0.5);
     world.createBody(def);
     const Effects fields = Effects(Effect::Buoyancy) | Effects(Effect::Drag) | Effects(Effect::Wind) | Effects(Effect::Explosion);
     EXPECT_TRUE((world.activeEffects() & fields).empty());

@@ -3,8 +3,10 @@
 // refused up front, and a step never hands back a diverged state silently.
 #include <gmock/gmock.h>
 
+#include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 
 #include "anyphys/containers/scene.hpp"
 #include "contract_fixture.hpp"
@@ -141,9 +143,9 @@ TEST_P(HardeningTest, AbsurdFiniteValuesAreRefusedNamingTheField) {
     world.setForceCallback({});
 
     // The same values in a scene file name the JSON path.
-    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "position": [1e308, 0, 0], "shape": {"type": "sphere"}}]})"); },
+    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "position": [1e308, 0, 0], "shape": {"type": "sphere", "radius": 0.5}}]})"); },
                 ErrorKind::InvalidArgument, "bodies[0].position", {"kMaxCoordinate"});
-    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "angularVelocity": [0, 0, 1e308], "shape": {"type": "sphere"}}]})"); },
+    expectError([] { (void)parseScene(R"({"bodies": [{"name": "a", "angularVelocity": [0, 0, 1e308], "shape": {"type": "sphere", "radius": 0.5}}]})"); },
                 ErrorKind::InvalidArgument, "bodies[0].angularVelocity", {"settings.maxAngularSpeed"});
     expectError([] { (void)parseScene(R"({"settings": {"gravity": [0, -1e19, 0]}})"); }, ErrorKind::InvalidArgument,
                 "settings.gravity", {"kMaxGravity"});
@@ -304,6 +306,143 @@ TEST_P(DivergenceTest, FreezePolicyHoldsTheBodyAndWarns) {
     EXPECT_EQ(world.warnings(), warnings);
     EXPECT_FALSE(walker.isFrozen());
     EXPECT_NEAR(walker.position().x(), world.time(), 1e-3);  // the rest of the world keeps stepping
+}
+
+// A shape's sizes have no default: a box without half extents is refused naming the field, never
+// a silent 1 m cube, and the refusal leaves the world as it was.
+TEST_P(HardeningTest, ShapesWithoutTheirSizesAreRefusedNamingTheField) {
+    World world(settings());
+    const auto refused = [&](ShapeDef shape, const std::string& field) {
+        BodyDef d = ball("b", Vec3(0, 1, 0));
+        d.shape = std::move(shape);
+        expectError([&] { world.createBody(d); }, ErrorKind::InvalidArgument, field, {"not set", "no default"});
+    };
+    ShapeDef s;
+    s.type = ShapeType::Sphere;
+    refused(s, "BodyDef.shape.radius");
+    s.type = ShapeType::Box;
+    refused(s, "BodyDef.shape.halfExtents[0]");
+    s.halfExtents = Vec3(0.5, kUnset, 0.5);
+    refused(s, "BodyDef.shape.halfExtents[1]");
+    s = ShapeDef();
+    s.type = ShapeType::Capsule;
+    refused(s, "BodyDef.shape.radius");
+    s.radius = 0.2;
+    refused(s, "BodyDef.shape.halfHeight");
+    refused(ShapeDef::compound({ShapeDef::sphere(0.3), ShapeDef()}), "BodyDef.shape.shapes[1].radius");
+
+    BodyDef noShape;  // no shape at all: the default ShapeDef is a sphere without a radius
+    noShape.name = "shapeless";
+    expectError([&] { world.createBody(noShape); }, ErrorKind::InvalidArgument, "BodyDef.shape.radius", {"ShapeDef::sphere"});
+
+    BodyDef ground;
+    ground.type = BodyType::Static;
+    ground.shape.type = ShapeType::Plane;  // a plane has no size: without a normal it faces up (+Y)
+    ground.shape.normal = Vec3(0, 0, 0);
+    expectError([&] { world.createBody(ground); }, ErrorKind::InvalidArgument, "BodyDef.shape.normal", {"non-zero"});
+    EXPECT_EQ(world.bodyCount(), 0u);
+    // The same shapes in queries.
+    expectError([&] { world.overlap(ShapeDef(), Transform{}); }, ErrorKind::InvalidArgument, "World.overlap.shape.radius");
+}
+
+// A joint anchored 1e308 m away made Box2D's state NaN in the first step: anchors have the
+// bodies' coordinate ceiling, and the refusal leaves the world without the joint.
+TEST_P(HardeningTest, JointAnchorsBeyondTheCeilingAreRefused) {
+    World world(settings());
+    Body b = world.createBody(ball("b", Vec3(0, 2, 0)));
+    JointDef j;
+    j.type = JointType::Ball;
+    j.bodyB = b;
+    j.anchor = Vec3(1e308, 0, 0);
+    expectError([&] { world.createJoint(j); }, ErrorKind::InvalidArgument, "JointDef.anchor", {"kMaxCoordinate"});
+    j.type = JointType::Distance;
+    j.anchor = Vec3::Zero();
+    j.anchorA = Vec3(0, 2e7, 0);
+    j.anchorB = b.position();
+    expectError([&] { world.createJoint(j); }, ErrorKind::InvalidArgument, "JointDef.anchorA", {"kMaxCoordinate"});
+    EXPECT_EQ(world.jointCount(), 0u);
+}
+
+// Found by the API fuzzer: a ray direction of (1e308, 1e308, 0) has a norm that overflows to inf,
+// and normalising by it handed ODE a zero direction, which it aborted the process on. Huge
+// directions now work as their unit direction, huge lengths are cut to the world's extent, and a
+// zero quaternion for an overlap pose is refused instead of reaching the engines as NaN.
+TEST_P(HardeningTest, QueriesWithHugeOrDegenerateInputsAreSafe) {
+    ANYPHYS_REQUIRE(caps().queries.count("raycast") && caps().queries.count("overlap"), "queries raycast and overlap");
+    World world(settings());
+    BodyDef target = ball("target", Vec3(3, 3, 0));
+    target.type = BodyType::Static;
+    world.createBody(target);
+    const auto hit = world.raycast(Vec3::Zero(), Vec3(1e308, 1e308, 0), 1e308);
+    ASSERT_TRUE(hit.has_value());
+    // The ray along (1, 1, 0) meets the sphere of radius 0.5 about (3, 3, 0) at 3 sqrt(2) - 0.5;
+    // 1e-6 m covers every engine's ray-sphere arithmetic (Box2D's is float: ~4e-7 relative).
+    EXPECT_NEAR(hit->distance, 3 * std::sqrt(2.0) - 0.5, 1e-6);
+    EXPECT_EQ(world.raycastAll(Vec3::Zero(), Vec3(-1e308, 0, 0), 1e308).size(), 0u);
+    expectError([&] { world.raycast(Vec3(1e308, 0, 0), Vec3(1, 0, 0), 1); }, ErrorKind::InvalidArgument,
+                "World.raycast.origin", {"kMaxCoordinate"});
+    expectError([&] { world.raycast(Vec3::Zero(), Vec3(1e-300, 0, 0), 1); }, ErrorKind::InvalidArgument,
+                "World.raycast.direction", {"non-zero"});
+    expectError([&] { world.overlap(ShapeDef::sphere(1), Transform{Vec3::Zero(), Quat(0, 0, 0, 0)}); },
+                ErrorKind::InvalidArgument, "World.overlap.pose.orientation", {"unit quaternion"});
+    EXPECT_EQ(world.overlap(ShapeDef::sphere(1), Transform{Vec3(3, 3, 0), Quat::Identity()}).size(), 1u);
+}
+
+// Found by the API fuzzer: a dynamic sphere of radius 1e-300 m and mass 1e-300 kg had an inertia
+// that underflowed to 0 and principal axes of NaN, and Box2D aborted the process on the NaN pose.
+// Sizes have a floor and a dynamic body's mass and inertia a range, each refused naming the field.
+TEST_P(HardeningTest, VanishingOrHugeMassesAreRefusedNamingTheField) {
+    World world(settings());
+    BodyDef d = ball("dust", Vec3(0, 1, 0));
+    d.shape = ShapeDef::sphere(1e-300);
+    expectError([&] { world.createBody(d); }, ErrorKind::InvalidArgument, "BodyDef.shape.radius", {"kMinLength"});
+    d.shape = ShapeDef::sphere(0.5);
+    d.mass = 1e-300;
+    expectError([&] { world.createBody(d); }, ErrorKind::InvalidArgument, "BodyDef.mass", {"kMinMass"});
+    d.mass = 1e308;
+    expectError([&] { world.createBody(d); }, ErrorKind::InvalidArgument, "BodyDef.mass", {"kMaxMass"});
+    d.mass.reset();
+    d.density = 1e-300;
+    expectError([&] { world.createBody(d); }, ErrorKind::InvalidArgument, "BodyDef.density", {"kMinMass"});
+    d.density.reset();
+    d.inertia = Vec3(1, 1e-40, 1);
+    expectError([&] { world.createBody(d); }, ErrorKind::InvalidArgument, "BodyDef.inertia");
+    EXPECT_EQ(world.bodyCount(), 0u);
+    d.inertia.reset();
+    d.shape = ShapeDef::sphere(1e-3);  // a 1 mm pebble of 4 mg is fine
+    EXPECT_NEAR(world.createBody(d).massProperties().mass, 4.0 / 3.0 * std::numbers::pi * 1e-9 * 1000, 1e-15);
+}
+
+// userData is the game's: kept on the def, readable and replaceable through the handles, never
+// touched by a step, refused (StaleHandle) once the body or joint is gone.
+TEST_P(HardeningTest, UserDataIsKeptOnBodiesAndJoints) {
+    World world(settings());
+    BodyDef d = ball("a", Vec3(0, 2, 0));
+    d.userData = 0xFEEDFACECAFEBEEFull;
+    Body a = world.createBody(d);
+    Body b = world.createBody(ball("b", Vec3(2, 2, 0)));
+    EXPECT_EQ(a.userData(), 0xFEEDFACECAFEBEEFull);
+    EXPECT_EQ(b.userData(), 0u);
+    int payload = 7;
+    b.setUserData(reinterpret_cast<std::uintptr_t>(&payload));
+    JointDef j;
+    j.type = JointType::Distance;
+    j.bodyA = a;
+    j.bodyB = b;
+    j.anchorA = a.position();
+    j.anchorB = b.position();
+    j.userData = 42;
+    Joint joint = world.createJoint(j);
+    EXPECT_EQ(joint.userData(), 42u);
+    EXPECT_EQ(joint.def().userData, 42u);
+    joint.setUserData(43);
+    for (int i = 0; i < 5; ++i) world.step();
+    EXPECT_EQ(a.userData(), 0xFEEDFACECAFEBEEFull);
+    EXPECT_EQ(*reinterpret_cast<int*>(b.userData()), 7);
+    EXPECT_EQ(joint.userData(), 43u);
+    world.destroyBody(b);  // takes the joint with it
+    expectError([&] { (void)b.userData(); }, ErrorKind::StaleHandle, "");
+    expectError([&] { joint.setUserData(1); }, ErrorKind::StaleHandle, "");
 }
 
 ANYPHYS_CONTRACT_SUITE(HardeningTest);

@@ -36,6 +36,7 @@ TEST_P(ProjectileTest, EachIntegratorEndsAtItsClosedFormHeight) {
         s.integrator = c.integrator;
         World world(s);
         BodyDef def;
+        def.shape = ShapeDef::sphere(0.5);
         def.linearVelocity = Vec3(10, 10, 0);
         def.mass = 1.0;
         Body ball = world.createBody(def);

@@ -70,7 +70,7 @@ TEST(SceneFields, ErrorsNamePathValueAndRule) {
     EXPECT_EQ(errorOf(R"({"fields": {"type": "drag"}})").substr(0, 8), "fields: ");
     EXPECT_EQ(errorOf(R"({"settings": {"planar": true}, "fields": [{"type": "wind", "velocity": [1, 0, 1]}]})"),
               "fields[0].velocity: must lie in the XY plane (z = 0) in a planar world, got [1, 0, 1]");
-    EXPECT_EQ(errorOf(R"({"bodies": [{"name": "b", "shape": {"type": "sphere"}, "dragCoefficient": -1}]})"),
+    EXPECT_EQ(errorOf(R"({"bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.5}, "dragCoefficient": -1}]})"),
               "bodies[0].dragCoefficient: must be >= 0, got -1");
 }
 

@@ -51,9 +51,11 @@ void expectParseError(const std::string& json, std::initializer_list<std::string
 // A scene with one body whose JSON is `body`.
 std::string withBody(const std::string& body) { return R"({"bodies": [)" + body + "]}"; }
 
-// Exact (bitwise for doubles) comparison of two scenes.
+// Exact (bitwise for doubles) comparison of two scenes. A size a shape type does not use stays
+// unset (kUnset, NaN) on both sides, which counts as the same.
+bool same(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 void expectSameVec(const Vec3& a, const Vec3& b, const std::string& what) {
-    for (int i = 0; i < 3; ++i) EXPECT_EQ(a[i], b[i]) << what << "[" << i << "]";
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(same(a[i], b[i])) << what << "[" << i << "]: " << a[i] << " vs " << b[i];
 }
 
 void expectSameQuat(const Quat& a, const Quat& b, const std::string& what) {
@@ -63,9 +65,9 @@ void expectSameQuat(const Quat& a, const Quat& b, const std::string& what) {
 void expectSameShape(const ShapeDef& x, const ShapeDef& y, const std::string& what) {
     SCOPED_TRACE(what);
     EXPECT_EQ(x.type, y.type);
-    EXPECT_EQ(x.radius, y.radius);
+    EXPECT_TRUE(same(x.radius, y.radius)) << x.radius << " vs " << y.radius;
     expectSameVec(x.halfExtents, y.halfExtents, "halfExtents");
-    EXPECT_EQ(x.halfHeight, y.halfHeight);
+    EXPECT_TRUE(same(x.halfHeight, y.halfHeight)) << x.halfHeight << " vs " << y.halfHeight;
     expectSameVec(x.normal, y.normal, "normal");
     EXPECT_EQ(x.offset, y.offset);
     ASSERT_EQ(x.points.size(), y.points.size());
@@ -231,7 +233,7 @@ TEST(SceneJson, ParsesEveryField) {
 }
 
 TEST(SceneJson, AbsentKeysTakeTheDefsDefaults) {
-    const Scene s = parseScene(withBody(R"({"name": "b", "shape": {"type": "sphere"}})"));
+    const Scene s = parseScene(withBody(R"({"name": "b", "shape": {"type": "sphere", "radius": 0.5}})"));
     const WorldSettings d;
     EXPECT_EQ(s.settings.backend, d.backend);
     EXPECT_EQ(s.settings.gravity, d.gravity);
@@ -257,7 +259,7 @@ TEST(SceneJson, AbsentKeysTakeTheDefsDefaults) {
     EXPECT_EQ(b.type, db.type);
     EXPECT_EQ(b.position, db.position);
     EXPECT_TRUE(b.orientation.isApprox(db.orientation, 0));
-    EXPECT_EQ(b.shape.radius, db.shape.radius);
+    EXPECT_EQ(b.shape.radius, 0.5);  // given: a shape's sizes have no default
     EXPECT_FALSE(b.mass || b.density || b.inertia);
     EXPECT_EQ(b.material, "");
     EXPECT_EQ(b.gravityScale, db.gravityScale);
@@ -304,6 +306,7 @@ TEST(SceneJson, RoundTripOfDefaultsAndUnsetEffects) {
     Scene s;
     BodyDef b;
     b.name = "only";
+    b.shape = ShapeDef::sphere(0.5);
     s.bodies.push_back(b);
     const std::string text = sceneToJson(s);
     EXPECT_EQ(text.find("\"effects\""), std::string::npos);  // unset: derived, so not written
@@ -315,9 +318,9 @@ TEST(SceneJson, RoundTripOfDefaultsAndUnsetEffects) {
 TEST(SceneJson, ErrorsNamePathValueAndRule) {
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "radius": -1}})"),
                      {"bodies[0].shape.radius: must be > 0, got -1"});
-    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere"}}, {"name": "b", "position": "abc", "shape": {"type": "sphere"}}]})",
+    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.5}}, {"name": "b", "position": "abc", "shape": {"type": "sphere", "radius": 0.5}}]})",
                      {"bodies[1].position: must be an array of 3 numbers, got \"abc\""});
-    expectParseError(withBody(R"({"name": "b", "position": [1, 2], "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "position": [1, 2], "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].position: must be an array of 3 numbers, got [1,2]"});
     expectParseError(R"({"settings": {"integrator": "leapfrog"}})",
                      {"settings.integrator: must be one of explicit_euler, semi_implicit_euler, verlet, midpoint, rk4, "
@@ -338,30 +341,30 @@ TEST(SceneJson, ErrorsNamePathValueAndRule) {
     expectParseError(R"({"materials": {"rubber": {"density": 0}}})", {"materials.rubber.density: must be > 0, got 0"});
     expectParseError(R"({"materialRules": {"friction": "median"}})",
                      {"materialRules.friction: must be one of average, min, max, multiply, geometric_mean, got \"median\""});
-    expectParseError(withBody(R"({"name": "b", "type": "ghost", "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "type": "ghost", "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].type: must be one of static, kinematic, dynamic, got \"ghost\""});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "cone"}})"),
                      {"bodies[0].shape.type: must be one of sphere, box, capsule, plane, convex, mesh, compound, got \"cone\""});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "box", "halfExtents": [1, 0, 1]}})"),
                      {"bodies[0].shape.halfExtents[1]: must be > 0, got 0"});
-    expectParseError(withBody(R"({"name": "b", "orientation": [1, 1, 0, 0], "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "orientation": [1, 1, 0, 0], "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].orientation", "unit quaternion"});
-    expectParseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "plane"}})"),
+    expectParseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "plane", "normal": [0, 1, 0]}})"),
                      {"bodies[0].shape.type", "only on static bodies"});
-    expectParseError(withBody(R"({"name": "b", "mass": -2, "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "mass": -2, "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].mass: must be > 0, got -2"});
-    expectParseError(withBody(R"({"name": "b", "gyroscopic": "implicitly", "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "gyroscopic": "implicitly", "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].gyroscopic: must be one of none, explicit, implicit"});
     expectParseError(R"({"bodies": {"name": "b"}})", {"bodies: must be an array of body objects"});
     expectParseError("[1, 2]", {"scene: must be a JSON object", "got [1,2]"});
 }
 
 TEST(SceneJson, NamesAreRequiredNonEmptyAndUnique) {
-    expectParseError(withBody(R"({"shape": {"type": "sphere"}})"), {"bodies[0].name: required key is missing"});
-    expectParseError(withBody(R"({"name": "", "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"shape": {"type": "sphere", "radius": 0.5}})"), {"bodies[0].name: required key is missing"});
+    expectParseError(withBody(R"({"name": "", "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].name: must be a non-empty string, got \"\""});
-    expectParseError(withBody(R"({"name": 7, "shape": {"type": "sphere"}})"), {"bodies[0].name: must be a string, got 7"});
-    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere"}}, {"name": "a", "shape": {"type": "box"}}]})",
+    expectParseError(withBody(R"({"name": 7, "shape": {"type": "sphere", "radius": 0.5}})"), {"bodies[0].name: must be a string, got 7"});
+    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.5}}, {"name": "a", "shape": {"type": "box", "halfExtents": [0.5, 0.5, 0.5]}}]})",
                      {"bodies[1].name: must be unique (already used by bodies[0]), got \"a\""});
     expectParseError(withBody(R"({"name": "b"})"), {"bodies[0].shape: required key is missing"});
     expectParseError(withBody(R"({"name": "b", "shape": {"radius": 1}})"),
@@ -369,21 +372,21 @@ TEST(SceneJson, NamesAreRequiredNonEmptyAndUnique) {
 }
 
 TEST(SceneJson, UnknownAndDuplicateKeysAreErrors) {
-    expectParseError(withBody(R"({"name": "b", "radius": 1, "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "radius": 1, "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].radius: unknown key; allowed keys are name, type, position"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "halfExtents": [1, 1, 1]}})"),
                      {"bodies[0].shape.halfExtents: unknown key for a sphere shape; allowed keys are type, radius"});
     expectParseError(R"({"settings": {"timestep": 0.01}})", {"settings.timestep: unknown key", "timeStep"});
     expectParseError(R"({"setings": {}})", {"setings: unknown key at the top level; allowed keys are settings"});
     expectParseError(R"({"materials": {"rubber": {"frction": 1}}})", {"materials.rubber.frction: unknown key"});
-    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere"}},
+    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.5}},
                                      {"name": "b", "shape": {"type": "sphere", "radius": 1, "radius": 2}}]})",
                      {"bodies[1].shape.radius: duplicate key"});
 }
 
 TEST(SceneJson, MaterialReferencesMustBeKnown) {
     expectParseError(R"({"materials": {"rubber": {}, "ice": {}},
-                        "bodies": [{"name": "b", "material": "steel", "shape": {"type": "sphere"}}]})",
+                        "bodies": [{"name": "b", "material": "steel", "shape": {"type": "sphere", "radius": 0.5}}]})",
                      {"bodies[0].material", "\"steel\"", "\"\" (the default), ice, rubber"});
     expectParseError(R"({"materials": {"rubber": {}}, "materialPairs": [{"a": "rubber", "b": "steel"}]})",
                      {"materialPairs[0].b", "\"steel\"", "rubber"});
@@ -396,7 +399,7 @@ TEST(SceneJson, MaterialReferencesMustBeKnown) {
                      {"materialPairs[1]: duplicate pair", "materialPairs[0]"});
     // The default material "" is always known, and may be redefined.
     const Scene s = parseScene(R"({"materials": {"": {"friction": 0.2}},
-                                   "bodies": [{"name": "b", "material": "", "shape": {"type": "sphere"}}]})");
+                                   "bodies": [{"name": "b", "material": "", "shape": {"type": "sphere", "radius": 0.5}}]})");
     EXPECT_EQ(s.materials.get("").friction, 0.2);
 }
 
@@ -607,7 +610,7 @@ TEST(SceneJson, ParsesContactSettingsShapesAndFilters) {
 }
 
 TEST(SceneJson, AbsentContactKeysTakeTheDefaults) {
-    const Scene s = parseScene(withBody(R"({"name": "b", "shape": {"type": "sphere"}})"));
+    const Scene s = parseScene(withBody(R"({"name": "b", "shape": {"type": "sphere", "radius": 0.5}})"));
     const WorldSettings d;
     EXPECT_EQ(s.settings.contactHertz, d.contactHertz);
     EXPECT_EQ(s.settings.contactDampingRatio, d.contactDampingRatio);
@@ -657,6 +660,7 @@ TEST(SceneJson, DefaultShapePlacementIsNotWritten) {
     Scene s;
     BodyDef b;
     b.name = "plain";
+    b.shape = ShapeDef::sphere(0.5);
     s.bodies.push_back(b);
     const std::string text = sceneToJson(s);
     const auto shape = text.find("\"shape\"");
@@ -671,20 +675,20 @@ TEST(SceneJson, DefaultShapePlacementIsNotWritten) {
 TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
     // Compound children report their own path, from the loader and from validate() alike.
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
-                                    {"type": "box"}, {"type": "sphere", "radius": -1}]}})"),
+                                    {"type": "box", "halfExtents": [0.5, 0.5, 0.5]}, {"type": "sphere", "radius": -1}]}})"),
                      {"bodies[0].shape.shapes[1].radius: must be > 0, got -1"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
-                                    {"type": "sphere", "position": [0, "x", 0]}]}})"),
+                                    {"type": "sphere", "radius": 0.5, "position": [0, "x", 0]}]}})"),
                      {"bodies[0].shape.shapes[0].position: must be an array of 3 numbers"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
-                                    {"type": "sphere", "density": 0}]}})"),
+                                    {"type": "sphere", "radius": 0.5, "density": 0}]}})"),
                      {"bodies[0].shape.shapes[0].density: must be > 0, got 0"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
                                     {"type": "sphere", "halfExtents": [1, 1, 1]}]}})"),
                      {"bodies[0].shape.shapes[0].halfExtents: unknown key for a sphere shape",
                       "type, radius, position, orientation, density"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
-                                    {"type": "compound", "shapes": [{"type": "sphere"}]}]}})"),
+                                    {"type": "compound", "shapes": [{"type": "sphere", "radius": 0.5}]}]}})"),
                      {"bodies[0].shape.shapes[0].type", "compound children must be sphere, box, capsule or convex"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": []}})"),
                      {"bodies[0].shape.shapes: must hold at least one child shape"});
@@ -692,7 +696,7 @@ TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
                      {"bodies[0].shape.shapes: must be an array of child shape objects"});
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "density": 10}})"),
                      {"bodies[0].shape.density: allowed only on the children of a compound shape"});
-    expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "orientation": [2, 0, 0, 0]}})"),
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "sphere", "radius": 0.5, "orientation": [2, 0, 0, 0]}})"),
                      {"bodies[0].shape.orientation", "unit quaternion"});
 
     expectParseError(withBody(R"({"name": "b", "shape": {"type": "convex", "points": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]}})"),
@@ -718,13 +722,13 @@ TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
     expectParseError(withBody(R"({"name": "t", "shape": {"type": "mesh", )" + square + R"(, "indices": [0, 1, 2]}})"),
                      {"bodies[0].shape.type", "only on static bodies"});
 
-    expectParseError(withBody(R"({"name": "b", "isTrigger": 1, "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "isTrigger": 1, "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].isTrigger: must be true or false, got 1"});
-    expectParseError(withBody(R"({"name": "b", "allowSleep": "no", "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "allowSleep": "no", "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].allowSleep: must be true or false, got \"no\""});
-    expectParseError(withBody(R"({"name": "b", "layer": 4294967296, "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "layer": 4294967296, "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].layer: must be an unsigned 32-bit integer in [0, 4294967295], got 4294967296"});
-    expectParseError(withBody(R"({"name": "b", "mask": -1, "shape": {"type": "sphere"}})"),
+    expectParseError(withBody(R"({"name": "b", "mask": -1, "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].mask: must be an unsigned 32-bit integer", "got -1"});
 
     expectParseError(R"({"settings": {"contactHertz": 0}})", {"settings.contactHertz: must be > 0, got 0"});
@@ -732,4 +736,70 @@ TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
     expectParseError(R"({"settings": {"linearSlop": "tiny"}})", {"settings.linearSlop: must be a number, got \"tiny\""});
     expectParseError(R"({"settings": {"timeToSleep": -1}})", {"settings.timeToSleep: must be >= 0, got -1"});
     expectParseError(R"({"settings": {"sleepVelocity": 1}})", {"settings.sleepVelocity: unknown key", "sleepLinearVelocity"});
+}
+
+namespace {
+
+// A scene file's body with `shape` (JSON text) as its only shape.
+std::string bodyWithShape(const std::string& shape) {
+    return R"({"bodies": [{"name": "b", "type": "static", "shape": )" + shape + "}]}";
+}
+
+}  // namespace
+
+// Every size a shape type needs is a required key: a box without halfExtents is a Parse error
+// naming the key, never a 1 m cube.
+TEST(SceneJson, ShapeSizesAreRequiredKeys) {
+    const std::pair<const char*, const char*> cases[] = {
+        {R"({"type": "sphere"})", "bodies[0].shape.radius"},
+        {R"({"type": "box"})", "bodies[0].shape.halfExtents"},
+        {R"({"type": "capsule", "radius": 0.2})", "bodies[0].shape.halfHeight"},
+        {R"({"type": "capsule", "halfHeight": 0.2})", "bodies[0].shape.radius"},
+        {R"({"type": "convex"})", "bodies[0].shape.points"},
+        {R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]]})", "bodies[0].shape.indices"},
+        {R"({"type": "compound"})", "bodies[0].shape.shapes"},
+        {R"({"type": "compound", "shapes": [{"type": "box"}]})", "bodies[0].shape.shapes[0].halfExtents"},
+    };
+    for (const auto& [shape, field] : cases) {
+        try {
+            parseScene(bodyWithShape(shape));
+            ADD_FAILURE() << shape << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::Parse) << e.what();
+            EXPECT_EQ(e.field(), field) << e.what();
+            EXPECT_NE(std::string(e.what()).find("no default"), std::string::npos) << e.what();
+        }
+    }
+    // A plane has no size: its offset defaults to 0 and its normal to up (+Y), as a ground means.
+    EXPECT_EQ(parseScene(bodyWithShape(R"({"type": "plane", "normal": [0, 1, 0]})")).bodies[0].shape.offset, 0.0);
+    EXPECT_EQ(parseScene(bodyWithShape(R"({"type": "plane", "offset": 1})")).bodies[0].shape.normal, Vec3(0, 1, 0));
+}
+
+// "userData" is any JSON value, kept as text and saved back as it came; an unsigned integer is
+// also the def's userData, which reaches Body::userData through createSceneObjects.
+TEST(SceneJson, UserDataIsKeptAndSavedBack) {
+    const Scene s = parseScene(R"({
+      "bodies": [{"name": "crate", "shape": {"type": "sphere", "radius": 1}, "userData": {"sound": "clank", "hp": [3, 4]}},
+                 {"name": "id", "shape": {"type": "sphere", "radius": 1}, "position": [3, 0, 0], "userData": 18446744073709551615},
+                 {"name": "plain", "shape": {"type": "sphere", "radius": 1}, "position": [6, 0, 0]}],
+      "joints": [{"name": "j", "type": "ball", "bodyA": "crate", "bodyB": "id", "anchor": [1.5, 0, 0], "userData": "rope"}]})");
+    EXPECT_EQ(s.bodyUserData.at("crate"), R"({"hp":[3,4],"sound":"clank"})");
+    EXPECT_EQ(s.bodies[0].userData, 0u);
+    EXPECT_EQ(s.bodies[1].userData, 18446744073709551615ull);
+    EXPECT_EQ(s.bodyUserData.count("plain"), 0u);
+    EXPECT_EQ(s.joints[0].userData, "\"rope\"");
+    const std::string text = sceneToJson(s);
+    const Scene back = parseScene(text);
+    EXPECT_EQ(back.bodyUserData, s.bodyUserData);
+    EXPECT_EQ(back.bodies[1].userData, s.bodies[1].userData);
+    EXPECT_EQ(back.joints[0].userData, "\"rope\"");
+    EXPECT_EQ(sceneToJson(back), text);
+
+    Scene fromCode;  // a def's userData set in code is saved as a number
+    BodyDef b;
+    b.name = "x";
+    b.shape = ShapeDef::sphere(1);
+    b.userData = 5;
+    fromCode.bodies.push_back(b);
+    EXPECT_EQ(parseScene(sceneToJson(fromCode)).bodies[0].userData, 5u);
 }

@@ -1,6 +1,7 @@
 #pragma once
 // A light handle to a body: a link to its world plus a generational id. Copy freely; every call on
 // a destroyed body, or on any body of a destroyed world, throws anyphys::Error (kind StaleHandle).
+#include <cstdint>
 #include <memory>
 #include <typeinfo>
 
@@ -49,6 +50,9 @@ public:
     /// Centre of mass, world frame.
     Vec3 centerOfMass() const;
     bool isTrigger() const;
+    /// The game's value (BodyDef::userData), and replacing it. Never read by anyphys.
+    std::uint64_t userData() const;
+    void setUserData(std::uint64_t value);
     bool isAwake() const;
     /// Wakes the body (and its island). Any velocity, force or transform change wakes it too.
     void wake();

@@ -2,6 +2,7 @@
 // Definitions ("defs") from which bodies are created. Every field has a documented unit and
 // default; a def is a plain value, validated when it is used (see validation.hpp).
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,13 +12,19 @@
 
 namespace anyphys {
 
-/// A collision shape in the body frame. Which fields matter depends on `type`.
+/// The value of a shape's size or direction that was not given: NaN, which validation reports
+/// as "not set" naming the field. A shape's sizes have no default, so a box without half extents
+/// is an error instead of a silent 1 m cube.
+inline constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
+
+/// A collision shape in the body frame. Which fields matter depends on `type`; the sizes a type
+/// needs must be given (the factories below take them), the rest keep their defaults.
 struct ShapeDef {
     ShapeType type = ShapeType::Sphere;
-    double radius = 0.5;                        ///< m, sphere and capsule; default 0.5
-    Vec3 halfExtents = Vec3(0.5, 0.5, 0.5);     ///< m, box half sizes along body x, y, z; default 0.5 each
-    double halfHeight = 0.5;                    ///< m, capsule: half length of the core segment along body Y; default 0.5
-    Vec3 normal = Vec3(0, 1, 0);                ///< plane: unit normal (world frame); default +Y
+    double radius = kUnset;                     ///< m, sphere and capsule, > 0; required
+    Vec3 halfExtents = Vec3::Constant(kUnset);  ///< m, box half sizes along body x, y, z, each > 0; required
+    double halfHeight = kUnset;                 ///< m, capsule: half length of the core segment along body Y, >= 0; required
+    Vec3 normal = Vec3::UnitY();                ///< plane: normal (world frame), non-zero, normalised by the layer; default up (a plane has no size to forget)
     double offset = 0.0;                        ///< m, plane: points p with normal.dot(p) == offset; default 0
     std::vector<Vec3> points;                   ///< m, convex: points (body frame) whose hull is the shape; >= 4, not coplanar
     std::vector<Vec3> vertices;                 ///< m, mesh: vertex positions (body frame)
@@ -58,7 +65,7 @@ struct BodyDef {
     Quat orientation = Quat::Identity();       ///< unit quaternion body -> world; default identity
     Vec3 linearVelocity = Vec3::Zero();        ///< m/s, world frame; default 0
     Vec3 angularVelocity = Vec3::Zero();       ///< rad/s, world frame; default 0
-    ShapeDef shape;                            ///< default: sphere of radius 0.5 m
+    ShapeDef shape;                            ///< required: e.g. ShapeDef::sphere(0.5) (a def without one is refused)
     std::optional<double> mass;                ///< kg; default: density x shape volume
     std::optional<double> density;             ///< kg/m^3; default: the material's density, else 1000
     std::optional<Vec3> inertia;               ///< kg m^2, principal moments in the body frame; default: from shape and mass
@@ -75,6 +82,9 @@ struct BodyDef {
     std::uint32_t mask = 0xFFFFFFFFu;          ///< layers this body collides with; default all
     bool allowSleep = true;                    ///< may fall asleep when at rest; default true
     bool isAwake = true;                       ///< starts awake; default true
+    /// The game's own value, kept for it and never read by anyphys (an entity id, or a pointer
+    /// stored as reinterpret_cast<std::uintptr_t>(p)); Body::userData / setUserData. Default 0.
+    std::uint64_t userData = 0;
 };
 
 /// Two bodies may touch only if each one's layer is in the other's mask. The layer decides

@@ -53,6 +53,9 @@ public:
     /// The joint broke: a reaction exceeded JointDef::breakForce or breakTorque after a step. Its
     /// constraint is gone for good; listeners were told (ContactListener::onJointBreak).
     bool isBroken() const;
+    /// The game's value (JointDef::userData), and replacing it. Never read by anyphys.
+    std::uint64_t userData() const;
+    void setUserData(std::uint64_t value);
 
     /// Replace the motor, limits or spring (std::nullopt removes it), validated like the def's
     /// (limits need not contain the current position: the joint is driven back into them). From

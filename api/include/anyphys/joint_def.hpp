@@ -2,6 +2,7 @@
 // Joints: constraints that hold two bodies (or a body and the static world) together. Every field
 // documents its unit and default; anchors and axes are world coordinates at creation, and every
 // angle and offset a joint reports is measured from the pose at creation (0 there).
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -41,6 +42,9 @@ struct JointDef {
     double breakForce = std::numeric_limits<double>::infinity();   ///< N: the joint breaks above this reaction force
     double breakTorque = std::numeric_limits<double>::infinity();  ///< N m: ... or above this reaction torque
     bool collideConnected = false;     ///< let A and B collide with each other. Default false
+    /// The game's own value, kept for it and never read by anyphys (see BodyDef::userData).
+    /// Joint::userData / setUserData. Default 0.
+    std::uint64_t userData = 0;
 };
 
 }  // namespace anyphys

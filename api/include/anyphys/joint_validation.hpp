@@ -152,10 +152,11 @@ inline void validateJointSpring(const JointSpring& s, const std::string& field) 
 inline void validate(const JointDef& j, const std::string& path) {
     using namespace detail;
     const JointFields f = jointFields(j.type);
-    requireFinite(path + ".anchor", j.anchor);
+    // Anchors have the bodies' ceiling: one 1e308 m away made Box2D's state NaN in the first step.
+    requireCoordinate(path + ".anchor", j.anchor);
     requireFinite(path + ".axis", j.axis);
-    requireFinite(path + ".anchorA", j.anchorA);
-    requireFinite(path + ".anchorB", j.anchorB);
+    requireCoordinate(path + ".anchorA", j.anchorA);
+    requireCoordinate(path + ".anchorB", j.anchorB);
     requireFinite(path + ".spinAxis", j.spinAxis);
     if (f.axis) requireNonZeroAxis(path + ".axis", j.axis);
 

@@ -43,6 +43,19 @@ inline constexpr double kMaxGravity = 1e4;
 /// s: longest time step (WorldSettings::timeStep, World::step dt). A step longer than a second is
 /// a units mistake, and moves a body at maxSpeed farther than the world is wide.
 inline constexpr double kMaxTimeStep = 1.0;
+/// m: smallest radius or half extent. Below a micrometre a float engine rounds the size to 0 and
+/// a body's mass and inertia underflow (the API fuzzer made Box2D abort on a 1e-300 m sphere).
+inline constexpr double kMinLength = 1e-6;
+/// kg and kg m^2: the range a dynamic body's resolved mass and each principal inertia must lie in,
+/// representable in float with room to spare (a float engine flushes 1e-300 to 0 and
+/// divides by it); 1e30 kg is half the Sun.
+inline constexpr double kMinMass = 1e-30;
+inline constexpr double kMaxMass = 1e30;
+/// Largest WorldSettings::substeps, iterations and maxStepsPerUpdate: a count of 2e9 is a typo that
+/// would hang the step, not a setting (the sweeps and the catalogue use at most 64 and 1000).
+inline constexpr int kMaxSubsteps = 1000;
+inline constexpr int kMaxIterations = 100000;
+inline constexpr int kMaxStepsPerUpdate = 1000;
 
 namespace detail {
 inline void requireFinite(const std::string& field, double v) {
@@ -74,9 +87,17 @@ inline void requireCoordinate(const std::string& field, double v) {
     if (std::abs(v) > kMaxCoordinate)
         throw Error::invalid(field, v, "must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
 }
+/// A field a shape type needs and that has no default (kUnset): "not set" names it and says why.
+/// `rule` says what the type needs, e.g. "a sphere needs its radius > 0 (ShapeDef::sphere(r))".
+inline void requireSet(const std::string& field, double v, const std::string& rule) {
+    if (std::isnan(v))
+        throw Error(ErrorKind::InvalidArgument, field, field + ": not set (or NaN); " + rule + ", there is no default");
+}
 /// A size: > 0 and at most kMaxCoordinate.
 inline void requireLength(const std::string& field, double v, bool allowZero = false) {
     allowZero ? requireNonNegative(field, v) : requirePositive(field, v);
+    if (!allowZero && v < kMinLength)
+        throw Error::invalid(field, v, "must be >= " + ceilingText(kMinLength) + " m (anyphys::kMinLength)");
     if (v > kMaxCoordinate)
         throw Error::invalid(field, v, "must be <= " + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
 }
@@ -121,17 +142,29 @@ inline bool spansVolume(const std::vector<Vec3>& p) {
 inline void validate(const ShapeDef& s, const std::string& path, bool isChild = false) {
     using namespace detail;
     switch (s.type) {
-        case ShapeType::Sphere: requireLength(path + ".radius", s.radius); break;
+        case ShapeType::Sphere:
+            requireSet(path + ".radius", s.radius, "a sphere needs its radius > 0 (ShapeDef::sphere(r))");
+            requireLength(path + ".radius", s.radius);
+            break;
         case ShapeType::Box:
+            for (int i = 0; i < 3; ++i)
+                requireSet(path + ".halfExtents[" + std::to_string(i) + "]", s.halfExtents[i],
+                           "a box needs its halfExtents, each > 0 (ShapeDef::box(half))");
             requireLength(path + ".halfExtents[0]", s.halfExtents.x());
             requireLength(path + ".halfExtents[1]", s.halfExtents.y());
             requireLength(path + ".halfExtents[2]", s.halfExtents.z());
             break;
         case ShapeType::Capsule:
+            requireSet(path + ".radius", s.radius, "a capsule needs its radius > 0 (ShapeDef::capsule(r, halfHeight))");
+            requireSet(path + ".halfHeight", s.halfHeight,
+                       "a capsule needs its halfHeight >= 0 (ShapeDef::capsule(r, halfHeight))");
             requireLength(path + ".radius", s.radius);
             requireLength(path + ".halfHeight", s.halfHeight, true);
             break;
         case ShapeType::Plane:
+            for (int i = 0; i < 3; ++i)
+                requireSet(path + ".normal[" + std::to_string(i) + "]", s.normal[i],
+                           "a plane needs its normal (ShapeDef::plane(normal, offset))");
             requireFinite(path + ".normal", s.normal);
             if (s.normal.norm() < 1e-12) throw Error::invalid(path + ".normal", formatVec3(s.normal), "must be non-zero");
             requireCoordinate(path + ".offset", s.offset);
@@ -279,9 +312,13 @@ inline void validate(const WorldSettings& s, const std::string& path) {
         throw Error::invalid(path + ".timeStep", s.timeStep, "must be <= " + ceilingText(kMaxTimeStep) + " s (anyphys::kMaxTimeStep)");
     requirePositive(path + ".maxSpeed", s.maxSpeed);
     requirePositive(path + ".maxAngularSpeed", s.maxAngularSpeed);
-    if (s.iterations && *s.iterations < 1) throw Error::invalid(path + ".iterations", *s.iterations, "must be >= 1");
-    if (s.substeps && *s.substeps < 1) throw Error::invalid(path + ".substeps", *s.substeps, "must be >= 1");
-    if (s.maxStepsPerUpdate < 1) throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate, "must be >= 1");
+    if (s.iterations && (*s.iterations < 1 || *s.iterations > kMaxIterations))
+        throw Error::invalid(path + ".iterations", *s.iterations, "must be in [1, " + std::to_string(kMaxIterations) + "] (anyphys::kMaxIterations)");
+    if (s.substeps && (*s.substeps < 1 || *s.substeps > kMaxSubsteps))
+        throw Error::invalid(path + ".substeps", *s.substeps, "must be in [1, " + std::to_string(kMaxSubsteps) + "] (anyphys::kMaxSubsteps)");
+    if (s.maxStepsPerUpdate < 1 || s.maxStepsPerUpdate > kMaxStepsPerUpdate)
+        throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate,
+                             "must be in [1, " + std::to_string(kMaxStepsPerUpdate) + "] (anyphys::kMaxStepsPerUpdate)");
     if (s.workers < 1 || s.workers > kMaxWorkers)
         throw Error::invalid(path + ".workers", s.workers, "must be in [1, " + std::to_string(kMaxWorkers) + "]");
     for (const auto& [name, value] : s.backendOptions) requireFinite(path + ".backendOptions." + name, value);

@@ -172,6 +172,7 @@ TEST(BulletBackend, DampingMatchesExponentialDecay) {
     s.gravity = Vec3::Zero();
     World world(s);
     BodyDef def;
+    def.shape = ShapeDef::sphere(0.5);
     def.linearVelocity = Vec3(5, 0, 0);
     def.angularVelocity = Vec3(0, 0, 3);
     def.linearDamping = 0.8;

@@ -205,6 +205,7 @@ TEST(OdeBackend, DampingMatchesExponentialDecay) {
     s.gravity = Vec3::Zero();
     World world(s);
     BodyDef def;
+    def.shape = ShapeDef::sphere(0.5);
     def.linearVelocity = Vec3(5, 0, 0);
     def.angularVelocity = Vec3(0, 3, 0);
     def.linearDamping = 0.8;

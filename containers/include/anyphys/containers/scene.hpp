@@ -1,5 +1,6 @@
 #pragma once
 // A scene: settings, materials, bodies and joints, as loaded from or saved to a JSON file.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ struct SceneJoint {
     JointDef def;
     std::string bodyA;  ///< "" (written as omitted): the joint holds bodyB to the static world
     std::string bodyB;
+    /// Its "userData" in the file, as JSON text (any value: {"sound": "clank"}); "" when absent.
+    /// Saved back as it came. An unsigned integer is also def.userData.
+    std::string userData;
 };
 
 struct Scene {
@@ -27,6 +31,9 @@ struct Scene {
     std::vector<FieldDef> fields;    ///< force fields (buoyancy, drag, wind, explosion), added in this order
     std::vector<FluidDef> fluids;    ///< fluid blocks, added in this order
     std::vector<ClothDef> cloths;    ///< cloth sheets, added in this order
+    /// Each body's "userData" in the file, as JSON text, by body name (bodies without one are
+    /// absent). Saved back as it came; an unsigned integer is also that BodyDef's userData.
+    std::map<std::string, std::string> bodyUserData;
 };
 
 
