@@ -31,8 +31,9 @@ bool planeMultipoint(const WorldSettings& settings) {
 std::unique_ptr<btDefaultCollisionConfiguration> makeCollisionConfiguration(const WorldSettings& settings) {
     // Bullet's default pools hold 4096 manifolds and 4096 collision algorithms, allocated and
     // touched up front: 65 ms per world under ASan (the API fuzzer spent most of its time there).
-    // 256 of each cover a pile of hundreds of touching pairs; past that Bullet allocates from the
-    // heap (CD_DISABLE_CONTACTPOOL_DYNAMIC_ALLOCATION is not set), so only the up-front cost changes.
+    // 256 of each cover a pile of hundreds of touching pairs; past that Bullet allocates each new
+    // pair's manifold from the heap (CD_DISABLE_CONTACTPOOL_DYNAMIC_ALLOCATION is not set), which
+    // costs only when pairs begin. bench/direct/bullet_scenes.cpp gives raw Bullet the same pools.
     btDefaultCollisionConstructionInfo info;
     info.m_defaultMaxPersistentManifoldPoolSize = 256;
     info.m_defaultMaxCollisionAlgorithmPoolSize = 256;

@@ -26,6 +26,7 @@ namespace {
 // bullet_backend.cpp), repeated here because raw Bullet must be driven the same way: change both
 // together.
 constexpr int kIterations = 30;                 // capabilities.defaultIterations (sequential impulses)
+constexpr int kPoolSize = 256;                  // manifold and collision-algorithm pools (makeCollisionConfiguration)
 constexpr double kBoxMargin = 0.04;             // at most a tenth of the thinnest half extent
 constexpr double kSplitImpulseDepth = 0.04;     // split impulse beyond this overlap
 constexpr double kCcdMotionPerCore = 0.5;       // CCD when moving more than half the inner radius,
@@ -39,10 +40,17 @@ btVector3 bt(const Vec3& v) {
     return {static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z())};
 }
 
+std::unique_ptr<btDefaultCollisionConfiguration> makeConfiguration() {
+    btDefaultCollisionConstructionInfo info;
+    info.m_defaultMaxPersistentManifoldPoolSize = kPoolSize;
+    info.m_defaultMaxCollisionAlgorithmPoolSize = kPoolSize;
+    return std::make_unique<btDefaultCollisionConfiguration>(info);
+}
+
 class BulletSimulation final : public Simulation {
 public:
     explicit BulletSimulation(const ScenePlan& plan)
-        : configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+        : configuration_(makeConfiguration()),
           dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
           broadphase_(std::make_unique<btDbvtBroadphase>()),
           solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),

@@ -228,7 +228,9 @@ TEST_P(PlanarFluidTest, CouplingConservesMomentum) {
 // no particle stage, no effect.
 TEST_P(PlanarFluidTest, EffectsFollowTheParticles) {
     World world(settings());
-    world.createBody(BodyDef{});
+    BodyDef ball;
+    ball.shape = ShapeDef::sphere(0.5);
+    world.createBody(ball);
     EXPECT_FALSE(world.activeEffects().has(Effect::Fluid));
     EXPECT_FALSE(world.activeEffects().has(Effect::Cloth));
     world.addFluid(water(Vec3(0, 0, -0.05), Vec3(0.1, 0.1, 0.05), 0.05));
