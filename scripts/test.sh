@@ -42,9 +42,10 @@ bash scripts/setup.sh
 done_stage setup
 
 stage "release build (build/)"
-# Test code at -O1: the physics under test is the library's, built at -O3 as users get it; the
-# tests' own code only sets up and checks, and -O1 compiles it a quarter faster.
-bash scripts/build.sh build -DANYPHYS_TEST_COMPILE_OPTIONS=-O1
+# Test, tool and demo code at -O1: the physics under test is the library's, built at -O3 as users
+# get it; the tests' and tools' own code only sets up, drives and checks, and -O1 compiles it a
+# quarter faster.
+bash scripts/build.sh build -DANYPHYS_TEST_COMPILE_OPTIONS=-O1 -DANYPHYS_TOOL_COMPILE_OPTIONS=-O1
 done_stage build
 
 stage "tests (build/)"
