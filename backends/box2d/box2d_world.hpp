@@ -1,6 +1,6 @@
 #pragma once
 // The Box2D backend's world: a b2World simulating the XY plane, its bodies, the layer's contact
-// rules, and the step (force hook, damping, bullets, substeps).
+// rules, and the step (held forces, damping, bullets, substeps).
 #include <box2d/box2d.h>
 
 #include <array>
@@ -32,7 +32,6 @@ public:
     std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
     void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
-    void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
@@ -67,7 +66,6 @@ private:
     int positionIterations_;
     int substeps_;
     Effects effects_;
-    ForceHook forceHook_;
     ContactRules rules_;
     std::unique_ptr<b2World> world_;
     std::vector<Box2dBody*> bodies_;

@@ -254,29 +254,9 @@ void BulletWorld::setEffects(Effects effects) {
     }
 }
 
-void BulletWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
-
 void BulletWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
 
-void BulletWorld::step(double time, double dt) {
-    if (forceHook_ && effects_.has(Effect::UserForces)) {
-        // ForceEvaluation::PerStep: the hook runs once, at the step's start, and its forces hold
-        // for the whole step.
-        class StepStart final : public ForceStage {
-        public:
-            explicit StepStart(double t) : time_(t) {}
-            double time() const override { return time_; }
-            BodyState state(const BodyPeer& body) const override { return body.state(); }
-            void addForce(BodyPeer& body, const Vec3& f) override { static_cast<BulletBodyPeer&>(body).addHookForce(f); }
-            void addTorque(BodyPeer& body, const Vec3& t) override {
-                static_cast<BulletBodyPeer&>(body).addHookTorque(t);
-            }
-
-        private:
-            double time_;
-        } stage(time);
-        forceHook_(stage);
-    }
+void BulletWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     // One internal Bullet step per substep, of exactly dt / substeps: the layer already takes
     // fixed steps, so Bullet's own accumulator must neither add nor drop a step.
     const int substeps = settings_.substeps.value_or(1);  // resolved by the layer

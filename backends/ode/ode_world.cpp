@@ -16,31 +16,6 @@ double option(const WorldSettings& s, const char* name, double fallback) {
     return it == s.backendOptions.end() ? fallback : it->second;
 }
 
-// The force hook's view inside a step: ODE evaluates forces once per step, so states are those
-// at the step start, and forces are held for the whole step (every substep).
-class HookStage final : public ForceStage {
-public:
-    HookStage(OdeWorld& world, double time) : world_(world), time_(time) {}
-    double time() const override { return time_; }
-    BodyState state(const BodyPeer& body) const override { return body.state(); }
-    void addForce(BodyPeer& peer, const Vec3& force) override {
-        auto& body = static_cast<OdeBody&>(peer);
-        if (!body.isDynamic()) return;
-        body.addHookForce(force);
-        world_.queueForces(body);
-    }
-    void addTorque(BodyPeer& peer, const Vec3& torque) override {
-        auto& body = static_cast<OdeBody&>(peer);
-        if (!body.isDynamic()) return;
-        body.addHookTorque(torque);
-        world_.queueForces(body);
-    }
-
-private:
-    OdeWorld& world_;
-    double time_;
-};
-
 }  // namespace
 
 OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
@@ -165,8 +140,6 @@ double OdeWorld::odeStep() const {
     return lastH_ > 0.0 ? lastH_ : settings_.timeStep / *settings_.substeps;
 }
 
-void OdeWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
-
 void OdeWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
 
 void OdeWorld::queueForces(OdeBody& body) {
@@ -182,15 +155,11 @@ void OdeWorld::applyDampingStep(double h) {
     for (OdeBody* b : bodies_) b->applyEffects(effects_, h);
 }
 
-void OdeWorld::step(double time, double dt) {
+void OdeWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     const int substeps = *settings_.substeps;
     const double h = dt / substeps;
     lastDt_ = dt;
     if (h != lastH_) applyDampingStep(h);
-    if (forceHook_ && effects_.has(Effect::UserForces)) {
-        HookStage stage(*this, time);
-        forceHook_(stage);
-    }
     const bool contacts = effects_.has(Effect::Contacts);
     const bool continuous = contacts && effects_.has(Effect::ContinuousCollision);
     const Vec3 g = settings_.gravity;
