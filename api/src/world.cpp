@@ -175,15 +175,9 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
                         "WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
         warn("WorldSettings: " + what + "; running without them");
     }
-    // Unset solver knobs take the backend's defaults, so settings() shows what runs.
-    if (!settings_.solver) settings_.solver = caps.defaultSolver;
-    if (!settings_.substeps) settings_.substeps = caps.defaultSubsteps;
-    if (!settings_.iterations) {
-        // Fewer substeps than the backend's default keep at least its default work per step
-        // (native's 8 substeps x 1 iteration becomes 1 x 8): one sweep per step cannot hold a stack.
-        const int work = caps.defaultIterations * caps.defaultSubsteps;
-        settings_.iterations = std::max(caps.defaultIterations, (work + *settings_.substeps - 1) / *settings_.substeps);
-    }
+    // Unset solver knobs take the backend's defaults here, once: the peer reads plain values and
+    // settings() shows what runs.
+    settings_ = withBackendDefaults(settings_, caps);
     impl_->peer = impl_->backend->createWorld(settings_);
     TaskSystem* tasks = settings_.taskSystem;
     if (!tasks && settings_.workers > 1 && caps.parameters.contains("settings.workers")) {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "anyphys/error.hpp"
+#include "anyphys/peers/resolved_settings.hpp"
 #include "box2d_manifold.hpp"
 
 namespace anyphys::box2d {
@@ -28,9 +29,9 @@ b2BodyType bodyType(BodyType t) {
 
 Box2dWorld::Box2dWorld(const WorldSettings& settings)
     : settings_(settings),
-      velocityIterations_(settings.iterations.value_or(kDefaultIterations)),
+      velocityIterations_(resolvedIterations(settings)),
       positionIterations_(std::max(0, option(settings, "positionIterations", kDefaultPositionIterations))),
-      substeps_(std::max(1, settings.substeps.value_or(kDefaultSubsteps))),
+      substeps_(resolvedSubsteps(settings)),
       world_(std::make_unique<b2World>(b2Vec2(0.0f, 0.0f))) {
     world_->SetContactFilter(&rules_);
     world_->SetContactListener(&rules_);

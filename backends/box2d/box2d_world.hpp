@@ -17,8 +17,9 @@ namespace anyphys::box2d {
 
 class Box2dWorld final : public WorldPeer {
 public:
-    /// Defaults, declared in the capabilities too: Box2D 2.4's recommended 8 velocity and 3
-    /// position iterations, one Box2D step per step.
+    /// Defaults: Box2D 2.4's recommended 8 velocity and 3 position iterations, one Box2D step per
+    /// step. The first three are published as the capabilities (the layer fills unset settings
+    /// with them); positionIterations is this backend's option, read with this fallback.
     static constexpr Solver kDefaultSolver = Solver::ProjectedGaussSeidel;
     static constexpr int kDefaultIterations = 8;
     static constexpr int kDefaultSubsteps = 1;

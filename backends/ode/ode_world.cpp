@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "anyphys/error.hpp"
+#include "anyphys/peers/resolved_settings.hpp"
 #include "ode_init.hpp"
 #include "ode_math.hpp"
 #include "ode_tuning.hpp"
@@ -19,10 +20,6 @@ double option(const WorldSettings& s, const char* name, double fallback) {
 }  // namespace
 
 OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
-    // Unset solver knobs: this backend's defaults (the layer normally resolves them already).
-    if (!settings_.solver) settings_.solver = Solver::ProjectedGaussSeidel;
-    if (!settings_.substeps) settings_.substeps = kDefaultSubsteps;
-    if (!settings_.iterations) settings_.iterations = kDefaultIterations;
     erp_ = option(settings, "erp", settings.baumgarte);
     cfm_ = option(settings, "cfm", kDefaultCfm);
     if (!(erp_ >= 0.0 && erp_ <= 1.0))
@@ -41,8 +38,8 @@ OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
 
     dWorldSetERP(world_, erp_);
     dWorldSetCFM(world_, cfm_);
-    direct_ = *settings_.solver == Solver::Direct;
-    dWorldSetQuickStepNumIterations(world_, *settings_.iterations);
+    direct_ = resolvedSolver(settings_) == Solver::Direct;
+    dWorldSetQuickStepNumIterations(world_, resolvedIterations(settings_));
     dWorldSetQuickStepW(world_, kQuickStepW);
     // ODE 0.16's dWorldStep with a surface layer pumps energy into resting stacks (three stacked
     // boxes thrown 20 m up when the correcting velocity is not capped): the direct solver runs
@@ -137,7 +134,7 @@ void OdeWorld::setEffects(Effects effects) {
 
 double OdeWorld::odeStep() const {
     // Before the first step: the step the settings announce.
-    return lastH_ > 0.0 ? lastH_ : settings_.timeStep / *settings_.substeps;
+    return lastH_ > 0.0 ? lastH_ : settings_.timeStep / resolvedSubsteps(settings_);
 }
 
 void OdeWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
@@ -156,7 +153,7 @@ void OdeWorld::applyDampingStep(double h) {
 }
 
 void OdeWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
-    const int substeps = *settings_.substeps;
+    const int substeps = resolvedSubsteps(settings_);
     const double h = dt / substeps;
     lastDt_ = dt;
     if (h != lastH_) applyDampingStep(h);
