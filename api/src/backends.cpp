@@ -1,5 +1,7 @@
 #include "anyphys/backends.hpp"
 
+#include <algorithm>
+
 #include "anyphys/joint_capabilities.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "anyphys/world_settings.hpp"
@@ -15,6 +17,16 @@ std::vector<BackendInfo> availableBackends() {
 BackendInfo backendInfo(const std::string& name) {
     const Backend& b = findBackend(name);
     return {b.name, b.description, b.capabilities};
+}
+
+WorldSettings withBackendDefaults(WorldSettings s, const Capabilities& caps) {
+    if (!s.solver) s.solver = caps.defaultSolver;
+    if (!s.substeps) s.substeps = caps.defaultSubsteps;
+    if (!s.iterations) {
+        const int work = caps.defaultIterations * caps.defaultSubsteps;
+        s.iterations = std::max(caps.defaultIterations, (work + *s.substeps - 1) / *s.substeps);
+    }
+    return s;
 }
 
 std::vector<std::string> missingCapabilities(const Capabilities& caps, const WorldSettings& settings, Effects effects) {

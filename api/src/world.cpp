@@ -45,26 +45,34 @@ bool needsDamping(const BodyDef& d) {
 }
 bool needsGyroscopic(const BodyDef& d) { return d.type == BodyType::Dynamic && d.gyroscopic != GyroscopicMode::None; }
 
+// The body a force callback names: its slot index and peer in this world.
+struct ForceTarget {
+    std::uint32_t slot;
+    BodyPeer& peer;
+};
+
 // The force callback's view: maps user handles to peers of this world.
 class ForceContextImpl final : public ForceContext {
 public:
-    ForceContextImpl(World& world, ForceStage& stage, BodyPeer& (*resolve)(World&, Body))
-        : world_(world), stage_(stage), resolve_(resolve) {}
-    double time() const override { return stage_.time(); }
+    ForceContextImpl(World& world, detail::ForceSink& sink, ForceTarget (*resolve)(World&, Body))
+        : world_(world), sink_(sink), resolve_(resolve) {}
+    double time() const override { return sink_.time(); }
     BodyState state(Body body) const override;
     void addForce(Body body, const Vec3& force) override {
         detail::requireFinite("ForceContext.addForce.force", force);
         requireWithinCeiling(body, "ForceContext.addForce.force", force, false);
         Vec3 f = force;
         if (world_.settings().planar) f.z() = 0.0;  // the plane holds the body (see Body::applyForce)
-        stage_.addForce(resolve_(world_, body), f);
+        const ForceTarget target = resolve_(world_, body);
+        sink_.addForce(target.slot, target.peer, f);
     }
     void addTorque(Body body, const Vec3& torque) override {
         detail::requireFinite("ForceContext.addTorque.torque", torque);
         requireWithinCeiling(body, "ForceContext.addTorque.torque", torque, true);
         Vec3 t = torque;
         if (world_.settings().planar) t.x() = t.y() = 0.0;
-        stage_.addTorque(resolve_(world_, body), t);
+        const ForceTarget target = resolve_(world_, body);
+        sink_.addTorque(target.slot, target.peer, t);
     }
 
 private:
@@ -86,16 +94,55 @@ private:
     }
 
     World& world_;
+    detail::ForceSink& sink_;
+    ForceTarget (*resolve_)(World&, Body);
+};
+
+// ForceEvaluation::PerStage: the backend's stage, with the integrator's intermediate states.
+class StageForces final : public detail::ForceSink {
+public:
+    explicit StageForces(ForceStage& stage) : stage_(stage) {}
+    double time() const override { return stage_.time(); }
+    BodyState state(const BodyPeer& peer) const override { return stage_.state(peer); }
+    void addForce(std::uint32_t, BodyPeer& peer, const Vec3& force) override { stage_.addForce(peer, force); }
+    void addTorque(std::uint32_t, BodyPeer& peer, const Vec3& torque) override { stage_.addTorque(peer, torque); }
+
+private:
     ForceStage& stage_;
-    BodyPeer& (*resolve_)(World&, Body);
+};
+
+// ForceEvaluation::PerStep: the step-start states; forces are summed per slot, in call order, and
+// handed over only once the whole evaluation returned (World::holdStepForces).
+class StepStartForces final : public detail::ForceSink {
+public:
+    StepStartForces(double time, std::vector<detail::HeldForce>& held, std::vector<std::uint32_t>& touched)
+        : time_(time), held_(held), touched_(touched) {}
+    double time() const override { return time_; }
+    BodyState state(const BodyPeer& peer) const override { return peer.state(); }
+    void addForce(std::uint32_t slot, BodyPeer&, const Vec3& force) override { entry(slot).force += force; }
+    void addTorque(std::uint32_t slot, BodyPeer&, const Vec3& torque) override { entry(slot).torque += torque; }
+
+private:
+    detail::HeldForce& entry(std::uint32_t slot) {
+        detail::HeldForce& h = held_[slot];
+        if (!h.touched) {
+            h.touched = true;
+            touched_.push_back(slot);
+        }
+        return h;
+    }
+
+    double time_;
+    std::vector<detail::HeldForce>& held_;
+    std::vector<std::uint32_t>& touched_;
 };
 
 }  // namespace
 
 BodyState ForceContextImpl::state(Body body) const {
-    // The stage's state is the peer frame's: convert to the body origin like Body::state().
-    BodyPeer& peer = resolve_(world_, body);
-    BodyState s = stage_.state(peer);
+    // The evaluation's state is the peer frame's: convert to the body origin like Body::state().
+    BodyPeer& peer = resolve_(world_, body).peer;
+    BodyState s = sink_.state(peer);
     const BodyState current = peer.state();
     const BodyState user = body.state();
     // Offset of the peer frame from the body origin is fixed in the body: reuse it.
@@ -128,15 +175,9 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
                         "WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
         warn("WorldSettings: " + what + "; running without them");
     }
-    // Unset solver knobs take the backend's defaults, so settings() shows what runs.
-    if (!settings_.solver) settings_.solver = caps.defaultSolver;
-    if (!settings_.substeps) settings_.substeps = caps.defaultSubsteps;
-    if (!settings_.iterations) {
-        // Fewer substeps than the backend's default keep at least its default work per step
-        // (native's 8 substeps x 1 iteration becomes 1 x 8): one sweep per step cannot hold a stack.
-        const int work = caps.defaultIterations * caps.defaultSubsteps;
-        settings_.iterations = std::max(caps.defaultIterations, (work + *settings_.substeps - 1) / *settings_.substeps);
-    }
+    // Unset solver knobs take the backend's defaults here, once: the peer reads plain values and
+    // settings() shows what runs.
+    settings_ = withBackendDefaults(settings_, caps);
     impl_->peer = impl_->backend->createWorld(settings_);
     TaskSystem* tasks = settings_.taskSystem;
     if (!tasks && settings_.workers > 1 && caps.parameters.contains("settings.workers")) {
@@ -221,6 +262,7 @@ void World::refreshEffects() {
     Effects peerEffects = active;
     if (!(active & kFieldForceEffects).empty() && impl_->backend->capabilities.effects.has(Effect::UserForces))
         peerEffects.add(Effect::UserForces);
+    impl_->peerEffects = peerEffects;
     impl_->peer->setEffects(peerEffects);
 }
 
@@ -410,6 +452,7 @@ void World::step(double dt) {
     {
         SteppingGuard guard(impl_->stepping);
         if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);
+        if (impl_->layerForces && impl_->peerEffects.has(Effect::UserForces)) holdStepForces();
         impl_->peer->step(time_, dt);
         if (activeEffects_.has(Effect::Fluid) || activeEffects_.has(Effect::Cloth)) stepParticles(dt);
     }
@@ -694,23 +737,54 @@ void World::setForceCallback(ForceCallback callback) {
 
 void World::installForceHook() {
     const bool fieldForces = !(impl_->fieldEffects & kFieldForceEffects).empty();
-    if (!impl_->forceCallback && !fieldForces) {
+    const bool evaluate = impl_->forceCallback || fieldForces;
+    if (impl_->backend->capabilities.forceEvaluation == ForceEvaluation::PerStep) {
+        impl_->layerForces = evaluate;  // World::step runs them (holdStepForces)
+        return;
+    }
+    if (!evaluate) {
         impl_->peer->setForceHook({});
         return;
     }
     impl_->peer->setForceHook([this](ForceStage& stage) {
-        // The fields first (they read only states), then the game's callback.
-        if (!(activeEffects_ & kFieldForceEffects).empty()) applyFieldForces(stage);
-        if (!impl_->forceCallback) return;
-        ForceContextImpl context(*this, stage, [](World& w, Body b) -> BodyPeer& {
-            if (b.world() != &w)
-                throw Error(b.world() ? ErrorKind::InvalidState : ErrorKind::StaleHandle, "",
-                            b.world() ? "ForceContext: the body belongs to another world"
-                                      : "ForceContext: stale body handle (null, or its world was destroyed)");
-            return *w.slot(b.id(), "ForceContext").peer;
-        });
-        impl_->forceCallback(context);
+        StageForces sink(stage);
+        evaluateForces(sink);
     });
+}
+
+void World::evaluateForces(detail::ForceSink& sink) {
+    // The fields first (they read only states), then the game's callback.
+    if (!(activeEffects_ & kFieldForceEffects).empty()) applyFieldForces(sink);
+    if (!impl_->forceCallback) return;
+    ForceContextImpl context(*this, sink, [](World& w, Body b) -> ForceTarget {
+        if (b.world() != &w)
+            throw Error(b.world() ? ErrorKind::InvalidState : ErrorKind::StaleHandle, "",
+                        b.world() ? "ForceContext: the body belongs to another world"
+                                  : "ForceContext: stale body handle (null, or its world was destroyed)");
+        return {b.id().index, *w.slot(b.id(), "ForceContext").peer};
+    });
+    impl_->forceCallback(context);
+}
+
+void World::holdStepForces() {
+    Impl& i = *impl_;
+    if (i.heldForces.size() < i.slots.size()) i.heldForces.resize(i.slots.size());
+    // Every entry is zero again when this returns, also when the callback throws: a refused
+    // evaluation hands nothing to the peers, and nothing of it leaks into the next step.
+    struct Reset {
+        Impl& impl;
+        ~Reset() {
+            for (std::uint32_t s : impl.heldSlots) impl.heldForces[s] = {};
+            impl.heldSlots.clear();
+        }
+    } reset{i};
+    StepStartForces sink(time_, i.heldForces, i.heldSlots);
+    evaluateForces(sink);
+    for (std::uint32_t s : i.heldSlots) {
+        const Slot& slot = i.slots[s];
+        if (slot.def.type != BodyType::Dynamic) continue;  // nothing else responds to a force
+        slot.peer->holdForStep(i.heldForces[s].force, i.heldForces[s].torque);
+    }
 }
 
 void World::addListener(ContactListener* listener) {

@@ -1,6 +1,7 @@
-// The field stage: buoyancy, drag and wind as forces inside the backend's force evaluation (the
-// force hook, so on backends that evaluate forces per integrator stage they follow the stage's
-// states), explosions as impulses before the step. Only what every backend offers is used: body
+// The field stage: buoyancy, drag and wind as forces of the world's force evaluation (the
+// backend's hook on backends that evaluate forces per integrator stage, so they follow the
+// stage's states; the layer's own evaluation at the step's start elsewhere), explosions as
+// impulses before the step. Only what every backend offers is used: body
 // states, forces and torques, impulses, ray casts and overlap queries.
 #include <algorithm>
 
@@ -84,13 +85,14 @@ void World::clearFields() {
     refreshEffects();
 }
 
-void World::applyFieldForces(ForceStage& stage) {
+void World::applyFieldForces(detail::ForceSink& sink) {
     const Effects on = activeEffects_ & kFieldForceEffects;
     const bool planar = settings_.planar;
-    for (Slot& slot : impl_->slots) {
+    for (std::uint32_t index = 0; index < impl_->slots.size(); ++index) {
+        Slot& slot = impl_->slots[index];
         if (!slot.peer || slot.def.type != BodyType::Dynamic || !slot.peer->isAwake()) continue;
         const FieldBody& body = slot.fieldGeometry();
-        const FieldState state = fieldState(stage.state(*slot.peer));
+        const FieldState state = fieldState(sink.state(*slot.peer));
         FieldForce total;
         for (const FieldDef& field : impl_->fields) {
             if (!on.has(fieldEffect(field.type))) continue;
@@ -105,8 +107,8 @@ void World::applyFieldForces(ForceStage& stage) {
             total.force.z() = 0.0;
             total.torque.x() = total.torque.y() = 0.0;
         }
-        if (!total.force.isZero(0)) stage.addForce(*slot.peer, total.force);
-        if (!total.torque.isZero(0)) stage.addTorque(*slot.peer, total.torque);
+        if (!total.force.isZero(0)) sink.addForce(index, *slot.peer, total.force);
+        if (!total.torque.isZero(0)) sink.addTorque(index, *slot.peer, total.torque);
     }
 }
 

@@ -15,6 +15,32 @@
 
 namespace anyphys {
 
+namespace detail {
+
+/// One evaluation of the forces the layer computes (buoyancy, drag and wind, then the game's
+/// callback), as World::evaluateForces sees it. On a ForceEvaluation::PerStage backend it is the
+/// backend's ForceStage (intermediate states, forces straight to the stage); on a PerStep backend
+/// it is the layer's own evaluation at the step's start (world.cpp, StepStartForces), which sums
+/// forces per body slot and hands each body its total once (BodyPeer::holdForStep).
+class ForceSink {
+public:
+    virtual ~ForceSink() = default;
+    virtual double time() const = 0;  ///< s, the time of this evaluation
+    virtual BodyState state(const BodyPeer& peer) const = 0;  ///< peer frame
+    /// `peer` is the body's peer, `slot` its index in the world's slot table.
+    virtual void addForce(std::uint32_t slot, BodyPeer& peer, const Vec3& force) = 0;
+    virtual void addTorque(std::uint32_t slot, BodyPeer& peer, const Vec3& torque) = 0;
+};
+
+/// A body's share of the layer's per-step force evaluation, summed in call order.
+struct HeldForce {
+    Vec3 force = Vec3::Zero();
+    Vec3 torque = Vec3::Zero();
+    bool touched = false;  // listed in Impl::heldSlots
+};
+
+}  // namespace detail
+
 struct World::Slot {
     std::unique_ptr<BodyPeer> peer;  // null while the slot is free
     std::uint32_t generation = 1;    // bumped on destroy, so stale ids never match
@@ -112,6 +138,13 @@ struct World::Impl {
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch
 
     ForceCallback forceCallback;
+    // PerStep backends: the layer evaluates the fields and the callback itself before each step
+    // (World::holdStepForces) while this is set, and the peer runs it while `peerEffects` has
+    // userForces (the peer's effects: activeEffects_ plus userForces while fields push).
+    bool layerForces = false;
+    Effects peerEffects;
+    std::vector<detail::HeldForce> heldForces;  // by slot, zero between steps; grows with the slots
+    std::vector<std::uint32_t> heldSlots;       // slots with a held force this step, in first-touch order
     std::vector<FieldDef> fields;  // World::addField, in order
     Effects fieldEffects;          // the effects of the fields held
     std::vector<FluidDef> fluidDefs;                    // World::addFluid, in order

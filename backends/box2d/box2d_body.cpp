@@ -64,6 +64,12 @@ void Box2dBody::addTorque(const Vec3& torque) {
     body_->SetAwake(true);
 }
 
+void Box2dBody::holdForStep(const Vec3& force, const Vec3& torque) {
+    if (!isDynamic()) return;
+    heldForce_ += toB2(force);
+    heldTorque_ += static_cast<float>(torque.z());
+}
+
 void Box2dBody::applyLinearImpulse(const Vec3& impulse) {
     if (!isDynamic()) return;
     body_->ApplyLinearImpulseToCenter(toB2(impulse), true);
@@ -107,11 +113,17 @@ void Box2dBody::applyDamping(bool on, double h) {
 
 void Box2dBody::flushForces(bool apply) {
     if (apply && body_->IsAwake()) {
+        // addForce's first, then the step forces: the order Box2D summed them in when this
+        // backend ran the force hook itself.
         if (force_.x != 0.0f || force_.y != 0.0f) body_->ApplyForceToCenter(force_, false);
         if (torque_ != 0.0f) body_->ApplyTorque(torque_, false);
+        if (heldForce_.x != 0.0f || heldForce_.y != 0.0f) body_->ApplyForceToCenter(heldForce_, false);
+        if (heldTorque_ != 0.0f) body_->ApplyTorque(heldTorque_, false);
     }
     force_.SetZero();
     torque_ = 0.0f;
+    heldForce_.SetZero();
+    heldTorque_ = 0.0f;
 }
 
 void Box2dBody::updateBullet(bool continuous, double h) {

@@ -36,6 +36,7 @@ public:
     void setAngularVelocity(const Vec3& w) override;
     void addForce(const Vec3& force) override;
     void addTorque(const Vec3& torque) override;
+    void holdForStep(const Vec3& force, const Vec3& torque) override;
     void applyLinearImpulse(const Vec3& impulse) override;
     void applyAngularImpulse(const Vec3& impulse) override;
     MassProperties massProperties() const override;
@@ -61,7 +62,9 @@ public:
     /// Box2D damps v *= 1 / (1 + h c') per step; c' = (e^{c h} - 1) / h makes that e^{-c h},
     /// the exact decay of dv/dt = -c v over a step of h. Zero when damping is off.
     void applyDamping(bool on, double h);
-    /// Pending user force and torque (world frame, in the plane), applied at the next step start.
+    /// Pending forces and torques (world frame, in the plane): addForce's, then the layer's step
+    /// forces (holdForStep), onto the b2Body at the step's start if it is awake and `apply`
+    /// (the world keeps them there over every substep: SetAutoClearForces(false)).
     void flushForces(bool apply);
     /// Marks the body a Box2D bullet (time of impact against other moving bodies too) when this
     /// step would carry it more than half its smallest inner radius.
@@ -88,6 +91,8 @@ private:
     double innerRadius_ = 0.0;
     b2Vec2 force_{0.0f, 0.0f};
     float torque_ = 0.0f;
+    b2Vec2 heldForce_{0.0f, 0.0f};  // holdForStep's, kept apart so Box2D adds it after force_
+    float heldTorque_ = 0.0f;
     b2Vec2 stepStartVelocity_{0.0f, 0.0f};
 };
 

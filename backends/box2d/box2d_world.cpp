@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "anyphys/error.hpp"
+#include "anyphys/peers/resolved_settings.hpp"
 #include "box2d_manifold.hpp"
 
 namespace anyphys::box2d {
@@ -14,26 +15,6 @@ int option(const WorldSettings& s, const char* name, int fallback) {
     const auto it = s.backendOptions.find(name);
     return it == s.backendOptions.end() ? fallback : static_cast<int>(it->second);
 }
-
-// The user's force callback, evaluated once at the start of a step (ForceEvaluation::PerStep):
-// forces go straight onto the b2Body and are held for the whole step.
-class StepStartForces final : public ForceStage {
-public:
-    explicit StepStartForces(double time) : time_(time) {}
-    double time() const override { return time_; }
-    BodyState state(const BodyPeer& body) const override { return body.state(); }
-    void addForce(BodyPeer& body, const Vec3& force) override {
-        b2Body* b = static_cast<Box2dBody&>(body).b2();
-        if (b->GetType() == b2_dynamicBody) b->ApplyForceToCenter(toB2(force), false);
-    }
-    void addTorque(BodyPeer& body, const Vec3& torque) override {
-        b2Body* b = static_cast<Box2dBody&>(body).b2();
-        if (b->GetType() == b2_dynamicBody) b->ApplyTorque(static_cast<float>(torque.z()), false);
-    }
-
-private:
-    double time_;
-};
 
 b2BodyType bodyType(BodyType t) {
     switch (t) {
@@ -48,13 +29,14 @@ b2BodyType bodyType(BodyType t) {
 
 Box2dWorld::Box2dWorld(const WorldSettings& settings)
     : settings_(settings),
-      velocityIterations_(settings.iterations.value_or(kDefaultIterations)),
+      velocityIterations_(resolvedIterations(settings)),
       positionIterations_(std::max(0, option(settings, "positionIterations", kDefaultPositionIterations))),
-      substeps_(std::max(1, settings.substeps.value_or(kDefaultSubsteps))),
+      substeps_(resolvedSubsteps(settings)),
       world_(std::make_unique<b2World>(b2Vec2(0.0f, 0.0f))) {
     world_->SetContactFilter(&rules_);
     world_->SetContactListener(&rules_);
-    // Forces are held across substeps and cleared once per step (see step()).
+    // Forces (addForce's and the layer's step forces) are held across substeps and cleared once
+    // per step (see step()).
     world_->SetAutoClearForces(false);
     rules_.setRestitutionThreshold(settings_.restitutionThreshold);
     dampingStep_ = settings_.timeStep / substeps_;
@@ -219,14 +201,12 @@ void Box2dWorld::reapplyMaterials() {
     for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) rules_.applyMaterial(c);
 }
 
-void Box2dWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
-
 void Box2dWorld::setMaterialTable(const MaterialTable& table) {
     rules_.setMaterials(table);
     reapplyMaterials();
 }
 
-void Box2dWorld::step(double time, double dt) {
+void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     const double h = dt / substeps_;
     if (h != dampingStep_) {  // Box2D's damping factor depends on the step: convert again
         dampingStep_ = h;
@@ -237,10 +217,6 @@ void Box2dWorld::step(double time, double dt) {
     for (Box2dBody* b : bodies_) {
         b->updateBullet(continuous, h);
         b->flushForces(userForces);
-    }
-    if (userForces && forceHook_) {
-        StepStartForces stage(time);
-        forceHook_(stage);
     }
     rules_.solvedImpulses().clear();
     for (Box2dJoint* j : joints_) j->beginStep();

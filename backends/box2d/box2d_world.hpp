@@ -1,6 +1,6 @@
 #pragma once
 // The Box2D backend's world: a b2World simulating the XY plane, its bodies, the layer's contact
-// rules, and the step (force hook, damping, bullets, substeps).
+// rules, and the step (held forces, damping, bullets, substeps).
 #include <box2d/box2d.h>
 
 #include <array>
@@ -17,8 +17,9 @@ namespace anyphys::box2d {
 
 class Box2dWorld final : public WorldPeer {
 public:
-    /// Defaults, declared in the capabilities too: Box2D 2.4's recommended 8 velocity and 3
-    /// position iterations, one Box2D step per step.
+    /// Defaults: Box2D 2.4's recommended 8 velocity and 3 position iterations, one Box2D step per
+    /// step. The first three are published as the capabilities (the layer fills unset settings
+    /// with them); positionIterations is this backend's option, read with this fallback.
     static constexpr Solver kDefaultSolver = Solver::ProjectedGaussSeidel;
     static constexpr int kDefaultIterations = 8;
     static constexpr int kDefaultSubsteps = 1;
@@ -32,7 +33,6 @@ public:
     std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
     void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
-    void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
@@ -67,7 +67,6 @@ private:
     int positionIterations_;
     int substeps_;
     Effects effects_;
-    ForceHook forceHook_;
     ContactRules rules_;
     std::unique_ptr<b2World> world_;
     std::vector<Box2dBody*> bodies_;

@@ -170,6 +170,15 @@ void BulletBodyPeer::addTorque(const Vec3& torque) {
     wake();
 }
 
+// The layer's step forces join addForce's in the same accumulator, pushed to Bullet before every
+// substep (Bullet clears its forces after each stepSimulation); no wake-up.
+void BulletBodyPeer::holdForStep(const Vec3& force, const Vec3& torque) {
+    if (!dynamic()) return;
+    force_ += force;
+    torque_ += torque;
+    markForced();
+}
+
 // Impulses are added in double to the reported velocity, so that exact values stay exact.
 void BulletBodyPeer::applyLinearImpulse(const Vec3& impulse) {
     if (!dynamic()) return;

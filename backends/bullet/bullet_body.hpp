@@ -24,6 +24,7 @@ public:
     void setAngularVelocity(const Vec3& w) override;
     void addForce(const Vec3& force) override;
     void addTorque(const Vec3& torque) override;
+    void holdForStep(const Vec3& force, const Vec3& torque) override;
     void applyLinearImpulse(const Vec3& impulse) override;
     void applyAngularImpulse(const Vec3& impulse) override;
     MassProperties massProperties() const override { return mass_; }
@@ -56,9 +57,6 @@ public:
 
     /// Applies the world's effects to this body (gravity, damping, gyroscopic, CCD, sleeping).
     void applyEffects();
-    /// Adds a force / torque from the force hook for this step.
-    void addHookForce(const Vec3& force) { force_ += force; markForced(); }
-    void addHookTorque(const Vec3& torque) { torque_ += torque; markForced(); }
     /// Hands this step's accumulated force and torque to Bullet (again before every substep:
     /// Bullet clears its forces after each stepSimulation).
     void pushForces();

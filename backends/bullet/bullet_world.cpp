@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 
+#include "anyphys/peers/resolved_settings.hpp"
 #include "bullet_convert.hpp"
 #include "bullet_solver.hpp"
 
@@ -56,7 +57,7 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
       configuration_(makeCollisionConfiguration(settings)),
       dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()) {
-    const Solver solver = settings.solver.value_or(Solver::ProjectedGaussSeidel);
+    const Solver solver = resolvedSolver(settings);
     if (solver == Solver::Direct) {
         // Bullet's MLCP: contacts and friction as one mixed LCP solved by Dantzig's pivoting method
         // (btMLCPSolver falls back to sequential impulses when the pivoting fails).
@@ -81,7 +82,7 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
         const auto it = settings.backendOptions.find(name);
         return it == settings.backendOptions.end() ? fallback : it->second;
     };
-    info.m_numIterations = settings.iterations.value_or(10);  // resolved by the layer
+    info.m_numIterations = resolvedIterations(settings);
     // Overlap is pushed out at the layer's Baumgarte fraction per step: through the velocity up to
     // 4 cm deep, by split impulse (moving positions only) beyond (Bullet's defaults). Split impulse
     // from 5 mm on lets a box sliding down a 35 deg slope sink 4 cm into it, and at every depth a
@@ -254,32 +255,12 @@ void BulletWorld::setEffects(Effects effects) {
     }
 }
 
-void BulletWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
-
 void BulletWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
 
-void BulletWorld::step(double time, double dt) {
-    if (forceHook_ && effects_.has(Effect::UserForces)) {
-        // ForceEvaluation::PerStep: the hook runs once, at the step's start, and its forces hold
-        // for the whole step.
-        class StepStart final : public ForceStage {
-        public:
-            explicit StepStart(double t) : time_(t) {}
-            double time() const override { return time_; }
-            BodyState state(const BodyPeer& body) const override { return body.state(); }
-            void addForce(BodyPeer& body, const Vec3& f) override { static_cast<BulletBodyPeer&>(body).addHookForce(f); }
-            void addTorque(BodyPeer& body, const Vec3& t) override {
-                static_cast<BulletBodyPeer&>(body).addHookTorque(t);
-            }
-
-        private:
-            double time_;
-        } stage(time);
-        forceHook_(stage);
-    }
+void BulletWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     // One internal Bullet step per substep, of exactly dt / substeps: the layer already takes
     // fixed steps, so Bullet's own accumulator must neither add nor drop a step.
-    const int substeps = settings_.substeps.value_or(1);  // resolved by the layer
+    const int substeps = resolvedSubsteps(settings_);
     const double h = dt / substeps;
     const auto bh = static_cast<btScalar>(h);
     for (BulletJointPeer* joint : joints_) joint->beginStep();

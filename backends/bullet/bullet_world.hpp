@@ -2,7 +2,7 @@
 // The Bullet backend's world: a btDiscreteDynamicsWorld and the objects it needs, owned here and
 // destroyed in the right order (the world first, then solver, broad phase, dispatcher and
 // configuration), plus what anyphys adds per world: the material table, the layer filter, the
-// effects, user forces and the force hook.
+// effects and the forces held for a step (addForce and the layer's step forces).
 #include <map>
 #include <memory>
 #include <utility>
@@ -39,7 +39,6 @@ public:
     std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
     void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
-    void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
@@ -82,7 +81,6 @@ private:
     // Normal impulse per pair over the step's substeps before the last (events only). Bullet's
     // points hold the last solve's impulse; reportContacts adds these to report the whole step's.
     std::map<ObjectPair, double> earlierImpulses_;
-    ForceHook forceHook_;
     MaterialTable materials_;
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     int meshBodies_ = 0;                      // attached bodies with a triangle mesh

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "anyphys/peers/resolved_settings.hpp"
 #include "collision/mesh_data.hpp"
 #include "collision/queries.hpp"
 #include "stages.hpp"
@@ -60,9 +61,10 @@ double coreExtent(const Shape& s) {
 
 NativeWorld::NativeWorld(const WorldSettings& settings)
     : settings_(settings), stages_(makePipeline()), broadPhase_(kAabbMargin) {
-    if (!settings_.solver) settings_.solver = kDefaultSolver;
-    if (!settings_.substeps) settings_.substeps = kDefaultSubsteps;
-    if (!settings_.iterations) settings_.iterations = kDefaultIterations;
+    // The layer resolved them (withBackendDefaults); refuse settings that skipped it.
+    resolvedSolver(settings_);
+    resolvedSubsteps(settings_);
+    resolvedIterations(settings_);
 }
 
 NativeWorld::~NativeWorld() = default;

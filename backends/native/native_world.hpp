@@ -20,7 +20,8 @@ namespace anyphys::native {
 
 class NativeWorld final : public WorldPeer {
 public:
-    /// Solver defaults (the backend's capabilities declare the same). Substeps buy more
+    /// Solver defaults, published as the backend's capabilities (native_backend.cpp); the layer
+    /// fills unset settings with them before it creates the world. Substeps buy more
     /// stability than iterations: measured without sleeping at 60 Hz, 8 substeps x 1 iteration
     /// (16 passes) keeps a 20-box stack within 6 mm and Box3D's 100-row pyramid standing, where
     /// 4 x 1 (Box3D's 8 passes) lets 294 of the pyramid's boxes slide more than 25 cm
@@ -29,7 +30,8 @@ public:
     static constexpr int kDefaultSubsteps = 8;
     static constexpr int kDefaultIterations = 1;
 
-    /// Unset solver settings take the defaults above.
+    /// `settings` resolved by the layer (solver, substeps and iterations set: withBackendDefaults);
+    /// throws std::logic_error otherwise.
     explicit NativeWorld(const WorldSettings& settings);
     ~NativeWorld() override;
 

@@ -140,6 +140,15 @@ void OdeBody::addTorque(const Vec3& torque) {
     wake();
 }
 
+// Held apart from addForce's: every substep ODE gets force_ + heldForce_, the sum it got when
+// this backend ran the force hook itself.
+void OdeBody::holdForStep(const Vec3& force, const Vec3& torque) {
+    if (!isDynamic()) return;
+    heldForce_ += force;
+    heldTorque_ += torque;
+    world_.queueForces(*this);
+}
+
 void OdeBody::applyLinearImpulse(const Vec3& impulse) {
     if (!isDynamic()) return;
     const Vec3 v = toVec3(dBodyGetLinearVel(body_)) + impulse / mass_.mass;
@@ -220,13 +229,13 @@ void OdeBody::applyGyroscopic(double h) const {
 }
 
 void OdeBody::feedForces() const {
-    const Vec3 f = force_ + hookForce_, t = torque_ + hookTorque_;
+    const Vec3 f = force_ + heldForce_, t = torque_ + heldTorque_;
     dBodyAddForce(body_, f.x(), f.y(), f.z());
     dBodyAddTorque(body_, t.x(), t.y(), t.z());
 }
 
 void OdeBody::clearForces() {
-    force_ = torque_ = hookForce_ = hookTorque_ = Vec3::Zero();
+    force_ = torque_ = heldForce_ = heldTorque_ = Vec3::Zero();
     forceQueued = false;
 }
 

@@ -28,6 +28,7 @@ public:
     void setAngularVelocity(const Vec3& w) override;
     void addForce(const Vec3& force) override;
     void addTorque(const Vec3& torque) override;
+    void holdForStep(const Vec3& force, const Vec3& torque) override;
     void applyLinearImpulse(const Vec3& impulse) override;
     void applyAngularImpulse(const Vec3& impulse) override;
     MassProperties massProperties() const override;
@@ -62,9 +63,6 @@ public:
     bool needsGyroscopic(Effects effects) const;
     /// The gyroscopic term over an ODE step of h seconds (before ODE's step, which has it off).
     void applyGyroscopic(double h) const;
-    /// Forces held for the step (user forces and the force hook's), world frame.
-    void addHookForce(const Vec3& f) { hookForce_ += f; }
-    void addHookTorque(const Vec3& t) { hookTorque_ += t; }
     /// Hands the held forces to ODE for one ODE step (ODE clears its accumulators after each).
     void feedForces() const;
     void clearForces();
@@ -96,7 +94,7 @@ private:
     GyroscopicMode gyroscopic_;
     double coreExtent_ = 0.0;
     Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();          // user, this step
-    Vec3 hookForce_ = Vec3::Zero(), hookTorque_ = Vec3::Zero();  // force hook, this step
+    Vec3 heldForce_ = Vec3::Zero(), heldTorque_ = Vec3::Zero();  // the layer's step forces (holdForStep), this step
 };
 
 }  // namespace anyphys::ode

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "anyphys/error.hpp"
+#include "anyphys/peers/resolved_settings.hpp"
 #include "ode_init.hpp"
 #include "ode_math.hpp"
 #include "ode_tuning.hpp"
@@ -16,38 +17,9 @@ double option(const WorldSettings& s, const char* name, double fallback) {
     return it == s.backendOptions.end() ? fallback : it->second;
 }
 
-// The force hook's view inside a step: ODE evaluates forces once per step, so states are those
-// at the step start, and forces are held for the whole step (every substep).
-class HookStage final : public ForceStage {
-public:
-    HookStage(OdeWorld& world, double time) : world_(world), time_(time) {}
-    double time() const override { return time_; }
-    BodyState state(const BodyPeer& body) const override { return body.state(); }
-    void addForce(BodyPeer& peer, const Vec3& force) override {
-        auto& body = static_cast<OdeBody&>(peer);
-        if (!body.isDynamic()) return;
-        body.addHookForce(force);
-        world_.queueForces(body);
-    }
-    void addTorque(BodyPeer& peer, const Vec3& torque) override {
-        auto& body = static_cast<OdeBody&>(peer);
-        if (!body.isDynamic()) return;
-        body.addHookTorque(torque);
-        world_.queueForces(body);
-    }
-
-private:
-    OdeWorld& world_;
-    double time_;
-};
-
 }  // namespace
 
 OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
-    // Unset solver knobs: this backend's defaults (the layer normally resolves them already).
-    if (!settings_.solver) settings_.solver = Solver::ProjectedGaussSeidel;
-    if (!settings_.substeps) settings_.substeps = kDefaultSubsteps;
-    if (!settings_.iterations) settings_.iterations = kDefaultIterations;
     erp_ = option(settings, "erp", settings.baumgarte);
     cfm_ = option(settings, "cfm", kDefaultCfm);
     if (!(erp_ >= 0.0 && erp_ <= 1.0))
@@ -66,8 +38,8 @@ OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
 
     dWorldSetERP(world_, erp_);
     dWorldSetCFM(world_, cfm_);
-    direct_ = *settings_.solver == Solver::Direct;
-    dWorldSetQuickStepNumIterations(world_, *settings_.iterations);
+    direct_ = resolvedSolver(settings_) == Solver::Direct;
+    dWorldSetQuickStepNumIterations(world_, resolvedIterations(settings_));
     dWorldSetQuickStepW(world_, kQuickStepW);
     // ODE 0.16's dWorldStep with a surface layer pumps energy into resting stacks (three stacked
     // boxes thrown 20 m up when the correcting velocity is not capped): the direct solver runs
@@ -162,10 +134,8 @@ void OdeWorld::setEffects(Effects effects) {
 
 double OdeWorld::odeStep() const {
     // Before the first step: the step the settings announce.
-    return lastH_ > 0.0 ? lastH_ : settings_.timeStep / *settings_.substeps;
+    return lastH_ > 0.0 ? lastH_ : settings_.timeStep / resolvedSubsteps(settings_);
 }
-
-void OdeWorld::setForceHook(ForceHook hook) { forceHook_ = std::move(hook); }
 
 void OdeWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
 
@@ -182,15 +152,11 @@ void OdeWorld::applyDampingStep(double h) {
     for (OdeBody* b : bodies_) b->applyEffects(effects_, h);
 }
 
-void OdeWorld::step(double time, double dt) {
-    const int substeps = *settings_.substeps;
+void OdeWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
+    const int substeps = resolvedSubsteps(settings_);
     const double h = dt / substeps;
     lastDt_ = dt;
     if (h != lastH_) applyDampingStep(h);
-    if (forceHook_ && effects_.has(Effect::UserForces)) {
-        HookStage stage(*this, time);
-        forceHook_(stage);
-    }
     const bool contacts = effects_.has(Effect::Contacts);
     const bool continuous = contacts && effects_.has(Effect::ContinuousCollision);
     const Vec3 g = settings_.gravity;

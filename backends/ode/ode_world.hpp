@@ -1,8 +1,9 @@
 #pragma once
 // The ODE backend's world: a dWorld, one hash space holding every geom, and a joint group for
-// the contacts of one ODE step. Each step: force hook, then per substep collide (contact joints
-// with the layer's resolved materials; only pairs with an awake body are visited), quickstep or
-// dWorldStep, and the continuous-collision clamp.
+// the contacts of one ODE step. Each step, per substep: the held forces (addForce and the layer's
+// step forces, BodyPeer::holdForStep), collide (contact joints with the layer's resolved
+// materials; only pairs with an awake body are visited), quickstep or dWorldStep, and the
+// continuous-collision clamp.
 #include <ode/ode.h>
 
 #include <cstdint>
@@ -29,7 +30,6 @@ public:
     std::unique_ptr<JointPeer> createJoint(const JointPeerDef& def) override;
     void destroyJoint(JointPeer& joint) override;
     void setEffects(Effects effects) override;
-    void setForceHook(ForceHook hook) override;
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
@@ -89,7 +89,6 @@ private:
 
     WorldSettings settings_;
     Effects effects_;
-    ForceHook forceHook_;
     MaterialTable materials_;
     dWorldID world_ = nullptr;
     dSpaceID space_ = nullptr;

@@ -201,14 +201,4 @@ std::optional<std::string> applyAxisValue(const std::string& name, const std::st
     return std::nullopt;
 }
 
-WorldSettings withSolverDefaults(WorldSettings s, const Capabilities& caps) {
-    if (!s.solver) s.solver = caps.defaultSolver;
-    if (!s.substeps) s.substeps = caps.defaultSubsteps;
-    if (!s.iterations) {
-        const int work = caps.defaultIterations * caps.defaultSubsteps;  // World keeps the default work per step
-        s.iterations = std::max(caps.defaultIterations, (work + *s.substeps - 1) / *s.substeps);
-    }
-    return s;
-}
-
 }  // namespace anyphys::cli

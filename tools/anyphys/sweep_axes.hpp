@@ -33,8 +33,4 @@ double axisNumber(const std::string& value);
 std::optional<std::string> applyAxisValue(const std::string& name, const std::string& value, const Capabilities& caps,
                                           WorldSettings& settings, const std::function<Effects()>& derivedEffects);
 
-/// The five solver settings every results row shows, as they run: unset ones take the backend's
-/// defaults by the World's own rule (see World::World).
-WorldSettings withSolverDefaults(WorldSettings settings, const Capabilities& caps);
-
 }  // namespace anyphys::cli

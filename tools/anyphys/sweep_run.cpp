@@ -86,7 +86,7 @@ double configCost(const SweepConfig& config, const std::vector<SweepAxis>& axes,
         if (name == "substeps") s.substeps = static_cast<int>(axisNumber(config.values[i]));
         if (name == "iterations") s.iterations = static_cast<int>(axisNumber(config.values[i]));
     }
-    s = withSolverDefaults(s, config.backend->capabilities);
+    s = withBackendDefaults(s, config.backend->capabilities);
     const double steps = static_cast<double>(std::max<long long>(1, std::llround(config.scene->duration / s.timeStep)));
     const auto bodies = static_cast<double>(config.scene->scene.bodies.size());
     return steps * bodies * repeat * static_cast<double>(*s.substeps) * static_cast<double>(*s.iterations);
@@ -121,7 +121,7 @@ SweepRecord SweepRunner::run(const SweepConfig& config) {
             refusal = e.what();  // the world refused the scene while deriving its effects
         }
     }
-    r.settings = withSolverDefaults(settings, caps);
+    r.settings = withBackendDefaults(settings, caps);
     r.steps = std::max<long long>(1, std::llround(entry.duration / settings.timeStep));
     if (refusal) return refuse("unsupported", *refusal);
     if (auto missing = missingFor(caps, settings, entry.scene); !missing.empty())

@@ -18,6 +18,14 @@ struct BackendInfo {
 std::vector<BackendInfo> availableBackends();
 /// The named backend's info; throws anyphys::Error listing the known names if unknown.
 BackendInfo backendInfo(const std::string& name);
+/// `settings` as a world of this backend runs them: an unset solver, substep count or iteration
+/// count takes the backend's declared default (Capabilities::defaultSolver, defaultSubsteps,
+/// defaultIterations); unset iterations with fewer substeps than the default are raised to keep
+/// the default work per step (native's 8 substeps x 1 iteration becomes 1 x 8: one sweep per
+/// step cannot hold a stack). The one place these defaults are filled in: World resolves its
+/// settings with it before the backend sees them (so World::settings() shows what runs), and the
+/// tool reports configurations with it.
+struct WorldSettings withBackendDefaults(struct WorldSettings settings, const Capabilities& caps);
 /// Names of what `settings` (plus content needing `effects`) asks for that the backend lacks,
 /// e.g. {"integrator rk4", "effect contacts"}. Empty when everything is honoured.
 std::vector<std::string> missingCapabilities(const Capabilities& caps, const struct WorldSettings& settings, Effects effects);

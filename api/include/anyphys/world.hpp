@@ -26,12 +26,15 @@
 namespace anyphys {
 
 class World;
-class ForceStage;  // peers: a backend's force evaluation
+namespace detail {
+class ForceSink;  // world_impl.hpp: one evaluation of the layer's forces
+}
 
 /// What a force callback sees: the time and body states of the current force evaluation, and
 /// where to put forces. On backends that evaluate per stage (native) the callback runs at each
 /// integrator stage with intermediate states, so state-dependent forces keep the integrator's
-/// order; elsewhere it runs once per step.
+/// order; elsewhere (ForceEvaluation::PerStep) the world runs it once per step, at the step's
+/// start with the step-start states, and its forces act over the whole step, every substep of it.
 class ForceContext {
 public:
     virtual ~ForceContext() = default;
@@ -247,8 +250,10 @@ private:
     void deliverEvents();  // the last step's events to the listeners
     struct MaterialTable buildMaterialTable();
     void noteForcesUsed();  // first force or torque: derive the userForces effect
-    void installForceHook();  // the peer's hook: the field stage and the force callback, when either runs
-    void applyFieldForces(ForceStage& stage);  // world_fields.cpp: buoyancy, drag, wind
+    void installForceHook();  // who evaluates the fields and the force callback: the peer per stage, or the layer per step
+    void evaluateForces(detail::ForceSink& sink);  // the fields, then the force callback
+    void holdStepForces();    // PerStep backends: one evaluation at the step's start, handed to the peers
+    void applyFieldForces(detail::ForceSink& sink);  // world_fields.cpp: buoyancy, drag, wind
     void fireExplosions(double dt);             // world_fields.cpp: explosions due in this step
     void stepParticles(double dt);              // world_particles.cpp: fluids and cloths after the rigid step
     void warn(const std::string& message);

@@ -40,8 +40,8 @@ struct WorldSettings {
     /// plane; forces, torques and impulses out of the plane are dropped. Needed by 2D backends
     /// (box2d), honoured by every backend whose capabilities say `planar`. Default false.
     bool planar = false;
-    /// Constraint solver. Unset (default): the backend's own default (capabilities.defaultSolver:
-    /// soft_step on native, pgs on ode and bullet), so default settings run on every backend.
+    /// Constraint solver. Unset (default): the backend's default (capabilities.defaultSolver: soft_step on native,
+    /// pgs elsewhere), filled in with iterations and substeps by World (withBackendDefaults): settings() shows it.
     std::optional<Solver> solver;
     /// Solver iterations per substep, >= 1. Unset (default): the backend's default
     /// (capabilities.defaultIterations), raised when `substeps` is set below the backend's

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "anyphys/backends.hpp"
 #include "box2d_test_helpers.hpp"
 #include "box2d_world.hpp"
 
@@ -27,7 +28,8 @@ Quat xAlong(double angle) { return Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()))
 std::unique_ptr<Box2dWorld> jointWorld(Effects effects = Effect::Gravity | Effect::Joints, int substeps = 1) {
     WorldSettings s = planarSettings();
     s.substeps = substeps;
-    auto world = std::make_unique<Box2dWorld>(s);
+    // Unset solver settings resolved as the layer does (8 velocity iterations per Box2D step).
+    auto world = std::make_unique<Box2dWorld>(withBackendDefaults(s, backendInfo("box2d").capabilities));
     world->setEffects(effects);
     return world;
 }

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <numbers>
 
+#include "anyphys/backends.hpp"
 #include "bullet_world.hpp"
 
 namespace anyphys::bullet {
@@ -881,7 +882,7 @@ TEST_P(BulletJoints, PlanarWorldHingeAndSlider) {
     s.planar = true;
     s.iterations = 30;
     s.solver = gSolver;
-    BulletWorld world(s);
+    BulletWorld world(withBackendDefaults(s, backendInfo("bullet").capabilities));  // substeps: as the layer resolves them
     world.setEffects(Effect::Gravity | Effect::Joints);
     const Vec3 start(std::sin(0.5), -std::cos(0.5), 0);
     auto bob = body(world, start, 1.0, 4e-3);

@@ -1,6 +1,7 @@
 // Native pipeline: stages a world does not need are not run at all.
 #include <gtest/gtest.h>
 
+#include "anyphys/backends.hpp"
 #include "anyphys/peers/gyroscopic.hpp"
 #include "native_world.hpp"
 
@@ -8,6 +9,9 @@ namespace anyphys::native {
 namespace {
 
 using Names = std::vector<std::string>;
+
+// Default settings as the layer hands them to a peer: solver, substeps and iterations resolved.
+WorldSettings resolvedDefaults() { return withBackendDefaults(WorldSettings{}, backendInfo("native").capabilities); }
 
 BodyPeerDef dynamicBody(const Vec3& inertia, GyroscopicMode mode) {
     BodyPeerDef d;
@@ -17,12 +21,12 @@ BodyPeerDef dynamicBody(const Vec3& inertia, GyroscopicMode mode) {
 }
 
 TEST(NativePipeline, EmptyWorldRunsNoStage) {
-    NativeWorld world{WorldSettings{}};
+    NativeWorld world{resolvedDefaults()};
     EXPECT_EQ(world.activeStageNames(), Names{});
 }
 
 TEST(NativePipeline, OnlyNeededStagesRun) {
-    NativeWorld world{WorldSettings{}};
+    NativeWorld world{resolvedDefaults()};
     auto sphere = world.createBody(dynamicBody(Vec3(1, 1, 1), GyroscopicMode::Implicit));
     world.setEffects(Effect::Gravity | Effect::Gyroscopic);
     // Isotropic inertia: the gyroscopic term is identically zero, so its stage is skipped.
@@ -44,7 +48,7 @@ TEST(NativePipeline, OnlyNeededStagesRun) {
 
 // Destroying a body in the middle keeps the others' peers pointing at their own state.
 TEST(NativePipeline, DestroyKeepsOtherPeersConsistent) {
-    NativeWorld world{WorldSettings{}};
+    NativeWorld world{resolvedDefaults()};
     std::vector<std::unique_ptr<BodyPeer>> peers;
     for (int i = 0; i < 4; ++i) {
         BodyPeerDef d = dynamicBody(Vec3(1, 1, 1), GyroscopicMode::None);

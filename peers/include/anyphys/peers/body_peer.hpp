@@ -3,6 +3,7 @@
 // properties, materials); a peer only applies them. A peer body's frame is the body's centre of
 // mass and principal axes: positions, orientations and velocities here are those of that frame
 // (the layer converts to the user's body origin).
+#include <stdexcept>
 #include <typeinfo>
 
 #include "anyphys/defs.hpp"
@@ -21,6 +22,17 @@ public:
     /// Accumulated for the next step only (cleared after it), world frame.
     virtual void addForce(const Vec3& force) = 0;
     virtual void addTorque(const Vec3& torque) = 0;
+    /// ForceEvaluation::PerStep backends only: the force and torque (world frame) the layer
+    /// evaluated for this body at the start of the coming step (its fields and the force
+    /// callback, summed), handed over at most once per step, just before WorldPeer::step. They
+    /// act over that whole step, every substep of it, on top of addForce's, and are cleared after
+    /// it. Unlike addForce they do not wake the body: a field pressing on a resting body must let
+    /// it sleep. Only dynamic bodies receive them.
+    virtual void holdForStep(const Vec3& force, const Vec3& torque) {
+        (void)force;
+        (void)torque;
+        throw std::logic_error("BodyPeer::holdForStep: a ForceEvaluation::PerStep backend must implement it");
+    }
     /// Immediate velocity changes, world frame.
     virtual void applyLinearImpulse(const Vec3& impulse) = 0;
     virtual void applyAngularImpulse(const Vec3& impulse) = 0;

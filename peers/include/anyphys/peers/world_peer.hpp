@@ -129,8 +129,9 @@ struct PeerRayHit {
     double distance = 0.0;           ///< m along the unit direction
 };
 
-/// Access to body states while the backend evaluates forces inside a step. For backends with
-/// ForceEvaluation::PerStage these are the integrator's intermediate states.
+/// Access to body states while a ForceEvaluation::PerStage backend evaluates forces inside a
+/// step: the integrator's intermediate states. (On PerStep backends the layer evaluates forces
+/// itself, once before the step, and hands them over with BodyPeer::holdForStep.)
 class ForceStage {
 public:
     virtual ~ForceStage() = default;
@@ -162,8 +163,13 @@ public:
 
     /// The effects to simulate from now on (already intersected with the capabilities).
     virtual void setEffects(Effects effects) = 0;
-    /// Called inside each step when forces are evaluated; empty to clear.
-    virtual void setForceHook(ForceHook hook) = 0;
+    /// ForceEvaluation::PerStage backends only: called inside each step at every force
+    /// evaluation (integrator stage), while the effect userForces is on; empty to clear. The
+    /// layer never calls it on a PerStep backend.
+    virtual void setForceHook(ForceHook hook) {
+        (void)hook;
+        throw std::logic_error("WorldPeer::setForceHook: a ForceEvaluation::PerStage backend must implement it");
+    }
 
     /// Advances by dt seconds (the layer guarantees dt > 0 and finite). `time` is the start time.
     virtual void step(double time, double dt) = 0;
