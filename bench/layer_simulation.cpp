@@ -11,46 +11,58 @@ std::string cannotRun(const ScenePlan& plan, const BackendInfo& backend, int wor
     return {};
 }
 
-LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers) {
+WorldSettings pileSettings(const ScenePlan& plan, const std::string& backend, int workers) {
     WorldSettings settings;
     settings.backend = backend;
     settings.planar = plan.planar;
     settings.gravity = Vec3(0, kGravity, 0);
     settings.timeStep = kTimeStep;
     settings.workers = workers;
-    world_ = std::make_unique<World>(settings);  // the default material: friction 0.6, restitution 0
+    return settings;
+}
 
+std::vector<Body> createPile(World& world, const ScenePlan& plan) {
     BodyDef ground;
     ground.type = BodyType::Static;
     ground.shape = ShapeDef::box(plan.groundHalf);
     ground.position = Vec3(0, -1, 0);
-    world_->createBody(ground);
+    world.createBody(ground);
 
     BodyDef box;
     box.shape = ScenePlan::box();
     box.density = plan.density;
     box.allowSleep = false;
-    boxes_.reserve(plan.starts.size());
+    std::vector<Body> boxes;
+    boxes.reserve(plan.starts.size());
     for (const Vec3& start : plan.starts) {
         box.position = start;
-        boxes_.push_back(world_->createBody(box));
+        boxes.push_back(world.createBody(box));
     }
+    return boxes;
 }
 
-void LayerSimulation::readBoxes(std::vector<BoxState>& out) const {
-    out.resize(boxes_.size());
-    for (std::size_t i = 0; i < boxes_.size(); ++i) {
-        const BodyState s = boxes_[i].state();
+void readStates(const std::vector<Body>& boxes, std::vector<BoxState>& out) {
+    out.resize(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const BodyState s = boxes[i].state();
         out[i] = {s.position, s.orientation, s.linearVelocity};
     }
 }
 
-std::string LayerSimulation::describe() const {
-    const WorldSettings& s = world_->settings();  // solver knobs resolved to the backend's defaults
+std::string describeSolver(const World& world) {
+    const WorldSettings& s = world.settings();  // solver knobs resolved to the backend's defaults
     std::string text = std::string(toString(*s.solver)) + ", " + std::to_string(*s.substeps) + " substeps x " +
                        std::to_string(*s.iterations) + " it";
     if (s.workers > 1) text += ", " + std::to_string(s.workers) + " workers";
     return text;
 }
+
+LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers)
+    // the default material: friction 0.6, restitution 0
+    : world_(std::make_unique<World>(pileSettings(plan, backend, workers))), boxes_(createPile(*world_, plan)) {}
+
+void LayerSimulation::readBoxes(std::vector<BoxState>& out) const { readStates(boxes_, out); }
+
+std::string LayerSimulation::describe() const { return describeSolver(*world_); }
 
 }  // namespace anyphys::bench

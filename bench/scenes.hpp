@@ -77,6 +77,8 @@ inline std::vector<Vec3> pyramid(int baseCount) {
 ///   pyramid_planar    the same positions, planar, density 1, ground half (100,1,1), 300 steps
 ///   pyramid20         the 20-row pyramid (210 cubes), otherwise as pyramid3d
 ///   pyramid20_planar  the 20-row pyramid, otherwise as pyramid_planar
+///   drop200           8 layers of 5 x 5, otherwise as drop1000, 300 steps (the effects benchmark)
+///   drop200_planar    10 layers of 20 in the XY plane, otherwise as drop_planar, 300 steps
 inline ScenePlan makeScene(const std::string& name) {
     const Vec3 wideGround(400, 1, 400), planarGround(100, 1, 1);
     if (name == "drop1000") return {name, false, 600, 1000.0, Vec3(50, 1, 50), dropGrid(10, 10, 10)};
@@ -87,6 +89,8 @@ inline ScenePlan makeScene(const std::string& name) {
     if (name == "pyramid_planar") return {name, true, 300, 1.0, planarGround, pyramid(100)};
     if (name == "pyramid20") return {name, false, 300, 100.0, wideGround, pyramid(20)};
     if (name == "pyramid20_planar") return {name, true, 300, 1.0, planarGround, pyramid(20)};
+    if (name == "drop200") return {name, false, 300, 1000.0, Vec3(50, 1, 50), dropGrid(8, 5, 5)};
+    if (name == "drop200_planar") return {name, true, 300, 1000.0, planarGround, dropGrid(10, 20, 1)};
     throw std::invalid_argument("unknown benchmark scene " + name);
 }
 

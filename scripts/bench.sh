@@ -6,12 +6,16 @@
 # the start, after each program and at the end (timings on a loaded machine are not worth
 # comparing across runs).
 #
-# Usage: scripts/bench.sh [--quick] [--all] [BUILD_DIR]
+# Usage: scripts/bench.sh [--quick] [--all] [--effects] [BUILD_DIR]
 #   --quick     (or QUICK=1) a fifth of each scene's steps and one overhead round, about 4 minutes:
 #               checks that the instruments work; its figures are not measurements
 #   --all       (or ALL=1) also what a default run leaves out for time (listed in its output): ODE
 #               on the 5 050-box pyramids (about 1 s per step) and the per-body cost series on
 #               every backend; about 15 minutes more
+#   --effects   (or EFFECTS=1) only the special effects (anyphys_bench_effects): a pile with none
+#               through World::step against its bare backend peer, and each effect's cost per step,
+#               REPS (default 3) repetitions, medians printed; about 20 minutes. A default run
+#               includes them once.
 #   BUILD_DIR   default `build`, relative to the repository root; configured and built with
 #               scripts/build.sh (Release for a fresh directory) unless NOBUILD=1
 #   OUT=DIR     where the JSON results and console logs go (default BUILD_DIR/bench-results)
@@ -23,11 +27,13 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 quick="${QUICK:-}"
 all="${ALL:-}"
+effects="${EFFECTS:-}"
 build_dir=""
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
     --all) all=1 ;;
+    --effects) effects=1 ;;
     -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { print }' "${BASH_SOURCE[0]}"; exit 0 ;;
     -*) echo "bench.sh: unknown option $arg (see --help)" >&2; exit 2 ;;
     *) build_dir="$arg" ;;
@@ -44,7 +50,9 @@ if [[ -z "${NOBUILD:-}" ]]; then
   bash "$root/scripts/build.sh" "$build_dir" -DANYPHYS_BUILD_BENCH=ON >&2
 fi
 bin="$build_dir/bench"
-[[ -x "$bin/anyphys_bench_scenes" && -x "$bin/anyphys_bench_report" ]] ||
+main_program=anyphys_bench_scenes
+[[ -n "$effects" ]] && main_program=anyphys_bench_effects
+[[ -x "$bin/$main_program" && -x "$bin/anyphys_bench_report" ]] ||
   { echo "bench.sh: no benchmark programs in $bin (built with -DANYPHYS_BUILD_BENCH=OFF?)" >&2; exit 1; }
 mkdir -p "$out"
 rm -f "$out"/anyphys_bench_*.json "$out"/anyphys_bench_*.log  # this run's only
@@ -61,18 +69,28 @@ if [[ -n "$(git -C "$root" status --porcelain 2>/dev/null)" ]]; then commit="$co
 echo "- anyphys: $commit; build: $build_dir"
 echo "- started $(date -u +%FT%TZ), load $(loadavg)"
 
-# run NAME FILTER: one program, JSON into $out/NAME.json, its console table into $out/NAME.log.
+# run NAME FILTER [ARGS...]: one program, JSON into $out/NAME.json, its console table into
+# $out/NAME.log.
 run() {
   local name=$1 filter=$2 start=$SECONDS
+  shift 2
   if [[ ! -x "$bin/$name" ]]; then
     echo "- $name: not built (its engine was not found); skipped"
     return
   fi
-  "$bin/$name" "${mode_args[@]}" --benchmark_filter="$filter" --benchmark_color=false \
+  "$bin/$name" "${mode_args[@]}" "$@" --benchmark_filter="$filter" --benchmark_color=false \
     --benchmark_out="$out/$name.json" --benchmark_out_format=json >"$out/$name.log" 2>&1 ||
     { echo "bench.sh: $name failed; see $out/$name.log" >&2; exit 1; }
   echo "- $name: $((SECONDS - start)) s, load after it $(loadavg)"
 }
+
+if [[ -n "$effects" ]]; then
+  run anyphys_bench_effects '.' --benchmark_repetitions="${REPS:-3}"
+  echo "- finished $(date -u +%FT%TZ), load $(loadavg)"
+  echo
+  "$bin/anyphys_bench_report" --effects "$out/anyphys_bench_effects.json"
+  exit 0
+fi
 
 # Every scene and the 2-worker runs on every backend, but (unless --all) without ODE on the
 # 5 050-box pyramids, which alone would take 15 minutes, and with the per-body cost series on
@@ -91,6 +109,7 @@ else
 fi
 run anyphys_bench_direct_bullet '.'
 run anyphys_bench_direct_box2d '.'
+run anyphys_bench_effects '.'
 echo "- finished $(date -u +%FT%TZ), load $(loadavg)"
 echo
 

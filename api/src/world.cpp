@@ -231,7 +231,12 @@ void World::setWarningHandler(WarningHandler handler) { impl_->warningHandler = 
 
 const std::vector<std::string>& World::warnings() const { return impl_->warningLog; }
 
-void* World::nativeObject(const std::type_info& pointerType) { return impl_->peer->nativeObject(pointerType); }
+void* World::nativeObject(const std::type_info& pointerType) {
+    // The backend peer itself, for in-tree code only (WorldPeer is not installed): the benchmark
+    // that times a world's step against its bare peer (bench/effects_cost.cpp).
+    if (pointerType == typeid(WorldPeer*)) return impl_->peer.get();
+    return impl_->peer->nativeObject(pointerType);
+}
 
 void World::refreshEffects() {
     Effects wanted;

@@ -44,6 +44,7 @@ void Results::load(const std::string& path) {
         if (r.kind == "workers" && parts.size() > 3) r.workers = std::stoi(parts[3]);
         r.label = b.value("label", "");
         if (b.value("error_occurred", false)) r.error = b.value("error_message", "skipped");
+        if (b.value("run_type", "") == "aggregate") r.aggregate = b.value("aggregate_name", "");
         for (const auto& [key, value] : b.items())
             if (value.is_number() && !kOwnFields.contains(key)) r.counters[key] = value.get<double>();
         records_.push_back(std::move(r));
@@ -53,8 +54,15 @@ void Results::load(const std::string& path) {
 const Record* Results::find(const std::string& kind, const std::string& scene, const std::string& engine,
                             int workers) const {
     for (const Record& r : records_)
-        if (r.kind == kind && r.scene == scene && r.engine == engine && r.workers == workers) return &r;
+        if (r.kind == kind && r.scene == scene && r.engine == engine && r.workers == workers && r.aggregate.empty())
+            return &r;
     return nullptr;
+}
+
+const Record* Results::median(const std::string& kind, const std::string& scene, const std::string& engine) const {
+    for (const Record& r : records_)
+        if (r.kind == kind && r.scene == scene && r.engine == engine && r.aggregate == "median") return &r;
+    return find(kind, scene, engine);
 }
 
 }  // namespace anyphys::bench::report

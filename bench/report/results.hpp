@@ -16,6 +16,7 @@ struct Record {
     int workers = 1;
     std::string label;   ///< the solver configuration that ran
     std::string error;   ///< why it was skipped (Google Benchmark's error message); empty if it ran
+    std::string aggregate;  ///< "median", "mean", ... over --benchmark_repetitions; empty for a run
     std::map<std::string, double> counters;
 
     bool ran() const { return error.empty(); }
@@ -35,6 +36,8 @@ public:
     /// The record of that measurement, if it was run or skipped.
     const Record* find(const std::string& kind, const std::string& scene, const std::string& engine,
                        int workers = 1) const;
+    /// The median over repetitions when the program ran with --benchmark_repetitions, else the run.
+    const Record* median(const std::string& kind, const std::string& scene, const std::string& engine) const;
     /// Load averages (1, 5, 15 min) Google Benchmark saw, from the first file that has them.
     const std::vector<double>& loadAverages() const { return load_; }
 

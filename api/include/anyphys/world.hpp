@@ -221,7 +221,7 @@ public:
     /// The engine's own world object when this world runs on the engine that has a T, else
     /// nullptr: dxWorld (ODE's dWorldID) on ode, btDiscreteDynamicsWorld on bullet, b2World on
     /// box2d. For engine features the layer lacks; changes made through it bypass validation and
-    /// events.
+    /// events. (In-tree code may also ask for the private WorldPeer: the backend peer itself.)
     template <class T>
     T* native() { return static_cast<T*>(nativeObject(typeid(T*))); }
     void* nativeObject(const std::type_info& pointerType);
