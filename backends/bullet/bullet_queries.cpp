@@ -74,7 +74,7 @@ private:
 
 std::vector<PeerRayHit> BulletWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
                                              bool closestOnly, std::uint32_t mask) {
-    world_->updateAabbs();  // bodies moved since their bounds were last refreshed (at step start)
+    refreshBounds();
     RayHits hits(origin, direction, maxDistance, closestOnly, mask);
     world_->rayTest(toBt(origin), toBt(origin + maxDistance * direction), hits);
     std::sort(hits.hits.begin(), hits.hits.end(),
@@ -84,7 +84,7 @@ std::vector<PeerRayHit> BulletWorld::raycast(const Vec3& origin, const Vec3& dir
 
 std::vector<std::uint64_t> BulletWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose,
                                                 std::uint32_t mask) {
-    world_->updateAabbs();
+    refreshBounds();
     ShapeSet shape(shapes);
     btCollisionObject query;
     query.setCollisionShape(shape.root());

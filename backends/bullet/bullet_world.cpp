@@ -276,6 +276,13 @@ void BulletWorld::step(double /*time: forces come evaluated from the layer*/, do
     for (BulletJointPeer* joint : joints_) joint->endStep(dt);
     for (BulletBodyPeer* body : forced_) body->clearForces();
     forced_.clear();
+    boundsStale_ = true;
+}
+
+void BulletWorld::refreshBounds() {
+    if (!boundsStale_) return;
+    world_->updateAabbs();
+    boundsStale_ = false;
 }
 
 bool BulletWorld::hasAwakeBodies() const {

@@ -75,6 +75,8 @@ private:
     static ObjectPair pairOf(const btPersistentManifold& manifold);
     /// Adds each pair's normal impulse of the substep just solved to earlierImpulses_.
     void accumulateSubstepImpulses();
+    /// Brings the broad phase's bounds up to the poses a step left (queries see where bodies are).
+    void refreshBounds();
 
     WorldSettings settings_;
     Effects effects_;
@@ -87,6 +89,9 @@ private:
     int sensorBodies_ = 0;                    // attached trigger bodies
     int planeBodies_ = 0;                     // attached bodies whose shape is a plane
     bool planeMultipoint_ = true;             // backend option planeMultipoint
+    // Bullet refreshes bounds before it integrates, so a step leaves them at the old poses. The
+    // first query after a step refreshes them; later ones (an explosion casts a ray per body) do not.
+    bool boundsStale_ = false;
     // The attached bodies' collision objects. Bullet can keep a manifold naming a body already
     // removed (seen when a torn chain's world is destroyed); waking a neighbour goes through here.
     std::unordered_set<const btCollisionObject*> attached_;
