@@ -139,8 +139,26 @@ inline bool spansVolume(const std::vector<Vec3>& p) {
 }
 }  // namespace detail
 
+namespace detail {
+// A compound child's surface overrides belong to that child; on any other shape the body's own
+// field is the one to set, so naming it there is refused rather than silently ignored.
+inline void refuseSurfaceOverrides(const ShapeDef& s, const std::string& path) {
+    const auto refuse = [&](bool set, const char* field) {
+        if (set)
+            throw Error::invalid(path + "." + field, "set",
+                                 std::string("allowed only on the children of a compound shape (shape.shapes[i].") + field +
+                                     "); set the body's " + field + " instead");
+    };
+    refuse(s.material.has_value(), "material");
+    refuse(s.isTrigger.has_value(), "isTrigger");
+    refuse(s.layer.has_value(), "layer");
+    refuse(s.mask.has_value(), "mask");
+}
+}  // namespace detail
+
 inline void validate(const ShapeDef& s, const std::string& path, bool isChild = false) {
     using namespace detail;
+    if (!isChild) refuseSurfaceOverrides(s, path);
     switch (s.type) {
         case ShapeType::Sphere:
             requireSet(path + ".radius", s.radius, "a sphere needs its radius > 0 (ShapeDef::sphere(r))");

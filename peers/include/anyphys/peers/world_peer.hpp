@@ -87,8 +87,11 @@ struct ContactReport {
             const auto [low, high] = std::minmax(pairs[i].bodyA, pairs[i].bodyB);
             order_.push_back({low, high, i});
         }
-        std::sort(order_.begin(), order_.end(), [](const Order& x, const Order& y) {
-            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.index < y.index;
+        // A body pair's collision and trigger entries stay apart (a compound with a sensor child
+        // has both): ordered by trigger flag after the bodies, so each kind merges into one.
+        std::sort(order_.begin(), order_.end(), [this](const Order& x, const Order& y) {
+            const bool tx = pairs[x.index].trigger, ty = pairs[y.index].trigger;
+            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : tx != ty ? tx < ty : x.index < y.index;
         });
         mergedPairs_.clear();
         mergedPoints_.clear();
