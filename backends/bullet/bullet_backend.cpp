@@ -42,7 +42,8 @@ Backend makeBulletBackend() {
                        "body.orientation", "body.linearVelocity", "body.angularVelocity", "body.shape", "body.mass",
                        "body.density", "body.inertia", "body.linearDamping", "body.angularDamping",
                        "body.gravityScale", "body.gyroscopic", "body.material", "body.isTrigger", "body.layer",
-                       "body.mask", "body.allowSleep", "body.isAwake"};
+                       "body.mask", "body.allowSleep", "body.isAwake", "body.shape.shapes.material", "body.shape.shapes.isTrigger",
+                       "body.shape.shapes.layer", "body.shape.shapes.mask"};
     // Joint parameters honoured (each checked by tests/backends/bullet/test_bullet_joints.cpp).
     for (const char* type : {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"})
         for (const char* field : {"breakForce", "breakTorque", "collideConnected"})

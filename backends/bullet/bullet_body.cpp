@@ -27,10 +27,11 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
     : world_(world),
       type_(def.def.type),
       userData_(def.userData),
-      material_(def.material),
-      layer_(def.def.layer),
-      mask_(def.def.mask),
-      trigger_(def.def.isTrigger),
+      layer_(summarize(def.shapes).anyLayer),
+      mask_(summarize(def.shapes).anyMask),
+      trigger_(summarize(def.shapes).allTriggers),
+      anyTrigger_(summarize(def.shapes).anyTrigger),
+      mixed_(!summarize(def.shapes).uniform),
       allowSleep_(def.def.allowSleep),
       mass_(def.mass),
       linearDamping_(def.def.linearDamping),
@@ -38,6 +39,7 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
       gravityScale_(def.def.gravityScale),
       gyroscopic_(def.def.gyroscopic),
       shapes_(std::make_unique<ShapeSet>(def.shapes)) {
+    for (const PeerShape& s : def.shapes) surfaces_.push_back({s.material, s.layer, s.mask, s.isTrigger});
     coreExtent_ = shapes_->coreExtent();
     const bool dyn = type_ == BodyType::Dynamic;
     const btScalar m = dyn ? static_cast<btScalar>(mass_.mass) : btScalar(0);
