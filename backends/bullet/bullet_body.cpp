@@ -82,6 +82,28 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
     if (type_ == BodyType::Kinematic || (dyn && !allowSleep_)) body_->forceActivationState(DISABLE_DEACTIVATION);
 }
 
+int BulletBodyPeer::childNear(const btVector3& point) const {
+    if (!shapes_->root()->isCompound()) return 0;
+    const auto* compound = static_cast<const btCompoundShape*>(shapes_->root());
+    int best = 0;
+    btScalar bestDistance = BT_LARGE_FLOAT;
+    bool bestSensor = true;
+    for (int i = 0; i < compound->getNumChildShapes(); ++i) {
+        btVector3 lo, hi;
+        compound->getChildShape(i)->getAabb(body_->getWorldTransform() * compound->getChildTransform(i), lo, hi);
+        btVector3 gap(0, 0, 0);
+        for (int k = 0; k < 3; ++k) gap[k] = std::max({btScalar(0), lo[k] - point[k], point[k] - hi[k]});
+        const btScalar distance = gap.length();
+        const bool sensor = surface(i).trigger;
+        if (distance < bestDistance || (distance == bestDistance && bestSensor && !sensor)) {
+            best = i;
+            bestDistance = distance;
+            bestSensor = sensor;
+        }
+    }
+    return best;
+}
+
 BulletBodyPeer::~BulletBodyPeer() {
     if (inWorld_) world_.detach(*this);
 }

@@ -61,6 +61,14 @@ public:
                                                                                           : surfaces_.front();
     }
     std::uint32_t material(int child) const { return surface(child).material; }
+    /// The child a point without a child index lies on (a continuous-collision contact, which
+    /// Bullet makes against the whole compound): the one whose bounds are nearest, a solid child
+    /// before a sensor where bounds overlap.
+    int childNear(const btVector3& point) const;
+    /// Has a compound of solid and sensor children: sweeps see only the solid ones.
+    bool hasSolidPart() const { return shapes_->solidPart() != nullptr; }
+    /// Gives the body its solid part (on) or its whole shape back (off) around Bullet's sweeps.
+    void sweepSolidPartOnly(bool on) { body_->setCollisionShape(on ? shapes_->solidPart() : shapes_->root()); }
     /// Several shapes (a btCompoundShape): one manifold per touching child pair.
     bool compound() const { return shapes_->root()->isCompound(); }
     bool hasMesh() const { return shapes_->hasMesh(); }

@@ -75,7 +75,11 @@ void AnyphysDynamicsWorld::sortChildPoints() {
         if (a == nullptr || b == nullptr || (!a->mixedSurfaces() && !b->mixedSurfaces())) continue;
         bool overlapping = false;
         for (int i = manifold->getNumContacts() - 1; i >= 0; --i) {
-            const btManifoldPoint& p = manifold->getContactPoint(i);
+            btManifoldPoint& p = manifold->getContactPoint(i);
+            // Continuous collision's predictive points name no child: found by position, and
+            // written back so the materials pass reads the same child.
+            if (p.m_index0 < 0 && a->mixedSurfaces()) p.m_index0 = a->childNear(p.getPositionWorldOnA());
+            if (p.m_index1 < 0 && b->mixedSurfaces()) p.m_index1 = b->childNear(p.getPositionWorldOnB());
             const ChildSurface &sa = a->surface(p.m_index0), &sb = b->surface(p.m_index1);
             const bool sensor = sa.trigger || sb.trigger;
             const bool responds = sensor ? a->moves() || b->moves() : a->dynamic() || b->dynamic();
@@ -86,6 +90,28 @@ void AnyphysDynamicsWorld::sortChildPoints() {
         }
         if (overlapping) childOverlaps_.push_back({manifold->getBody0(), manifold->getBody1()});
     }
+}
+
+// Bullet's sweeps test whole collision shapes and would stop a body at a sensor child, so a
+// compound of solid and sensor children shows only its solid part while they run (the shape is
+// given back before anything else reads it: the narrow phase follows the predictive contacts,
+// the next step follows the motion clamp).
+template <class Phase>
+void AnyphysDynamicsWorld::sweep(Phase&& phase) {
+    const bool swap = sensorCompounds_ != nullptr && !sensorCompounds_->empty();
+    if (swap)
+        for (BulletBodyPeer* body : *sensorCompounds_) body->sweepSolidPartOnly(true);
+    phase();
+    if (swap)
+        for (BulletBodyPeer* body : *sensorCompounds_) body->sweepSolidPartOnly(false);
+}
+
+void AnyphysDynamicsWorld::createPredictiveContacts(btScalar timeStep) {
+    sweep([&] { btDiscreteDynamicsWorld::createPredictiveContacts(timeStep); });
+}
+
+void AnyphysDynamicsWorld::integrateTransforms(btScalar timeStep) {
+    sweep([&] { btDiscreteDynamicsWorld::integrateTransforms(timeStep); });
 }
 
 void AnyphysDynamicsWorld::applyMaterials() {

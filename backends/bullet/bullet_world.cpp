@@ -71,6 +71,7 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
                                                     configuration_.get());
     broadphase_->getOverlappingPairCache()->setOverlapFilterCallback(&filter_);
     world_->setGravity(btVector3(0, 0, 0));  // per body (gravity scale), see BulletBodyPeer::applyEffects
+    world_->setSensorCompounds(&sensorCompounds_);
     world_->setMaterials(&materials_);
     world_->setTimeToSleep(settings.timeToSleep);
     world_->setRestitutionThreshold(settings.restitutionThreshold);
@@ -183,6 +184,7 @@ std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
     else if (meshBodies_ > 0) peer->setReaching(true);
     if (peer->trigger() && sensorBodies_++ == 0) world_->setClearSensorManifolds(true);
     if (peer->mixedSurfaces() && mixedBodies_++ == 0) world_->setSortChildPoints(true);
+    if (peer->hasSolidPart()) sensorCompounds_.push_back(peer.get());
     if (peer->isPlane() && planeBodies_++ == 0) world_->setRefreshPlaneManifoldsFirst(planeMultipoint_);
     peer->applyEffects();
     if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
@@ -224,6 +226,7 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
     if (peer.hasMesh() && --meshBodies_ == 0) setReaching(false);
     if (peer.trigger() && --sensorBodies_ == 0) world_->setClearSensorManifolds(false);
     if (peer.mixedSurfaces() && --mixedBodies_ == 0) world_->setSortChildPoints(false);
+    if (peer.hasSolidPart()) drop(sensorCompounds_);
     if (peer.isPlane() && --planeBodies_ == 0) world_->setRefreshPlaneManifoldsFirst(false);
     drop(forced_);
 }

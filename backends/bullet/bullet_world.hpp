@@ -88,6 +88,7 @@ private:
     int meshBodies_ = 0;                      // attached bodies with a triangle mesh
     int sensorBodies_ = 0;                    // attached trigger bodies
     int mixedBodies_ = 0;                     // attached bodies whose children differ in surface
+    std::vector<BulletBodyPeer*> sensorCompounds_;  // attached compounds of solid and sensor children
     int planeBodies_ = 0;                     // attached bodies whose shape is a plane
     bool planeMultipoint_ = true;             // backend option planeMultipoint
     // The attached bodies' collision objects. Bullet can keep a manifold naming a body already
