@@ -302,6 +302,76 @@ TEST_P(CompoundSurfacesTest, ChildLayerIsWhatOtherMasksSee) {
     EXPECT_NEAR(p.state().position.y(), radius, 0.005);
 }
 
+// ---- queries ------------------------------------------------------------------------------------
+
+// Queries skip sensors and bodies off their mask; for a compound that is per child. A ray down
+// through the station meets the sensor child first (top y = 2.5) and must report the slab
+// (top y = 0); an overlap probe inside the sensor child finds nothing, one on the slab finds it;
+// a ray whose mask leaves out the upper shelf's layer hits the lower shelf.
+TEST_P(CompoundSurfacesTest, QueriesSkipSensorChildrenAndChildrenOffTheirMask) {
+    requireChildField("isTrigger", Effects{});
+    ANYPHYS_REQUIRE(caps().queries.contains("raycast") && caps().queries.contains("overlap"), "raycast and overlap queries");
+    World world(settings());
+    ShapeDef slab = ShapeDef::box(Vec3(3, 0.2, 3)).placed(Vec3(0, -0.2, 0));
+    ShapeDef sensor = ShapeDef::box(Vec3(0.8, 0.5, 0.8)).placed(Vec3(0, 2.0, 0));
+    sensor.isTrigger = true;
+    ShapeDef shelf = ShapeDef::box(Vec3(1, 0.1, 1)).placed(Vec3(2, 1.0, 0));
+    shelf.layer = 4;
+    Body station = world.createBody(staticCompound("station", {slab, sensor, shelf}));
+
+    const auto hit = world.raycast(Vec3(0, 5, 0), Vec3(0, -1, 0), 10);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->body.id(), station.id());
+    // Exact up to the engine's rounding of a 5 m distance (float engines: a few 1e-7 m).
+    EXPECT_NEAR(hit->distance, 5.0, 1e-5 + rounding(5.0, 8)) << "the ray passes the sensor child";
+
+    EXPECT_TRUE(world.overlap(ShapeDef::sphere(0.1), Transform{Vec3(0, 2.0, 0), Quat::Identity()}).empty())
+        << "inside the sensor child only";
+    EXPECT_EQ(world.overlap(ShapeDef::sphere(0.1), Transform{Vec3(0, -0.05, 0), Quat::Identity()}).size(), 1u);
+
+    const auto onShelf = world.raycast(Vec3(2, 5, 0), Vec3(0, -1, 0), 10);
+    ASSERT_TRUE(onShelf.has_value());
+    EXPECT_NEAR(onShelf->distance, 3.9, 1e-5 + rounding(5.0, 8)) << "layer 4 is in the default mask";
+    const auto pastShelf = world.raycast(Vec3(2, 5, 0), Vec3(0, -1, 0), 10, ~std::uint32_t(4));
+    ASSERT_TRUE(pastShelf.has_value());
+    EXPECT_NEAR(pastShelf->distance, 5.0, 1e-5 + rounding(5.0, 8)) << "a mask without layer 4 passes the shelf child";
+}
+
+// ---- a moving compound ----------------------------------------------------------------------------
+
+// A dynamic compound (a box and, below it, a sensor child reaching into the ground) lands on the
+// box: the sensor child reports a trigger with the ground and never holds the body up.
+TEST_P(CompoundSurfacesTest, DynamicCompoundRestsOnItsSolidChildWithItsSensorInTheGround) {
+    requireChildField("isTrigger", Effect::Contacts | Effect::Events);
+    World world(settings());
+    BodyDef groundBody;
+    groundBody.name = "ground";
+    groundBody.type = BodyType::Static;
+    groundBody.shape = ShapeDef::box(Vec3(5, 0.5, 5));
+    groundBody.position = Vec3(0, -0.5, 0);
+    Body ground = world.createBody(groundBody);
+    ShapeDef hull = ShapeDef::box(Vec3(0.5, 0.25, 0.5));
+    ShapeDef probe = ShapeDef::box(Vec3(0.2, 0.3, 0.2)).placed(Vec3(0, -0.5, 0));  // reaches 0.55 below the hull
+    probe.isTrigger = true;
+    BodyDef vehicle;
+    vehicle.name = "vehicle";
+    vehicle.shape = ShapeDef::compound({hull, probe});
+    vehicle.position = Vec3(0, 1.0, 0);
+    vehicle.allowSleep = false;
+    Body v = world.createBody(vehicle);
+    PairEvents events;
+    events.a = ground.id();
+    events.b = v.id();
+    world.addListener(&events);
+    for (int i = 0; i < 120; ++i) world.step();
+    EXPECT_EQ(events.triggerEnter, 1);
+    EXPECT_EQ(events.triggerExit, 0);
+    EXPECT_EQ(events.collisionEnter, 1);
+    // The hull's lower face on the ground (origin 0.25 up), within 5 mm (contact slop, skins);
+    // held by the sensor child it would stand 0.55 m higher.
+    EXPECT_NEAR(v.state().position.y(), 0.25, 0.005);
+}
+
 // ---- input --------------------------------------------------------------------------------------
 
 TEST_P(CompoundSurfacesTest, OverridesAreRefusedOutsideCompoundsAndUnknownMaterialsNamed) {
