@@ -143,16 +143,15 @@ namespace detail {
 // A compound child's surface overrides belong to that child; on any other shape the body's own
 // field is the one to set, so naming it there is refused rather than silently ignored.
 inline void refuseSurfaceOverrides(const ShapeDef& s, const std::string& path) {
-    const auto refuse = [&](bool set, const char* field) {
-        if (set)
-            throw Error::invalid(path + "." + field, "set",
-                                 std::string("allowed only on the children of a compound shape (shape.shapes[i].") + field +
-                                     "); set the body's " + field + " instead");
+    const auto refuse = [&](const char* field, const std::string& value) {
+        throw Error::invalid(path + "." + field, value,
+                             std::string("allowed only on the children of a compound shape (shape.shapes[i].") + field +
+                                 "); set the body's " + field + " instead");
     };
-    refuse(s.material.has_value(), "material");
-    refuse(s.isTrigger.has_value(), "isTrigger");
-    refuse(s.layer.has_value(), "layer");
-    refuse(s.mask.has_value(), "mask");
+    if (s.material) refuse("material", "\"" + *s.material + "\"");
+    if (s.isTrigger) refuse("isTrigger", *s.isTrigger ? "true" : "false");
+    if (s.layer) refuse("layer", std::to_string(*s.layer));
+    if (s.mask) refuse("mask", std::to_string(*s.mask));
 }
 }  // namespace detail
 
