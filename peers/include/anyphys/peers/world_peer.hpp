@@ -45,7 +45,8 @@ struct MaterialTable {
 /// Every pair in contact or overlap after a step, flat: a pair's points are a range of one array
 /// shared by all pairs, so a step of thousands of pairs allocates nothing once the buffers have
 /// grown (the layer keeps one report and hands it over cleared every step). One entry per body
-/// pair (touching or speculative, or overlapping for triggers), normal from A to B, points in
+/// pair and kind (touching or speculative; or overlapping, for a trigger: a compound's sensor
+/// child and its solid children make two entries for the same bodies), normal from A to B, points in
 /// the world frame with depth = -separation, so slightly separated speculative points have
 /// depth < 0: the layer decides what counts as touching.
 struct ContactReport {
