@@ -83,9 +83,9 @@ void AnyphysDynamicsWorld::sortChildPoints() {
             const ChildSurface &sa = a->surface(p.m_index0), &sb = b->surface(p.m_index1);
             const bool sensor = sa.trigger || sb.trigger;
             const bool responds = sensor ? a->moves() || b->moves() : a->dynamic() || b->dynamic();
-            if (layersCollide(sa.layer, sa.mask, sb.layer, sb.mask) && responds && !sensor) continue;
-            if (sensor && responds && layersCollide(sa.layer, sa.mask, sb.layer, sb.mask))
-                overlapping = overlapping || p.getDistance() <= 0;
+            const bool meets = responds && layersCollide(sa.layer, sa.mask, sb.layer, sb.mask);
+            if (meets && !sensor) continue;                                  // two solid shapes: the solver's
+            if (meets) overlapping = overlapping || p.getDistance() <= 0;  // a sensor child's overlap
             manifold->removeContactPoint(i);
         }
         if (overlapping) childOverlaps_.push_back({manifold->getBody0(), manifold->getBody1()});
