@@ -58,17 +58,19 @@ std::vector<PeerShape> flattenShape(const ShapeDef& shape) {
     return pieces;
 }
 
-ResolvedShapes resolveShapes(const BodyDef& def, double density) {
+std::vector<const ShapeDef*> shapePieces(const ShapeDef& shape) {
+    std::vector<const ShapeDef*> pieces;
+    if (shape.type == ShapeType::Compound)
+        for (const ShapeDef& child : shape.shapes) pieces.push_back(&child);
+    else
+        pieces.push_back(&shape);
+    return pieces;
+}
+
+ResolvedShapes resolveShapes(const BodyDef& def, const std::vector<double>& densities) {
     ResolvedShapes out;
     out.shapes = flattenShape(def.shape);
     if (def.type != BodyType::Dynamic) return out;
-
-    // Densities per piece: a compound child may carry its own.
-    std::vector<double> densities;
-    if (def.shape.type == ShapeType::Compound)
-        for (const ShapeDef& child : def.shape.shapes) densities.push_back(child.density.value_or(density));
-    else
-        densities.push_back(def.shape.density.value_or(density));
 
     double mass = 0.0;
     Vec3 centre = Vec3::Zero();

@@ -14,9 +14,12 @@ struct ResolvedShapes {
     std::vector<PeerShape> shapes;  ///< primitives, placed in the peer frame
 };
 
-/// `density` is the body's density (def, else material). Static and kinematic bodies keep
-/// their body frame as peer frame and get zero mass.
-ResolvedShapes resolveShapes(const BodyDef& def, double density);
+/// `densities` holds one density per piece (each compound child, else the one shape), resolved
+/// by the caller. Static and kinematic bodies keep their body frame as peer frame and get zero mass.
+ResolvedShapes resolveShapes(const BodyDef& def, const std::vector<double>& densities);
+
+/// The pieces a body's shape becomes: a compound's children, else the shape itself.
+std::vector<const ShapeDef*> shapePieces(const ShapeDef& shape);
 
 /// Primitives of a shape (compound children, or the shape itself) placed in the shape's
 /// parent frame, with hulls built; for queries.

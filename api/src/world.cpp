@@ -27,6 +27,18 @@ std::string join(const std::vector<std::string>& items) {
     return out;
 }
 
+/// The material name a piece of the body's shape uses: a compound child's own, else the body's.
+const std::string& pieceMaterial(const BodyDef& def, const ShapeDef& piece) {
+    return piece.material ? *piece.material : def.material;
+}
+
+/// Some piece of the body's shape is a sensor (the body's own flag, or a child's override).
+bool hasTrigger(const BodyDef& def) {
+    for (const ShapeDef* piece : shapePieces(def.shape))
+        if (piece->isTrigger.value_or(def.isTrigger)) return true;
+    return false;
+}
+
 // Marks the world as stepping for the lifetime of the guard, even if a callback throws.
 class SteppingGuard {
 public:
@@ -300,9 +312,7 @@ Body World::createBody(const BodyDef& input) {
     validate(input, "BodyDef");
     validateLimits(input, settings_, "BodyDef", "WorldSettings");
     if (settings_.planar) validatePlanar(input, "BodyDef");
-    if (!materials_.contains(input.material))
-        throw Error::invalid("BodyDef.material", "\"" + input.material + "\"",
-                             "must name a material of the world's library (" + join(materials_.names()) + ")");
+    requireKnownMaterials(input);
 
     const Capabilities& caps = impl_->backend->capabilities;
     std::vector<std::string> missing;
@@ -317,6 +327,12 @@ Body World::createBody(const BodyDef& input) {
     checkParameter(input.linearDamping != defaults.linearDamping, "body.linearDamping");
     checkParameter(input.angularDamping != defaults.angularDamping, "body.angularDamping");
     checkParameter(input.gravityScale != defaults.gravityScale, "body.gravityScale");
+    for (const ShapeDef& child : input.shape.shapes) {
+        checkParameter(child.material.has_value(), "body.shape.shapes.material");
+        checkParameter(child.isTrigger.has_value(), "body.shape.shapes.isTrigger");
+        checkParameter(child.layer.has_value(), "body.shape.shapes.layer");
+        checkParameter(child.mask.has_value(), "body.shape.shapes.mask");
+    }
     for (ShapeType mine : primitiveTypes(input.shape))
         for (const auto& [present, count] : impl_->shapeBodies)
             if (count > 0 && caps.missingShapePairs.contains(std::minmax(mine, present)))
@@ -331,8 +347,9 @@ Body World::createBody(const BodyDef& input) {
     BodyDef def = input;
     def.orientation.normalize();
     const double density = def.density.value_or(materials_.get(def.material).density);
-    ResolvedShapes resolved = resolveShapes(def, density);
+    ResolvedShapes resolved = resolveShapes(def, pieceDensities(def));
     if (def.type == BodyType::Dynamic) requireUsableMass(def, resolved, density);
+    resolveSurfaces(def, resolved.shapes);
     BodyPeerDef peerDef;
     peerDef.def = def;
     const Transform peerPose{def.position + def.orientation * resolved.peerFrame.position,
@@ -364,6 +381,38 @@ Body World::createBody(const BodyDef& input) {
     countBody(s.def, +1);
     refreshEffects();
     return Body(this, BodyId{index, s.generation});
+}
+
+void World::requireKnownMaterials(const BodyDef& def) const {
+    const auto require = [&](const std::string& name, const std::string& field) {
+        if (!materials_.contains(name))
+            throw Error::invalid(field, "\"" + name + "\"",
+                                 "must name a material of the world's library (" + join(materials_.names()) + ")");
+    };
+    require(def.material, "BodyDef.material");
+    for (std::size_t i = 0; i < def.shape.shapes.size(); ++i)
+        if (def.shape.shapes[i].material)
+            require(*def.shape.shapes[i].material, "BodyDef.shape.shapes[" + std::to_string(i) + "].material");
+}
+
+std::vector<double> World::pieceDensities(const BodyDef& def) const {
+    // A piece's own density, else the body's, else its material's: a child that names its own
+    // material (an ice bumper) weighs as that material unless a density is given.
+    std::vector<double> densities;
+    for (const ShapeDef* piece : shapePieces(def.shape))
+        densities.push_back(piece->density.value_or(def.density.value_or(materials_.get(pieceMaterial(def, *piece)).density)));
+    return densities;
+}
+
+void World::resolveSurfaces(const BodyDef& def, std::vector<PeerShape>& shapes) const {
+    const std::vector<const ShapeDef*> pieces = shapePieces(def.shape);
+    for (std::size_t i = 0; i < shapes.size(); ++i) {  // flattenShape keeps the pieces' order
+        const ShapeDef& piece = *pieces[i];
+        shapes[i].material = impl_->materialIndex.at(pieceMaterial(def, piece));
+        shapes[i].layer = piece.layer.value_or(def.layer);
+        shapes[i].mask = piece.mask.value_or(def.mask);
+        shapes[i].isTrigger = piece.isTrigger.value_or(def.isTrigger);
+    }
 }
 
 void World::destroyBody(Body body) {
@@ -400,7 +449,7 @@ void World::countBody(const BodyDef& d, int delta) {
     count(i.gyroscopicBodies, needsGyroscopic(d));
     count(i.dynamicBodies, d.type == BodyType::Dynamic);
     count(i.movingBodies, d.type != BodyType::Static);
-    count(i.triggerBodies, d.isTrigger);
+    count(i.triggerBodies, hasTrigger(d));
     count(i.sleepyBodies, d.type == BodyType::Dynamic && d.allowSleep);
     for (ShapeType type : primitiveTypes(d.shape)) i.shapeBodies[type] += delta;
 }

@@ -29,6 +29,7 @@ std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperti
         if (p.hull) s.hull = std::make_shared<const ConvexFaces>(ConvexFaces{p.hull->vertices, p.hull->faces});
         s.local.position = toPeer * (p.local.position - peerFrame.position);
         s.local.orientation = toPeer * p.local.orientation;
+        s.sensor = p.def.isTrigger.value_or(def.isTrigger);
         body->volume += shapeVolume(s);
         body->shapes.push_back(std::move(s));
     }

@@ -49,7 +49,8 @@ Backend makeBox2dBackend() {
                        "body.linearVelocity", "body.angularVelocity", "body.shape", "body.mass", "body.density",
                        "body.inertia", "body.linearDamping", "body.angularDamping", "body.gravityScale",
                        "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",
-                       "body.allowSleep", "body.isAwake"};
+                       "body.allowSleep", "body.isAwake", "body.shape.shapes.material", "body.shape.shapes.isTrigger",
+                       "body.shape.shapes.layer", "body.shape.shapes.mask"};
     // Hinge and slider springs are Box2D's soft weld and wheel joints beside the revolute and
     // prismatic ones (which have none); wheel and distance springs are their joints' own.
     // Reactions are Box2D's joint impulses summed over the substeps, so the layer can break

@@ -12,9 +12,6 @@ Box2dBody::Box2dBody(Box2dWorld& world, b2Body* body, const BodyPeerDef& def, co
       embedding_(embedding),
       mass_(def.mass),
       userData_(def.userData),
-      material_(def.material),
-      layer_(def.def.layer),
-      mask_(def.def.mask),
       linearDamping_(def.def.linearDamping),
       angularDamping_(def.def.angularDamping) {}
 

@@ -20,6 +20,11 @@ class Box2dBody;
 struct FixtureInfo {
     Box2dBody* body = nullptr;
     Piece piece;
+    // The surface of the shape the fixture came from (a compound child's own, else the body's);
+    // the sensor flag is the fixture's own (b2Fixture::IsSensor).
+    std::uint32_t material = 0;
+    std::uint32_t layer = 1;
+    std::uint32_t mask = 0xFFFFFFFFu;
 };
 
 class Box2dBody final : public BodyPeer {
@@ -54,9 +59,6 @@ public:
     /// How the peer frame sits on the b2Body (joint frames are given in the peer frame).
     const Embedding& embedding() const { return embedding_; }
     std::uint64_t userData() const { return userData_; }
-    std::uint32_t material() const { return material_; }
-    std::uint32_t layer() const { return layer_; }
-    std::uint32_t mask() const { return mask_; }
     bool isDynamic() const { return body_->GetType() == b2_dynamicBody; }
 
     /// Box2D damps v *= 1 / (1 + h c') per step; c' = (e^{c h} - 1) / h makes that e^{-c h},
@@ -83,9 +85,6 @@ private:
     MassProperties mass_;
     std::vector<std::unique_ptr<FixtureInfo>> fixtures_;
     std::uint64_t userData_;
-    std::uint32_t material_;
-    std::uint32_t layer_;
-    std::uint32_t mask_;
     double linearDamping_;   // 1/s, the layer's rate (dv/dt = -c v)
     double angularDamping_;  // 1/s
     double innerRadius_ = 0.0;

@@ -7,19 +7,26 @@
 
 namespace anyphys::box2d {
 
-Box2dBody& bodyOf(const b2Fixture* fixture) {
-    return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(fixture)->GetUserData().pointer)->body;
+namespace {
+const FixtureInfo& fixtureInfo(const b2Fixture* fixture) {
+    return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(fixture)->GetUserData().pointer);
 }
+}  // namespace
+
+Box2dBody& bodyOf(const b2Fixture* fixture) { return *fixtureInfo(fixture).body; }
+
+// Filter and materials are per fixture: a compound's children may carry their own.
+
 
 bool ContactRules::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
     if (!effects_.has(Effect::Contacts)) return false;  // contacts off: nothing touches
-    const Box2dBody& a = bodyOf(fixtureA);
-    const Box2dBody& b = bodyOf(fixtureB);
-    return layersCollide(a.layer(), a.mask(), b.layer(), b.mask());
+    const FixtureInfo& a = fixtureInfo(fixtureA);
+    const FixtureInfo& b = fixtureInfo(fixtureB);
+    return layersCollide(a.layer, a.mask, b.layer, b.mask);
 }
 
 void ContactRules::applyMaterial(b2Contact* contact) const {
-    const ContactMaterial& m = materials_.get(bodyOf(contact->GetFixtureA()).material(), bodyOf(contact->GetFixtureB()).material());
+    const ContactMaterial& m = materials_.get(fixtureInfo(contact->GetFixtureA()).material, fixtureInfo(contact->GetFixtureB()).material);
     contact->SetFriction(effects_.has(Effect::Friction) ? static_cast<float>(m.friction) : 0.0f);
     contact->SetRestitution(0.0f);
     contact->SetRestitutionThreshold(restitutionThreshold_);
@@ -34,7 +41,7 @@ void ContactRules::updateBounces() {
 // lookups of both bodies' materials were 7 % of a 5 050-box pile's step when done here).
 void ContactRules::PreSolve(b2Contact* contact, const b2Manifold* /*oldManifold*/) {
     if (!bounces_) return;
-    const ContactMaterial& m = materials_.get(bodyOf(contact->GetFixtureA()).material(), bodyOf(contact->GetFixtureB()).material());
+    const ContactMaterial& m = materials_.get(fixtureInfo(contact->GetFixtureA()).material, fixtureInfo(contact->GetFixtureB()).material);
     contact->SetRestitution(impactRestitution(contact, static_cast<float>(m.restitution)));
 }
 

@@ -13,7 +13,7 @@ namespace {
 
 const FixtureInfo& infoOf(const b2Fixture* f) { return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(f)->GetUserData().pointer); }
 
-bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (bodyOf(f).layer() & mask) == 0; }
+bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (infoOf(f).layer & mask) == 0; }
 
 // Visits the broad phase's proxies along the ray and casts against each fixture's exact shape
 // (b2World::RayCast would cast against the skinned collision shapes).

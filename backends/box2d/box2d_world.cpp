@@ -58,13 +58,17 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
 
     // Every piece first: a shape Box2D cannot take throws before anything changed.
     std::vector<Piece> pieces;
+    std::vector<const PeerShape*> sources;  // per piece: the shape it came from (its surface)
     try {
         for (std::size_t i = 0; i < peerDef.shapes.size(); ++i) {
             const std::string path = def.shape.type == ShapeType::Compound
                                          ? "BodyDef.shape.shapes[" + std::to_string(i) + "]"
                                          : std::string("BodyDef.shape");
             const PeerShape& shape = peerDef.shapes[i];
-            for (Piece& p : makePieces(shape, embedding.toBody(shape.local), originInBody, path)) pieces.push_back(std::move(p));
+            for (Piece& p : makePieces(shape, embedding.toBody(shape.local), originInBody, path)) {
+                pieces.push_back(std::move(p));
+                sources.push_back(&shape);
+            }
         }
     } catch (const Error& e) {
         throw e.reworded(std::string(e.what()) + (def.name.empty() ? "" : " (body \"" + def.name + "\")"));
@@ -90,14 +94,17 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     if (pieces.size() > 1) ++multiFixtureBodies_;
 
     double inner = std::numeric_limits<double>::infinity();
-    for (Piece& piece : pieces) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+        Piece& piece = pieces[i];
+        const PeerShape& source = *sources[i];
         inner = std::min(inner, innerRadius(piece));
-        auto info = std::make_unique<FixtureInfo>(FixtureInfo{peer.get(), std::move(piece)});
+        auto info = std::make_unique<FixtureInfo>(
+            FixtureInfo{peer.get(), std::move(piece), source.material, source.layer, source.mask});
         b2FixtureDef fd;
         fd.shape = info->piece.collision.get();
         fd.density = 0.0f;   // mass comes from the layer (below), not from Box2D's areas
         fd.friction = 0.0f;  // friction and restitution are set per contact in pre-solve
-        fd.isSensor = def.isTrigger;
+        fd.isSensor = source.isTrigger;
         fd.userData.pointer = reinterpret_cast<uintptr_t>(info.get());
         body->CreateFixture(&fd);
         peer->addFixture(std::move(info));

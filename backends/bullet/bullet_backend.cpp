@@ -42,7 +42,8 @@ Backend makeBulletBackend() {
                        "body.orientation", "body.linearVelocity", "body.angularVelocity", "body.shape", "body.mass",
                        "body.density", "body.inertia", "body.linearDamping", "body.angularDamping",
                        "body.gravityScale", "body.gyroscopic", "body.material", "body.isTrigger", "body.layer",
-                       "body.mask", "body.allowSleep", "body.isAwake"};
+                       "body.mask", "body.allowSleep", "body.isAwake", "body.shape.shapes.material", "body.shape.shapes.isTrigger",
+                       "body.shape.shapes.layer", "body.shape.shapes.mask"};
     // Joint parameters honoured (each checked by tests/backends/bullet/test_bullet_joints.cpp).
     for (const char* type : {"fixed", "ball", "hinge", "slider", "distance", "cone", "wheel"})
         for (const char* field : {"breakForce", "breakTorque", "collideConnected"})
@@ -191,10 +192,18 @@ Backend makeBulletBackend() {
          "joints of a pile of 10 ragdolls open by up to 18.5 cm (as assemblies.ragdoll_gap)"},
         {"planar.hard.ragdoll_pile.joint_gap",
          "as hard.ragdoll_pile.joint_gap, planar: 21 cm"},
+        {"compound.fast_body_passes_filtered_child",
+         "a body fast enough for continuous collision (over half its inner radius per step) is held at a compound "
+         "child whose filter lets it through: a 40 m/s ball is 1.01 m behind free flight after passing it (then lands "
+         "on the next child as it should). Bullet's sweeps test the compound as one shape and cannot tell the child "
+         "apart (sensor children are taken out of the sweep; a filter depends on the swept body). Verified: with the "
+         "continuousCollision effect off the hold goes (and the ball then tunnels the thin child below); excluding "
+         "such pairs from the sweep instead made the ball tunnel"},
     });
     caps.deviationCeilings.insert({
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
         // that tear five times over, as their figure depends on the step the tear starts at.
+        {"compound.fast_body_passes_filtered_child", 1.5},  // metres behind free flight, measured 1.01
         {"joints.chain_gap", 39.6},  // torn: 5x, the figure depends on when it tore
         {"joints.chain_gap.direct", 43.5},  // torn: 5x, the figure depends on when it tore
         {"joints.chain_gap_heavy", 78},  // torn: 5x, the figure depends on when it tore

@@ -27,10 +27,11 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
     : world_(world),
       type_(def.def.type),
       userData_(def.userData),
-      material_(def.material),
-      layer_(def.def.layer),
-      mask_(def.def.mask),
-      trigger_(def.def.isTrigger),
+      layer_(summarize(def.shapes).anyLayer),
+      mask_(summarize(def.shapes).anyMask),
+      trigger_(summarize(def.shapes).allTriggers),
+      anyTrigger_(summarize(def.shapes).anyTrigger),
+      mixed_(!summarize(def.shapes).uniform),
       allowSleep_(def.def.allowSleep),
       mass_(def.mass),
       linearDamping_(def.def.linearDamping),
@@ -38,6 +39,7 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
       gravityScale_(def.def.gravityScale),
       gyroscopic_(def.def.gyroscopic),
       shapes_(std::make_unique<ShapeSet>(def.shapes)) {
+    for (const PeerShape& s : def.shapes) surfaces_.push_back({s.material, s.layer, s.mask, s.isTrigger});
     coreExtent_ = shapes_->coreExtent();
     const bool dyn = type_ == BodyType::Dynamic;
     const btScalar m = dyn ? static_cast<btScalar>(mass_.mass) : btScalar(0);
@@ -78,6 +80,28 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
     }
     // Kinematic bodies are moved by anyphys and never put to sleep by Bullet.
     if (type_ == BodyType::Kinematic || (dyn && !allowSleep_)) body_->forceActivationState(DISABLE_DEACTIVATION);
+}
+
+int BulletBodyPeer::childNear(const btVector3& point) const {
+    if (!shapes_->root()->isCompound()) return 0;
+    const auto* compound = static_cast<const btCompoundShape*>(shapes_->root());
+    int best = 0;
+    btScalar bestDistance = BT_LARGE_FLOAT;
+    bool bestSensor = true;
+    for (int i = 0; i < compound->getNumChildShapes(); ++i) {
+        btVector3 lo, hi;
+        compound->getChildShape(i)->getAabb(body_->getWorldTransform() * compound->getChildTransform(i), lo, hi);
+        btVector3 gap(0, 0, 0);
+        for (int k = 0; k < 3; ++k) gap[k] = std::max({btScalar(0), lo[k] - point[k], point[k] - hi[k]});
+        const btScalar distance = gap.length();
+        const bool sensor = surface(i).trigger;
+        if (distance < bestDistance || (distance == bestDistance && bestSensor && !sensor)) {
+            best = i;
+            bestDistance = distance;
+            bestSensor = sensor;
+        }
+    }
+    return best;
 }
 
 BulletBodyPeer::~BulletBodyPeer() {

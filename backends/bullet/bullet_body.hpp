@@ -12,6 +12,14 @@ namespace anyphys::bullet {
 
 class BulletWorld;
 
+/// One shape's surface as the layer resolved it (a compound child's own, else the body's).
+struct ChildSurface {
+    std::uint32_t material = 0;
+    std::uint32_t layer = 1;
+    std::uint32_t mask = 0xFFFFFFFFu;
+    bool trigger = false;
+};
+
 class BulletBodyPeer final : public BodyPeer {
 public:
     BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def);
@@ -37,10 +45,31 @@ public:
     const btRigidBody& rigidBody() const { return *body_; }
     BodyType type() const { return type_; }
     std::uint64_t userData() const { return userData_; }
-    std::uint32_t material() const { return material_; }
+    /// The union of its shapes' layers and masks: the broad phase's pre-filter.
     std::uint32_t layer() const { return layer_; }
     std::uint32_t mask() const { return mask_; }
+    /// Every shape is a sensor: the whole body has no contact response.
     bool trigger() const { return trigger_; }
+    /// Some shape is a sensor.
+    bool anyTrigger() const { return anyTrigger_; }
+    /// Its compound's children differ in material, filter or sensor flag: contact points are
+    /// sorted per child (AnyphysDynamicsWorld::sortChildPoints).
+    bool mixedSurfaces() const { return mixed_; }
+    /// The surface of the child a contact point names (btManifoldPoint::m_index0 / m_index1 on
+    /// this body's side; any index when the body has one surface).
+    const ChildSurface& surface(int child) const {
+        return mixed_ && child >= 0 && static_cast<std::size_t>(child) < surfaces_.size() ? surfaces_[static_cast<std::size_t>(child)]
+                                                                                          : surfaces_.front();
+    }
+    std::uint32_t material(int child) const { return surface(child).material; }
+    /// The child a point without a child index lies on (a continuous-collision contact, which
+    /// Bullet makes against the whole compound): the one whose bounds are nearest, a solid child
+    /// before a sensor where bounds overlap.
+    int childNear(const btVector3& point) const;
+    /// Has a compound of solid and sensor children: sweeps see only the solid ones.
+    bool hasSolidPart() const { return shapes_->solidPart() != nullptr; }
+    /// Gives the body its solid part (on) or its whole shape back (off) around Bullet's sweeps.
+    void sweepSolidPartOnly(bool on) { body_->setCollisionShape(on ? shapes_->solidPart() : shapes_->root()); }
     /// Several shapes (a btCompoundShape): one manifold per touching child pair.
     bool compound() const { return shapes_->root()->isCompound(); }
     bool hasMesh() const { return shapes_->hasMesh(); }
@@ -73,9 +102,9 @@ private:
     BulletWorld& world_;
     BodyType type_;
     std::uint64_t userData_;
-    std::uint32_t material_;
+    std::vector<ChildSurface> surfaces_;  // per shape, in the compound's child order
     std::uint32_t layer_, mask_;
-    bool trigger_, allowSleep_;
+    bool trigger_, anyTrigger_, mixed_, allowSleep_;
     MassProperties mass_;
     double linearDamping_, angularDamping_, gravityScale_;
     GyroscopicMode gyroscopic_;

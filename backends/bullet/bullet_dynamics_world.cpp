@@ -53,6 +53,65 @@ void AnyphysDynamicsWorld::performDiscreteCollisionDetection() {
                 manifold->clearManifold();
         }
     btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
+    childOverlaps_.clear();
+    if (sortChildPoints_) sortChildPoints();
+}
+
+// Bullet filters and responds per collision object; a compound's children may differ. After the
+// narrow phase each point of a body with mixed children is judged by the two shapes it joins
+// (the child indices m_index0 / m_index1 that Bullet's compound algorithm writes):
+//  - the layer's filter keeps them apart, or neither body responds (no dynamic body and no
+//    sensor): the point is dropped, as if never found;
+//  - a sensor child: an overlapping point makes a trigger overlap of the two bodies, and every
+//    such point is dropped so the solver never pushes on it (the manifold also starts the next
+//    step empty, as a sensor body's does).
+// The solver runs after this (solveConstraints), so it only sees the points that collide.
+void AnyphysDynamicsWorld::sortChildPoints() {
+    btDispatcher* dispatcher = getDispatcher();
+    for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+        btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+        const auto* a = static_cast<const BulletBodyPeer*>(manifold->getBody0()->getUserPointer());
+        const auto* b = static_cast<const BulletBodyPeer*>(manifold->getBody1()->getUserPointer());
+        if (a == nullptr || b == nullptr || (!a->mixedSurfaces() && !b->mixedSurfaces())) continue;
+        bool overlapping = false;
+        for (int i = manifold->getNumContacts() - 1; i >= 0; --i) {
+            btManifoldPoint& p = manifold->getContactPoint(i);
+            // Continuous collision's predictive points name no child: found by position, and
+            // written back so the materials pass reads the same child.
+            if (p.m_index0 < 0 && a->mixedSurfaces()) p.m_index0 = a->childNear(p.getPositionWorldOnA());
+            if (p.m_index1 < 0 && b->mixedSurfaces()) p.m_index1 = b->childNear(p.getPositionWorldOnB());
+            const ChildSurface &sa = a->surface(p.m_index0), &sb = b->surface(p.m_index1);
+            const bool sensor = sa.trigger || sb.trigger;
+            const bool responds = sensor ? a->moves() || b->moves() : a->dynamic() || b->dynamic();
+            const bool meets = responds && layersCollide(sa.layer, sa.mask, sb.layer, sb.mask);
+            if (meets && !sensor) continue;                                  // two solid shapes: the solver's
+            if (meets) overlapping = overlapping || p.getDistance() <= 0;  // a sensor child's overlap
+            manifold->removeContactPoint(i);
+        }
+        if (overlapping) childOverlaps_.push_back({manifold->getBody0(), manifold->getBody1()});
+    }
+}
+
+// Bullet's sweeps test whole collision shapes and would stop a body at a sensor child, so a
+// compound of solid and sensor children shows only its solid part while they run (the shape is
+// given back before anything else reads it: the narrow phase follows the predictive contacts,
+// the next step follows the motion clamp).
+template <class Phase>
+void AnyphysDynamicsWorld::sweep(Phase&& phase) {
+    const bool swap = sensorCompounds_ != nullptr && !sensorCompounds_->empty();
+    if (swap)
+        for (BulletBodyPeer* body : *sensorCompounds_) body->sweepSolidPartOnly(true);
+    phase();
+    if (swap)
+        for (BulletBodyPeer* body : *sensorCompounds_) body->sweepSolidPartOnly(false);
+}
+
+void AnyphysDynamicsWorld::createPredictiveContacts(btScalar timeStep) {
+    sweep([&] { btDiscreteDynamicsWorld::createPredictiveContacts(timeStep); });
+}
+
+void AnyphysDynamicsWorld::integrateTransforms(btScalar timeStep) {
+    sweep([&] { btDiscreteDynamicsWorld::integrateTransforms(timeStep); });
 }
 
 void AnyphysDynamicsWorld::applyMaterials() {
@@ -67,13 +126,14 @@ void AnyphysDynamicsWorld::applyMaterials() {
         const auto* a = static_cast<const BulletBodyPeer*>(manifold->getBody0()->getUserPointer());
         const auto* b = static_cast<const BulletBodyPeer*>(manifold->getBody1()->getUserPointer());
         if (a == nullptr || b == nullptr) continue;
-        const ContactMaterial& mix = materials_->get(a->material(), b->material());
-        const btScalar mu = friction ? static_cast<btScalar>(mix.friction) : btScalar(0);
-        const btScalar e = restitution ? static_cast<btScalar>(mix.restitution) : btScalar(0);
         const auto* bodyA = btRigidBody::upcast(manifold->getBody0());
         const auto* bodyB = btRigidBody::upcast(manifold->getBody1());
         for (int i = 0; i < points; ++i) {
             btManifoldPoint& p = manifold->getContactPoint(i);
+            // Per point: a compound child may carry its own material (the child indices say which).
+            const ContactMaterial& mix = materials_->get(a->material(p.m_index0), b->material(p.m_index1));
+            const btScalar mu = friction ? static_cast<btScalar>(mix.friction) : btScalar(0);
+            const btScalar e = restitution ? static_cast<btScalar>(mix.restitution) : btScalar(0);
             p.m_combinedFriction = mu;
             p.m_combinedRestitution = e;  // below the restitution threshold Bullet's solver uses 0
             p.m_combinedRollingFriction = 0;

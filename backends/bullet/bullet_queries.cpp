@@ -25,6 +25,10 @@ public:
     bool needsCollision(btBroadphaseProxy* proxy) const override { return queryable(proxy, mask_); }
 
     btScalar addSingleResult(btCollisionWorld::LocalRayResult& r, bool normalInWorldSpace) override {
+        // A compound's child (its index in m_triangleIndex) may be a sensor or off the mask.
+        const int child = r.m_localShapeInfo ? r.m_localShapeInfo->m_triangleIndex : -1;
+        const ChildSurface& surface = peerOf(r.m_collisionObject)->surface(child);
+        if (surface.trigger || (surface.layer & mask_) == 0) return m_closestHitFraction;
         const btVector3 n = normalInWorldSpace ? r.m_hitNormalLocal
                                                : r.m_collisionObject->getWorldTransform().getBasis() * r.m_hitNormalLocal;
         const double distance = static_cast<double>(r.m_hitFraction) * maxDistance_;
@@ -55,11 +59,16 @@ public:
 
     bool needsCollision(btBroadphaseProxy* proxy) const override { return queryable(proxy, mask_); }
 
-    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* w0, int, int,
-                             const btCollisionObjectWrapper* w1, int, int) override {
+    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* w0, int, int index0,
+                             const btCollisionObjectWrapper* w1, int, int index1) override {
         if (p.getDistance() > 0) return 0;  // near, not overlapping
-        const btCollisionObject* other = w0->getCollisionObject() == query_ ? w1->getCollisionObject() : w0->getCollisionObject();
-        if (const BulletBodyPeer* peer = peerOf(other)) found.push_back(peer->userData());
+        const bool queryFirst = w0->getCollisionObject() == query_;
+        const btCollisionObject* other = queryFirst ? w1->getCollisionObject() : w0->getCollisionObject();
+        const BulletBodyPeer* peer = peerOf(other);
+        if (peer == nullptr) return 0;
+        // The child it overlaps may be a sensor or off the mask (a compound's children differ).
+        const ChildSurface& surface = peer->surface(queryFirst ? index1 : index0);
+        if (!surface.trigger && (surface.layer & mask_) != 0) found.push_back(peer->userData());
         return 0;
     }
 

@@ -64,6 +64,13 @@ ShapeSet::ShapeSet(const std::vector<PeerShape>& shapes) {
     for (std::size_t i = 0; i < built.size(); ++i)
         compound_->addChildShape(built[i].second ? btTransform::getIdentity() : toBt(shapes[i].local), built[i].first);
     root_ = compound_.get();
+    const SurfaceSummary summary = summarize(shapes);
+    if (summary.anyTrigger && !summary.allTriggers) {
+        solidPart_ = std::make_unique<btCompoundShape>(false, static_cast<int>(built.size()));
+        for (std::size_t i = 0; i < built.size(); ++i)
+            if (!shapes[i].isTrigger)
+                solidPart_->addChildShape(compound_->getChildTransform(static_cast<int>(i)), built[i].first);
+    }
 }
 
 ShapeSet::~ShapeSet() = default;

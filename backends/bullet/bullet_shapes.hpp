@@ -33,6 +33,10 @@ public:
     /// Lets the convex shapes' bounding boxes reach out by their contact breaking threshold (see
     /// ReachingShape), as the world does while it holds a mesh.
     void setReaching(bool on);
+    /// A compound of the children that are not sensors, sharing their shapes, for Bullet's
+    /// continuous-collision sweeps (which see one shape per body); nullptr when every child is
+    /// solid, every child is a sensor, or the root is not a compound.
+    btCompoundShape* solidPart() const { return solidPart_.get(); }
 
 private:
     struct Mesh {
@@ -46,6 +50,7 @@ private:
     std::vector<std::unique_ptr<Mesh>> meshes_;
     std::vector<std::unique_ptr<btCollisionShape>> children_;
     std::unique_ptr<btCompoundShape> compound_;
+    std::unique_ptr<btCompoundShape> solidPart_;  // destroyed before the children it shares
     btCollisionShape* root_ = nullptr;
     std::vector<Reaching*> reaching_;  // the convex children
     double coreExtent_ = 0.0;

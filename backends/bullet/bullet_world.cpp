@@ -17,8 +17,10 @@ bool LayerFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphas
     if (a == nullptr || b == nullptr) return true;  // not ours (e.g. a user's object through the escape hatch)
     if (!contacts) return false;
     if (!o0->checkCollideWith(o1)) return false;  // joined by a joint with collideConnected false
+    // Bodies' unions of their children's layers and masks: a pair may touch only if these do; a
+    // body with mixed children has its points sorted per child after the narrow phase.
     if (!layersCollide(a->layer(), a->mask(), b->layer(), b->mask())) return false;
-    if (a->trigger() || b->trigger()) return a->moves() || b->moves();  // sensors see anything that moves
+    if (a->anyTrigger() || b->anyTrigger()) return a->moves() || b->moves();  // sensors see anything that moves
     return a->dynamic() || b->dynamic();                               // something must respond
 }
 
@@ -70,6 +72,7 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
                                                     configuration_.get());
     broadphase_->getOverlappingPairCache()->setOverlapFilterCallback(&filter_);
     world_->setGravity(btVector3(0, 0, 0));  // per body (gravity scale), see BulletBodyPeer::applyEffects
+    world_->setSensorCompounds(&sensorCompounds_);
     world_->setMaterials(&materials_);
     world_->setTimeToSleep(settings.timeToSleep);
     world_->setRestitutionThreshold(settings.restitutionThreshold);
@@ -181,6 +184,8 @@ std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
     if (peer->hasMesh() && meshBodies_++ == 0) setReaching(true);
     else if (meshBodies_ > 0) peer->setReaching(true);
     if (peer->trigger() && sensorBodies_++ == 0) world_->setClearSensorManifolds(true);
+    if (peer->mixedSurfaces() && mixedBodies_++ == 0) world_->setSortChildPoints(true);
+    if (peer->hasSolidPart()) sensorCompounds_.push_back(peer.get());
     if (peer->isPlane() && planeBodies_++ == 0) world_->setRefreshPlaneManifoldsFirst(planeMultipoint_);
     peer->applyEffects();
     if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
@@ -211,6 +216,7 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
         if (manifold->getBody1() == &body) wake(manifold->getBody0());
     }
     world_->removeRigidBody(&body);
+    world_->forgetChildOverlaps(&body);
     attached_.erase(&body);
     peer.inWorld_ = false;
     const auto drop = [&peer](std::vector<BulletBodyPeer*>& list) {
@@ -220,6 +226,8 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
     if (peer.type() == BodyType::Kinematic) drop(kinematic_);
     if (peer.hasMesh() && --meshBodies_ == 0) setReaching(false);
     if (peer.trigger() && --sensorBodies_ == 0) world_->setClearSensorManifolds(false);
+    if (peer.mixedSurfaces() && --mixedBodies_ == 0) world_->setSortChildPoints(false);
+    if (peer.hasSolidPart()) drop(sensorCompounds_);
     if (peer.isPlane() && --planeBodies_ == 0) world_->setRefreshPlaneManifoldsFirst(false);
     drop(forced_);
 }
@@ -359,6 +367,14 @@ void BulletWorld::reportContacts(ContactReport& out) {
             const double impulse = static_cast<double>(p.getAppliedImpulse()) + earlierShare(*manifold, p);
             out.addPoint({point, -static_cast<double>(p.getDistance()), impulse});
         }
+    }
+    // Sensor children's overlaps, taken out of the manifolds before the solver (sortChildPoints).
+    for (const AnyphysDynamicsWorld::ChildOverlap& o : world_->childOverlaps()) {
+        const auto* a = static_cast<const BulletBodyPeer*>(o.a->getUserPointer());
+        const auto* b = static_cast<const BulletBodyPeer*>(o.b->getUserPointer());
+        if (!a->activeMover() && !b->activeMover()) continue;  // asleep: the layer keeps the pair
+        out.addPair(a->userData(), b->userData(), true, Vec3::Zero(), asleep(*a) || asleep(*b));
+        repeats = true;  // several child pairs may overlap: one trigger per body pair
     }
     out.sleepKnown = true;
     if (repeats) out.mergeRepeatedPairs();

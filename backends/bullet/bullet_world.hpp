@@ -87,6 +87,8 @@ private:
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     int meshBodies_ = 0;                      // attached bodies with a triangle mesh
     int sensorBodies_ = 0;                    // attached trigger bodies
+    int mixedBodies_ = 0;                     // attached bodies whose children differ in surface
+    std::vector<BulletBodyPeer*> sensorCompounds_;  // attached compounds of solid and sensor children
     int planeBodies_ = 0;                     // attached bodies whose shape is a plane
     bool planeMultipoint_ = true;             // backend option planeMultipoint
     // Bullet refreshes bounds before it integrates, so a step leaves them at the old poses. The

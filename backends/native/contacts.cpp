@@ -9,9 +9,10 @@
 namespace anyphys::native {
 namespace {
 
-bool mayTouch(const NativeBody& a, const NativeBody& b) {
-    if (!layersCollide(a.layer, a.mask, b.layer, b.mask)) return false;
-    if (a.trigger || b.trigger) return a.moves() || b.moves();  // sensors see anything that moves
+// Per shape pair: a compound's children may differ in filter and sensor flag.
+bool mayTouch(const NativeBody& a, const ShapeSurface& sa, const NativeBody& b, const ShapeSurface& sb) {
+    if (!layersCollide(sa.layer, sa.mask, sb.layer, sb.mask)) return false;
+    if (sa.trigger || sb.trigger) return a.moves() || b.moves();  // sensors see anything that moves
     return a.isDynamic() || b.isDynamic();                       // something must respond
 }
 
@@ -108,7 +109,8 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     const std::uint32_t ia = proxyBody(keyA), ib = proxyBody(keyB);
     if (ia == ib) return;
     const NativeBody &a = bodies[ia], &b = bodies[ib];
-    if (!mayTouch(a, b)) return;
+    const ShapeSurface &sa = a.surfaces[proxyShape(keyA)], &sb = b.surfaces[proxyShape(keyB)];
+    if (!mayTouch(a, sa, b, sb)) return;
     if (!excluded_.empty() && excluded_.contains(bodyPairKey(ia, ib))) return;
     const std::pair key{keyA, keyB};
     if (index_.contains(key)) return;  // already in contact
@@ -135,12 +137,12 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     c.bodyB = ib;
     c.shapeA = proxyShape(keyA);
     c.shapeB = proxyShape(keyB);
-    c.trigger = a.trigger || b.trigger;
+    c.trigger = sa.trigger || sb.trigger;
     c.touching = false;
     c.separated = false;
     c.manifolds.clear();
     c.collideCache = {};
-    const ContactMaterial& m = materials.get(a.material, b.material);
+    const ContactMaterial& m = materials.get(sa.material, sb.material);
     c.friction = m.friction;
     c.restitution = m.restitution;
 }

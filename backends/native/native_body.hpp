@@ -13,6 +13,14 @@ namespace anyphys::native {
 class NativeWorld;
 class NativeBodyPeer;
 
+/// One shape's surface as the layer resolved it (a compound child's own, else the body's).
+struct ShapeSurface {
+    std::uint32_t material = 0;
+    std::uint32_t layer = 1;
+    std::uint32_t mask = 0xFFFFFFFFu;
+    bool trigger = false;
+};
+
 struct NativeBody {
     BodyType type = BodyType::Dynamic;
     BodyState state;
@@ -32,11 +40,9 @@ struct NativeBody {
     std::vector<Shape> shapes;
     std::vector<int> proxies;    // broad-phase proxy per shape
     std::vector<Aabb> bounds;    // tight bounds per shape at the pose of the last proxy update
+    std::vector<ShapeSurface> surfaces;  // per shape: material, filter, sensor flag
     std::uint64_t userData = 0;
-    std::uint32_t material = 0;
-    std::uint32_t layer = 1;
-    std::uint32_t mask = 0xFFFFFFFFu;
-    bool trigger = false;
+    bool trigger = false;        // every shape is a sensor: the body never responds (nor sweeps)
     double coreExtent = 0.0;     // m, smallest distance from a shape's centre to its surface (continuous collision)
 
     // ---- per step ----

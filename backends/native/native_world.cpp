@@ -94,10 +94,7 @@ std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
     body.gravityScale = def.gravityScale;
     body.gyroscopic = def.gyroscopic;
     body.userData = peerDef.userData;
-    body.material = peerDef.material;
-    body.layer = def.layer;
-    body.mask = def.mask;
-    body.trigger = def.isTrigger;
+    body.trigger = summarize(peerDef.shapes).allTriggers;
     body.allowSleep = def.allowSleep;
     body.awake = def.type != BodyType::Static && def.isAwake;  // static bodies are never simulated
     if (body.awake) ++awakeBodies_;
@@ -107,6 +104,7 @@ std::unique_ptr<BodyPeer> NativeWorld::createBody(const BodyPeerDef& peerDef) {
     body.coreExtent = std::numeric_limits<double>::infinity();
     for (const PeerShape& ps : peerDef.shapes) {
         body.shapes.push_back(makeShape(ps, body.pose()));
+        body.surfaces.push_back({ps.material, ps.layer, ps.mask, ps.isTrigger});
         body.coreExtent = std::min(body.coreExtent, coreExtent(body.shapes.back()));
         const Shape& s = body.shapes.back();
         const int shapeIndex = static_cast<int>(body.shapes.size()) - 1;
@@ -196,7 +194,8 @@ void NativeWorld::setForceHook(ForceHook hook) {
 void NativeWorld::setMaterialTable(const MaterialTable& table) {
     materials_ = table;
     contacts_.forEach([&](Contact& c) {
-        const ContactMaterial& m = materials_.get(bodies_[c.bodyA].material, bodies_[c.bodyB].material);
+        const ContactMaterial& m =
+            materials_.get(bodies_[c.bodyA].surfaces[c.shapeA].material, bodies_[c.bodyB].surfaces[c.shapeB].material);
         c.friction = m.friction;
         c.restitution = m.restitution;
     });
@@ -393,7 +392,8 @@ std::vector<PeerRayHit> NativeWorld::raycast(const Vec3& origin, const Vec3& dir
     std::vector<PeerRayHit> hits;
     broadPhase_.rayCast(origin, direction, maxDistance, [&](std::uint64_t key, double clip) {
         const NativeBody& b = bodies_[proxyBody(key)];
-        if (b.trigger || (b.layer & mask) == 0) return clip;
+        const ShapeSurface& surface = b.surfaces[proxyShape(key)];
+        if (surface.trigger || (surface.layer & mask) == 0) return clip;
         const Shape& s = b.shapes[proxyShape(key)];
         const auto hit = native::raycast(s, shapeWorldPose(s, b.pose()), origin, direction, clip);
         if (!hit) return clip;
@@ -413,7 +413,8 @@ std::vector<std::uint64_t> NativeWorld::overlap(const std::vector<PeerShape>& sh
         const Transform xf = shapeWorldPose(query, pose);
         broadPhase_.query(computeAabb(query, xf), [&](std::uint64_t key) {
             const NativeBody& b = bodies_[proxyBody(key)];
-            if (b.trigger || (b.layer & mask) == 0) return true;
+            const ShapeSurface& surface = b.surfaces[proxyShape(key)];
+            if (surface.trigger || (surface.layer & mask) == 0) return true;
             const Shape& s = b.shapes[proxyShape(key)];
             if (native::overlap(query, xf, s, shapeWorldPose(s, b.pose()))) found.push_back(b.userData);
             return true;

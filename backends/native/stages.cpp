@@ -288,14 +288,17 @@ public:
             if (travel.norm() < 0.5 * b.coreExtent) continue;  // the speculative margin covers it
             const Transform start{b.stepStartPosition, b.stepStartOrientation}, end = b.pose();
             double first = 1.0;
-            for (const Shape& shape : b.shapes) {
+            for (std::size_t k = 0; k < b.shapes.size(); ++k) {
+                const Shape& shape = b.shapes[k];
+                const ShapeSurface& mine = b.surfaces[k];
+                if (mine.trigger) continue;  // a sensor child never stops the body
                 const Transform from = shapeWorldPose(shape, start), to = shapeWorldPose(shape, end);
                 const Aabb swept = computeAabb(shape, from).merged(computeAabb(shape, to));
                 world.broadPhase().query(swept, [&](std::uint64_t key) {
                     const NativeBody& other = bodies[proxyBody(key)];
-                    if (proxyBody(key) == i || other.type != BodyType::Static || other.trigger ||
-                        !layersCollide(b.layer, b.mask, other.layer, other.mask))
-                        return true;
+                    if (proxyBody(key) == i || other.type != BodyType::Static) return true;
+                    const ShapeSurface& theirs = other.surfaces[proxyShape(key)];
+                    if (theirs.trigger || !layersCollide(mine.layer, mine.mask, theirs.layer, theirs.mask)) return true;
                     const Shape& fixed = other.shapes[proxyShape(key)];
                     // Already touching at the start: the contact solver owns that pair (a body
                     // sliding fast along the ground must not be frozen in place).

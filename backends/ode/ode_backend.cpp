@@ -45,7 +45,8 @@ Backend makeOdeBackend() {
                        "body.angularVelocity", "body.shape", "body.mass", "body.density", "body.inertia",
                        "body.linearDamping", "body.angularDamping", "body.gravityScale", "body.gyroscopic",
                        "body.material", "body.isTrigger", "body.layer", "body.mask", "body.allowSleep",
-                       "body.isAwake",
+                       "body.isAwake", "body.shape.shapes.material", "body.shape.shapes.isTrigger",
+                       "body.shape.shapes.layer", "body.shape.shapes.mask",
                        // Joints: only what ode_joints.cpp honours and tests/backends/ode/test_ode_joints.cpp
                        // checks.
                        "joint.hinge.limits", "joint.hinge.motor", "joint.hinge.spring",

@@ -11,7 +11,8 @@ namespace anyphys::ode {
 
 OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
     : world_(world), type_(peerDef.def.type), mass_(peerDef.mass), userData_(peerDef.userData),
-      material_(peerDef.material), layer_(peerDef.def.layer), mask_(peerDef.def.mask), trigger_(peerDef.def.isTrigger),
+      layer_(summarize(peerDef.shapes).anyLayer), mask_(summarize(peerDef.shapes).anyMask),
+      trigger_(summarize(peerDef.shapes).allTriggers),
       allowSleep_(peerDef.def.allowSleep), gravityScale_(peerDef.def.gravityScale),
       linearDamping_(peerDef.def.linearDamping), angularDamping_(peerDef.def.angularDamping),
       gyroscopic_(peerDef.def.gyroscopic) {
@@ -52,8 +53,8 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
         dGeomSetData(shape->geom(), this);
         // ODE's broad phase pre-filter: it pairs geoms when either's category meets the other's
         // collide bits, weaker than layersCollide (both ways), which the near callback applies.
-        dGeomSetCategoryBits(shape->geom(), layer_);
-        dGeomSetCollideBits(shape->geom(), mask_);
+        dGeomSetCategoryBits(shape->geom(), ps.layer);
+        dGeomSetCollideBits(shape->geom(), ps.mask);
         if (body_)
             shape->attach(body_);
         else
@@ -62,6 +63,13 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
         shapes_.push_back(std::move(shape));
     }
     if (body_ && !def.isAwake) dBodyDisable(body_);
+}
+
+const GeomSurface& OdeBody::surface(dGeomID geom) const {
+    // A compound has a few children: a scan is cheaper than a map, and one shape needs none.
+    for (const auto& shape : shapes_)
+        if (shape->geom() == geom) return shape->surface();
+    return shapes_.front()->surface();  // not one of ours: never happens for geoms carrying this body
 }
 
 OdeBody::~OdeBody() {

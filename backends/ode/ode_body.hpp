@@ -46,10 +46,13 @@ public:
     /// Planar worlds: removes the drift the plane-2D joint leaves (z, z speed, off-axis spin).
     void projectToPlane() const;
     std::uint64_t userData() const { return userData_; }
-    std::uint32_t material() const { return material_; }
+    /// The union of its geoms' layers and masks (a pre-filter: a pair may touch only if these do).
     std::uint32_t layer() const { return layer_; }
     std::uint32_t mask() const { return mask_; }
+    /// Every geom is a sensor: the body never responds to contact.
     bool isTrigger() const { return trigger_; }
+    /// The surface of one of its geoms (material, filter, sensor flag: per compound child).
+    const GeomSurface& surface(dGeomID geom) const;
     double gravityScale() const { return gravityScale_; }
     double mass() const { return mass_.mass; }
     double coreExtent() const { return coreExtent_; }
@@ -86,7 +89,7 @@ private:
     Transform staticPose_;  // static bodies: their frame's pose (they have no dBody)
     MassProperties mass_;
     std::uint64_t userData_;
-    std::uint32_t material_, layer_, mask_;
+    std::uint32_t layer_, mask_;
     bool trigger_;
     bool allowSleep_;
     double gravityScale_;

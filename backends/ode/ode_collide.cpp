@@ -56,24 +56,28 @@ void OdeWorld::awakeGeomCallback(void* self, dGeomID o1, dGeomID o2) {
 void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     auto* a = static_cast<OdeBody*>(dGeomGetData(o1));
     auto* b = static_cast<OdeBody*>(dGeomGetData(o2));
+    // Per geom: a compound's children may differ in material, filter and sensor flag.
+    const GeomSurface* sa = &a->surface(o1);
+    const GeomSurface* sb = &b->surface(o2);
     // Something must respond: a dynamic body, or a sensor and something moving.
-    const bool trigger = a->isTrigger() || b->isTrigger();
+    const bool trigger = sa->trigger || sb->trigger;
     if (trigger ? !(a->moves() || b->moves()) : !(a->isDynamic() || b->isDynamic())) return;
     if (!a->isActive() && !b->isActive()) return;  // asleep (or asleep on something static)
-    if (!layersCollide(a->layer(), a->mask(), b->layer(), b->mask())) return;
+    if (!layersCollide(sa->layer, sa->mask, sb->layer, sb->mask)) return;
     if (jointExcludes(a, b)) return;  // joined by a joint with collideConnected false
     if (!collidable(o1, o2)) return;
     // ODE's normals point into geom 1: make that a dynamic body, whose joint feedback is read.
     if (!a->isDynamic()) {
         std::swap(o1, o2);
         std::swap(a, b);
+        std::swap(sa, sb);
     }
     // Collide into a stack buffer: most candidate pairs from the broad phase have no points.
     dContact found[kMaxContactsPerPair];
     int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
     n = dropDegenerateContacts(found, n);
     if (n <= 0) return;
-    if (!trigger) createContactJoints(*a, *b, found, n);  // sensors never collide
+    if (!trigger) createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);  // sensors never collide
     if (!effects_.has(Effect::Events)) return;
     const auto first = static_cast<std::uint32_t>(points_.size());
     if (!trigger)  // a sensor's overlap has no points
@@ -82,9 +86,9 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     pairs_.push_back({a, b, trigger, first, static_cast<std::uint32_t>(points_.size()) - first});
 }
 
-void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, dContact* contacts, int count) {
-    // Exactly the layer's resolved pair values; ODE's own mixing is never used.
-    const ContactMaterial& m = materials_.get(a.material(), b.material());
+void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts,
+                                   int count) {
+    // Exactly the layer's resolved pair values (of the two geoms' materials); ODE's own mixing is never used.
     dSurfaceParameters surface{};
     if (effects_.has(Effect::Friction) && m.friction > 0) {
         // Approx1: mu scales the normal force (Coulomb), on two tangent directions.

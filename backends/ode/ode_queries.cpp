@@ -21,7 +21,7 @@ void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<RayQuery*>(data);
     const dGeomID other = o1 == q.ray ? o2 : o1;
     const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
-    if (!body || body->isTrigger() || (body->layer() & q.mask) == 0) return;
+    if (!body || body->surface(other).trigger || (body->surface(other).layer & q.mask) == 0) return;
     dContactGeom hit;
     if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
     Vec3 normal = toVec3(hit.normal);
@@ -44,8 +44,8 @@ void overlapCallback(void* data, dGeomID o1, dGeomID o2) {
     const dGeomID other = o1 == q.probe ? o2 : o1;
     if (other == q.probe) return;
     const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
-    if (!body || (body->layer() & q.mask) == 0) return;
-    if (q.movingOnly ? !body->moves() : body->isTrigger()) return;
+    if (!body || (body->surface(other).layer & q.mask) == 0) return;
+    if (q.movingOnly ? !body->moves() : body->surface(other).trigger) return;
     if (!collidable(q.probe, other)) return;
     dContactGeom contact;
     if (dCollide(q.probe, other, 1, &contact, sizeof(dContactGeom)) < 1) return;

@@ -36,7 +36,8 @@ double innerRadius(const PeerShape& s) {
 
 }  // namespace
 
-OdeShape::OdeShape(const PeerShape& shape, dSpaceID space) : type_(shape.def.type), local_(shape.local) {
+OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
+    : type_(shape.def.type), surface_{shape.material, shape.layer, shape.mask, shape.isTrigger}, local_(shape.local) {
     const ShapeDef& d = shape.def;
     coreExtent_ = innerRadius(shape);
     switch (d.type) {

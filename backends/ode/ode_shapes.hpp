@@ -17,6 +17,14 @@ inline bool collidable(dGeomID a, dGeomID b) {
     return !((ca == dConvexClass && cb == dTriMeshClass) || (ca == dTriMeshClass && cb == dConvexClass));
 }
 
+/// A geom's surface as the layer resolved it (a compound child's own, else the body's).
+struct GeomSurface {
+    std::uint32_t material = 0;
+    std::uint32_t layer = 1;
+    std::uint32_t mask = 0xFFFFFFFFu;
+    bool trigger = false;
+};
+
 class OdeShape {
 public:
     /// Builds the geom of `shape` in `space` (0: in no space, e.g. a query probe). Not placed yet.
@@ -27,6 +35,7 @@ public:
 
     dGeomID geom() const { return geom_; }
     ShapeType type() const { return type_; }
+    const GeomSurface& surface() const { return surface_; }
 
     /// Attaches the geom to a moving body at its pose in the body frame.
     void attach(dBodyID body);
@@ -45,6 +54,7 @@ private:
 
     dGeomID geom_ = nullptr;
     ShapeType type_;
+    GeomSurface surface_;
     Transform local_;
     double coreExtent_ = 0.0;
     // plane: n . x = offset in the body frame

@@ -327,8 +327,21 @@ std::vector<std::uint32_t> readIndices(const json& v, const std::string& path) {
     return indices;
 }
 
-// `child`: an element of a compound's "shapes", which may also carry its own "density".
-ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
+// The keys only a compound's child may carry: its own density and surface (each overriding the
+// body's key of the same name).
+constexpr std::string_view kChildKeys[] = {"density", "material", "isTrigger", "layer", "mask"};
+
+// A child's surface overrides; `lib` checks the material name as a body's is checked.
+void readChildSurface(const json& v, const std::string& path, const MaterialLibrary& lib, ShapeDef& s) {
+    if (auto* x = find(v, "density")) s.density = readNumber(*x, join(path, "density"));
+    if (auto* x = find(v, "material")) s.material = readMaterialName(*x, join(path, "material"), lib);
+    if (auto* x = find(v, "isTrigger")) s.isTrigger = readBool(*x, join(path, "isTrigger"));
+    if (auto* x = find(v, "layer")) s.layer = readUint32(*x, join(path, "layer"), "must be an unsigned 32-bit integer");
+    if (auto* x = find(v, "mask")) s.mask = readUint32(*x, join(path, "mask"), "must be an unsigned 32-bit integer");
+}
+
+// `child`: an element of a compound's "shapes", which may also carry its own density and surface.
+ShapeDef readShape(const json& v, const std::string& path, const MaterialLibrary& lib, bool child = false) {
     requireObject(v, path);
     const auto* typeValue = find(v, "type");
     if (!typeValue) missing(join(path, "type"), "allowed types are " + allowedNames<ShapeType>());
@@ -337,10 +350,14 @@ ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
     // Each shape type has its own keys; a key of another type is a mistake worth reporting.
     std::vector<std::string_view> allowed = shapeKeys(s.type);
     allowed.insert(allowed.end(), std::begin(kPlacementKeys), std::end(kPlacementKeys));
-    if (child) allowed.push_back("density");
-    if (!child && find(v, "density"))
-        throw Error(ErrorKind::Parse, join(path, "density"), join(path, "density") + ": allowed only on the children of a compound shape; the body's "
-                                            "\"density\" applies to its whole shape");
+    if (child) allowed.insert(allowed.end(), std::begin(kChildKeys), std::end(kChildKeys));
+    if (!child)
+        for (std::string_view key : kChildKeys)
+            if (find(v, key)) {
+                const std::string field = join(path, std::string(key));
+                throw Error(ErrorKind::Parse, field, field + ": allowed only on the children of a compound shape; the body's \"" +
+                                                         std::string(key) + "\" applies to its whole shape");
+            }
     checkKeys(v, path, allowed, " for a " + std::string(toString(s.type)) + " shape");
     // The sizes (and a hull's points, ...) have no default: a box without halfExtents is a
     // mistake to report, not a 1 m cube. A plane has no size: its normal defaults to up (+Y,
@@ -361,11 +378,11 @@ ShapeDef readShape(const json& v, const std::string& path, bool child = false) {
     if (auto* x = find(v, "shapes")) {
         const std::string p = join(path, "shapes");
         if (!x->is_array()) fail(p, *x, "must be an array of child shape objects");
-        for (std::size_t i = 0; i < x->size(); ++i) s.shapes.push_back(readShape((*x)[i], at(p, i), true));
+        for (std::size_t i = 0; i < x->size(); ++i) s.shapes.push_back(readShape((*x)[i], at(p, i), lib, true));
     }
     if (auto* x = find(v, "position")) s.position = readVec3(*x, join(path, "position"));
     if (auto* x = find(v, "orientation")) s.orientation = readQuat(*x, join(path, "orientation"));
-    if (auto* x = find(v, "density")) s.density = readNumber(*x, join(path, "density"));
+    if (child) readChildSurface(v, path, lib, s);
     // Ranges (radius > 0, hull not flat, indices in range, ...) are checked by validate(BodyDef).
     return s;
 }
@@ -388,7 +405,7 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
     if (auto* x = find(v, "angularVelocity")) b.angularVelocity = readVec3(*x, join(path, "angularVelocity"));
     const auto* shape = find(v, "shape");
     if (!shape) missing(join(path, "shape"), "every body needs a shape, e.g. {\"type\": \"sphere\", \"radius\": 0.5}");
-    b.shape = readShape(*shape, join(path, "shape"));
+    b.shape = readShape(*shape, join(path, "shape"), lib);
     if (auto* x = find(v, "mass")) b.mass = readNumber(*x, join(path, "mass"));
     if (auto* x = find(v, "density")) b.density = readNumber(*x, join(path, "density"));
     if (auto* x = find(v, "inertia")) b.inertia = readVec3(*x, join(path, "inertia"));
@@ -714,7 +731,7 @@ bool isIdentity(const Quat& q) {
     return isDefault(q.w(), 1) && isDefault(q.x(), 0) && isDefault(q.y(), 0) && isDefault(q.z(), 0);
 }
 
-// Each shape writes its own keys; the placement keys and a child's density only when set.
+// Each shape writes its own keys; the placement keys and a child's density and surface only when set.
 ojson shapeJson(const ShapeDef& s) {
     ojson j;
     j["type"] = std::string(toString(s.type));
@@ -733,6 +750,10 @@ ojson shapeJson(const ShapeDef& s) {
     if (!isOrigin(s.position)) j["position"] = vec(s.position);
     if (!isIdentity(s.orientation)) j["orientation"] = quat(s.orientation);
     if (s.density) j["density"] = *s.density;
+    if (s.material) j["material"] = *s.material;
+    if (s.isTrigger) j["isTrigger"] = *s.isTrigger;
+    if (s.layer) j["layer"] = *s.layer;
+    if (s.mask) j["mask"] = *s.mask;
     return j;
 }
 

@@ -85,6 +85,7 @@ void colliderBounds(ParticleCollider& c) {
     c.boundsMin = Vec3::Constant(inf);
     c.boundsMax = Vec3::Constant(-inf);
     for (const FieldShape& s : c.body->shapes) {
+        if (s.sensor) continue;  // particles pass through sensor children
         if (s.type == ShapeType::Plane) {  // unbounded
             c.boundsMin = Vec3::Constant(-inf);
             c.boundsMax = Vec3::Constant(inf);
@@ -105,6 +106,7 @@ Vec3 colliderPush(const ParticleCollider& c, const Vec3& point, double radius) {
     double deepest = 0.0;
     Vec3 push = Vec3::Zero();
     for (const FieldShape& s : c.body->shapes) {
+        if (s.sensor) continue;
         if (s.type == ShapeType::Plane) {  // the half-space below it, in world coordinates
             const double depth = radius - (s.normal.dot(point) - s.offset);
             if (depth > deepest) {

@@ -54,7 +54,7 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
             std::swap(p.bodyA, p.bodyB);
             p.normal = -p.normal;
         }
-        listed_.push_back({keyOf(p.bodyA), keyOf(p.bodyB), i});
+        listed_.push_back({keyOf(p.bodyA), keyOf(p.bodyB), p.trigger, i});
     }
     bool sameListing = false;
     const std::vector<Listed>& sorted = sortedListing(sameListing);
@@ -133,11 +133,13 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
                           const AsleepQuery& asleep) {
     // Merge walk of the two sorted lists: decide each pair's fate, and carry the touching ones over.
     next_.clear();
-    const auto less = [](Key xa, Key xb, Key ya, Key yb) { return xa != ya ? xa < ya : xb < yb; };
+    // Pairs order by (a, b, trigger): a collision before the same bodies' trigger overlap.
+    const auto less = [](const Active& x, const Listed& y) {
+        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger < y.trigger;
+    };
     std::size_t i = 0, j = 0;
     while (i < active_.size() || j < sorted.size()) {
-        const bool takeOld =
-            j == sorted.size() || (i < active_.size() && less(active_[i].a, active_[i].b, sorted[j].a, sorted[j].b));
+        const bool takeOld = j == sorted.size() || (i < active_.size() && less(active_[i], sorted[j]));
         if (takeOld) {  // touching before, not now: exit, unless asleep (the contact persists silently)
             const Active& old = active_[i];
             if (asleep && (asleep(idOf(old.a)) || asleep(idOf(old.b))))
@@ -150,7 +152,8 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
         const Listed& now = sorted[j++];
         const TouchingRange& p = touching[now.index];
         next_.push_back({now.a, now.b, p.trigger});
-        const bool touchedBefore = i < active_.size() && active_[i].a == now.a && active_[i].b == now.b;
+        const bool touchedBefore =
+            i < active_.size() && active_[i].a == now.a && active_[i].b == now.b && active_[i].trigger == now.trigger;
         if (!touchedBefore) {
             decisions_.push_back({Outcome::Enter, now.index});
         } else {  // stay (triggers report only enter and exit; sleeping pairs nothing)
@@ -162,13 +165,15 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
 }
 
 const std::vector<ContactTracker::Listed>& ContactTracker::sortedListing(bool& same) {
-    const auto equal = [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.index == y.index; };
+    const auto equal = [](const Listed& x, const Listed& y) {
+        return x.a == y.a && x.b == y.b && x.trigger == y.trigger && x.index == y.index;
+    };
     same = std::equal(listed_.begin(), listed_.end(), lastListing_.begin(), lastListing_.end(), equal);
     if (same) return lastSorted_;
     lastListing_.assign(listed_.begin(), listed_.end());
     sortListed();
     listed_.erase(std::unique(listed_.begin(), listed_.end(),
-                              [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b; }),
+                              [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.trigger == y.trigger; }),
                   listed_.end());
     lastSorted_.swap(listed_);
     return lastSorted_;
@@ -176,7 +181,7 @@ const std::vector<ContactTracker::Listed>& ContactTracker::sortedListing(bool& s
 
 void ContactTracker::sortListed() {
     const auto before = [](const Listed& x, const Listed& y) {
-        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.index < y.index;
+        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger != y.trigger ? x.trigger < y.trigger : x.index < y.index;
     };
     if (std::is_sorted(listed_.begin(), listed_.end(), before)) return;
     if (listed_.size() < 64) {  // a few pairs: a comparison sort beats the radix passes
@@ -195,6 +200,15 @@ void ContactTracker::sortListed() {
         andB &= l.b;
     }
     sorting_.resize(listed_.size());
+    // The trigger flag is the least significant key: collisions first, stably, before the bytes
+    // (through the second buffer: std::stable_partition would allocate).
+    if (std::any_of(listed_.begin(), listed_.end(), [](const Listed& l) { return l.trigger; })) {
+        std::size_t next = 0;
+        for (const bool trigger : {false, true})
+            for (const Listed& l : listed_)
+                if (l.trigger == trigger) sorting_[next++] = l;
+        listed_.swap(sorting_);
+    }
     for (int digit = 0; digit < 16; ++digit) {
         const bool high = digit >= 8;  // bytes of b first, then of a
         const int shift = 8 * (digit % 8);

@@ -3,6 +3,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -104,6 +105,35 @@ TEST(ContactTracker, TriggersGetEnterAndExitButNoStay) {
     EXPECT_TRUE(exit[0].trigger);
 }
 
+// A compound whose sensor child overlaps a body its solid child touches: the collision and the
+// trigger are two pairs of the same bodies, each entering and exiting on its own.
+TEST(ContactTracker, CollisionAndTriggerOfOneBodyPairAreTwoPairs) {
+    ContactTracker t;
+    const auto both = t.update({touch(body(1), body(2), Vec3(0, 1, 0), true), touch(body(2), body(1))});
+    ASSERT_EQ(summary(both), (std::vector<Summary>{{P::Enter, 1, 2}, {P::Enter, 1, 2}}));
+    EXPECT_FALSE(both[0].trigger);  // collisions first in pair order
+    EXPECT_TRUE(both[1].trigger);
+    EXPECT_EQ(t.activePairs(), 2u);
+
+    const auto stay = t.update({touch(body(1), body(2)), touch(body(1), body(2), Vec3(0, 1, 0), true)});
+    ASSERT_EQ(summary(stay), (std::vector<Summary>{{P::Stay, 1, 2}}));  // triggers never stay
+    EXPECT_FALSE(stay[0].trigger);
+
+    const auto triggerOff = t.update({touch(body(1), body(2))});
+    ASSERT_EQ(summary(triggerOff), (std::vector<Summary>{{P::Exit, 1, 2}, {P::Stay, 1, 2}}));
+    EXPECT_TRUE(triggerOff[0].trigger);
+
+    const auto triggerBack = t.update({touch(body(1), body(2), Vec3(0, 1, 0), true), touch(body(1), body(2))});
+    ASSERT_EQ(summary(triggerBack), (std::vector<Summary>{{P::Enter, 1, 2}, {P::Stay, 1, 2}}));
+    EXPECT_TRUE(triggerBack[0].trigger);
+
+    const auto off = t.update({});
+    ASSERT_EQ(off.size(), 2u);
+    EXPECT_EQ(off[0].trigger, false);
+    EXPECT_EQ(off[1].trigger, true);
+    EXPECT_EQ(t.activePairs(), 0u);
+}
+
 TEST(ContactTracker, SleepingPairNeitherExitsNorStays) {
     ContactTracker t;
     std::set<BodyId> sleeping;
@@ -189,37 +219,40 @@ TEST(ContactTracker, ClearForgetsEverythingSilently) {
 
 namespace {
 
-// The rules of the tracker's header, written the plain way: a map of touching pairs.
+// The rules of the tracker's header, written the plain way: a map of touching pairs, each a
+// (body, body, trigger) triple (a collision and a trigger of the same bodies are two pairs).
 class ReferenceTracker {
 public:
+    using Key = std::tuple<BodyId, BodyId, bool>;
+
     std::vector<ContactEvent> update(std::vector<TouchingPair> touching, const ContactTracker::AsleepQuery& asleep) {
-        std::map<std::pair<BodyId, BodyId>, TouchingPair> now;  // first report of each pair
+        std::map<Key, TouchingPair> now;  // first report of each pair
         for (TouchingPair& p : touching) {
             if (p.bodyA == p.bodyB) continue;
             if (p.bodyB < p.bodyA) {
                 std::swap(p.bodyA, p.bodyB);
                 p.normal = -p.normal;
             }
-            now.try_emplace({p.bodyA, p.bodyB}, p);
+            now.try_emplace({p.bodyA, p.bodyB, p.trigger}, p);
         }
-        const auto sleeping = [&](const std::pair<BodyId, BodyId>& k) { return asleep(k.first) || asleep(k.second); };
+        const auto sleeping = [&](const Key& k) { return asleep(std::get<0>(k)) || asleep(std::get<1>(k)); };
         std::vector<ContactEvent> exits, enters, stays;
-        std::map<std::pair<BodyId, BodyId>, bool> next;
-        for (const auto& [key, trigger] : active_) {
+        std::set<Key> next;
+        for (const Key& key : active_) {
             if (now.contains(key)) continue;
             if (sleeping(key)) {
-                next[key] = trigger;
+                next.insert(key);
                 continue;
             }
             ContactEvent e;
-            e.bodyA = key.first;
-            e.bodyB = key.second;
+            e.bodyA = std::get<0>(key);
+            e.bodyB = std::get<1>(key);
             e.phase = ContactPhase::Exit;
-            e.trigger = trigger;
+            e.trigger = std::get<2>(key);
             exits.push_back(e);
         }
         for (const auto& [key, p] : now) {
-            next[key] = p.trigger;
+            next.insert(key);
             const bool before = active_.contains(key);
             if (before && (p.trigger || sleeping(key))) continue;
             ContactEvent e;
@@ -241,15 +274,15 @@ public:
     std::vector<ContactEvent> removeBody(BodyId body) {
         std::vector<ContactEvent> exits;
         for (auto it = active_.begin(); it != active_.end();) {
-            if (it->first.first != body && it->first.second != body) {
+            if (std::get<0>(*it) != body && std::get<1>(*it) != body) {
                 ++it;
                 continue;
             }
             ContactEvent e;
-            e.bodyA = it->first.first;
-            e.bodyB = it->first.second;
+            e.bodyA = std::get<0>(*it);
+            e.bodyB = std::get<1>(*it);
             e.phase = ContactPhase::Exit;
-            e.trigger = it->second;
+            e.trigger = std::get<2>(*it);
             e.removal = true;
             exits.push_back(e);
             it = active_.erase(it);
@@ -258,7 +291,7 @@ public:
     }
 
 private:
-    std::map<std::pair<BodyId, BodyId>, bool> active_;
+    std::set<Key> active_;
 };
 
 void expectSameEvents(const std::vector<ContactEvent>& got, const std::vector<ContactEvent>& expected, int step) {

@@ -81,6 +81,10 @@ void expectSameShape(const ShapeDef& x, const ShapeDef& y, const std::string& wh
     expectSameVec(x.position, y.position, "shape position");
     expectSameQuat(x.orientation, y.orientation, "shape orientation");
     EXPECT_EQ(x.density, y.density);
+    EXPECT_EQ(x.material, y.material);
+    EXPECT_EQ(x.isTrigger, y.isTrigger);
+    EXPECT_EQ(x.layer, y.layer);
+    EXPECT_EQ(x.mask, y.mask);
 }
 
 void expectSameScene(const Scene& a, const Scene& b) {
@@ -670,6 +674,54 @@ TEST(SceneJson, DefaultShapePlacementIsNotWritten) {
     EXPECT_EQ(shapeText.find("orientation"), std::string::npos) << shapeText;
     EXPECT_EQ(shapeText.find("density"), std::string::npos) << shapeText;
     expectSameScene(s, parseScene(text));
+}
+
+// A compound child's own material, sensor flag and filter: read, kept unset where not given, and
+// written back only where set.
+TEST(SceneJson, ChildSurfacesRoundTrip) {
+    const char* text = R"({
+      "materials": { "ice": { "friction": 0.02 }, "rubber": { "friction": 0.9 } },
+      "bodies": [ { "name": "car", "material": "rubber",
+                    "shape": { "type": "compound", "shapes": [
+                      { "type": "box", "halfExtents": [2, 0.5, 1] },
+                      { "type": "box", "halfExtents": [0.1, 0.3, 1], "position": [2.1, 0, 0], "material": "ice" },
+                      { "type": "box", "halfExtents": [1, 0.5, 1], "position": [3.5, 0, 0], "isTrigger": true,
+                        "layer": 8, "mask": 4 } ] } } ] })";
+    const Scene s = parseScene(text);
+    const ShapeDef& body = s.bodies[0].shape.shapes[0];
+    const ShapeDef& bumper = s.bodies[0].shape.shapes[1];
+    const ShapeDef& sensor = s.bodies[0].shape.shapes[2];
+    EXPECT_FALSE(body.overridesSurface());
+    EXPECT_EQ(bumper.material, "ice");
+    EXPECT_FALSE(bumper.isTrigger || bumper.layer || bumper.mask);
+    EXPECT_EQ(sensor.isTrigger, true);
+    EXPECT_EQ(sensor.layer, 8u);
+    EXPECT_EQ(sensor.mask, 4u);
+    EXPECT_FALSE(sensor.material.has_value());
+    const std::string written = sceneToJson(s);
+    const Scene back = parseScene(written);
+    expectSameScene(s, back);
+    EXPECT_EQ(sceneToJson(back), written);
+    // Only the sensor child writes a filter; the bumper writes its material and nothing else.
+    EXPECT_NE(written.find("\"material\": \"ice\""), std::string::npos) << written;
+    EXPECT_NE(written.find("\"layer\": 8"), std::string::npos) << written;
+    EXPECT_EQ(written.find("\"layer\": 8"), written.rfind("\"layer\": 8")) << written;
+}
+
+TEST(SceneJson, ChildSurfaceErrorsNamePathValueAndRule) {
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "sphere", "radius": 0.5, "material": "ice"}]}})"),
+                     {"bodies[0].shape.shapes[0].material: must name a material defined in \"materials\""});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "sphere", "radius": 0.5, "isTrigger": 1}]}})"),
+                     {"bodies[0].shape.shapes[0].isTrigger"});
+    expectParseError(withBody(R"({"name": "b", "shape": {"type": "compound", "shapes": [
+                                    {"type": "sphere", "radius": 0.5, "mask": -1}]}})"),
+                     {"bodies[0].shape.shapes[0].mask: must be an unsigned 32-bit integer"});
+    for (const char* key : {"material", "isTrigger", "layer", "mask"})
+        expectParseError(withBody(std::string(R"({"name": "b", "shape": {"type": "sphere", "radius": 0.5, ")") + key +
+                                  R"(": 1}})"),
+                         {std::string("bodies[0].shape.") + key + ": allowed only on the children of a compound shape"});
 }
 
 TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {

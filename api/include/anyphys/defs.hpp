@@ -33,6 +33,13 @@ struct ShapeDef {
     Vec3 position = Vec3::Zero();               ///< m, compound child: placement in the body frame; default origin
     Quat orientation = Quat::Identity();        ///< compound child: rotation in the body frame; default identity
     std::optional<double> density;              ///< kg/m^3, compound child: its own density; default the body's
+                                                ///< (its material's density when it names its own material)
+    // A compound child's own surface, each an override of the BodyDef field of the same name
+    // (unset: the body's). Only compound children may carry them: a lone shape is the body.
+    std::optional<std::string> material;        ///< compound child: name in the world's MaterialLibrary; default the body's
+    std::optional<bool> isTrigger;              ///< compound child: a sensor part (trigger events, no response); default the body's
+    std::optional<std::uint32_t> layer;         ///< compound child: collision layer bits; default the body's
+    std::optional<std::uint32_t> mask;          ///< compound child: layers this child collides with; default the body's
 
     static ShapeDef sphere(double r) { ShapeDef s; s.type = ShapeType::Sphere; s.radius = r; return s; }
     static ShapeDef box(const Vec3& half) { ShapeDef s; s.type = ShapeType::Box; s.halfExtents = half; return s; }
@@ -51,6 +58,8 @@ struct ShapeDef {
     static ShapeDef compound(std::vector<ShapeDef> children) {
         ShapeDef s; s.type = ShapeType::Compound; s.shapes = std::move(children); return s;
     }
+    /// True when some surface override (material, isTrigger, layer, mask) is set.
+    bool overridesSurface() const { return material || isTrigger || layer || mask; }
     /// This shape placed at a pose in the body frame (for compound children).
     ShapeDef placed(const Vec3& at, const Quat& rotation = Quat::Identity()) const {
         ShapeDef s = *this; s.position = at; s.orientation = rotation; return s;

@@ -139,8 +139,25 @@ inline bool spansVolume(const std::vector<Vec3>& p) {
 }
 }  // namespace detail
 
+namespace detail {
+// A compound child's surface overrides belong to that child; on any other shape the body's own
+// field is the one to set, so naming it there is refused rather than silently ignored.
+inline void refuseSurfaceOverrides(const ShapeDef& s, const std::string& path) {
+    const auto refuse = [&](const char* field, const std::string& value) {
+        throw Error::invalid(path + "." + field, value,
+                             std::string("allowed only on the children of a compound shape (shape.shapes[i].") + field +
+                                 "); set the body's " + field + " instead");
+    };
+    if (s.material) refuse("material", "\"" + *s.material + "\"");
+    if (s.isTrigger) refuse("isTrigger", *s.isTrigger ? "true" : "false");
+    if (s.layer) refuse("layer", std::to_string(*s.layer));
+    if (s.mask) refuse("mask", std::to_string(*s.mask));
+}
+}  // namespace detail
+
 inline void validate(const ShapeDef& s, const std::string& path, bool isChild = false) {
     using namespace detail;
+    if (!isChild) refuseSurfaceOverrides(s, path);
     switch (s.type) {
         case ShapeType::Sphere:
             requireSet(path + ".radius", s.radius, "a sphere needs its radius > 0 (ShapeDef::sphere(r))");

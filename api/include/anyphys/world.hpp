@@ -249,6 +249,10 @@ private:
     void dispatchEvents();
     void deliverEvents();  // the last step's events to the listeners
     struct MaterialTable buildMaterialTable();
+    // Per-piece surfaces of a compound (a child's own material, density, filter, sensor flag).
+    void requireKnownMaterials(const BodyDef& def) const;  // the body's and every child's, named
+    std::vector<double> pieceDensities(const BodyDef& def) const;
+    void resolveSurfaces(const BodyDef& def, std::vector<struct PeerShape>& shapes) const;
     void noteForcesUsed();  // first force or torque: derive the userForces effect
     void installForceHook();  // who evaluates the fields and the force callback: the peer per stage, or the layer per step
     void evaluateForces(detail::ForceSink& sink);  // the fields, then the force callback

@@ -114,7 +114,11 @@ void World::debugDraw(DebugDraw& drawer, const DebugDrawOptions& options) const 
             const DebugColor color = colorOf(s.def, awake, options.palette);
             forEachPrimitive(s.def.shape, Transform{state.position, state.orientation},
                              [&](const ShapeDef& shape, const Transform& pose) {
-                                 if (options.shapes) drawer.drawShape(id, shape, pose, color, awake);
+                                 // A compound's sensor child in the trigger colour, its solid
+                                 // children in the body's.
+                                 const bool sensorChild = shape.isTrigger.value_or(s.def.isTrigger);
+                                 const DebugColor shapeColor = sensorChild ? options.palette.trigger : color;
+                                 if (options.shapes) drawer.drawShape(id, shape, pose, shapeColor, awake);
                                  if (!options.bounds) return;
                                  if (const auto box = shapeBounds(shape, pose)) drawer.drawBounds(id, box->min, box->max);
                              });

@@ -25,6 +25,7 @@ struct FieldShape {
     Vec3 normal = Vec3::UnitY();             ///< plane: unit normal, world frame (a plane is static)
     double offset = 0.0;                     ///< plane: normal . x == offset, world frame
     Transform local;                         ///< the shape's pose in the body frame
+    bool sensor = false;                     ///< a compound's sensor child: counts for volume and mass, particles pass it
 };
 
 /// The volume of a primitive (m^3).

@@ -6,7 +6,9 @@
 //    triggers get no Stay); touching before, not now: Exit;
 //  - a pair whose bodies are (either) asleep keeps its contact: no Exit, no Stay;
 //  - removing a body ends its pairs with an Exit flagged `removal`;
-//  - a pair reported twice in one step counts once (first report wins).
+//  - a pair reported twice in one step counts once (first report wins);
+//  - a body pair's collision and its trigger overlap are two pairs, each with its own enter and
+//    exit (a compound whose sensor child overlaps a body its solid child touches has both).
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -51,10 +53,11 @@ private:
     using Key = std::uint64_t;
     struct Active {
         Key a, b;  // a < b
-        bool trigger = false;
+        bool trigger = false;  // part of the pair's identity: a collision and a trigger are two pairs
     };
-    struct Listed {  // a listed pair, in (a, b, listing order) order
+    struct Listed {  // a listed pair, in (a, b, trigger, listing order) order
         Key a, b;
+        bool trigger;
         std::uint32_t index;  // into `touching`
     };
     enum class Outcome : std::uint8_t { Exit, Enter, Stay };

@@ -2,6 +2,7 @@
 // Shapes as the layer hands them to a backend: primitives only (compounds are flattened),
 // placed in the peer body frame (centre of mass, principal axes), convex hulls already built.
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -29,6 +30,37 @@ struct PeerShape {
     ShapeDef def;                            ///< a primitive (never compound); its own position/orientation are unused
     Transform local;                         ///< pose of the shape in the peer body frame
     std::shared_ptr<const HullData> hull;    ///< convex shapes only
+    // The shape's surface, resolved by the layer: a compound child's own values where it set
+    // them, else the body's. Backends read these per shape, never the BodyDef's.
+    std::uint32_t material = 0;              ///< row / column of the MaterialTable
+    std::uint32_t layer = 1;                 ///< collision layer bits (layersCollide)
+    std::uint32_t mask = 0xFFFFFFFFu;        ///< layers this shape collides with
+    bool isTrigger = false;                  ///< a sensor: overlaps reported as triggers, no response
 };
+
+/// Summaries of a body's shapes for backends that filter whole bodies first (a broad phase
+/// that pairs bodies, not shapes): a body pair may touch only if some shape pair may.
+struct SurfaceSummary {
+    std::uint32_t anyLayer = 0;    ///< union of the shapes' layers
+    std::uint32_t anyMask = 0;     ///< union of the shapes' masks
+    bool allTriggers = true;       ///< every shape is a sensor (the whole body never responds)
+    bool anyTrigger = false;       ///< some shape is a sensor
+    bool uniform = true;           ///< every shape has the same material, layer, mask and sensor flag
+};
+
+inline SurfaceSummary summarize(const std::vector<PeerShape>& shapes) {
+    SurfaceSummary s;
+    for (const PeerShape& p : shapes) {
+        s.anyLayer |= p.layer;
+        s.anyMask |= p.mask;
+        s.allTriggers = s.allTriggers && p.isTrigger;
+        s.anyTrigger = s.anyTrigger || p.isTrigger;
+        const PeerShape& first = shapes.front();
+        s.uniform = s.uniform && p.material == first.material && p.layer == first.layer && p.mask == first.mask &&
+                    p.isTrigger == first.isTrigger;
+    }
+    if (shapes.empty()) s.allTriggers = false;
+    return s;
+}
 
 }  // namespace anyphys

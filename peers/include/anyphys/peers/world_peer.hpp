@@ -45,7 +45,8 @@ struct MaterialTable {
 /// Every pair in contact or overlap after a step, flat: a pair's points are a range of one array
 /// shared by all pairs, so a step of thousands of pairs allocates nothing once the buffers have
 /// grown (the layer keeps one report and hands it over cleared every step). One entry per body
-/// pair (touching or speculative, or overlapping for triggers), normal from A to B, points in
+/// pair and kind (touching or speculative; or overlapping, for a trigger: a compound's sensor
+/// child and its solid children make two entries for the same bodies), normal from A to B, points in
 /// the world frame with depth = -separation, so slightly separated speculative points have
 /// depth < 0: the layer decides what counts as touching.
 struct ContactReport {
@@ -87,8 +88,11 @@ struct ContactReport {
             const auto [low, high] = std::minmax(pairs[i].bodyA, pairs[i].bodyB);
             order_.push_back({low, high, i});
         }
-        std::sort(order_.begin(), order_.end(), [](const Order& x, const Order& y) {
-            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.index < y.index;
+        // A body pair's collision and trigger entries stay apart (a compound with a sensor child
+        // has both): ordered by trigger flag after the bodies, so each kind merges into one.
+        std::sort(order_.begin(), order_.end(), [this](const Order& x, const Order& y) {
+            const bool tx = pairs[x.index].trigger, ty = pairs[y.index].trigger;
+            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : tx != ty ? tx < ty : x.index < y.index;
         });
         mergedPairs_.clear();
         mergedPoints_.clear();
