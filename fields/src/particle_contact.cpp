@@ -186,14 +186,21 @@ Vec3 outOfTriangles(const TriangleMesh& mesh, const std::vector<std::uint32_t>& 
 }
 
 // The displacement that keeps a particle on its side of the mesh (shape frame): back across any
-// triangle its path from `from` went through, then out of the nearest triangle it overlaps.
+// triangle its path from `from` went through, then out of the triangles it overlaps, deepest
+// first. A few passes: in a concave fold (a valley, a bowl's bottom) the push out of one face
+// goes into the other, which separate shapes would each have pushed within the same call.
 Vec3 meshPush(const TriangleMesh& mesh, const Vec3& from, const Vec3& p, double radius) {
     thread_local std::vector<std::uint32_t> near;
     const Vec3 reach = Vec3::Constant(radius);
     mesh.candidates(from.cwiseMin(p) - reach, from.cwiseMax(p) + reach, near);
     if (near.empty()) return Vec3::Zero();
-    const Vec3 q = backAcross(mesh, near, from, p, radius);
-    return q - p + outOfTriangles(mesh, near, from, q, radius);
+    Vec3 q = backAcross(mesh, near, from, p, radius);
+    for (int pass = 0; pass < 4; ++pass) {
+        const Vec3 out = outOfTriangles(mesh, near, from, q, radius);
+        if (out.isZero(0)) break;
+        q += out;
+    }
+    return q - p;
 }
 
 }  // namespace
