@@ -14,7 +14,8 @@ namespace anyphys {
 
 namespace {
 
-// The body's primitives in its peer frame (centre of mass, principal axes), with hull faces.
+// The body's primitives in its peer frame (centre of mass, principal axes), with hull faces and
+// mesh triangles (a mesh's culling grid is built here, once: meshes are static).
 std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperties& mass, const Transform& peerFrame) {
     auto body = std::make_unique<FieldBody>();
     const Quat toPeer = peerFrame.orientation.conjugate();
@@ -27,6 +28,7 @@ std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperti
         s.normal = p.def.normal;
         s.offset = p.def.offset;
         if (p.hull) s.hull = std::make_shared<const ConvexFaces>(ConvexFaces{p.hull->vertices, p.hull->faces});
+        if (s.type == ShapeType::Mesh) s.mesh = std::make_shared<const TriangleMesh>(p.def.vertices, p.def.indices);
         s.local.position = toPeer * (p.local.position - peerFrame.position);
         s.local.orientation = toPeer * p.local.orientation;
         s.sensor = p.def.isTrigger.value_or(def.isTrigger);

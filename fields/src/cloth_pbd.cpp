@@ -118,8 +118,10 @@ void ClothSystem::step(double dt, const ParticleEnvironment& env, std::vector<Pa
                 for (std::size_t k = 0; k < n; ++k) {
                     if (invMass_[k] <= 0.0) continue;
                     const Vec3 p = p_[k];
-                    if ((p.array() < (c.boundsMin - margin).array()).any() || (p.array() > (c.boundsMax + margin).array()).any()) continue;
-                    Vec3 push = colliderPush(c, p, def_.thickness);
+                    // The box of the node's path this substep: a fast one may have crossed a thin shape.
+                    const Vec3 lo = p.cwiseMin(x_[k]), hi = p.cwiseMax(x_[k]);
+                    if ((hi.array() < (c.boundsMin - margin).array()).any() || (lo.array() > (c.boundsMax + margin).array()).any()) continue;
+                    Vec3 push = colliderPush(c, x_[k], p, def_.thickness);
                     if (planar_) push.z() = 0.0;
                     if (push.isZero(0)) continue;
                     p_[k] += push;

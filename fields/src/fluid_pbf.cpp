@@ -83,7 +83,7 @@ void FluidSystem::findWalls(const std::vector<ParticleCollider>& colliders) {
         for (std::size_t i = 0; i < p_.size(); ++i) {
             const Vec3& p = p_[i];
             if ((p.array() < (col.boundsMin - margin).array()).any() || (p.array() > (col.boundsMax + margin).array()).any()) continue;
-            Vec3 push = colliderPush(col, p, h_);  // (h - d) along the outward normal, when d < h
+            Vec3 push = colliderPush(col, x_[i], p, h_);  // (h - d) along the outward normal, when d < h
             if (planar_) push.z() = 0.0;
             const double depth = push.norm();
             if (depth <= 0.0) continue;
@@ -237,8 +237,10 @@ void FluidSystem::collide(std::vector<ParticleCollider>& colliders, double dt) {
         const Vec3 margin = Vec3::Constant(radius);
         for (std::size_t i = 0; i < p_.size(); ++i) {
             const Vec3 p = p_[i];
-            if ((p.array() < (c.boundsMin - margin).array()).any() || (p.array() > (c.boundsMax + margin).array()).any()) continue;
-            Vec3 push = colliderPush(c, p, radius);
+            // The box of the particle's path this substep: a fast one may have crossed a thin shape.
+            const Vec3 lo = p.cwiseMin(x_[i]), hi = p.cwiseMax(x_[i]);
+            if ((hi.array() < (c.boundsMin - margin).array()).any() || (lo.array() > (c.boundsMax + margin).array()).any()) continue;
+            Vec3 push = colliderPush(c, x_[i], p, radius);
             if (planar_) push.z() = 0.0;
             if (push.isZero(0)) continue;
             p_[i] += push;

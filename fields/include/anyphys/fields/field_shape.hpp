@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "anyphys/enums.hpp"
+#include "anyphys/fields/triangle_mesh.hpp"
 #include "anyphys/math.hpp"
 
 namespace anyphys {
@@ -15,13 +16,14 @@ struct ConvexFaces {
     std::vector<std::vector<int>> faces;
 };
 
-/// One primitive (sphere, box, capsule, convex or plane) placed in the body frame the caller chooses.
+/// One primitive (sphere, box, capsule, convex, plane or triangle mesh) placed in the body frame the caller chooses.
 struct FieldShape {
     ShapeType type = ShapeType::Sphere;
     double radius = 0.0;                     ///< sphere, capsule
     Vec3 halfExtents = Vec3::Zero();         ///< box
     double halfHeight = 0.0;                 ///< capsule: half the core segment, along the shape's Y
     std::shared_ptr<const ConvexFaces> hull; ///< convex: the hull, in the shape frame
+    std::shared_ptr<const TriangleMesh> mesh; ///< mesh: triangles and their culling grid, shape frame
     Vec3 normal = Vec3::UnitY();             ///< plane: unit normal, world frame (a plane is static)
     double offset = 0.0;                     ///< plane: normal . x == offset, world frame
     Transform local;                         ///< the shape's pose in the body frame

@@ -33,8 +33,10 @@ struct ParticleCollider {
 void colliderBounds(ParticleCollider& collider);
 
 /// The deepest contact of a sphere of `radius` at `point` with the collider's shapes: the push
-/// (along the outward normal, length the penetration) that separates them, or zero.
-Vec3 colliderPush(const ParticleCollider& collider, const Vec3& point, double radius);
+/// (along the outward normal, length the penetration) that separates them, or zero. `from` is
+/// where the particle started the substep: a triangle mesh has no inside, so the side of each
+/// triangle it started on is the side it is kept on (a path through a triangle is moved back).
+Vec3 colliderPush(const ParticleCollider& collider, const Vec3& from, const Vec3& point, double radius);
 
 /// A uniform grid over space with cells of `cell` metres, stored by hashing the cell coordinates
 /// into a table (so particles may spread anywhere): counting sort by bucket, neighbours by the
