@@ -25,10 +25,11 @@ TEST(ParticleSensorShapes, ParticlesPassSensorChildrenAndMeetSolidOnes) {
     colliderBounds(c);
     // Bounds cover the solid child only: the sensor child has nothing to push with.
     EXPECT_DOUBLE_EQ(c.boundsMax.x(), -1.0);
-    // A particle of radius 0.1 at the solid child's surface, 0.1 inside: pushed out by 0.2 m.
-    const Vec3 push = colliderPush(c, Vec3(-1.1, 0, 0), 0.1);
+    // A particle of radius 0.1 at rest (it starts the substep where it is), 0.1 inside the solid
+    // child's surface: pushed out by 0.2 m.
+    const Vec3 push = colliderPush(c, Vec3(-1.1, 0, 0), Vec3(-1.1, 0, 0), 0.1);
     EXPECT_NEAR(push.x(), 0.2, 1e-12);
-    EXPECT_TRUE(colliderPush(c, Vec3(2, 0, 0), 0.1).isZero(0)) << "inside the sensor child: no push";
+    EXPECT_TRUE(colliderPush(c, Vec3(2, 0, 0), Vec3(2, 0, 0), 0.1).isZero(0)) << "inside the sensor child: no push";
 }
 
 }  // namespace
