@@ -1,5 +1,6 @@
 #include "demo_support.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -106,6 +107,26 @@ SimulationResult simulate(World& world, const std::vector<Body>& bodies, const D
     if (result.steps > 0)
         result.msPerStep = std::chrono::duration<double, std::milli>(stepping).count() / static_cast<double>(result.steps);
     return result;
+}
+
+void DemoMenu::addTo(CLI::App& app) {
+    app.add_option("NAME", name_, "Demo to run (see --list)");
+    app.add_flag("--list", list_, "List the demos");
+}
+
+bool DemoMenu::listedOrChecked() const {
+    if (list_) {
+        std::size_t width = 0;
+        for (const auto& [name, what] : demos_) width = std::max(width, name.size());
+        for (const auto& [name, what] : demos_) std::printf("%-*s  %s\n", static_cast<int>(width), name.c_str(), what.c_str());
+        return true;
+    }
+    if (!demos_.contains(name_)) {
+        std::string known;
+        for (const auto& [name, what] : demos_) known += (known.empty() ? "" : ", ") + name;
+        throw Error::invalid("NAME", "\"" + name_ + "\"", "must be one of " + known);
+    }
+    return false;
 }
 
 int runMain(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {

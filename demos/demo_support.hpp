@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,24 @@ struct SimulationResult {
 /// non-finite.
 SimulationResult simulate(World& world, const std::vector<Body>& bodies, const DemoOptions& options,
                           const StepHooks& hooks = {});
+
+/// The demos of a program that runs one chosen by name: its NAME argument and --list.
+class DemoMenu {
+public:
+    /// `demos`: name -> one line saying what it shows.
+    explicit DemoMenu(std::map<std::string, std::string> demos) : demos_(std::move(demos)) {}
+    /// Adds the NAME argument and the --list flag to `app`.
+    void addTo(CLI::App& app);
+    /// True when --list was given (the list is printed). Otherwise checks NAME, throwing
+    /// anyphys::Error naming it and the known demos when it is none of them.
+    bool listedOrChecked() const;
+    const std::string& chosen() const { return name_; }
+
+private:
+    std::map<std::string, std::string> demos_;
+    std::string name_;
+    bool list_ = false;
+};
 
 /// Parses the command line and runs `body`: usage errors exit 2, anyphys::Error and other
 /// exceptions exit 1, each as one line "program: message" on stderr; --help exits 0.

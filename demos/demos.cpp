@@ -3,7 +3,6 @@
 // against what physics says; --out writes the trajectories in the `anyphys run` CSV format.
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "thesis_demos.hpp"
 
@@ -26,33 +25,23 @@ void printCheck(const std::string& what, double measured, double expected, const
 
 int main(int argc, char** argv) {
     using namespace anyphys::demo;
-    const std::map<std::string, std::string> demos = {
+    DemoMenu menu({
         {"volumes", "compound bodies: several collision volumes per body"},
         {"materials", "ice, wood and rubber side by side: sliding distances and rebounds"},
         {"joints", "every joint type the backend has, with limits and motors"},
         {"dynamics", "forces, torques, impulses and a spin about the intermediate axis"},
         {"simultaneous", "the same scene in one world per backend, stepped together"},
-    };
+    });
     DemoOptions o;
-    std::string name;
     std::vector<std::string> backends;
-    bool list = false;
     CLI::App app{"anyphys_demos: the thesis' demos on any backend", "anyphys_demos"};
     addCommonOptions(app, o, 4.0);
-    app.add_option("NAME", name, "Demo to run (see --list)");
-    app.add_flag("--list", list, "List the demos");
+    menu.addTo(app);
     app.add_option("--backends", backends, "simultaneous: comma-separated backends (default: every built one)")->delimiter(',');
     return runMain(app, argc, argv, [&]() -> int {
-        if (list) {
-            for (const auto& [n, what] : demos) std::printf("%-13s %s\n", n.c_str(), what.c_str());
-            return 0;
-        }
-        if (!demos.contains(name)) {
-            std::string known;
-            for (const auto& [n, what] : demos) known += (known.empty() ? "" : ", ") + n;
-            throw anyphys::Error::invalid("NAME", "\"" + name + "\"", "must be one of " + known);
-        }
+        if (menu.listedOrChecked()) return 0;
         validate(o);
+        const std::string& name = menu.chosen();
         if (name == "volumes") return runVolumes(o);
         if (name == "materials") return runMaterials(o);
         if (name == "joints") return runJoints(o);

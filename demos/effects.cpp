@@ -2,9 +2,6 @@
 // every engine: boat (buoyancy waves), dambreak (fluid and crates), flag (cloth in wind),
 // explosion (a stack blown apart). Each prints what it measured; --out writes the bodies'
 // trajectories in the `anyphys run` CSV format.
-#include <cstdio>
-#include <map>
-
 #include "effects_demos.hpp"
 
 namespace anyphys::demo {
@@ -22,30 +19,20 @@ Body staticBlock(World& world, const std::string& name, const Vec3& lo, const Ve
 
 int main(int argc, char** argv) {
     using namespace anyphys::demo;
-    const std::map<std::string, std::string> demos = {
+    DemoMenu menu({
         {"boat", "a boat riding waves of a buoyancy field"},
         {"dambreak", "a water column collapses and carries crates (position-based fluid)"},
         {"flag", "a cloth flag on a pole in the wind"},
         {"explosion", "an explosion at the foot of a stack of crates"},
-    };
+    });
     DemoOptions o;
-    std::string name;
-    bool list = false;
     CLI::App app{"anyphys_effects: buoyancy, fluid, cloth and explosion demos on any backend", "anyphys_effects"};
     addCommonOptions(app, o, 3.0);
-    app.add_option("NAME", name, "Demo to run (see --list)");
-    app.add_flag("--list", list, "List the demos");
+    menu.addTo(app);
     return runMain(app, argc, argv, [&]() -> int {
-        if (list) {
-            for (const auto& [n, what] : demos) std::printf("%-10s %s\n", n.c_str(), what.c_str());
-            return 0;
-        }
-        if (!demos.contains(name)) {
-            std::string known;
-            for (const auto& [n, what] : demos) known += (known.empty() ? "" : ", ") + n;
-            throw anyphys::Error::invalid("NAME", "\"" + name + "\"", "must be one of " + known);
-        }
+        if (menu.listedOrChecked()) return 0;
         validate(o);
+        const std::string& name = menu.chosen();
         if (name == "boat") return runBoat(o);
         if (name == "dambreak") return runDamBreak(o);
         if (name == "flag") return runFlag(o);
