@@ -3,13 +3,8 @@
 # each exits 0 only when what it shows happened (the boat rides the swell, the water carries the
 # crates, the flag flies, the blast scatters the stack that stood), writes the run CSV, and bad
 # input is one line on stderr.
-set -euo pipefail
-anyphys="$1"
-bin="$2"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.bash"
 
-backends=$("$anyphys" backends --json | python3 -c 'import json,sys; print(" ".join(b["name"] for b in json.load(sys.stdin)["backends"]))')
 for backend in $backends; do
   "$bin/anyphys_effects" boat --backend "$backend" --seconds 6 --out "$work/boat.csv" > "$work/boat.txt" || { cat "$work/boat.txt"; echo "FAIL boat on $backend"; exit 1; }
   grep -q ',boat,' "$work/boat.csv" || { echo "FAIL $backend: no boat rows"; exit 1; }

@@ -1,13 +1,8 @@
 #!/usr/bin/env bash
 # anyphys_ragdoll runs every mode on every built backend (the planar ragdoll on a 2D engine),
 # writes the `anyphys run` CSV with the prefixed body names, and refuses bad input with one line.
-set -euo pipefail
-anyphys="$1"
-bin="$2"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.bash"
 
-backends=$("$anyphys" backends --json | python3 -c 'import json,sys; print(" ".join(b["name"] for b in json.load(sys.stdin)["backends"]))')
 for backend in $backends; do
   for mode in drop pile animated; do
     "$bin/anyphys_ragdoll" --backend "$backend" --mode "$mode" --count 3 --seconds 1 --out "$work/r.csv" > "$work/summary.txt"

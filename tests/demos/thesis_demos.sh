@@ -1,14 +1,9 @@
 #!/usr/bin/env bash
 # anyphys_demos: every demo on every built backend (planar scenes on a 2D engine) exits 0 and
 # writes the run CSV; the dynamics demo matches its closed forms; bad input is one line on stderr.
-set -euo pipefail
-anyphys="$1"
-bin="$2"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.bash"
 
 [[ $("$bin/anyphys_demos" --list | wc -l) -eq 5 ]] || { echo "FAIL: --list does not list 5 demos"; exit 1; }
-backends=$("$anyphys" backends --json | python3 -c 'import json,sys; print(" ".join(b["name"] for b in json.load(sys.stdin)["backends"]))')
 for backend in $backends; do
   for demo in volumes materials joints dynamics; do
     "$bin/anyphys_demos" "$demo" --backend "$backend" --seconds 1 --out "$work/d.csv" > "$work/summary.txt" \

@@ -1,14 +1,9 @@
 #!/usr/bin/env bash
 # anyphys_vehicle drives on every built backend (the planar car on a 2D engine), writes the run
 # CSV with the chassis, follows a control file, and refuses bad input with one line on stderr.
-set -euo pipefail
-anyphys="$1"
-bin="$2"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.bash"
 
 printf 'time,throttle,steer,brake\n0,1,0,0\n1,0,0,1\n' > "$work/control.csv"
-backends=$("$anyphys" backends --json | python3 -c 'import json,sys; print(" ".join(b["name"] for b in json.load(sys.stdin)["backends"]))')
 for backend in $backends; do
   "$bin/anyphys_vehicle" --backend "$backend" --seconds 2 --out "$work/v.csv" > "$work/summary.txt"
   head -1 "$work/v.csv" | grep -q '^step,time,body,px,py,pz,' || { echo "FAIL $backend: CSV header"; exit 1; }
