@@ -325,9 +325,8 @@ void StepSolver::runBlock(int stage, int block, int worker) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
                 ContactLane lanes[wide::kLanes];
-                const WideSource& src = wideSource_[w];
-                for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[src.first + k]];
-                prepareContacts(wide_[w], lanes, src.count, bodies_.data(), states_.data(), prepareParams_);
+                const int n = gatherLanes(w, lanes);
+                prepareContacts(wide_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
             break;
         case StageKind::IntegrateVelocities: integrateVelocities(bodies_.data(), states_.data(), begin, end, h_); break;
@@ -360,6 +359,12 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     }
 }
 
+int StepSolver::gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const {
+    const WideSource& src = wideSource_[static_cast<std::size_t>(w)];
+    for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[static_cast<std::size_t>(src.first + k)]];
+    return src.count;
+}
+
 bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int end) {
     const int count = end - begin;
     PlanarContact* colour = planar_.data() + first;
@@ -367,9 +372,8 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
                 ContactLane lanes[wide::kLanes];
-                const WideSource& src = wideSource_[w];
-                for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[src.first + k]];
-                preparePlanarContacts(planar_[w], lanes, src.count, bodies_.data(), states_.data(), prepareParams_);
+                const int n = gatherLanes(w, lanes);
+                preparePlanarContacts(planar_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
             return true;
         case StageKind::WarmStart: warmStartPlanarContacts(colour, count, states_.data()); return true;

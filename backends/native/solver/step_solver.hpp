@@ -86,6 +86,8 @@ private:
     void runOnMain(int stage) override;
     /// The contact stages of a planar world; false for the stages it shares with 3D worlds.
     bool runPlanarBlock(const StagePlan& p, int first, int begin, int end);
+    /// The contact lanes that wide constraint `w` packs, copied into `lanes`; returns their count.
+    int gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const;
     /// Writes solver poses and velocities back to the world's bodies.
     void finalizeBodies(int begin, int end);
     /// Solver-body forces from the user's callback at the current states.
