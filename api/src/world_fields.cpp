@@ -4,6 +4,8 @@
 // impulses before the step. Only what every backend offers is used: body
 // states, forces and torques, impulses, ray casts and overlap queries.
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include "anyphys/validation.hpp"
 #include "anyphys/world.hpp"
@@ -45,6 +47,32 @@ std::unique_ptr<FieldBody> buildFieldBody(const BodyDef& def, const MassProperti
 
 FieldState fieldState(const BodyState& s) { return {{s.position, s.orientation}, s.linearVelocity, s.angularVelocity}; }
 
+std::string bodyLabel(const BodyDef& def, std::uint32_t index) {
+    return def.name.empty() ? "body #" + std::to_string(index) : "body \"" + def.name + "\"";
+}
+
+// A field whose push on a body would change its speed or spin by more than the world's ceilings
+// (within one step for a force, at once for an impulse) has parameters absurd for that body: an air
+// density of 1e300, a wind at 1e308 m/s, an explosion of 1e308 N s. Refused before an engine
+// integrates it, as a force given to Body::applyForce is: an engine handed an infinite force aborts
+// inside its integrator (the API fuzzer made ODE abort on such a wind). `seconds` is the step for a
+// force, 1 for an impulse.
+void requireFieldPushWithinCeilings(const BodyDef& def, std::uint32_t index, const MassProperties& mass,
+                                    const Vec3& linear, const Vec3& angular, double seconds, const WorldSettings& settings,
+                                    const char* what) {
+    const double speedChange = linear.stableNorm() / mass.mass * seconds;
+    const double spinChange = angular.isZero(0) ? 0.0 : angular.stableNorm() / mass.inertia.minCoeff() * seconds;
+    if (speedChange <= settings.maxSpeed && spinChange <= settings.maxAngularSpeed) return;
+    const bool speed = !(speedChange <= settings.maxSpeed);
+    throw Error(ErrorKind::InvalidArgument, "fields",
+                std::string("World.step: the fields' ") + what + " on " + bodyLabel(def, index) + " (" +
+                    (speed ? "linear " + formatVec3(linear) : "angular " + formatVec3(angular)) + ") would change its " +
+                    (speed ? "speed by " + detail::ceilingText(speedChange) + " m/s" : "spin by " + detail::ceilingText(spinChange) + " rad/s") +
+                    (seconds == 1.0 ? " at once" : " in one step") + ", more than WorldSettings." +
+                    (speed ? "maxSpeed (" + detail::ceilingText(settings.maxSpeed) : "maxAngularSpeed (" + detail::ceilingText(settings.maxAngularSpeed)) +
+                    "): a field's density, drag, wind speed or impulse is beyond what the world can integrate");
+}
+
 }  // namespace
 
 const FieldBody& World::Slot::fieldGeometry() {
@@ -66,6 +94,9 @@ void World::addField(const FieldDef& input) {
         if (input.type == FieldType::Wind) inPlane("FieldDef.velocity", input.velocity);
         if (input.type == FieldType::Explosion) inPlane("FieldDef.center", input.center);
     }
+    // A wind faster than any body may move is a units mistake; its drag would overflow.
+    if (input.type == FieldType::Wind)
+        detail::requireSpeed("FieldDef.velocity", input.velocity, settings_.maxSpeed, "WorldSettings.maxSpeed", "m/s");
     if (settings_.effects && !settings_.effects->has(effect))
         throw Error("World.addField: the world's declared effects exclude \"" + std::string(toString(effect)) +
                     "\"; add it to WorldSettings.effects");
@@ -110,6 +141,7 @@ void World::applyFieldForces(detail::ForceSink& sink) {
             total.force.z() = 0.0;
             total.torque.x() = total.torque.y() = 0.0;
         }
+        requireFieldPushWithinCeilings(slot.def, index, slot.mass, total.force, total.torque, settings_.timeStep, settings_, "force");
         if (!total.force.isZero(0)) sink.addForce(index, *slot.peer, total.force);
         if (!total.torque.isZero(0)) sink.addTorque(index, *slot.peer, total.torque);
     }
@@ -117,6 +149,12 @@ void World::applyFieldForces(detail::ForceSink& sink) {
 
 void World::fireExplosions(double dt) {
     const bool planar = settings_.planar;
+    // Every impulse is checked before any is applied: a refused explosion leaves the world as it was.
+    struct Push {
+        Slot* slot;
+        Vec3 linear, angular;
+    };
+    std::vector<Push> pushes;
     for (const FieldDef& field : impl_->fields) {
         // Due in this step: its start time t has t <= time < t + dt.
         if (field.type != FieldType::Explosion || field.time < time_ || field.time >= time_ + dt) continue;
@@ -153,9 +191,13 @@ void World::fireExplosions(double dt) {
                 linear.z() = 0.0;
                 angular.x() = angular.y() = 0.0;
             }
-            slot.peer->applyLinearImpulse(linear);
-            if (!angular.isZero(0)) slot.peer->applyAngularImpulse(angular);
+            requireFieldPushWithinCeilings(slot.def, id.index, slot.mass, linear, angular, 1.0, settings_, "explosion impulse");
+            pushes.push_back({&slot, linear, angular});
         }
+    }
+    for (const Push& p : pushes) {
+        p.slot->peer->applyLinearImpulse(p.linear);
+        if (!p.angular.isZero(0)) p.slot->peer->applyAngularImpulse(p.angular);
     }
 }
 

@@ -125,6 +125,10 @@ void newWorld(Decoder& d, Session& s) {
     if (d.flag()) w.divergencePolicy = DivergencePolicy::Freeze;
     if (d.flag()) w.capabilityPolicy = CapabilityPolicy::Lenient;
     if (d.flag()) w.maxSpeed = d.number(1, 1e5);
+    if (std::getenv("ANYPHYS_FUZZ_TRACE"))
+        std::fprintf(stderr, "  settings gravity %g %g %g timeStep %g integrator %d solver %d substeps %d iterations %d maxSpeed %g\n",
+                     w.gravity.x(), w.gravity.y(), w.gravity.z(), w.timeStep, int(w.integrator), w.solver ? int(*w.solver) : -1,
+                     w.substeps.value_or(-1), w.iterations.value_or(-1), w.maxSpeed);
     fuzz::refusedOrDone([&] {
         auto world = std::make_unique<World>(w);
         world->setWarningHandler([](const std::string&) {});
@@ -259,7 +263,6 @@ void misc(Decoder& d, Session& s) {
             case 1: s.world->setForceCallback({}); break;
             case 2: {
                 FieldDef f;
-                if (std::getenv("ANYPHYS_FUZZ_TRACE")) std::fprintf(stderr, "  addField\n");
                 f.type = d.pick<FieldType>(4);
                 f.fluidDensity = d.number(1, 2000);
                 f.surfaceNormal = d.vec(-1, 1);
@@ -267,6 +270,10 @@ void misc(Decoder& d, Session& s) {
                 f.impulse = d.number(0, 100);
                 f.radius = d.number(0.1, 10);
                 f.time = d.number(0, 0.2);
+                if (std::getenv("ANYPHYS_FUZZ_TRACE"))
+                    std::fprintf(stderr, "  field type %d density %g normal %g %g %g velocity %g %g %g impulse %g radius %g time %g\n",
+                                 int(f.type), f.fluidDensity, f.surfaceNormal.x(), f.surfaceNormal.y(), f.surfaceNormal.z(),
+                                 f.velocity.x(), f.velocity.y(), f.velocity.z(), f.impulse, f.radius, f.time);
                 s.world->addField(f);
                 break;
             }

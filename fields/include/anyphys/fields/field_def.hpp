@@ -137,7 +137,7 @@ inline void validate(const FieldDef& f, const std::string& path) {
             requireFinite(path + ".surface.normal", f.surfaceNormal);
             if (std::abs(f.surfaceNormal.norm() - 1.0) > 1e-6)
                 throw Error::invalid(path + ".surface.normal", formatVec3(f.surfaceNormal), "must be a unit vector (norm 1 within 1e-6)");
-            requireFinite(path + ".surface.offset", f.surfaceOffset);
+            requireCoordinate(path + ".surface.offset", f.surfaceOffset);
             requireNonNegative(path + ".linearDrag", f.linearDrag);
             requireNonNegative(path + ".angularDrag", f.angularDrag);
             break;
@@ -147,10 +147,10 @@ inline void validate(const FieldDef& f, const std::string& path) {
             requireFinite(path + ".velocity", f.velocity);
             break;
         case FieldType::Explosion:
-            requireFinite(path + ".center", f.center);
+            requireCoordinate(path + ".center", f.center);
             requireNonNegative(path + ".time", f.time);
             requireNonNegative(path + ".impulse", f.impulse);
-            requirePositive(path + ".radius", f.radius);
+            requireLength(path + ".radius", f.radius);
             break;
     }
 }
