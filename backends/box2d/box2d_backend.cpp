@@ -43,9 +43,9 @@ Backend makeBox2dBackend() {
     // / timeToSleep (0.01 m/s, 2 deg/s, 0.5 s), settings.speculativeDistance (none: contacts start
     // at touching), settings.contactHertz / contactDampingRatio (rigid contacts). Also
     // b2_maxTranslation: a body moves at most 2 m per Box2D step, its velocity clamped to match.
-    caps.parameters = {"settings.gravity", "settings.timeStep", "settings.integrator", "settings.planar",
-                       "settings.substeps", "settings.effects", "settings.solver", "settings.iterations",
-                       "settings.restitutionThreshold", "body.type", "body.position", "body.orientation",
+    caps.parameters = {"settings.gravity", "settings.timeStep", "settings.integrator", "settings.substeps",
+                       "settings.effects", "settings.solver", "settings.iterations", "settings.restitutionThreshold",
+                       "body.type", "body.position", "body.orientation",
                        "body.linearVelocity", "body.angularVelocity", "body.shape", "body.mass", "body.density",
                        "body.inertia", "body.linearDamping", "body.angularDamping", "body.gravityScale",
                        "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "anyphys/error.hpp"
+#include "anyphys/schema/material_fields.hpp"
 
 namespace anyphys {
 
@@ -17,13 +18,6 @@ constexpr std::array<std::pair<CombineRule, std::string_view>, 5> kRuleNames{{
     {CombineRule::Multiply, "multiply"},
     {CombineRule::GeometricMean, "geometric_mean"},
 }};
-
-void requireFriction(const std::string& field, double v) {
-    if (!(std::isfinite(v) && v >= 0)) throw Error::invalid(field, v, "must be >= 0");
-}
-void requireRestitution(const std::string& field, double v) {
-    if (!(std::isfinite(v) && v >= 0 && v <= 1)) throw Error::invalid(field, v, "must be in [0, 1]");
-}
 
 std::string quoted(std::string_view name) {
     // Built by append: GCC 12 at -O3 warns falsely (-Wrestrict) on "literal" + std::string.
@@ -77,14 +71,15 @@ double combine(CombineRule rule, double a, double b) {
 }
 
 void validate(const Material& m, const std::string& path) {
-    requireFriction(path + ".friction", m.friction);
-    requireRestitution(path + ".restitution", m.restitution);
-    if (!(std::isfinite(m.density) && m.density > 0)) throw Error::invalid(path + ".density", m.density, "must be > 0");
+    schema::checkFields(schema::materialFields(), m, path, [](const auto&) { return true; });
 }
 
 void validate(const PairOverride& values, const std::string& path) {
-    if (values.friction) requireFriction(path + ".friction", *values.friction);
-    if (values.restitution) requireRestitution(path + ".restitution", *values.restitution);
+    // A pair's values follow the rules of the material fields of the same name.
+    const auto& rows = schema::materialFields();
+    if (values.friction) schema::checkValue(*schema::findField(rows, "friction"), *values.friction, path + ".friction");
+    if (values.restitution)
+        schema::checkValue(*schema::findField(rows, "restitution"), *values.restitution, path + ".restitution");
 }
 
 MaterialLibrary::MaterialLibrary() { materials_.emplace(std::string(kDefaultName), Material{}); }

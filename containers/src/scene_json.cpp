@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -27,6 +29,9 @@
 #include "anyphys/fields/field_def.hpp"
 #include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/joint_validation.hpp"
+#include "anyphys/schema/body_fields.hpp"
+#include "anyphys/schema/material_fields.hpp"
+#include "anyphys/schema/settings_fields.hpp"
 #include "anyphys/validation.hpp"
 
 namespace anyphys {
@@ -39,10 +44,6 @@ using ojson = nlohmann::ordered_json;  // keeps the written key order readable
 // The name of the document itself in error messages (loadScene replaces it with the file path).
 constexpr std::string_view kRoot = "scene";
 
-constexpr std::pair<CapabilityPolicy, std::string_view> kPolicyNames[] = {
-    {CapabilityPolicy::Strict, "strict"}, {CapabilityPolicy::Lenient, "lenient"}};
-constexpr std::pair<DivergencePolicy, std::string_view> kDivergenceNames[] = {
-    {DivergencePolicy::Throw, "throw"}, {DivergencePolicy::Freeze, "freeze"}};
 
 std::string join(const std::string& path, std::string_view key) {
     return path.empty() ? std::string(key) : path + "." + std::string(key);
@@ -161,60 +162,85 @@ CombineRule readRule(const json& v, const std::string& path) {
     return *r;
 }
 
-CapabilityPolicy readPolicy(const json& v, const std::string& path) {
-    for (const auto& [p, name] : kPolicyNames)
-        if (v.is_string() && v.get<std::string>() == name) return p;
-    fail(path, v, "must be one of strict, lenient");
+// ---- fields described by the table (anyphys/schema) ---------------------------------------------
+// Keys, reading and writing of the rows of WorldSettings, BodyDef, ShapeDef and Material come
+// from their rows; the rows marked ownCode (required keys, objects, names to resolve) are read
+// and written by the code of their def below.
+
+template <class Def, class Keep>
+std::vector<std::string_view> rowKeys(const std::vector<schema::Field<Def>>& rows, Keep keep) {
+    std::vector<std::string_view> keys;
+    for (const auto& f : rows)
+        if (keep(f)) keys.push_back(f.key);
+    return keys;
 }
 
-DivergencePolicy readDivergencePolicy(const json& v, const std::string& path) {
-    for (const auto& [p, name] : kDivergenceNames)
-        if (v.is_string() && v.get<std::string>() == name) return p;
-    fail(path, v, "must be one of throw, freeze");
+template <class Def>
+std::vector<std::string_view> rowKeys(const std::vector<schema::Field<Def>>& rows) {
+    return rowKeys(rows, [](const auto&) { return true; });
 }
 
-// The contact and sleeping knobs: plain numbers, read and written alike, in this order.
-// Settings is WorldSettings or const WorldSettings.
-template <class Settings>
-auto settingsNumbers(Settings& s) {
-    using Field = std::pair<std::string_view, decltype(&s.contactHertz)>;
-    return std::array<Field, 12>{{{"contactHertz", &s.contactHertz},
-                                  {"contactDampingRatio", &s.contactDampingRatio},
-                                  {"contactPushMaxVelocity", &s.contactPushMaxVelocity},
-                                  {"baumgarte", &s.baumgarte},
-                                  {"restitutionThreshold", &s.restitutionThreshold},
-                                  {"linearSlop", &s.linearSlop},
-                                  {"speculativeDistance", &s.speculativeDistance},
-                                  {"sleepLinearVelocity", &s.sleepLinearVelocity},
-                                  {"sleepAngularVelocity", &s.sleepAngularVelocity},
-                                  {"timeToSleep", &s.timeToSleep},
-                                  {"maxSpeed", &s.maxSpeed},
-                                  {"maxAngularSpeed", &s.maxAngularSpeed}}};
+// One value in the JSON spelling of its row's type.
+template <class Def>
+schema::Value readValue(const schema::Field<Def>& f, const json& v, const std::string& path) {
+    using schema::Type;
+    switch (f.type) {
+        case Type::Number: return readNumber(v, path);
+        case Type::Count: return readCount(v, path);
+        case Type::Bits: return readUint32(v, path, "must be an unsigned 32-bit integer");
+        case Type::Vec3: return readVec3(v, path);
+        case Type::Quat: return readQuat(v, path);
+        case Type::Bool: return readBool(v, path);
+        case Type::String: return readString(v, path);
+        case Type::Enum:
+            if (!v.is_string()) fail(path, v, "must be one of " + f.allowed());
+            return v.get<std::string>();
+        case Type::Object: break;
+    }
+    malformed(path, v, "has no generic reader");  // unreachable: Object rows are ownCode
+}
+
+// Reads the rows `keep` selects that `v` carries into `def`; absent keys keep the def's default.
+template <class Def, class Keep>
+void readFields(const json& v, const std::string& path, const std::vector<schema::Field<Def>>& rows, Def& def,
+                Keep keep) {
+    for (const auto& f : rows) {
+        if (f.ownCode || !f.set || !keep(f)) continue;
+        if (const auto* x = find(v, f.key)) {
+            const std::string p = join(path, f.key);
+            if (!f.set(def, readValue(f, *x, p))) fail(p, *x, "must be one of " + f.allowed());
+        }
+    }
+}
+
+ojson toJson(const schema::Value& value);
+
+// Bitwise equal (so -0.0 differs from 0.0 and is written).
+bool sameBits(const schema::Value& a, const schema::Value& b);
+
+// Writes the rows `keep` selects, each as its Save rule says; `own(key)` writes an ownCode row.
+template <class Def, class Keep, class Own>
+void writeFields(ojson& j, const std::vector<schema::Field<Def>>& rows, const Def& def, Keep keep, Own own) {
+    for (const auto& f : rows) {
+        if (!keep(f)) continue;
+        if (f.ownCode) {
+            own(f.key);
+            continue;
+        }
+        const schema::Value value = f.get(def);
+        const bool write = f.save == schema::Save::Always ||
+                           (f.save == schema::Save::WhenSet && !std::holds_alternative<std::monostate>(value)) ||
+                           (f.save == schema::Save::WhenNotDefault && !sameBits(value, f.value));
+        if (write) j[std::string(f.key)] = toJson(value);
+    }
 }
 
 WorldSettings readSettings(const json& v, const std::string& path) {
     requireObject(v, path);
-    checkKeys(v, path, {"backend", "gravity", "timeStep", "integrator", "planar", "solver", "substeps", "iterations", "effects",
-                        "contactHertz", "contactDampingRatio", "contactPushMaxVelocity", "baumgarte",
-                        "restitutionThreshold", "linearSlop", "speculativeDistance", "sleepLinearVelocity",
-                        "sleepAngularVelocity", "timeToSleep", "maxStepsPerUpdate", "workers", "capabilityPolicy",
-                        "maxSpeed", "maxAngularSpeed", "divergencePolicy", "backendOptions"});
+    const auto& rows = schema::settingsFields();
+    checkKeys(v, path, rowKeys(rows));
     WorldSettings s;
-    if (auto* x = find(v, "backend")) s.backend = readString(*x, join(path, "backend"));
-    if (auto* x = find(v, "gravity")) s.gravity = readVec3(*x, join(path, "gravity"));
-    if (auto* x = find(v, "timeStep")) s.timeStep = readNumber(*x, join(path, "timeStep"));
-    if (auto* x = find(v, "integrator")) s.integrator = readEnum<Integrator>(*x, join(path, "integrator"));
-    if (auto* x = find(v, "planar")) s.planar = readBool(*x, join(path, "planar"));
-    if (auto* x = find(v, "solver")) s.solver = readEnum<Solver>(*x, join(path, "solver"));
-    if (auto* x = find(v, "substeps")) s.substeps = readCount(*x, join(path, "substeps"));
-    if (auto* x = find(v, "iterations")) s.iterations = readCount(*x, join(path, "iterations"));
-    for (const auto& [key, field] : settingsNumbers(s))
-        if (auto* x = find(v, key)) *field = readNumber(*x, join(path, key));
-    if (auto* x = find(v, "maxStepsPerUpdate")) s.maxStepsPerUpdate = readCount(*x, join(path, "maxStepsPerUpdate"));
-    if (auto* x = find(v, "workers")) s.workers = readCount(*x, join(path, "workers"));
-    if (auto* x = find(v, "capabilityPolicy")) s.capabilityPolicy = readPolicy(*x, join(path, "capabilityPolicy"));
-    if (auto* x = find(v, "divergencePolicy"))
-        s.divergencePolicy = readDivergencePolicy(*x, join(path, "divergencePolicy"));
+    readFields(v, path, rows, s, [](const auto&) { return true; });
     if (auto* x = find(v, "effects")) {
         const std::string p = join(path, "effects");
         if (!x->is_array()) fail(p, *x, "must be an array of effect names (" + effectNames() + ")");
@@ -238,11 +264,10 @@ WorldSettings readSettings(const json& v, const std::string& path) {
 
 Material readMaterial(const json& v, const std::string& path) {
     requireObject(v, path);
-    checkKeys(v, path, {"friction", "restitution", "density"});
+    const auto& rows = schema::materialFields();
+    checkKeys(v, path, rowKeys(rows));
     Material m;
-    if (auto* x = find(v, "friction")) m.friction = readNumber(*x, join(path, "friction"));
-    if (auto* x = find(v, "restitution")) m.restitution = readNumber(*x, join(path, "restitution"));
-    if (auto* x = find(v, "density")) m.density = readNumber(*x, join(path, "density"));
+    readFields(v, path, rows, m, [](const auto&) { return true; });
     return m;
 }
 
@@ -293,21 +318,9 @@ void readMaterials(const json& doc, MaterialLibrary& lib) {
     }
 }
 
-// Keys every shape may carry besides its own: its placement in the body frame.
-constexpr std::string_view kPlacementKeys[] = {"position", "orientation"};
-
-// The keys of one shape type, without the placement keys.
-std::vector<std::string_view> shapeKeys(ShapeType type) {
-    switch (type) {
-        case ShapeType::Sphere: return {"type", "radius"};
-        case ShapeType::Box: return {"type", "halfExtents"};
-        case ShapeType::Capsule: return {"type", "radius", "halfHeight"};
-        case ShapeType::Plane: return {"type", "normal", "offset"};
-        case ShapeType::Convex: return {"type", "points"};
-        case ShapeType::Mesh: return {"type", "vertices", "indices"};
-        case ShapeType::Compound: return {"type", "shapes"};
-    }
-    return {"type"};
+// The rows a shape of this type has (its own keys, then placement), children's rows aside.
+auto shapeRow(ShapeType type) {
+    return [type](const schema::Field<ShapeDef>& f) { return !f.childOnly && (f.types & schema::bit(type)) != 0; };
 }
 
 std::vector<Vec3> readPoints(const json& v, const std::string& path) {
@@ -327,17 +340,10 @@ std::vector<std::uint32_t> readIndices(const json& v, const std::string& path) {
     return indices;
 }
 
-// The keys only a compound's child may carry: its own density and surface (each overriding the
-// body's key of the same name).
-constexpr std::string_view kChildKeys[] = {"density", "material", "isTrigger", "layer", "mask"};
-
 // A child's surface overrides; `lib` checks the material name as a body's is checked.
 void readChildSurface(const json& v, const std::string& path, const MaterialLibrary& lib, ShapeDef& s) {
-    if (auto* x = find(v, "density")) s.density = readNumber(*x, join(path, "density"));
+    readFields(v, path, schema::shapeFields(), s, [](const auto& f) { return f.childOnly; });
     if (auto* x = find(v, "material")) s.material = readMaterialName(*x, join(path, "material"), lib);
-    if (auto* x = find(v, "isTrigger")) s.isTrigger = readBool(*x, join(path, "isTrigger"));
-    if (auto* x = find(v, "layer")) s.layer = readUint32(*x, join(path, "layer"), "must be an unsigned 32-bit integer");
-    if (auto* x = find(v, "mask")) s.mask = readUint32(*x, join(path, "mask"), "must be an unsigned 32-bit integer");
 }
 
 // `child`: an element of a compound's "shapes", which may also carry its own density and surface.
@@ -348,11 +354,13 @@ ShapeDef readShape(const json& v, const std::string& path, const MaterialLibrary
     ShapeDef s;
     s.type = readEnum<ShapeType>(*typeValue, join(path, "type"));
     // Each shape type has its own keys; a key of another type is a mistake worth reporting.
-    std::vector<std::string_view> allowed = shapeKeys(s.type);
-    allowed.insert(allowed.end(), std::begin(kPlacementKeys), std::end(kPlacementKeys));
-    if (child) allowed.insert(allowed.end(), std::begin(kChildKeys), std::end(kChildKeys));
+    const auto& rows = schema::shapeFields();
+    const auto own = shapeRow(s.type);
+    std::vector<std::string_view> allowed = rowKeys(rows, own);
+    const auto childKeys = rowKeys(rows, [](const auto& f) { return f.childOnly; });
+    if (child) allowed.insert(allowed.end(), childKeys.begin(), childKeys.end());
     if (!child)
-        for (std::string_view key : kChildKeys)
+        for (std::string_view key : childKeys)
             if (find(v, key)) {
                 const std::string field = join(path, std::string(key));
                 throw Error(ErrorKind::Parse, field, field + ": allowed only on the children of a compound shape; the body's \"" +
@@ -362,16 +370,12 @@ ShapeDef readShape(const json& v, const std::string& path, const MaterialLibrary
     // The sizes (and a hull's points, ...) have no default: a box without halfExtents is a
     // mistake to report, not a 1 m cube. A plane has no size: its normal defaults to up (+Y,
     // against the default gravity) and its offset to 0.
-    for (std::string_view key : shapeKeys(s.type))
-        if (key != "offset" && key != "normal" && !find(v, key))
-            missing(join(path, std::string(key)),
+    for (const auto& f : rows)
+        if (f.required && f.key != "type" && own(f) && !find(v, f.key))
+            missing(join(path, std::string(f.key)),
                     "a " + std::string(toString(s.type)) + " shape needs it (there is no default)");
 
-    if (auto* x = find(v, "radius")) s.radius = readNumber(*x, join(path, "radius"));
-    if (auto* x = find(v, "halfExtents")) s.halfExtents = readVec3(*x, join(path, "halfExtents"));
-    if (auto* x = find(v, "halfHeight")) s.halfHeight = readNumber(*x, join(path, "halfHeight"));
-    if (auto* x = find(v, "normal")) s.normal = readVec3(*x, join(path, "normal"));
-    if (auto* x = find(v, "offset")) s.offset = readNumber(*x, join(path, "offset"));
+    readFields(v, path, rows, s, own);
     if (auto* x = find(v, "points")) s.points = readPoints(*x, join(path, "points"));
     if (auto* x = find(v, "vertices")) s.vertices = readPoints(*x, join(path, "vertices"));
     if (auto* x = find(v, "indices")) s.indices = readIndices(*x, join(path, "indices"));
@@ -380,8 +384,6 @@ ShapeDef readShape(const json& v, const std::string& path, const MaterialLibrary
         if (!x->is_array()) fail(p, *x, "must be an array of child shape objects");
         for (std::size_t i = 0; i < x->size(); ++i) s.shapes.push_back(readShape((*x)[i], at(p, i), lib, true));
     }
-    if (auto* x = find(v, "position")) s.position = readVec3(*x, join(path, "position"));
-    if (auto* x = find(v, "orientation")) s.orientation = readQuat(*x, join(path, "orientation"));
     if (child) readChildSurface(v, path, lib, s);
     // Ranges (radius > 0, hull not flat, indices in range, ...) are checked by validate(BodyDef).
     return s;
@@ -389,37 +391,19 @@ ShapeDef readShape(const json& v, const std::string& path, const MaterialLibrary
 
 BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& lib) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "type", "position", "orientation", "linearVelocity", "angularVelocity", "shape", "mass",
-                        "density", "inertia", "material", "linearDamping", "angularDamping", "gravityScale",
-                        "gyroscopic", "isTrigger", "layer", "mask", "allowSleep", "isAwake", "dragCoefficient",
-                        "userData"});
+    const auto& rows = schema::bodyFields();
+    checkKeys(v, path, rowKeys(rows));
     BodyDef b;
     const auto* name = find(v, "name");
     if (!name) missing(join(path, "name"), "every body needs a non-empty, unique name");
     b.name = readString(*name, join(path, "name"));
     if (b.name.empty()) fail(join(path, "name"), *name, "must be a non-empty string");
-    if (auto* x = find(v, "type")) b.type = readEnum<BodyType>(*x, join(path, "type"));
-    if (auto* x = find(v, "position")) b.position = readVec3(*x, join(path, "position"));
-    if (auto* x = find(v, "orientation")) b.orientation = readQuat(*x, join(path, "orientation"));
-    if (auto* x = find(v, "linearVelocity")) b.linearVelocity = readVec3(*x, join(path, "linearVelocity"));
-    if (auto* x = find(v, "angularVelocity")) b.angularVelocity = readVec3(*x, join(path, "angularVelocity"));
     const auto* shape = find(v, "shape");
     if (!shape) missing(join(path, "shape"), "every body needs a shape, e.g. {\"type\": \"sphere\", \"radius\": 0.5}");
+    readFields(v, path, rows, b, [](const auto&) { return true; });
     b.shape = readShape(*shape, join(path, "shape"), lib);
-    if (auto* x = find(v, "mass")) b.mass = readNumber(*x, join(path, "mass"));
-    if (auto* x = find(v, "density")) b.density = readNumber(*x, join(path, "density"));
-    if (auto* x = find(v, "inertia")) b.inertia = readVec3(*x, join(path, "inertia"));
     if (auto* x = find(v, "material")) b.material = readMaterialName(*x, join(path, "material"), lib);
-    if (auto* x = find(v, "linearDamping")) b.linearDamping = readNumber(*x, join(path, "linearDamping"));
-    if (auto* x = find(v, "angularDamping")) b.angularDamping = readNumber(*x, join(path, "angularDamping"));
-    if (auto* x = find(v, "gravityScale")) b.gravityScale = readNumber(*x, join(path, "gravityScale"));
-    if (auto* x = find(v, "gyroscopic")) b.gyroscopic = readEnum<GyroscopicMode>(*x, join(path, "gyroscopic"));
-    if (auto* x = find(v, "isTrigger")) b.isTrigger = readBool(*x, join(path, "isTrigger"));
-    if (auto* x = find(v, "layer")) b.layer = readUint32(*x, join(path, "layer"), "must be an unsigned 32-bit integer");
-    if (auto* x = find(v, "mask")) b.mask = readUint32(*x, join(path, "mask"), "must be an unsigned 32-bit integer");
-    if (auto* x = find(v, "allowSleep")) b.allowSleep = readBool(*x, join(path, "allowSleep"));
-    if (auto* x = find(v, "isAwake")) b.isAwake = readBool(*x, join(path, "isAwake"));
-    if (auto* x = find(v, "dragCoefficient")) b.dragCoefficient = readNumber(*x, join(path, "dragCoefficient"));
+    // userData is read by the scene, which keeps its JSON text by body name.
     validate(b, path);  // the same range rules, in the same words, as World::createBody
     return b;
 }
@@ -726,60 +710,65 @@ ojson points(const std::vector<Vec3>& list) {
 
 // Bitwise default (so -0.0 is written, and read back as -0.0).
 bool isDefault(double x, double def) { return x == def && std::signbit(x) == std::signbit(def); }
-bool isOrigin(const Vec3& v) { return isDefault(v.x(), 0) && isDefault(v.y(), 0) && isDefault(v.z(), 0); }
-bool isIdentity(const Quat& q) {
-    return isDefault(q.w(), 1) && isDefault(q.x(), 0) && isDefault(q.y(), 0) && isDefault(q.z(), 0);
+
+ojson toJson(const schema::Value& value) {
+    return std::visit(
+        [](const auto& x) -> ojson {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, std::monostate>) return nullptr;
+            else if constexpr (std::is_same_v<T, Vec3>) return vec(x);
+            else if constexpr (std::is_same_v<T, Quat>) return quat(x);
+            else return x;
+        },
+        value);
 }
 
-// Each shape writes its own keys; the placement keys and a child's density and surface only when set.
+bool sameBits(const schema::Value& a, const schema::Value& b) {
+    if (a.index() != b.index()) return false;
+    if (const auto* x = std::get_if<double>(&a)) return isDefault(*x, std::get<double>(b));
+    if (const auto* x = std::get_if<Vec3>(&a)) {
+        const Vec3& y = std::get<Vec3>(b);
+        return isDefault(x->x(), y.x()) && isDefault(x->y(), y.y()) && isDefault(x->z(), y.z());
+    }
+    if (const auto* x = std::get_if<Quat>(&a)) {
+        const Quat& y = std::get<Quat>(b);
+        return isDefault(x->w(), y.w()) && isDefault(x->x(), y.x()) && isDefault(x->y(), y.y()) && isDefault(x->z(), y.z());
+    }
+    if (const auto* x = std::get_if<int>(&a)) return *x == std::get<int>(b);
+    if (const auto* x = std::get_if<std::uint32_t>(&a)) return *x == std::get<std::uint32_t>(b);
+    if (const auto* x = std::get_if<bool>(&a)) return *x == std::get<bool>(b);
+    if (const auto* x = std::get_if<std::string>(&a)) return *x == std::get<std::string>(b);
+    return true;  // both unset
+}
+
+// Each shape writes the keys of its type; placement, a child's density and surface as their rows say.
 ojson shapeJson(const ShapeDef& s) {
     ojson j;
-    j["type"] = std::string(toString(s.type));
-    switch (s.type) {
-        case ShapeType::Sphere: j["radius"] = s.radius; break;
-        case ShapeType::Box: j["halfExtents"] = vec(s.halfExtents); break;
-        case ShapeType::Capsule: j["radius"] = s.radius; j["halfHeight"] = s.halfHeight; break;
-        case ShapeType::Plane: j["normal"] = vec(s.normal); j["offset"] = s.offset; break;
-        case ShapeType::Convex: j["points"] = points(s.points); break;
-        case ShapeType::Mesh: j["vertices"] = points(s.vertices); j["indices"] = s.indices; break;
-        case ShapeType::Compound:
+    const auto own = [&](std::string_view key) {
+        if (key == "type") j["type"] = std::string(toString(s.type));
+        if (key == "points") j["points"] = points(s.points);
+        if (key == "vertices") j["vertices"] = points(s.vertices);
+        if (key == "indices") j["indices"] = s.indices;
+        if (key == "shapes") {
             j["shapes"] = ojson::array();
             for (const ShapeDef& child : s.shapes) j["shapes"].push_back(shapeJson(child));
-            break;
-    }
-    if (!isOrigin(s.position)) j["position"] = vec(s.position);
-    if (!isIdentity(s.orientation)) j["orientation"] = quat(s.orientation);
-    if (s.density) j["density"] = *s.density;
-    if (s.material) j["material"] = *s.material;
-    if (s.isTrigger) j["isTrigger"] = *s.isTrigger;
-    if (s.layer) j["layer"] = *s.layer;
-    if (s.mask) j["mask"] = *s.mask;
+        }
+        if (key == "material" && s.material) j["material"] = *s.material;
+    };
+    writeFields(j, schema::shapeFields(), s,
+                [&s](const auto& f) { return f.childOnly || (f.types & schema::bit(s.type)) != 0; }, own);
     return j;
 }
 
 ojson bodyJson(const BodyDef& b) {
     ojson j;
-    j["name"] = b.name;
-    j["type"] = std::string(toString(b.type));
-    j["position"] = vec(b.position);
-    j["orientation"] = quat(b.orientation);
-    j["linearVelocity"] = vec(b.linearVelocity);
-    j["angularVelocity"] = vec(b.angularVelocity);
-    j["shape"] = shapeJson(b.shape);
-    if (b.mass) j["mass"] = *b.mass;
-    if (b.density) j["density"] = *b.density;
-    if (b.inertia) j["inertia"] = vec(*b.inertia);
-    j["material"] = b.material;
-    j["linearDamping"] = b.linearDamping;
-    j["angularDamping"] = b.angularDamping;
-    j["gravityScale"] = b.gravityScale;
-    j["gyroscopic"] = std::string(toString(b.gyroscopic));
-    j["isTrigger"] = b.isTrigger;
-    j["layer"] = b.layer;
-    j["mask"] = b.mask;
-    j["allowSleep"] = b.allowSleep;
-    j["isAwake"] = b.isAwake;
-    if (b.dragCoefficient) j["dragCoefficient"] = *b.dragCoefficient;
+    const auto own = [&](std::string_view key) {
+        if (key == "name") j["name"] = b.name;
+        if (key == "shape") j["shape"] = shapeJson(b.shape);
+        if (key == "material") j["material"] = b.material;
+        // userData: written by sceneToJson, which has the body's JSON text.
+    };
+    writeFields(j, schema::bodyFields(), b, [](const auto&) { return true; }, own);
     return j;
 }
 
@@ -882,33 +871,27 @@ ojson jointJson(const SceneJoint& sj) {
 
 ojson settingsJson(const WorldSettings& s) {
     ojson j;
-    j["backend"] = s.backend;
-    j["gravity"] = vec(s.gravity);
-    j["timeStep"] = s.timeStep;
-    j["integrator"] = std::string(toString(s.integrator));
-    if (s.planar) j["planar"] = true;
-    if (s.solver) j["solver"] = std::string(toString(*s.solver));
-    if (s.substeps) j["substeps"] = *s.substeps;
-    if (s.iterations) j["iterations"] = *s.iterations;
-    if (s.effects) j["effects"] = s.effects->names();
-    for (const auto& [key, field] : settingsNumbers(s)) j[std::string(key)] = *field;
-    j["maxStepsPerUpdate"] = s.maxStepsPerUpdate;
-    if (s.workers != 1) j["workers"] = s.workers;
-    for (const auto& [p, name] : kPolicyNames)
-        if (p == s.capabilityPolicy) j["capabilityPolicy"] = std::string(name);
-    for (const auto& [p, name] : kDivergenceNames)
-        if (p == s.divergencePolicy) j["divergencePolicy"] = std::string(name);
-    j["backendOptions"] = ojson::object();
-    for (const auto& [name, value] : s.backendOptions) j["backendOptions"][name] = value;
+    const auto own = [&](std::string_view key) {
+        if (key == "effects" && s.effects) j["effects"] = s.effects->names();
+        if (key == "backendOptions") {
+            j["backendOptions"] = ojson::object();
+            for (const auto& [name, value] : s.backendOptions) j["backendOptions"][name] = value;
+        }
+    };
+    writeFields(j, schema::settingsFields(), s, [](const auto&) { return true; }, own);
     return j;
 }
 
 ojson materialJson(const Material& m) {
-    return ojson{{"friction", m.friction}, {"restitution", m.restitution}, {"density", m.density}};
+    ojson j;
+    writeFields(j, schema::materialFields(), m, [](const auto&) { return true; }, [](std::string_view) {});
+    return j;
 }
 
 bool sameMaterial(const Material& a, const Material& b) {
-    return a.friction == b.friction && a.restitution == b.restitution && a.density == b.density;
+    for (const auto& f : schema::materialFields())
+        if (!sameBits(f.get(a), f.get(b))) return false;
+    return true;
 }
 
 // Like dump(2), but arrays of plain values stay on one line: "position": [0, 10, 0].

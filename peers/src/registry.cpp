@@ -1,6 +1,7 @@
 // The registration list: the one place below api/ that knows the concrete backends.
 #include "anyphys/error.hpp"
 #include "anyphys/peers/backend.hpp"
+#include "anyphys/schema/parameters.hpp"
 
 namespace anyphys {
 
@@ -32,6 +33,9 @@ const std::vector<Backend>& registeredBackends() {
 #if ANYPHYS_HAS_BOX2D
         list.push_back(makeBox2dBackend());
 #endif
+        // The fields the layer makes hold on every backend (maxSpeed, divergencePolicy, a body's
+        // name, ... and planar where the engine can) are listed here once, from the field table.
+        for (Backend& backend : list) backend.capabilities.parameters.merge(schema::layerParameters(backend.capabilities));
         return list;
     }();
     return backends;

@@ -5,7 +5,7 @@ anyphys="$1"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-for args in "" backends run compare scenes scene; do
+for args in "" backends run compare scenes scene schema; do
     # shellcheck disable=SC2086  # $args is deliberately split (empty for the top level)
     "$anyphys" $args --help > "$work/out" 2> "$work/err" || { echo "FAIL: 'anyphys $args --help' exited non-zero"; exit 1; }
     [[ ! -s "$work/err" ]] || { echo "FAIL: 'anyphys $args --help' wrote to stderr:"; cat "$work/err"; exit 1; }

@@ -28,6 +28,7 @@ Command addScenesCommand(CLI::App& parent);
 Command addSceneCommand(CLI::App& parent);
 Command addMergeCommand(CLI::App& parent);
 Command addReportCommand(CLI::App& parent);
+Command addSchemaCommand(CLI::App& parent);
 
 /// "a, b, c".
 std::string join(const std::vector<std::string>& items, std::string_view separator = ", ");

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     const std::vector<Command> commands{addBackendsCommand(app), addRunCommand(app), addCompareCommand(app),
                                         addHardCasesCommand(app), addScenesCommand(app), addSceneCommand(app),
-                                        addMergeCommand(app), addReportCommand(app)};
+                                        addMergeCommand(app), addReportCommand(app), addSchemaCommand(app)};
     if (std::string known; isUnknownSubcommand(argc, argv, commands, known))
         return fail("unknown subcommand \"" + std::string(argv[1]) + "\"; known: " + known, 2);
     try {

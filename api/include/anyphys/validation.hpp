@@ -1,119 +1,24 @@
 #pragma once
-// Validation of defs and settings. Shared by the World (path "BodyDef", "WorldSettings") and the
-// scene loader (path "bodies[3]", "settings") so both report the same rule in the same words:
+// Validation of defs and settings: the rows of the field table (schema/*_fields.hpp) check each
+// field; the rules that span fields or depend on a shape's type are code here. Shared by the
+// World (path "BodyDef", "WorldSettings") and the scene loader (path "bodies[3]", "settings") so
+// both report the same rule in the same words:
 //   "bodies[3].shape.radius: must be > 0, got -1".
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "anyphys/checks.hpp"
 #include "anyphys/defs.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/schema/body_fields.hpp"
+#include "anyphys/schema/settings_fields.hpp"
 #include "anyphys/world_settings.hpp"
 
 namespace anyphys {
 
-inline std::string formatVec3(const Vec3& v) {
-    std::ostringstream os;
-    os.precision(17);
-    os << '[' << v.x() << ", " << v.y() << ", " << v.z() << ']';
-    return os.str();
-}
 
-inline std::string formatQuat(const Quat& q) {
-    std::ostringstream os;
-    os.precision(17);
-    os << '[' << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << ']';
-    return os.str();
-}
-
-/// Largest WorldSettings::workers accepted.
-inline constexpr int kMaxWorkers = 256;
-
-// ---- ceilings on absurd finite values (see docs/errors.md) -----------------------------------
-// Finite is not enough: a body 1e308 m away or a gravity of 1e19 m/s^2 overflows inside an
-// engine's collision code. Like Box2D's b2_huge, the layer refuses such values up front.
-
-/// m: largest coordinate of a position, plane offset, shape point or size. The Earth's diameter;
-/// at 1e7 m a double still resolves 2e-9 m, a millionth of the default linearSlop.
-inline constexpr double kMaxCoordinate = 1e7;
-/// m/s^2: largest magnitude of WorldSettings::gravity, 1000 g; at the default step it adds
-/// 170 m/s per step, far below the default maxSpeed.
-inline constexpr double kMaxGravity = 1e4;
-/// s: longest time step (WorldSettings::timeStep, World::step dt). A step longer than a second is
-/// a units mistake, and moves a body at maxSpeed farther than the world is wide.
-inline constexpr double kMaxTimeStep = 1.0;
-/// m: smallest radius or half extent. Below a micrometre a float engine rounds the size to 0 and
-/// a body's mass and inertia underflow (the API fuzzer made Box2D abort on a 1e-300 m sphere).
-inline constexpr double kMinLength = 1e-6;
-/// kg and kg m^2: the range a dynamic body's resolved mass and each principal inertia must lie in,
-/// representable in float with room to spare (a float engine flushes 1e-300 to 0 and
-/// divides by it); 1e30 kg is half the Sun.
-inline constexpr double kMinMass = 1e-30;
-inline constexpr double kMaxMass = 1e30;
-/// Largest WorldSettings::substeps, iterations and maxStepsPerUpdate: a count of 2e9 is a typo that
-/// would hang the step, not a setting (the sweeps and the catalogue use at most 64 and 1000).
-inline constexpr int kMaxSubsteps = 1000;
-inline constexpr int kMaxIterations = 100000;
-inline constexpr int kMaxStepsPerUpdate = 1000;
-
-namespace detail {
-inline void requireFinite(const std::string& field, double v) {
-    if (!std::isfinite(v)) throw Error::invalid(field, v, "must be finite");
-}
-inline void requireFinite(const std::string& field, const Vec3& v) {
-    if (!v.allFinite()) throw Error::invalid(field, formatVec3(v), "must be finite");
-}
-inline void requirePositive(const std::string& field, double v) {
-    if (!(std::isfinite(v) && v > 0)) throw Error::invalid(field, v, "must be > 0");
-}
-inline void requireNonNegative(const std::string& field, double v) {
-    if (!(std::isfinite(v) && v >= 0)) throw Error::invalid(field, v, "must be >= 0");
-}
-inline std::string ceilingText(double ceiling) {
-    std::ostringstream os;
-    os << ceiling;
-    return os.str();
-}
-/// A position or offset: finite and every coordinate within +-kMaxCoordinate.
-inline void requireCoordinate(const std::string& field, const Vec3& v) {
-    requireFinite(field, v);
-    if (v.cwiseAbs().maxCoeff() > kMaxCoordinate)
-        throw Error::invalid(field, formatVec3(v),
-                             "every coordinate must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
-}
-inline void requireCoordinate(const std::string& field, double v) {
-    requireFinite(field, v);
-    if (std::abs(v) > kMaxCoordinate)
-        throw Error::invalid(field, v, "must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
-}
-/// A field a shape type needs and that has no default (kUnset): "not set" names it and says why.
-/// `rule` says what the type needs, e.g. "a sphere needs its radius > 0 (ShapeDef::sphere(r))".
-inline void requireSet(const std::string& field, double v, const std::string& rule) {
-    if (std::isnan(v))
-        throw Error(ErrorKind::InvalidArgument, field, field + ": not set (or NaN); " + rule + ", there is no default");
-}
-/// A size: > 0 and at most kMaxCoordinate.
-inline void requireLength(const std::string& field, double v, bool allowZero = false) {
-    allowZero ? requireNonNegative(field, v) : requirePositive(field, v);
-    if (!allowZero && v < kMinLength)
-        throw Error::invalid(field, v, "must be >= " + ceilingText(kMinLength) + " m (anyphys::kMinLength)");
-    if (v > kMaxCoordinate)
-        throw Error::invalid(field, v, "must be <= " + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
-}
-/// A speed against its ceiling: `setting` names it ("WorldSettings.maxSpeed").
-inline void requireSpeed(const std::string& field, const Vec3& v, double ceiling, const std::string& setting,
-                         const char* unit) {
-    requireFinite(field, v);
-    if (v.norm() > ceiling)
-        throw Error::invalid(field, formatVec3(v),
-                             "magnitude must be <= " + setting + " (" + ceilingText(ceiling) + " " + unit + ")");
-}
-}  // namespace detail
-
-/// Unit-norm tolerance for orientations: hand-written quaternions such as
-/// [0.7071, 0, 0, 0.7071] are accepted and normalised; anything further off is a mistake.
-inline constexpr double kUnitQuaternionTolerance = 1e-4;
 
 namespace detail {
 // True when the points span a volume (four of them are not coplanar), relative to their extent.
@@ -158,34 +63,32 @@ inline void refuseSurfaceOverrides(const ShapeDef& s, const std::string& path) {
 inline void validate(const ShapeDef& s, const std::string& path, bool isChild = false) {
     using namespace detail;
     if (!isChild) refuseSurfaceOverrides(s, path);
+    // The sizes a type needs have no default: "not set" says which factory takes them.
     switch (s.type) {
         case ShapeType::Sphere:
             requireSet(path + ".radius", s.radius, "a sphere needs its radius > 0 (ShapeDef::sphere(r))");
-            requireLength(path + ".radius", s.radius);
             break;
         case ShapeType::Box:
             for (int i = 0; i < 3; ++i)
                 requireSet(path + ".halfExtents[" + std::to_string(i) + "]", s.halfExtents[i],
                            "a box needs its halfExtents, each > 0 (ShapeDef::box(half))");
-            requireLength(path + ".halfExtents[0]", s.halfExtents.x());
-            requireLength(path + ".halfExtents[1]", s.halfExtents.y());
-            requireLength(path + ".halfExtents[2]", s.halfExtents.z());
             break;
         case ShapeType::Capsule:
             requireSet(path + ".radius", s.radius, "a capsule needs its radius > 0 (ShapeDef::capsule(r, halfHeight))");
             requireSet(path + ".halfHeight", s.halfHeight,
                        "a capsule needs its halfHeight >= 0 (ShapeDef::capsule(r, halfHeight))");
-            requireLength(path + ".radius", s.radius);
-            requireLength(path + ".halfHeight", s.halfHeight, true);
             break;
         case ShapeType::Plane:
             for (int i = 0; i < 3; ++i)
                 requireSet(path + ".normal[" + std::to_string(i) + "]", s.normal[i],
                            "a plane needs its normal (ShapeDef::plane(normal, offset))");
-            requireFinite(path + ".normal", s.normal);
-            if (s.normal.norm() < 1e-12) throw Error::invalid(path + ".normal", formatVec3(s.normal), "must be non-zero");
-            requireCoordinate(path + ".offset", s.offset);
             break;
+        default: break;
+    }
+    // Sizes, placement and density: the rows of this shape's type.
+    schema::checkFields(schema::shapeFields(), s, path,
+                        [&s](const schema::Field<ShapeDef>& f) { return (f.types & schema::bit(s.type)) != 0; });
+    switch (s.type) {
         case ShapeType::Convex:
             for (std::size_t i = 0; i < s.points.size(); ++i)
                 requireCoordinate(path + ".points[" + std::to_string(i) + "]", s.points[i]);
@@ -224,23 +127,12 @@ inline void validate(const ShapeDef& s, const std::string& path, bool isChild = 
                 validate(child, childPath, true);
             }
             break;
+        default: break;
     }
-    requireCoordinate(path + ".position", s.position);
-    if (!s.orientation.coeffs().allFinite() || std::abs(s.orientation.norm() - 1.0) > 1e-4)
-        throw Error::invalid(path + ".orientation", formatQuat(s.orientation), "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
-    if (s.density) requirePositive(path + ".density", *s.density);
 }
 
 inline void validate(const BodyDef& b, const std::string& path) {
-    using namespace detail;
-    requireCoordinate(path + ".position", b.position);
-    const Vec3 qv(b.orientation.x(), b.orientation.y(), b.orientation.z());
-    if (!qv.allFinite() || !std::isfinite(b.orientation.w()) ||
-        std::abs(b.orientation.norm() - 1.0) > kUnitQuaternionTolerance)
-        throw Error::invalid(path + ".orientation", formatQuat(b.orientation),
-                             "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
-    requireFinite(path + ".linearVelocity", b.linearVelocity);
-    requireFinite(path + ".angularVelocity", b.angularVelocity);
+    schema::checkFields(schema::bodyFields(), b, path, [](const auto&) { return true; });
     validate(b.shape, path + ".shape");
     if ((b.shape.type == ShapeType::Plane || b.shape.type == ShapeType::Mesh) && b.type != BodyType::Static)
         throw Error::invalid(path + ".shape.type", toString(b.shape.type),
@@ -249,19 +141,6 @@ inline void validate(const BodyDef& b, const std::string& path) {
         throw Error::invalid(path + (b.linearVelocity.isZero(0) ? ".angularVelocity" : ".linearVelocity"),
                              formatVec3(b.linearVelocity.isZero(0) ? b.angularVelocity : b.linearVelocity),
                              "must be zero for a static body");
-    if (b.mass) requirePositive(path + ".mass", *b.mass);
-    if (b.density) requirePositive(path + ".density", *b.density);
-    if (b.inertia) {
-        requirePositive(path + ".inertia[0]", b.inertia->x());
-        requirePositive(path + ".inertia[1]", b.inertia->y());
-        requirePositive(path + ".inertia[2]", b.inertia->z());
-    }
-    requireNonNegative(path + ".linearDamping", b.linearDamping);
-    requireNonNegative(path + ".angularDamping", b.angularDamping);
-    requireFinite(path + ".gravityScale", b.gravityScale);
-    if (b.dragCoefficient) requireNonNegative(path + ".dragCoefficient", *b.dragCoefficient);
-    if (std::abs(b.gravityScale) > 1e3)
-        throw Error::invalid(path + ".gravityScale", b.gravityScale, "must be within +-1000");
 }
 
 /// The rules of a body that depend on the world's settings: its initial velocities within the
@@ -317,39 +196,10 @@ inline void validatePlanar(const BodyDef& b, const std::string& path) {
 
 inline void validate(const WorldSettings& s, const std::string& path) {
     using namespace detail;
-    if (s.backend.empty()) throw Error::invalid(path + ".backend", "\"\"", "must name a backend");
-    requireFinite(path + ".gravity", s.gravity);
-    if (s.gravity.norm() > kMaxGravity)
-        throw Error::invalid(path + ".gravity", formatVec3(s.gravity),
-                             "magnitude must be <= " + ceilingText(kMaxGravity) + " m/s^2 (anyphys::kMaxGravity)");
+    schema::checkFields(schema::settingsFields(), s, path, [](const auto&) { return true; });
     if (s.planar && std::abs(s.gravity.z()) > kPlanarTolerance)
         throw Error::invalid(path + ".gravity", formatVec3(s.gravity), "must have z = 0 in a planar world");
-    requirePositive(path + ".timeStep", s.timeStep);
-    if (s.timeStep > kMaxTimeStep)
-        throw Error::invalid(path + ".timeStep", s.timeStep, "must be <= " + ceilingText(kMaxTimeStep) + " s (anyphys::kMaxTimeStep)");
-    requirePositive(path + ".maxSpeed", s.maxSpeed);
-    requirePositive(path + ".maxAngularSpeed", s.maxAngularSpeed);
-    if (s.iterations && (*s.iterations < 1 || *s.iterations > kMaxIterations))
-        throw Error::invalid(path + ".iterations", *s.iterations, "must be in [1, " + std::to_string(kMaxIterations) + "] (anyphys::kMaxIterations)");
-    if (s.substeps && (*s.substeps < 1 || *s.substeps > kMaxSubsteps))
-        throw Error::invalid(path + ".substeps", *s.substeps, "must be in [1, " + std::to_string(kMaxSubsteps) + "] (anyphys::kMaxSubsteps)");
-    if (s.maxStepsPerUpdate < 1 || s.maxStepsPerUpdate > kMaxStepsPerUpdate)
-        throw Error::invalid(path + ".maxStepsPerUpdate", s.maxStepsPerUpdate,
-                             "must be in [1, " + std::to_string(kMaxStepsPerUpdate) + "] (anyphys::kMaxStepsPerUpdate)");
-    if (s.workers < 1 || s.workers > kMaxWorkers)
-        throw Error::invalid(path + ".workers", s.workers, "must be in [1, " + std::to_string(kMaxWorkers) + "]");
     for (const auto& [name, value] : s.backendOptions) requireFinite(path + ".backendOptions." + name, value);
-    requirePositive(path + ".contactHertz", s.contactHertz);
-    requireNonNegative(path + ".contactDampingRatio", s.contactDampingRatio);
-    requirePositive(path + ".contactPushMaxVelocity", s.contactPushMaxVelocity);
-    requireNonNegative(path + ".baumgarte", s.baumgarte);
-    if (s.baumgarte > 1) throw Error::invalid(path + ".baumgarte", s.baumgarte, "must be in [0, 1]");
-    requireNonNegative(path + ".restitutionThreshold", s.restitutionThreshold);
-    requirePositive(path + ".linearSlop", s.linearSlop);
-    requireNonNegative(path + ".speculativeDistance", s.speculativeDistance);
-    requireNonNegative(path + ".sleepLinearVelocity", s.sleepLinearVelocity);
-    requireNonNegative(path + ".sleepAngularVelocity", s.sleepAngularVelocity);
-    requireNonNegative(path + ".timeToSleep", s.timeToSleep);
 }
 
 }  // namespace anyphys

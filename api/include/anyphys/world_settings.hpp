@@ -24,6 +24,20 @@ enum class DivergencePolicy {
     Freeze,  ///< hold each such body still at its last checked pose (zero velocity), warn once per body, keep stepping
 };
 
+// Their scene-file names.
+template <>
+struct EnumNames<CapabilityPolicy> {
+    static constexpr std::string_view what = "capability policy";
+    static constexpr std::array<std::pair<CapabilityPolicy, std::string_view>, 2> values{{
+        {CapabilityPolicy::Strict, "strict"}, {CapabilityPolicy::Lenient, "lenient"}}};
+};
+template <>
+struct EnumNames<DivergencePolicy> {
+    static constexpr std::string_view what = "divergence policy";
+    static constexpr std::array<std::pair<DivergencePolicy, std::string_view>, 2> values{{
+        {DivergencePolicy::Throw, "throw"}, {DivergencePolicy::Freeze, "freeze"}}};
+};
+
 /// Default ceiling of WorldSettings::maxSpeed, m/s: 100 km/s, beyond any rigid body a game or a
 /// test simulates (a rifle bullet ~1e3, low orbit ~8e3 m/s), yet caught long before it overflows.
 inline constexpr double kDefaultMaxSpeed = 1e5;

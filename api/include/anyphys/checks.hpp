@@ -1,0 +1,116 @@
+#pragma once
+// The ceilings on absurd finite values, the basic checks with their wording and the way vectors
+// appear in messages: shared by the field table (schema.hpp) and validation.hpp, so a rule has
+// one wording wherever it is checked.
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "anyphys/error.hpp"
+#include "anyphys/math.hpp"
+
+namespace anyphys {
+
+inline std::string formatVec3(const Vec3& v) {
+    std::ostringstream os;
+    os.precision(17);
+    os << '[' << v.x() << ", " << v.y() << ", " << v.z() << ']';
+    return os.str();
+}
+
+inline std::string formatQuat(const Quat& q) {
+    std::ostringstream os;
+    os.precision(17);
+    os << '[' << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << ']';
+    return os.str();
+}
+
+/// Largest WorldSettings::workers accepted.
+inline constexpr int kMaxWorkers = 256;
+
+// ---- ceilings on absurd finite values (see docs/errors.md) -----------------------------------
+// Finite is not enough: a body 1e308 m away or a gravity of 1e19 m/s^2 overflows inside an
+// engine's collision code. Like Box2D's b2_huge, the layer refuses such values up front.
+
+/// m: largest coordinate of a position, plane offset, shape point or size. The Earth's diameter;
+/// at 1e7 m a double still resolves 2e-9 m, a millionth of the default linearSlop.
+inline constexpr double kMaxCoordinate = 1e7;
+/// m/s^2: largest magnitude of WorldSettings::gravity, 1000 g; at the default step it adds
+/// 170 m/s per step, far below the default maxSpeed.
+inline constexpr double kMaxGravity = 1e4;
+/// s: longest time step (WorldSettings::timeStep, World::step dt). A step longer than a second is
+/// a units mistake, and moves a body at maxSpeed farther than the world is wide.
+inline constexpr double kMaxTimeStep = 1.0;
+/// m: smallest radius or half extent. Below a micrometre a float engine rounds the size to 0 and
+/// a body's mass and inertia underflow (the API fuzzer made Box2D abort on a 1e-300 m sphere).
+inline constexpr double kMinLength = 1e-6;
+/// kg and kg m^2: the range a dynamic body's resolved mass and each principal inertia must lie in,
+/// representable in float with room to spare (a float engine flushes 1e-300 to 0 and
+/// divides by it); 1e30 kg is half the Sun.
+inline constexpr double kMinMass = 1e-30;
+inline constexpr double kMaxMass = 1e30;
+/// Largest WorldSettings::substeps, iterations and maxStepsPerUpdate: a count of 2e9 is a typo that
+/// would hang the step, not a setting (the sweeps and the catalogue use at most 64 and 1000).
+inline constexpr int kMaxSubsteps = 1000;
+inline constexpr int kMaxIterations = 100000;
+inline constexpr int kMaxStepsPerUpdate = 1000;
+
+/// Unit-norm tolerance for orientations: hand-written quaternions such as
+/// [0.7071, 0, 0, 0.7071] are accepted and normalised; anything further off is a mistake.
+inline constexpr double kUnitQuaternionTolerance = 1e-4;
+
+namespace detail {
+inline std::string ceilingText(double ceiling) {
+    std::ostringstream os;
+    os << ceiling;
+    return os.str();
+}
+inline void requireFinite(const std::string& field, double v) {
+    if (!std::isfinite(v)) throw Error::invalid(field, v, "must be finite");
+}
+inline void requireFinite(const std::string& field, const Vec3& v) {
+    if (!v.allFinite()) throw Error::invalid(field, formatVec3(v), "must be finite");
+}
+inline void requirePositive(const std::string& field, double v) {
+    if (!(std::isfinite(v) && v > 0)) throw Error::invalid(field, v, "must be > 0");
+}
+inline void requireNonNegative(const std::string& field, double v) {
+    if (!(std::isfinite(v) && v >= 0)) throw Error::invalid(field, v, "must be >= 0");
+}
+/// A position or offset: finite and every coordinate within +-kMaxCoordinate.
+inline void requireCoordinate(const std::string& field, const Vec3& v) {
+    requireFinite(field, v);
+    if (v.cwiseAbs().maxCoeff() > kMaxCoordinate)
+        throw Error::invalid(field, formatVec3(v),
+                             "every coordinate must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+inline void requireCoordinate(const std::string& field, double v) {
+    requireFinite(field, v);
+    if (std::abs(v) > kMaxCoordinate)
+        throw Error::invalid(field, v, "must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+/// A field a shape type needs and that has no default (kUnset): "not set" names it and says why.
+/// `rule` says what the type needs, e.g. "a sphere needs its radius > 0 (ShapeDef::sphere(r))".
+inline void requireSet(const std::string& field, double v, const std::string& rule) {
+    if (std::isnan(v))
+        throw Error(ErrorKind::InvalidArgument, field, field + ": not set (or NaN); " + rule + ", there is no default");
+}
+/// A size: > 0 and at most kMaxCoordinate.
+inline void requireLength(const std::string& field, double v, bool allowZero = false) {
+    allowZero ? requireNonNegative(field, v) : requirePositive(field, v);
+    if (!allowZero && v < kMinLength)
+        throw Error::invalid(field, v, "must be >= " + ceilingText(kMinLength) + " m (anyphys::kMinLength)");
+    if (v > kMaxCoordinate)
+        throw Error::invalid(field, v, "must be <= " + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+/// A speed against its ceiling: `setting` names it ("WorldSettings.maxSpeed").
+inline void requireSpeed(const std::string& field, const Vec3& v, double ceiling, const std::string& setting,
+                         const char* unit) {
+    requireFinite(field, v);
+    if (v.norm() > ceiling)
+        throw Error::invalid(field, formatVec3(v),
+                             "magnitude must be <= " + setting + " (" + ceilingText(ceiling) + " " + unit + ")");
+}
+}  // namespace detail
+
+}  // namespace anyphys

@@ -1,0 +1,286 @@
+// The field table (anyphys/schema) against what it describes: the defs' defaults, the scene
+// loader and writer, validation's messages, the backends' parameter lists and the doc.
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "anyphys/backends.hpp"
+#include "anyphys/containers/scene.hpp"
+#include "anyphys/error.hpp"
+#include "anyphys/schema/markdown.hpp"
+#include "anyphys/schema/parameters.hpp"
+#include "anyphys/validation.hpp"
+
+using namespace anyphys;
+using schema::Check;
+using schema::Field;
+using schema::Type;
+using schema::Value;
+
+namespace {
+
+// Equal values, NaN equal to NaN (a shape's unset sizes).
+bool same(const Value& a, const Value& b) {
+    if (a.index() != b.index()) return false;
+    const auto eq = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+    if (const auto* x = std::get_if<double>(&a)) return eq(*x, std::get<double>(b));
+    if (const auto* x = std::get_if<Vec3>(&a)) {
+        const Vec3& y = std::get<Vec3>(b);
+        return eq(x->x(), y.x()) && eq(x->y(), y.y()) && eq(x->z(), y.z());
+    }
+    if (const auto* x = std::get_if<Quat>(&a)) return x->coeffs() == std::get<Quat>(b).coeffs();
+    if (const auto* x = std::get_if<int>(&a)) return *x == std::get<int>(b);
+    if (const auto* x = std::get_if<std::uint32_t>(&a)) return *x == std::get<std::uint32_t>(b);
+    if (const auto* x = std::get_if<bool>(&a)) return *x == std::get<bool>(b);
+    if (const auto* x = std::get_if<std::string>(&a)) return *x == std::get<std::string>(b);
+    return true;
+}
+
+template <class Def>
+void expectDefaults(const std::vector<Field<Def>>& rows) {
+    const Def def{};
+    for (const auto& f : rows) {
+        if (!f.get) continue;
+        EXPECT_TRUE(same(f.get(def), f.value)) << f.path << ": the table's default differs from the struct's";
+    }
+}
+
+// A valid value other than the default, for every row code can write.
+template <class Def>
+Value sample(const Field<Def>& f) {
+    switch (f.type) {
+        case Type::Number: {
+            const double* d = std::get_if<double>(&f.value);
+            if (!d || std::isnan(*d)) return 0.375;
+            return *d == 0 ? 0.375 : *d * 0.5;
+        }
+        case Type::Count: {
+            const int* n = std::get_if<int>(&f.value);
+            return n ? *n + 1 : 3;
+        }
+        case Type::Bits: return std::uint32_t{6};
+        case Type::Vec3:
+            if (f.check == Check::Magnitude) return Vec3(0.5, -7, 0);
+            return Vec3(0.5, 0.25, 0.75);
+        case Type::Quat: return Quat(0.6, 0, 0.8, 0);
+        case Type::Bool: {
+            const bool* b = std::get_if<bool>(&f.value);
+            return !(b && *b);
+        }
+        case Type::Enum: {
+            const std::string names = f.allowed();
+            const std::string first = names.substr(0, names.find(','));
+            const std::string* current = std::get_if<std::string>(&f.value);
+            if (current && *current == first) return names.substr(first.size() + 2, names.find(',', first.size() + 2) - first.size() - 2);
+            return first;
+        }
+        case Type::String: return std::string("native_x");
+        case Type::Object: break;
+    }
+    return {};
+}
+
+// A value the row's check refuses (nullopt: not expressible in JSON, e.g. a non-finite one).
+template <class Def>
+std::optional<Value> invalid(const Field<Def>& f) {
+    const bool vec = f.type == Type::Vec3;
+    const auto number = [&](double x) -> Value { return vec ? Value(Vec3(0.5, x, 0.5)) : Value(x); };
+    switch (f.check) {
+        case Check::Positive:
+        case Check::NonNegative:
+        case Check::Length:
+        case Check::LengthOrZero: return number(-1);
+        case Check::Fraction:
+        case Check::UnitInterval: return number(2);
+        case Check::Within: return number(2 * f.bound);
+        case Check::Coordinate: return number(2 * kMaxCoordinate);
+        case Check::Magnitude: return Vec3(0, -2 * f.bound, 0);
+        case Check::PositiveAtMost: return 2 * f.bound;
+        case Check::CountIn: return static_cast<int>(f.bound) + 1;
+        case Check::UnitQuaternion: return Quat(2, 0, 0, 0);
+        case Check::Direction: return Vec3(0, 0, 0);
+        case Check::NonEmpty: return std::string();
+        default: return std::nullopt;
+    }
+}
+
+// A scene with one body of a shape that has the shape row `f` (a compound's child for children's rows).
+Scene sceneFor(const Field<ShapeDef>& f) {
+    Scene scene;
+    BodyDef b;
+    b.name = "b";
+    if (f.childOnly) {
+        b.shape = ShapeDef::compound({ShapeDef::sphere(0.5)});
+    } else if (f.types & schema::bit(ShapeType::Plane) && !(f.types & schema::bit(ShapeType::Sphere))) {
+        b.type = BodyType::Static;
+        b.shape = ShapeDef::plane(Vec3::UnitY(), 0);
+    } else if (f.types & schema::bit(ShapeType::Capsule) && !(f.types & schema::bit(ShapeType::Sphere))) {
+        b.shape = ShapeDef::capsule(0.5, 1);
+    } else if (f.types & schema::bit(ShapeType::Box) && !(f.types & schema::bit(ShapeType::Sphere))) {
+        b.shape = ShapeDef::box(Vec3(1, 1, 1));
+    } else {
+        b.shape = ShapeDef::sphere(0.5);
+    }
+    scene.bodies.push_back(b);
+    return scene;
+}
+ShapeDef& shapeOf(Scene& scene, const Field<ShapeDef>& f) {
+    return f.childOnly ? scene.bodies[0].shape.shapes[0] : scene.bodies[0].shape;
+}
+std::string shapePath(const Field<ShapeDef>& f) { return f.childOnly ? "bodies[0].shape.shapes[0]" : "bodies[0].shape"; }
+
+Scene sceneFor(const Field<BodyDef>&) {
+    Scene scene;
+    BodyDef b;
+    b.name = "b";
+    b.shape = ShapeDef::sphere(0.5);
+    scene.bodies.push_back(b);
+    return scene;
+}
+
+// Calls `each(row, scene, where, path)` with a fresh scene per row: `where(scene)` is the row's
+// def in that scene (or in one read back from it), `path` its path in messages.
+template <class Each>
+void forEachRow(Each each) {
+    for (const auto& f : schema::settingsFields()) {
+        Scene scene;
+        each(f, scene, [](Scene& s) -> WorldSettings& { return s.settings; }, std::string("settings"));
+    }
+    for (const auto& f : schema::bodyFields()) {
+        Scene scene = sceneFor(f);
+        each(f, scene, [](Scene& s) -> BodyDef& { return s.bodies.at(0); }, std::string("bodies[0]"));
+    }
+    for (const auto& f : schema::shapeFields()) {
+        Scene scene = sceneFor(f);
+        each(f, scene, [&f](Scene& s) -> ShapeDef& { return shapeOf(s, f); }, shapePath(f));
+    }
+}
+
+}  // namespace
+
+TEST(Schema, DefaultsAreTheDefsDefaults) {
+    expectDefaults(schema::settingsFields());
+    expectDefaults(schema::bodyFields());
+    expectDefaults(schema::shapeFields());
+    expectDefaults(schema::materialFields());
+}
+
+TEST(Schema, KeysAreUniqueAndPathsEndInTheirKey) {
+    const auto check = [](const auto& rows) {
+        std::set<std::pair<std::string_view, std::uint32_t>> seen;
+        for (const auto& f : rows) {
+            EXPECT_TRUE(seen.emplace(f.key, f.childOnly ? 1u : 0u).second) << f.path << ": key described twice";
+            EXPECT_TRUE(std::string_view(f.path).ends_with("." + std::string(f.key))) << f.path;
+            EXPECT_TRUE(f.ownCode || (f.get && f.set)) << f.path << ": neither accessors nor own code";
+            if (f.type == Type::Enum) {
+                EXPECT_TRUE(f.allowed != nullptr) << f.path << ": an enum without its names";
+            }
+        }
+    };
+    check(schema::settingsFields());
+    check(schema::bodyFields());
+    check(schema::shapeFields());
+    check(schema::materialFields());
+}
+
+// Every row code can write round-trips through a scene file with a value other than its default
+// (so the loader accepts its key and the writer writes it).
+TEST(Schema, EveryRowRoundTripsANonDefaultValue) {
+    forEachRow([](const auto& f, Scene& scene, auto where, const std::string& path) {
+        if (!f.set) return;
+        const Value value = sample(f);
+        ASSERT_TRUE(f.set(where(scene), value)) << f.path;
+        Scene back;
+        ASSERT_NO_THROW(back = parseScene(sceneToJson(scene))) << f.path << " at " << path;
+        EXPECT_TRUE(same(f.get(where(back)), value)) << f.path << ": not read back";
+    });
+    for (const auto& f : schema::materialFields()) {
+        Scene scene;
+        Material m;
+        ASSERT_TRUE(f.set(m, sample(f)));
+        scene.materials.add("m", m);
+        const Scene back = parseScene(sceneToJson(scene));
+        EXPECT_TRUE(same(f.get(back.materials.get("m")), sample(f))) << f.path;
+    }
+}
+
+// A value a row's check refuses is refused by the loader with the row's rule in the same words.
+TEST(Schema, RefusedValuesGiveTheRowsRule) {
+    std::size_t checked = 0;
+    forEachRow([&checked](const auto& f, Scene& scene, auto where, const std::string& path) {
+        const auto bad = invalid(f);
+        if (!f.set || !bad) return;
+        std::string expected;
+        try {
+            schema::checkValue(f, *bad, path + "." + std::string(f.key));
+        } catch (const Error& e) {
+            expected = e.what();
+        }
+        ASSERT_FALSE(expected.empty()) << f.path << ": the check accepts the value meant to be refused";
+        ASSERT_TRUE(f.set(where(scene), *bad));
+        try {
+            parseScene(sceneToJson(scene));
+            ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()), expected) << f.path;
+        }
+        ++checked;
+    });
+    EXPECT_GE(checked, 30u);
+}
+
+// Every parameter a backend lists for settings, bodies and materials is a row of the table, and
+// every row the layer honours is listed on every backend (settings.planar where planar).
+TEST(Schema, CapabilityParametersComeFromTheTable) {
+    const auto described = schema::describedParameters();
+    for (const BackendInfo& b : availableBackends()) {
+        for (const std::string& p : b.capabilities.parameters) {
+            if (p.starts_with("joint.")) continue;  // JointDef is not in the table yet
+            EXPECT_TRUE(described.contains(p)) << b.name << " lists " << p << ", which no row describes";
+        }
+        for (const std::string& p : schema::layerParameters(b.capabilities))
+            EXPECT_TRUE(b.capabilities.parameters.contains(p)) << b.name << " lacks the layer's " << p;
+        EXPECT_EQ(b.capabilities.parameters.contains("settings.planar"), b.capabilities.planar) << b.name;
+        EXPECT_TRUE(b.capabilities.parameters.contains("settings.maxSpeed")) << b.name;
+    }
+}
+
+TEST(Schema, ValidationUsesTheRowsWords) {
+    WorldSettings s;
+    s.timeStep = 2;
+    try {
+        validate(s, "WorldSettings");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "WorldSettings.timeStep: must be <= 1 s (anyphys::kMaxTimeStep), got 2");
+    }
+    BodyDef b;
+    b.shape = ShapeDef::box(Vec3(1, -1, 1));
+    try {
+        validate(b, "BodyDef");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "BodyDef.shape.halfExtents[1]: must be > 0, got -1");
+    }
+}
+
+// docs/scene-format.md's key tables are the generated ones.
+TEST(Schema, SceneFormatDocMatchesTheTable) {
+    const std::string path = std::string(ANYPHYS_SOURCE_DIR) + "/docs/scene-format.md";
+    std::ifstream in(path);
+    ASSERT_TRUE(in) << "cannot read " << path;
+    std::stringstream text;
+    text << in.rdbuf();
+    std::vector<std::string> missing;
+    const std::string updated = schema::updateMarkdown(text.str(), missing);
+    EXPECT_TRUE(missing.empty()) << path << " lacks the markers of " << missing.size() << " tables, e.g. "
+                                 << (missing.empty() ? "" : missing[0]);
+    EXPECT_TRUE(updated == text.str()) << "docs/scene-format.md's key tables differ from the field table "
+                                          "(api/include/anyphys/schema/): run `build/bin/anyphys schema --update "
+                                          "docs/scene-format.md` and commit the result";
+}
