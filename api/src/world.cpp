@@ -500,9 +500,7 @@ void World::step() { step(settings_.timeStep); }
 void World::step(double dt) {
     impl_->refuseWhileStepping("World.step");
     impl_->refuseWhileDrawing("World.step");
-    detail::requirePositive("World.step.dt", dt);
-    if (dt > kMaxTimeStep)
-        throw Error::invalid("World.step.dt", dt, "must be <= " + detail::ceilingText(kMaxTimeStep) + " s (anyphys::kMaxTimeStep)");
+    detail::requireTimeStep("World.step.dt", dt);
     {
         SteppingGuard guard(impl_->stepping);
         if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);

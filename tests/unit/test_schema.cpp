@@ -101,6 +101,7 @@ std::optional<Value> invalid(const Field<Def>& f) {
         case Check::Coordinate: return number(2 * kMaxCoordinate);
         case Check::Magnitude: return Vec3(0, -2 * f.bound, 0);
         case Check::PositiveAtMost: return 2 * f.bound;
+        case Check::TimeStep: return 1e-12;  // below kMinTimeStep: a step that rounds to 0 in substeps
         case Check::CountIn: return static_cast<int>(f.bound) + 1;
         case Check::UnitQuaternion: return Quat(2, 0, 0, 0);
         case Check::Direction: return Vec3(0, 0, 0);

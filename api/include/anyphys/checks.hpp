@@ -41,6 +41,10 @@ inline constexpr double kMaxGravity = 1e4;
 /// s: longest time step (WorldSettings::timeStep, World::step dt). A step longer than a second is
 /// a units mistake, and moves a body at maxSpeed farther than the world is wide.
 inline constexpr double kMaxTimeStep = 1.0;
+/// s: shortest time step. A step of 1e-300 s is a units mistake as well, and split into substeps
+/// it rounds to 0 (ODE aborts on a zero step: the API fuzzer found a 5e-324 s step) or its inverse
+/// overflows. A nanosecond split into kMaxSubsteps still leaves 1e-12 s, with a finite inverse.
+inline constexpr double kMinTimeStep = 1e-9;
 /// m: smallest radius or half extent. Below a micrometre a float engine rounds the size to 0 and
 /// a body's mass and inertia underflow (the API fuzzer made Box2D abort on a 1e-300 m sphere).
 inline constexpr double kMinLength = 1e-6;
@@ -88,6 +92,14 @@ inline void requireCoordinate(const std::string& field, double v) {
     requireFinite(field, v);
     if (std::abs(v) > kMaxCoordinate)
         throw Error::invalid(field, v, "must be within +-" + ceilingText(kMaxCoordinate) + " m (anyphys::kMaxCoordinate)");
+}
+/// A time step: in [kMinTimeStep, kMaxTimeStep].
+inline void requireTimeStep(const std::string& field, double dt) {
+    requirePositive(field, dt);
+    if (dt < kMinTimeStep)
+        throw Error::invalid(field, dt, "must be >= " + ceilingText(kMinTimeStep) + " s (anyphys::kMinTimeStep)");
+    if (dt > kMaxTimeStep)
+        throw Error::invalid(field, dt, "must be <= " + ceilingText(kMaxTimeStep) + " s (anyphys::kMaxTimeStep)");
 }
 /// A field a shape type needs and that has no default (kUnset): "not set" names it and says why.
 /// `rule` says what the type needs, e.g. "a sphere needs its radius > 0 (ShapeDef::sphere(r))".

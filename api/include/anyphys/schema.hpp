@@ -39,6 +39,7 @@ enum class Check {
     LengthOrZero,    ///< a size that may be 0: in [0, kMaxCoordinate]
     Magnitude,       ///< finite vector, norm <= bound
     PositiveAtMost,  ///< > 0 and <= bound
+    TimeStep,        ///< in [kMinTimeStep, kMaxTimeStep]
     CountIn,         ///< integer in [1, bound]
     UnitQuaternion,  ///< norm 1 within kUnitQuaternionTolerance
     Direction,       ///< finite, non-zero vector
@@ -169,6 +170,7 @@ std::string ruleText(const Field<Def>& f) {
         case Check::LengthOrZero: return each + ">= 0, <= 1e7 (`kMaxCoordinate`)";
         case Check::Magnitude: return "finite, magnitude <= " + bound + std::string(f.words);
         case Check::PositiveAtMost: return "> 0 and <= " + bound + std::string(f.words);
+        case Check::TimeStep: return ">= 1e-9 and <= 1 s (`kMinTimeStep`, `kMaxTimeStep`)";
         case Check::CountIn: return "integer in [1, " + bound + "]" + std::string(f.words);
         case Check::UnitQuaternion: return "unit quaternion (norm 1 within 1e-4)";
         case Check::Direction: return "finite, non-zero";
@@ -210,6 +212,7 @@ inline void checkNumber(Check check, double bound, std::string_view words, const
         case Check::Coordinate: requireCoordinate(field, v); break;
         case Check::Length: requireLength(field, v); break;
         case Check::LengthOrZero: requireLength(field, v, true); break;
+        case Check::TimeStep: requireTimeStep(field, v); break;
         case Check::PositiveAtMost:
             requirePositive(field, v);
             if (v > bound) throw Error::invalid(field, v, "must be <= " + ceilingText(bound) + std::string(words));

@@ -118,7 +118,7 @@ public:
     // ---- stepping -----------------------------------------------------------------------
     /// One step of settings().timeStep.
     void step();
-    /// One step of dt seconds (> 0, <= kMaxTimeStep). After the engine stepped, the layer checks
+    /// One step of dt seconds (in [kMinTimeStep, kMaxTimeStep]). After the engine stepped, the layer checks
     /// every dynamic and kinematic body: a non-finite state, a speed above settings().maxSpeed or
     /// maxAngularSpeed, or a position beyond kMaxCoordinate has diverged. Under the throw policy
     /// (default) the step throws anyphys::Error of kind Diverged naming those bodies (the states

@@ -22,7 +22,7 @@ inline const std::vector<Field<WorldSettings>>& settingsFields() {
                  .words = " m/s^2 (anyphys::kMaxGravity)", .note = "z = 0 in a planar world"},
                 member(&S::gravity)),
         with<S>({.key = "timeStep", .path = "settings.timeStep", .unit = "s", .value = 1.0 / 60.0, .defaultText = "`1/60`",
-                 .check = Check::PositiveAtMost, .bound = kMaxTimeStep, .words = " s (anyphys::kMaxTimeStep)",
+                 .check = Check::TimeStep,
                  .note = "the fixed step of `step()` and `update()`"},
                 member(&S::timeStep)),
         with<S>({.key = "integrator", .path = "settings.integrator", .type = Type::Enum,
