@@ -17,7 +17,8 @@ Command addSchemaCommand(CLI::App& parent) {
     CLI::App* app = parent.add_subcommand("schema", "Print the scene-file key tables generated from the field table");
     app->add_flag("--markdown", *markdown, "Print the tables as markdown, each between its doc markers (the default)");
     app->add_option("--update", *update, "Rewrite the marked tables of this markdown file (docs/scene-format.md)");
-    return {app, [update] {
+    // The command owns both values: CLI11 writes through the references above when it parses.
+    return {app, [update, markdown] {
                 if (update->empty()) {
                     std::cout << schema::markdown();
                     return 0;
