@@ -20,9 +20,15 @@ inline BodyDef sphereDef(double radius) {
     return d;
 }
 
-inline std::vector<std::string> builtBackendNames() {
-    std::vector<std::string> names;
-    for (const auto& info : availableBackends()) names.push_back(info.name);
+/// The names of the built backends. Computed once per process: every suite's instantiation asks,
+/// and each test runs in a process of its own under ctest, where copying every backend's
+/// capabilities per suite was an eighth of a sanitizer build's start-up.
+inline const std::vector<std::string>& builtBackendNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> out;
+        for (const auto& info : availableBackends()) out.push_back(info.name);
+        return out;
+    }();
     return names;
 }
 
