@@ -30,6 +30,7 @@
 #include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/joint_validation.hpp"
 #include "anyphys/schema/body_fields.hpp"
+#include "anyphys/schema/joint_fields.hpp"
 #include "anyphys/schema/material_fields.hpp"
 #include "anyphys/schema/settings_fields.hpp"
 #include "anyphys/validation.hpp"
@@ -534,31 +535,29 @@ ClothDef readCloth(const json& v, const std::string& path, bool planar) {
 
 JointLimits readLimits(const json& v, const std::string& path) {
     requireObject(v, path, "an object {\"lower\": ..., \"upper\": ...}");
-    checkKeys(v, path, {"lower", "upper"});
+    const auto& rows = schema::jointLimitsFields();
+    checkKeys(v, path, rowKeys(rows));
     JointLimits l;
     if (!find(v, "lower") || !find(v, "upper")) missing(path, "limits need both \"lower\" and \"upper\"");
-    l.lower = readNumber(v["lower"], join(path, "lower"));
-    l.upper = readNumber(v["upper"], join(path, "upper"));
+    readFields(v, path, rows, l, [](const auto&) { return true; });
     return l;
 }
 
 JointMotor readMotor(const json& v, const std::string& path) {
     requireObject(v, path, "an object {\"speed\": ..., \"maxForce\": ...}");
-    checkKeys(v, path, {"speed", "maxForce"});
+    const auto& rows = schema::jointMotorFields();
+    checkKeys(v, path, rowKeys(rows));
     JointMotor m;
-    if (auto* x = find(v, "speed")) m.speed = readNumber(*x, join(path, "speed"));
-    if (auto* x = find(v, "maxForce")) m.maxForce = readNumber(*x, join(path, "maxForce"));
+    readFields(v, path, rows, m, [](const auto&) { return true; });
     return m;
 }
 
 JointSpring readSpring(const json& v, const std::string& path) {
     requireObject(v, path, "an object {\"stiffness\", \"damping\"} or {\"hertz\", \"dampingRatio\"}");
-    checkKeys(v, path, {"stiffness", "damping", "hertz", "dampingRatio"});
+    const auto& rows = schema::jointSpringFields();
+    checkKeys(v, path, rowKeys(rows));
     JointSpring sp;
-    if (auto* x = find(v, "stiffness")) sp.stiffness = readNumber(*x, join(path, "stiffness"));
-    if (auto* x = find(v, "damping")) sp.damping = readNumber(*x, join(path, "damping"));
-    if (auto* x = find(v, "hertz")) sp.hertz = readNumber(*x, join(path, "hertz"));
-    if (auto* x = find(v, "dampingRatio")) sp.dampingRatio = readNumber(*x, join(path, "dampingRatio"));
+    readFields(v, path, rows, sp, [](const auto&) { return true; });
     return sp;
 }
 
@@ -581,12 +580,12 @@ void writeUserData(ojson& j, const std::string& text, std::uint64_t value) {
 SceneJoint readJoint(const json& v, const std::string& path, const std::map<std::string, const BodyDef*>& bodies,
                      bool planar) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "type", "bodyA", "bodyB", "anchor", "axis", "anchorA", "anchorB", "length",
-                        "minLength", "maxLength", "swingLimit", "twistLimits", "spinAxis", "steering", "limits",
-                        "motor", "spring", "breakForce", "breakTorque", "collideConnected", "userData"});
+    const auto& rows = schema::jointDefFields();
+    checkKeys(v, path, rowKeys(rows));
     SceneJoint out;
     JointDef& d = out.def;
-    if (auto* x = find(v, "name")) d.name = readString(*x, join(path, "name"));
+    // The name first: later messages may name the joint.
+    readFields(v, path, rows, d, [](const auto& f) { return f.key == "name"; });
     const auto* type = find(v, "type");
     if (!type) missing(join(path, "type"), "every joint needs a type: " + allowedNames<JointType>());
     d.type = readEnum<JointType>(*type, join(path, "type"));
@@ -604,23 +603,20 @@ SceneJoint readJoint(const json& v, const std::string& path, const std::map<std:
     };
     out.bodyA = body("bodyA", false);
     out.bodyB = body("bodyB", true);
-    if (auto* x = find(v, "anchor")) d.anchor = readVec3(*x, join(path, "anchor"));
-    if (auto* x = find(v, "axis")) d.axis = readVec3(*x, join(path, "axis"));
-    if (auto* x = find(v, "anchorA")) d.anchorA = readVec3(*x, join(path, "anchorA"));
-    if (auto* x = find(v, "anchorB")) d.anchorB = readVec3(*x, join(path, "anchorB"));
-    if (auto* x = find(v, "length")) d.length = readNumber(*x, join(path, "length"));
-    if (auto* x = find(v, "minLength")) d.minLength = readNumber(*x, join(path, "minLength"));
-    if (auto* x = find(v, "maxLength")) d.maxLength = readNumber(*x, join(path, "maxLength"));
-    if (auto* x = find(v, "swingLimit")) d.swingLimit = readNumber(*x, join(path, "swingLimit"));
-    if (auto* x = find(v, "twistLimits")) d.twistLimits = readLimits(*x, join(path, "twistLimits"));
-    if (auto* x = find(v, "spinAxis")) d.spinAxis = readVec3(*x, join(path, "spinAxis"));
-    if (auto* x = find(v, "steering")) d.steering = readBool(*x, join(path, "steering"));
-    if (auto* x = find(v, "limits")) d.limits = readLimits(*x, join(path, "limits"));
-    if (auto* x = find(v, "motor")) d.motor = readMotor(*x, join(path, "motor"));
-    if (auto* x = find(v, "spring")) d.spring = readSpring(*x, join(path, "spring"));
-    if (auto* x = find(v, "breakForce")) d.breakForce = readNumber(*x, join(path, "breakForce"));
-    if (auto* x = find(v, "breakTorque")) d.breakTorque = readNumber(*x, join(path, "breakTorque"));
-    if (auto* x = find(v, "collideConnected")) d.collideConnected = readBool(*x, join(path, "collideConnected"));
+    // Every key in the rows' order: those of rows by their rows, the objects by their readers.
+    for (const auto& f : rows) {
+        if (f.key == "name" || !f.ownCode) {
+            readFields(v, path, rows, d, [&f](const auto& g) { return &g == &f && g.key != "name"; });
+            continue;
+        }
+        const auto* x = find(v, f.key);
+        if (!x) continue;
+        const std::string p = join(path, f.key);
+        if (f.key == "twistLimits") d.twistLimits = readLimits(*x, p);
+        if (f.key == "limits") d.limits = readLimits(*x, p);
+        if (f.key == "motor") d.motor = readMotor(*x, p);
+        if (f.key == "spring") d.spring = readSpring(*x, p);
+    }
     // The same rules, in the same words, as World::createJoint.
     validate(d, path);
     if (planar) validatePlanar(d, path);
@@ -825,47 +821,41 @@ ojson clothJson(const ClothDef& c) {
     return j;
 }
 
-ojson limitsJson(const JointLimits& l) { return ojson{{"lower", l.lower}, {"upper", l.upper}}; }
+ojson limitsJson(const JointLimits& l) {
+    ojson j;
+    writeFields(j, schema::jointLimitsFields(), l, [](const auto&) { return true; }, [](std::string_view) {});
+    return j;
+}
 
 ojson jointJson(const SceneJoint& sj) {
     const JointDef& d = sj.def;
-    const JointDef defaults;
-    const JointFields f = jointFields(d.type);
     ojson j;
-    if (!d.name.empty()) j["name"] = d.name;
-    j["type"] = std::string(toString(d.type));
-    if (!sj.bodyA.empty()) j["bodyA"] = sj.bodyA;
-    j["bodyB"] = sj.bodyB;
-    if (f.anchor) j["anchor"] = vec(d.anchor);
-    if (f.axis) j["axis"] = vec(d.axis);
-    if (f.distance) {
-        j["anchorA"] = vec(d.anchorA);
-        j["anchorB"] = vec(d.anchorB);
-        if (d.length) j["length"] = *d.length;
-        if (d.minLength) j["minLength"] = *d.minLength;
-        if (d.maxLength) j["maxLength"] = *d.maxLength;
-    }
-    if (f.cone) {
-        j["swingLimit"] = d.swingLimit;
-        if (d.twistLimits) j["twistLimits"] = limitsJson(*d.twistLimits);
-    }
-    if (f.wheel) {
-        j["spinAxis"] = vec(d.spinAxis);
-        j["steering"] = d.steering;
-    }
-    if (d.limits) j["limits"] = limitsJson(*d.limits);
-    if (d.motor) j["motor"] = ojson{{"speed", d.motor->speed}, {"maxForce", d.motor->maxForce}};
-    if (d.spring) {
-        if (d.spring->hertz > 0)
-            j["spring"] = ojson{{"hertz", d.spring->hertz}, {"dampingRatio", d.spring->dampingRatio}};
-        else
-            j["spring"] = ojson{{"stiffness", d.spring->stiffness}, {"damping", d.spring->damping}};
-    }
-    // Infinite thresholds (never break) are the default and have no JSON spelling.
-    if (d.breakForce < defaults.breakForce) j["breakForce"] = d.breakForce;
-    if (d.breakTorque < defaults.breakTorque) j["breakTorque"] = d.breakTorque;
-    j["collideConnected"] = d.collideConnected;
-    writeUserData(j, sj.userData, d.userData);
+    const auto own = [&](std::string_view key) {
+        if (key == "type") j["type"] = std::string(toString(d.type));
+        if (key == "bodyA" && !sj.bodyA.empty()) j["bodyA"] = sj.bodyA;
+        if (key == "bodyB") j["bodyB"] = sj.bodyB;
+        if (key == "twistLimits" && d.twistLimits) j["twistLimits"] = limitsJson(*d.twistLimits);
+        if (key == "limits" && d.limits) j["limits"] = limitsJson(*d.limits);
+        if (key == "motor" && d.motor) {
+            ojson m;
+            writeFields(m, schema::jointMotorFields(), *d.motor, [](const auto&) { return true; }, [](std::string_view) {});
+            j["motor"] = m;
+        }
+        // A spring is written as the pair it is given by: stiffness and damping, or hertz and dampingRatio.
+        if (key == "spring" && d.spring) {
+            const bool hertz = d.spring->hertz > 0;
+            ojson sp;
+            writeFields(sp, schema::jointSpringFields(), *d.spring,
+                        [hertz](const auto& f) { return (f.key == "hertz" || f.key == "dampingRatio") == hertz; },
+                        [](std::string_view) {});
+            j["spring"] = sp;
+        }
+        if (key == "userData") writeUserData(j, sj.userData, d.userData);
+    };
+    // Each type writes the keys it uses (infinite break thresholds, the default, have no JSON spelling
+    // and are not written).
+    writeFields(j, schema::jointDefFields(), d,
+                [&d](const auto& f) { return f.ownCode || (f.types & schema::bit(d.type)) != 0; }, own);
     return j;
 }
 

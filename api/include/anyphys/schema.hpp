@@ -44,6 +44,7 @@ enum class Check {
     UnitQuaternion,  ///< norm 1 within kUnitQuaternionTolerance
     Direction,       ///< finite, non-zero vector
     NonEmpty,        ///< non-empty string; `words` is the whole rule
+    Threshold,       ///< > 0, infinity allowed (a joint's break force: infinite never breaks)
 };
 
 /// Who makes a field take effect, which decides where it is listed as a capability parameter.
@@ -118,6 +119,7 @@ std::string ruleText(const Field<Def>& f) {
         case Check::UnitQuaternion: return "unit quaternion (norm 1 within 1e-4)";
         case Check::Direction: return "finite, non-zero";
         case Check::NonEmpty: return "non-empty";
+        case Check::Threshold: return "> 0" + std::string(f.words);
     }
     switch (f.type) {
         case Type::Bool: return f.note.empty() ? "`true` or `false`" : "";

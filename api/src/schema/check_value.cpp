@@ -35,6 +35,9 @@ void checkNumber(Check check, double bound, std::string_view words, const std::s
             requirePositive(field, v);
             if (v > bound) throw Error::invalid(field, v, "must be <= " + ceilingText(bound) + std::string(words));
             break;
+        case Check::Threshold:
+            if (!(v > 0)) throw Error::invalid(field, v, "must be > 0" + std::string(words));
+            break;
         default: break;
     }
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anyphys/schema/body_fields.hpp"
+#include "anyphys/schema/joint_fields.hpp"
 #include "anyphys/schema/material_fields.hpp"
 #include "anyphys/schema/settings_fields.hpp"
 
@@ -79,6 +80,23 @@ inline std::string shapeTypeTable() {
     }
     return out;
 }
+
+// Joints: a column names the types that use each key.
+inline std::string jointTable() {
+    std::string out = "| key | unit | default | types | rule |\n|---|---|---|---|---|\n";
+    for (const auto& f : jointDefFields()) {
+        std::string types;
+        bool all = true;
+        for (const auto& [type, name] : EnumNames<JointType>::values) {
+            if (f.types & bit(type)) types += (types.empty() ? "" : ", ") + std::string(name);
+            else all = false;
+        }
+        const std::string r = row(f);  // "| `key` | unit | default | rule |\n"
+        const auto ruleAt = r.rfind(" | ", r.size() - 4);
+        out += r.substr(0, ruleAt) + " | " + (all ? std::string("all") : types) + r.substr(ruleAt);
+    }
+    return out;
+}
 }  // namespace detail
 
 /// The generated tables by marker name, in the doc's order.
@@ -92,6 +110,10 @@ inline std::vector<std::pair<std::string, std::string>> markdownTables() {
                                              [](const auto& f) { return f.types == ~0u && !f.childOnly && !f.ownCode; })},
         {"shape-types", detail::shapeTypeTable()},
         {"shape-child", detail::keyTable(shapeFields(), [](const auto& f) { return f.childOnly; })},
+        {"joint", detail::jointTable()},
+        {"joint-limits", detail::keyTable(jointLimitsFields(), all)},
+        {"joint-motor", detail::keyTable(jointMotorFields(), all)},
+        {"joint-spring", detail::keyTable(jointSpringFields(), all)},
     };
 }
 
