@@ -29,6 +29,7 @@
 #include "anyphys/fields/field_def.hpp"
 #include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/joint_validation.hpp"
+#include "anyphys/fields/schema_fields.hpp"
 #include "anyphys/schema/body_fields.hpp"
 #include "anyphys/schema/joint_fields.hpp"
 #include "anyphys/schema/material_fields.hpp"
@@ -411,15 +412,9 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
 
 // ---- fields -----------------------------------------------------------------------------------
 
-// The keys of one field type; the others keep their defaults.
-std::vector<std::string_view> fieldKeys(FieldType type) {
-    switch (type) {
-        case FieldType::Buoyancy: return {"type", "fluidDensity", "surface", "linearDrag", "angularDrag"};
-        case FieldType::Drag: return {"type", "airDensity"};
-        case FieldType::Wind: return {"type", "velocity", "airDensity"};
-        case FieldType::Explosion: return {"type", "center", "time", "impulse", "radius"};
-    }
-    return {"type"};
+// The rows of a field of this type (the others keep their defaults, and are neither read nor written).
+auto ofFieldType(FieldType type) {
+    return [type](const schema::Field<FieldDef>& f) { return (f.types & schema::bit(type)) != 0; };
 }
 
 FieldDef readField(const json& v, const std::string& path, bool planar) {
@@ -428,25 +423,20 @@ FieldDef readField(const json& v, const std::string& path, bool planar) {
     if (!typeValue) missing(join(path, "type"), "allowed types are " + fieldTypeNames());
     const auto type = typeValue->is_string() ? fieldTypeFromString(typeValue->get<std::string>()) : std::nullopt;
     if (!type) fail(join(path, "type"), *typeValue, "must be one of " + fieldTypeNames());
-    checkKeys(v, path, fieldKeys(*type), " for a " + std::string(toString(*type)) + " field");
+    const auto& rows = schema::fieldDefFields();
+    checkKeys(v, path, rowKeys(rows, ofFieldType(*type)), " for a " + std::string(toString(*type)) + " field");
     FieldDef f;
     f.type = *type;
-    if (auto* x = find(v, "fluidDensity")) f.fluidDensity = readNumber(*x, join(path, "fluidDensity"));
-    if (auto* x = find(v, "surface")) {
-        const std::string p = join(path, "surface");
-        requireObject(*x, p, "an object {\"normal\": [x, y, z], \"offset\": d}");
-        checkKeys(*x, p, {"normal", "offset"});
-        if (auto* y = find(*x, "normal")) f.surfaceNormal = readVec3(*y, join(p, "normal"));
-        if (auto* y = find(*x, "offset")) f.surfaceOffset = readNumber(*y, join(p, "offset"));
+    for (const auto& row : rows) {
+        if (!row.ownCode) {
+            readFields(v, path, rows, f, [&row](const auto& g) { return &g == &row; });
+        } else if (const auto* x = row.key == "surface" ? find(v, "surface") : nullptr) {
+            const std::string p = join(path, "surface");
+            requireObject(*x, p, "an object {\"normal\": [x, y, z], \"offset\": d}");
+            checkKeys(*x, p, rowKeys(schema::fieldSurfaceFields()));
+            readFields(*x, p, schema::fieldSurfaceFields(), f, [](const auto&) { return true; });
+        }
     }
-    if (auto* x = find(v, "linearDrag")) f.linearDrag = readNumber(*x, join(path, "linearDrag"));
-    if (auto* x = find(v, "angularDrag")) f.angularDrag = readNumber(*x, join(path, "angularDrag"));
-    if (auto* x = find(v, "airDensity")) f.airDensity = readNumber(*x, join(path, "airDensity"));
-    if (auto* x = find(v, "velocity")) f.velocity = readVec3(*x, join(path, "velocity"));
-    if (auto* x = find(v, "center")) f.center = readVec3(*x, join(path, "center"));
-    if (auto* x = find(v, "time")) f.time = readNumber(*x, join(path, "time"));
-    if (auto* x = find(v, "impulse")) f.impulse = readNumber(*x, join(path, "impulse"));
-    if (auto* x = find(v, "radius")) f.radius = readNumber(*x, join(path, "radius"));
     validate(f, path);  // the same range rules, in the same words, as World::addField
     if (planar) {
         const auto inPlane = [&](const std::string& key, const Vec3& value) {
@@ -464,20 +454,18 @@ FieldDef readField(const json& v, const std::string& path, bool planar) {
 
 FluidDef readFluid(const json& v, const std::string& path, bool planar) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "box", "spacing", "density", "viscosity"}, " for a fluid");
+    const auto& rows = schema::fluidDefFields();
+    checkKeys(v, path, rowKeys(rows), " for a fluid");
     FluidDef f;
-    if (auto* x = find(v, "name")) f.name = readString(*x, join(path, "name"));
+    readFields(v, path, rows, f, [](const auto& row) { return row.key == "name"; });
     const auto* box = find(v, "box");
     if (!box) missing(join(path, "box"), "a fluid fills a box {\"min\": [x, y, z], \"max\": [x, y, z]}");
     const std::string p = join(path, "box");
     requireObject(*box, p, "an object {\"min\": [x, y, z], \"max\": [x, y, z]}");
-    checkKeys(*box, p, {"min", "max"});
+    checkKeys(*box, p, rowKeys(schema::fluidBoxFields()));
     if (!find(*box, "min") || !find(*box, "max")) missing(p, "a box needs both \"min\" and \"max\"");
-    f.boxMin = readVec3((*box)["min"], join(p, "min"));
-    f.boxMax = readVec3((*box)["max"], join(p, "max"));
-    if (auto* x = find(v, "spacing")) f.spacing = readNumber(*x, join(path, "spacing"));
-    if (auto* x = find(v, "density")) f.density = readNumber(*x, join(path, "density"));
-    if (auto* x = find(v, "viscosity")) f.viscosity = readNumber(*x, join(path, "viscosity"));
+    readFields(*box, p, schema::fluidBoxFields(), f, [](const auto&) { return true; });
+    readFields(v, path, rows, f, [](const auto& row) { return row.key != "name"; });
     validate(f, path);  // the same rules, in the same words, as World::addFluid
     (void)planar;       // a planar fluid is the slab of its box's depth: any box will do
     return f;
@@ -493,25 +481,17 @@ std::array<int, 2> readIndexPair(const json& v, const std::string& path, const s
 
 ClothDef readCloth(const json& v, const std::string& path, bool planar) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "corner", "size", "resolution", "axisU", "axisV", "areaDensity", "stiffness", "bending",
-                        "damping", "thickness", "pinned"},
-              " for a cloth");
+    const auto& rows = schema::clothDefFields();
+    checkKeys(v, path, rowKeys(rows), " for a cloth");
     ClothDef c;
-    if (auto* x = find(v, "name")) c.name = readString(*x, join(path, "name"));
-    if (auto* x = find(v, "corner")) c.corner = readVec3(*x, join(path, "corner"));
+    readFields(v, path, rows, c, [](const auto& row) { return row.key == "name" || row.key == "corner"; });
     if (auto* x = find(v, "size")) {
         if (!x->is_array() || x->size() != 2 || !(*x)[0].is_number() || !(*x)[1].is_number())
             malformed(join(path, "size"), *x, "must be an array of 2 numbers [along axisU, along axisV]");
         c.size = {(*x)[0].get<double>(), (*x)[1].get<double>()};
     }
     if (auto* x = find(v, "resolution")) c.resolution = readIndexPair(*x, join(path, "resolution"), "an array of 2 integers [cells along U, cells along V]");
-    if (auto* x = find(v, "axisU")) c.axisU = readVec3(*x, join(path, "axisU"));
-    if (auto* x = find(v, "axisV")) c.axisV = readVec3(*x, join(path, "axisV"));
-    if (auto* x = find(v, "areaDensity")) c.areaDensity = readNumber(*x, join(path, "areaDensity"));
-    if (auto* x = find(v, "stiffness")) c.stiffness = readNumber(*x, join(path, "stiffness"));
-    if (auto* x = find(v, "bending")) c.bending = readNumber(*x, join(path, "bending"));
-    if (auto* x = find(v, "damping")) c.damping = readNumber(*x, join(path, "damping"));
-    if (auto* x = find(v, "thickness")) c.thickness = readNumber(*x, join(path, "thickness"));
+    readFields(v, path, rows, c, [](const auto& row) { return row.key != "name" && row.key != "corner"; });
     if (auto* x = find(v, "pinned")) {
         if (!x->is_array()) malformed(join(path, "pinned"), *x, "must be an array of node indices [[i, j], ...]");
         for (std::size_t n = 0; n < x->size(); ++n)
@@ -768,56 +748,44 @@ ojson bodyJson(const BodyDef& b) {
     return j;
 }
 
+// A field writes the keys of its type.
 ojson fieldJson(const FieldDef& f) {
     ojson j;
-    j["type"] = std::string(toString(f.type));
-    switch (f.type) {
-        case FieldType::Buoyancy:
-            j["fluidDensity"] = f.fluidDensity;
-            j["surface"] = ojson{{"normal", vec(f.surfaceNormal)}, {"offset", f.surfaceOffset}};
-            j["linearDrag"] = f.linearDrag;
-            j["angularDrag"] = f.angularDrag;
-            break;
-        case FieldType::Drag: j["airDensity"] = f.airDensity; break;
-        case FieldType::Wind:
-            j["velocity"] = vec(f.velocity);
-            j["airDensity"] = f.airDensity;
-            break;
-        case FieldType::Explosion:
-            j["center"] = vec(f.center);
-            j["time"] = f.time;
-            j["impulse"] = f.impulse;
-            j["radius"] = f.radius;
-            break;
-    }
+    const auto own = [&](std::string_view key) {
+        if (key == "type") j["type"] = std::string(toString(f.type));
+        if (key == "surface") {
+            ojson surface;
+            writeFields(surface, schema::fieldSurfaceFields(), f, [](const auto&) { return true; }, [](std::string_view) {});
+            j["surface"] = surface;
+        }
+    };
+    writeFields(j, schema::fieldDefFields(), f, ofFieldType(f.type), own);
     return j;
 }
 
 ojson fluidJson(const FluidDef& f) {
     ojson j;
-    j["name"] = f.name;
-    j["box"] = ojson{{"min", vec(f.boxMin)}, {"max", vec(f.boxMax)}};
-    j["spacing"] = f.spacing;
-    j["density"] = f.density;
-    j["viscosity"] = f.viscosity;
+    const auto own = [&](std::string_view key) {
+        if (key != "box") return;
+        ojson box;
+        writeFields(box, schema::fluidBoxFields(), f, [](const auto&) { return true; }, [](std::string_view) {});
+        j["box"] = box;
+    };
+    writeFields(j, schema::fluidDefFields(), f, [](const auto&) { return true; }, own);
     return j;
 }
 
 ojson clothJson(const ClothDef& c) {
     ojson j;
-    j["name"] = c.name;
-    j["corner"] = vec(c.corner);
-    j["size"] = ojson::array({c.size[0], c.size[1]});
-    j["resolution"] = ojson::array({c.resolution[0], c.resolution[1]});
-    j["axisU"] = vec(c.axisU);
-    j["axisV"] = vec(c.axisV);
-    j["areaDensity"] = c.areaDensity;
-    j["stiffness"] = c.stiffness;
-    j["bending"] = c.bending;
-    j["damping"] = c.damping;
-    j["thickness"] = c.thickness;
-    j["pinned"] = ojson::array();
-    for (const auto& p : c.pinned) j["pinned"].push_back(ojson::array({p[0], p[1]}));
+    const auto own = [&](std::string_view key) {
+        if (key == "size") j["size"] = ojson::array({c.size[0], c.size[1]});
+        if (key == "resolution") j["resolution"] = ojson::array({c.resolution[0], c.resolution[1]});
+        if (key == "pinned") {
+            j["pinned"] = ojson::array();
+            for (const auto& p : c.pinned) j["pinned"].push_back(ojson::array({p[0], p[1]}));
+        }
+    };
+    writeFields(j, schema::clothDefFields(), c, [](const auto&) { return true; }, own);
     return j;
 }
 

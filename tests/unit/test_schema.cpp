@@ -12,6 +12,7 @@
 #include "anyphys/backends.hpp"
 #include "anyphys/containers/scene.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/fields/schema_markdown.hpp"
 #include "anyphys/schema/markdown.hpp"
 #include "anyphys/schema/parameters.hpp"
 #include "anyphys/validation.hpp"
@@ -174,6 +175,11 @@ TEST(Schema, DefaultsAreTheDefsDefaults) {
     expectDefaults(schema::jointLimitsFields());
     expectDefaults(schema::jointMotorFields());
     expectDefaults(schema::jointSpringFields());
+    expectDefaults(schema::fieldDefFields());
+    expectDefaults(schema::fieldSurfaceFields());
+    expectDefaults(schema::fluidDefFields());
+    expectDefaults(schema::fluidBoxFields());
+    expectDefaults(schema::clothDefFields());
 }
 
 TEST(Schema, KeysAreUniqueAndPathsEndInTheirKey) {
@@ -196,6 +202,11 @@ TEST(Schema, KeysAreUniqueAndPathsEndInTheirKey) {
     check(schema::jointLimitsFields());
     check(schema::jointMotorFields());
     check(schema::jointSpringFields());
+    check(schema::fieldDefFields());
+    check(schema::fieldSurfaceFields());
+    check(schema::fluidDefFields());
+    check(schema::fluidBoxFields());
+    check(schema::clothDefFields());
 }
 
 // Every row code can write round-trips through a scene file with a value other than its default
@@ -286,6 +297,77 @@ TEST(Schema, EveryJointRowRoundTripsAndIsRefusedInItsWords) {
     EXPECT_EQ(refused, 8u);  // anchor, anchorA, anchorB, length, minLength, maxLength, breakForce, breakTorque
 }
 
+// Every row of fields, fluids and cloths that code can write round-trips through a scene file (a
+// field of the first type that has the row), and a value its check refuses is refused by the
+// loader in the row's words.
+TEST(Schema, EveryFieldFluidAndClothRowRoundTripsAndIsRefusedInItsWords) {
+    std::size_t refused = 0;
+    // `make(f)`: a scene holding one def that has row f; `where(scene)`: that def.
+    const auto run = [&refused](const auto& rows, auto make, auto where, const std::string& path, auto override) {
+        for (const auto& f : rows) {
+            if (!f.set) continue;
+            Scene scene = make(f);
+            const Value value = override(f).value_or(sample(f));
+            ASSERT_TRUE(f.set(where(scene), value)) << f.path;
+            Scene back;
+            ASSERT_NO_THROW(back = parseScene(sceneToJson(scene))) << f.path;
+            EXPECT_TRUE(same(f.get(where(back)), value)) << f.path << ": not read back";
+            const auto bad = invalid(f);
+            if (!bad) continue;
+            std::string expected;
+            try {
+                schema::checkValue(f, *bad, path + "." + std::string(f.key));
+            } catch (const Error& e) {
+                expected = e.what();
+            }
+            ASSERT_FALSE(expected.empty()) << f.path;
+            Scene wrong = make(f);
+            ASSERT_TRUE(f.set(where(wrong), *bad));
+            try {
+                parseScene(sceneToJson(wrong));
+                ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
+            } catch (const Error& e) {
+                EXPECT_EQ(std::string(e.what()), expected) << f.path;
+            }
+            ++refused;
+        }
+    };
+    const auto none = [](const auto&) { return std::optional<Value>(); };
+    run(schema::fieldDefFields(),
+        [](const Field<FieldDef>& f) {
+            Scene scene;
+            FieldDef def;
+            for (const auto& n : kFieldTypeNames)
+                if (f.types & schema::bit(n.type)) {
+                    def.type = n.type;
+                    break;
+                }
+            scene.fields.push_back(def);
+            return scene;
+        },
+        [](Scene& s) -> FieldDef& { return s.fields.at(0); }, "fields[0]", none);
+    run(schema::fluidDefFields(), [](const auto&) {
+            Scene scene;
+            scene.fluids.push_back(FluidDef{});
+            return scene;
+        },
+        [](Scene& s) -> FluidDef& { return s.fluids.at(0); }, "fluids[0]", none);
+    run(schema::clothDefFields(), [](const auto&) {
+            Scene scene;
+            scene.cloths.push_back(ClothDef{});
+            return scene;
+        },
+        [](Scene& s) -> ClothDef& { return s.cloths.at(0); }, "cloths[0]",
+        [](const Field<ClothDef>& f) -> std::optional<Value> {
+            // Unit and perpendicular to the other axis's default.
+            if (f.key == "axisU" || f.key == "axisV") return Vec3(0, 0, 1);
+            return std::nullopt;
+        });
+    // fluidDensity, linearDrag, angularDrag, airDensity, center, time, impulse, radius; spacing,
+    // density, viscosity; corner, areaDensity, stiffness, bending, damping, thickness.
+    EXPECT_EQ(refused, 17u);
+}
+
 // A value a row's check refuses is refused by the loader with the row's rule in the same words.
 TEST(Schema, RefusedValuesGiveTheRowsRule) {
     std::size_t checked = 0;
@@ -353,7 +435,7 @@ TEST(Schema, SceneFormatDocMatchesTheTable) {
     std::stringstream text;
     text << in.rdbuf();
     std::vector<std::string> missing;
-    const std::string updated = schema::updateMarkdown(text.str(), missing);
+    const std::string updated = schema::updateMarkdown(text.str(), missing, schema::allMarkdownTables());
     EXPECT_TRUE(missing.empty()) << path << " lacks the markers of " << missing.size() << " tables, e.g. "
                                  << (missing.empty() ? "" : missing[0]);
     EXPECT_TRUE(updated == text.str()) << "docs/scene-format.md's key tables differ from the field table "

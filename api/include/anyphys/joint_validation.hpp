@@ -113,12 +113,7 @@ inline void requireContainsZero(const JointLimits& l, const std::string& field) 
                              "must contain 0 (every position is measured from the pose at creation, where it is 0)");
 }
 
-/// The rule of the row `key` of `rows` on `def`, the field named `path.key`.
-template <class Def>
-void checkRow(const std::vector<schema::Field<Def>>& rows, std::string_view key, const Def& def, const std::string& path) {
-    const schema::Field<Def>& f = *schema::findField(rows, key);
-    schema::checkValue(f, f.get(def), path + "." + std::string(key));
-}
+using schema::checkRow;
 
 }  // namespace detail
 

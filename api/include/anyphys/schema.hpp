@@ -160,6 +160,14 @@ const Field<Def>* findField(const std::vector<Field<Def>>& rows, std::string_vie
     return nullptr;
 }
 
+/// The rule of the row `key` of `rows` on `def`, the field named `path.key` (for rules checked in
+/// an order or under conditions of their own).
+template <class Def>
+void checkRow(const std::vector<Field<Def>>& rows, std::string_view key, const Def& def, const std::string& path) {
+    const Field<Def>& f = *findField(rows, key);
+    checkValue(f, f.get(def), path + "." + std::string(key));
+}
+
 /// Bit of a shape type in Field::types.
 constexpr std::uint32_t bit(ShapeType t) { return 1u << static_cast<unsigned>(t); }
 

@@ -120,17 +120,21 @@ inline std::vector<std::pair<std::string, std::string>> markdownTables() {
 inline std::string beginMarker(const std::string& name) { return "<!-- schema:" + name + " -->\n"; }
 inline std::string endMarker(const std::string& name) { return "<!-- /schema:" + name + " -->\n"; }
 
+/// Tables by marker name. fields/ adds its own (anyphys/fields/schema_markdown.hpp).
+using Tables = std::vector<std::pair<std::string, std::string>>;
+
 /// Every table with its markers, as `anyphys schema --markdown` prints them.
-inline std::string markdown() {
+inline std::string markdown(const Tables& tables = markdownTables()) {
     std::string out;
-    for (const auto& [name, table] : markdownTables()) out += beginMarker(name) + table + endMarker(name) + "\n";
+    for (const auto& [name, table] : tables) out += beginMarker(name) + table + endMarker(name) + "\n";
     return out;
 }
 
 /// `doc` with each marked table replaced by the generated one; `missing` gets the names of
 /// tables whose markers the doc lacks.
-inline std::string updateMarkdown(std::string doc, std::vector<std::string>& missing) {
-    for (const auto& [name, table] : markdownTables()) {
+inline std::string updateMarkdown(std::string doc, std::vector<std::string>& missing,
+                                  const Tables& tables = markdownTables()) {
+    for (const auto& [name, table] : tables) {
         const std::string begin = beginMarker(name), end = endMarker(name);
         const auto from = doc.find(begin);
         const auto to = from == std::string::npos ? from : doc.find(end, from);
