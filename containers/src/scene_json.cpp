@@ -29,7 +29,9 @@
 #include "anyphys/fields/field_def.hpp"
 #include "anyphys/fields/particle_defs.hpp"
 #include "anyphys/joint_validation.hpp"
+#include "anyphys/fields/schema_fields.hpp"
 #include "anyphys/schema/body_fields.hpp"
+#include "anyphys/schema/joint_fields.hpp"
 #include "anyphys/schema/material_fields.hpp"
 #include "anyphys/schema/settings_fields.hpp"
 #include "anyphys/validation.hpp"
@@ -410,15 +412,9 @@ BodyDef readBody(const json& v, const std::string& path, const MaterialLibrary& 
 
 // ---- fields -----------------------------------------------------------------------------------
 
-// The keys of one field type; the others keep their defaults.
-std::vector<std::string_view> fieldKeys(FieldType type) {
-    switch (type) {
-        case FieldType::Buoyancy: return {"type", "fluidDensity", "surface", "linearDrag", "angularDrag"};
-        case FieldType::Drag: return {"type", "airDensity"};
-        case FieldType::Wind: return {"type", "velocity", "airDensity"};
-        case FieldType::Explosion: return {"type", "center", "time", "impulse", "radius"};
-    }
-    return {"type"};
+// The rows of a field of this type (the others keep their defaults, and are neither read nor written).
+auto ofFieldType(FieldType type) {
+    return [type](const schema::Field<FieldDef>& f) { return (f.types & schema::bit(type)) != 0; };
 }
 
 FieldDef readField(const json& v, const std::string& path, bool planar) {
@@ -427,25 +423,20 @@ FieldDef readField(const json& v, const std::string& path, bool planar) {
     if (!typeValue) missing(join(path, "type"), "allowed types are " + fieldTypeNames());
     const auto type = typeValue->is_string() ? fieldTypeFromString(typeValue->get<std::string>()) : std::nullopt;
     if (!type) fail(join(path, "type"), *typeValue, "must be one of " + fieldTypeNames());
-    checkKeys(v, path, fieldKeys(*type), " for a " + std::string(toString(*type)) + " field");
+    const auto& rows = schema::fieldDefFields();
+    checkKeys(v, path, rowKeys(rows, ofFieldType(*type)), " for a " + std::string(toString(*type)) + " field");
     FieldDef f;
     f.type = *type;
-    if (auto* x = find(v, "fluidDensity")) f.fluidDensity = readNumber(*x, join(path, "fluidDensity"));
-    if (auto* x = find(v, "surface")) {
-        const std::string p = join(path, "surface");
-        requireObject(*x, p, "an object {\"normal\": [x, y, z], \"offset\": d}");
-        checkKeys(*x, p, {"normal", "offset"});
-        if (auto* y = find(*x, "normal")) f.surfaceNormal = readVec3(*y, join(p, "normal"));
-        if (auto* y = find(*x, "offset")) f.surfaceOffset = readNumber(*y, join(p, "offset"));
+    for (const auto& row : rows) {
+        if (!row.ownCode) {
+            readFields(v, path, rows, f, [&row](const auto& g) { return &g == &row; });
+        } else if (const auto* x = row.key == "surface" ? find(v, "surface") : nullptr) {
+            const std::string p = join(path, "surface");
+            requireObject(*x, p, "an object {\"normal\": [x, y, z], \"offset\": d}");
+            checkKeys(*x, p, rowKeys(schema::fieldSurfaceFields()));
+            readFields(*x, p, schema::fieldSurfaceFields(), f, [](const auto&) { return true; });
+        }
     }
-    if (auto* x = find(v, "linearDrag")) f.linearDrag = readNumber(*x, join(path, "linearDrag"));
-    if (auto* x = find(v, "angularDrag")) f.angularDrag = readNumber(*x, join(path, "angularDrag"));
-    if (auto* x = find(v, "airDensity")) f.airDensity = readNumber(*x, join(path, "airDensity"));
-    if (auto* x = find(v, "velocity")) f.velocity = readVec3(*x, join(path, "velocity"));
-    if (auto* x = find(v, "center")) f.center = readVec3(*x, join(path, "center"));
-    if (auto* x = find(v, "time")) f.time = readNumber(*x, join(path, "time"));
-    if (auto* x = find(v, "impulse")) f.impulse = readNumber(*x, join(path, "impulse"));
-    if (auto* x = find(v, "radius")) f.radius = readNumber(*x, join(path, "radius"));
     validate(f, path);  // the same range rules, in the same words, as World::addField
     if (planar) {
         const auto inPlane = [&](const std::string& key, const Vec3& value) {
@@ -463,20 +454,18 @@ FieldDef readField(const json& v, const std::string& path, bool planar) {
 
 FluidDef readFluid(const json& v, const std::string& path, bool planar) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "box", "spacing", "density", "viscosity"}, " for a fluid");
+    const auto& rows = schema::fluidDefFields();
+    checkKeys(v, path, rowKeys(rows), " for a fluid");
     FluidDef f;
-    if (auto* x = find(v, "name")) f.name = readString(*x, join(path, "name"));
+    readFields(v, path, rows, f, [](const auto& row) { return row.key == "name"; });
     const auto* box = find(v, "box");
     if (!box) missing(join(path, "box"), "a fluid fills a box {\"min\": [x, y, z], \"max\": [x, y, z]}");
     const std::string p = join(path, "box");
     requireObject(*box, p, "an object {\"min\": [x, y, z], \"max\": [x, y, z]}");
-    checkKeys(*box, p, {"min", "max"});
+    checkKeys(*box, p, rowKeys(schema::fluidBoxFields()));
     if (!find(*box, "min") || !find(*box, "max")) missing(p, "a box needs both \"min\" and \"max\"");
-    f.boxMin = readVec3((*box)["min"], join(p, "min"));
-    f.boxMax = readVec3((*box)["max"], join(p, "max"));
-    if (auto* x = find(v, "spacing")) f.spacing = readNumber(*x, join(path, "spacing"));
-    if (auto* x = find(v, "density")) f.density = readNumber(*x, join(path, "density"));
-    if (auto* x = find(v, "viscosity")) f.viscosity = readNumber(*x, join(path, "viscosity"));
+    readFields(*box, p, schema::fluidBoxFields(), f, [](const auto&) { return true; });
+    readFields(v, path, rows, f, [](const auto& row) { return row.key != "name"; });
     validate(f, path);  // the same rules, in the same words, as World::addFluid
     (void)planar;       // a planar fluid is the slab of its box's depth: any box will do
     return f;
@@ -492,25 +481,17 @@ std::array<int, 2> readIndexPair(const json& v, const std::string& path, const s
 
 ClothDef readCloth(const json& v, const std::string& path, bool planar) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "corner", "size", "resolution", "axisU", "axisV", "areaDensity", "stiffness", "bending",
-                        "damping", "thickness", "pinned"},
-              " for a cloth");
+    const auto& rows = schema::clothDefFields();
+    checkKeys(v, path, rowKeys(rows), " for a cloth");
     ClothDef c;
-    if (auto* x = find(v, "name")) c.name = readString(*x, join(path, "name"));
-    if (auto* x = find(v, "corner")) c.corner = readVec3(*x, join(path, "corner"));
+    readFields(v, path, rows, c, [](const auto& row) { return row.key == "name" || row.key == "corner"; });
     if (auto* x = find(v, "size")) {
         if (!x->is_array() || x->size() != 2 || !(*x)[0].is_number() || !(*x)[1].is_number())
             malformed(join(path, "size"), *x, "must be an array of 2 numbers [along axisU, along axisV]");
         c.size = {(*x)[0].get<double>(), (*x)[1].get<double>()};
     }
     if (auto* x = find(v, "resolution")) c.resolution = readIndexPair(*x, join(path, "resolution"), "an array of 2 integers [cells along U, cells along V]");
-    if (auto* x = find(v, "axisU")) c.axisU = readVec3(*x, join(path, "axisU"));
-    if (auto* x = find(v, "axisV")) c.axisV = readVec3(*x, join(path, "axisV"));
-    if (auto* x = find(v, "areaDensity")) c.areaDensity = readNumber(*x, join(path, "areaDensity"));
-    if (auto* x = find(v, "stiffness")) c.stiffness = readNumber(*x, join(path, "stiffness"));
-    if (auto* x = find(v, "bending")) c.bending = readNumber(*x, join(path, "bending"));
-    if (auto* x = find(v, "damping")) c.damping = readNumber(*x, join(path, "damping"));
-    if (auto* x = find(v, "thickness")) c.thickness = readNumber(*x, join(path, "thickness"));
+    readFields(v, path, rows, c, [](const auto& row) { return row.key != "name" && row.key != "corner"; });
     if (auto* x = find(v, "pinned")) {
         if (!x->is_array()) malformed(join(path, "pinned"), *x, "must be an array of node indices [[i, j], ...]");
         for (std::size_t n = 0; n < x->size(); ++n)
@@ -534,31 +515,29 @@ ClothDef readCloth(const json& v, const std::string& path, bool planar) {
 
 JointLimits readLimits(const json& v, const std::string& path) {
     requireObject(v, path, "an object {\"lower\": ..., \"upper\": ...}");
-    checkKeys(v, path, {"lower", "upper"});
+    const auto& rows = schema::jointLimitsFields();
+    checkKeys(v, path, rowKeys(rows));
     JointLimits l;
     if (!find(v, "lower") || !find(v, "upper")) missing(path, "limits need both \"lower\" and \"upper\"");
-    l.lower = readNumber(v["lower"], join(path, "lower"));
-    l.upper = readNumber(v["upper"], join(path, "upper"));
+    readFields(v, path, rows, l, [](const auto&) { return true; });
     return l;
 }
 
 JointMotor readMotor(const json& v, const std::string& path) {
     requireObject(v, path, "an object {\"speed\": ..., \"maxForce\": ...}");
-    checkKeys(v, path, {"speed", "maxForce"});
+    const auto& rows = schema::jointMotorFields();
+    checkKeys(v, path, rowKeys(rows));
     JointMotor m;
-    if (auto* x = find(v, "speed")) m.speed = readNumber(*x, join(path, "speed"));
-    if (auto* x = find(v, "maxForce")) m.maxForce = readNumber(*x, join(path, "maxForce"));
+    readFields(v, path, rows, m, [](const auto&) { return true; });
     return m;
 }
 
 JointSpring readSpring(const json& v, const std::string& path) {
     requireObject(v, path, "an object {\"stiffness\", \"damping\"} or {\"hertz\", \"dampingRatio\"}");
-    checkKeys(v, path, {"stiffness", "damping", "hertz", "dampingRatio"});
+    const auto& rows = schema::jointSpringFields();
+    checkKeys(v, path, rowKeys(rows));
     JointSpring sp;
-    if (auto* x = find(v, "stiffness")) sp.stiffness = readNumber(*x, join(path, "stiffness"));
-    if (auto* x = find(v, "damping")) sp.damping = readNumber(*x, join(path, "damping"));
-    if (auto* x = find(v, "hertz")) sp.hertz = readNumber(*x, join(path, "hertz"));
-    if (auto* x = find(v, "dampingRatio")) sp.dampingRatio = readNumber(*x, join(path, "dampingRatio"));
+    readFields(v, path, rows, sp, [](const auto&) { return true; });
     return sp;
 }
 
@@ -581,12 +560,12 @@ void writeUserData(ojson& j, const std::string& text, std::uint64_t value) {
 SceneJoint readJoint(const json& v, const std::string& path, const std::map<std::string, const BodyDef*>& bodies,
                      bool planar) {
     requireObject(v, path);
-    checkKeys(v, path, {"name", "type", "bodyA", "bodyB", "anchor", "axis", "anchorA", "anchorB", "length",
-                        "minLength", "maxLength", "swingLimit", "twistLimits", "spinAxis", "steering", "limits",
-                        "motor", "spring", "breakForce", "breakTorque", "collideConnected", "userData"});
+    const auto& rows = schema::jointDefFields();
+    checkKeys(v, path, rowKeys(rows));
     SceneJoint out;
     JointDef& d = out.def;
-    if (auto* x = find(v, "name")) d.name = readString(*x, join(path, "name"));
+    // The name first: later messages may name the joint.
+    readFields(v, path, rows, d, [](const auto& f) { return f.key == "name"; });
     const auto* type = find(v, "type");
     if (!type) missing(join(path, "type"), "every joint needs a type: " + allowedNames<JointType>());
     d.type = readEnum<JointType>(*type, join(path, "type"));
@@ -604,23 +583,20 @@ SceneJoint readJoint(const json& v, const std::string& path, const std::map<std:
     };
     out.bodyA = body("bodyA", false);
     out.bodyB = body("bodyB", true);
-    if (auto* x = find(v, "anchor")) d.anchor = readVec3(*x, join(path, "anchor"));
-    if (auto* x = find(v, "axis")) d.axis = readVec3(*x, join(path, "axis"));
-    if (auto* x = find(v, "anchorA")) d.anchorA = readVec3(*x, join(path, "anchorA"));
-    if (auto* x = find(v, "anchorB")) d.anchorB = readVec3(*x, join(path, "anchorB"));
-    if (auto* x = find(v, "length")) d.length = readNumber(*x, join(path, "length"));
-    if (auto* x = find(v, "minLength")) d.minLength = readNumber(*x, join(path, "minLength"));
-    if (auto* x = find(v, "maxLength")) d.maxLength = readNumber(*x, join(path, "maxLength"));
-    if (auto* x = find(v, "swingLimit")) d.swingLimit = readNumber(*x, join(path, "swingLimit"));
-    if (auto* x = find(v, "twistLimits")) d.twistLimits = readLimits(*x, join(path, "twistLimits"));
-    if (auto* x = find(v, "spinAxis")) d.spinAxis = readVec3(*x, join(path, "spinAxis"));
-    if (auto* x = find(v, "steering")) d.steering = readBool(*x, join(path, "steering"));
-    if (auto* x = find(v, "limits")) d.limits = readLimits(*x, join(path, "limits"));
-    if (auto* x = find(v, "motor")) d.motor = readMotor(*x, join(path, "motor"));
-    if (auto* x = find(v, "spring")) d.spring = readSpring(*x, join(path, "spring"));
-    if (auto* x = find(v, "breakForce")) d.breakForce = readNumber(*x, join(path, "breakForce"));
-    if (auto* x = find(v, "breakTorque")) d.breakTorque = readNumber(*x, join(path, "breakTorque"));
-    if (auto* x = find(v, "collideConnected")) d.collideConnected = readBool(*x, join(path, "collideConnected"));
+    // Every key in the rows' order: those of rows by their rows, the objects by their readers.
+    for (const auto& f : rows) {
+        if (f.key == "name" || !f.ownCode) {
+            readFields(v, path, rows, d, [&f](const auto& g) { return &g == &f && g.key != "name"; });
+            continue;
+        }
+        const auto* x = find(v, f.key);
+        if (!x) continue;
+        const std::string p = join(path, f.key);
+        if (f.key == "twistLimits") d.twistLimits = readLimits(*x, p);
+        if (f.key == "limits") d.limits = readLimits(*x, p);
+        if (f.key == "motor") d.motor = readMotor(*x, p);
+        if (f.key == "spring") d.spring = readSpring(*x, p);
+    }
     // The same rules, in the same words, as World::createJoint.
     validate(d, path);
     if (planar) validatePlanar(d, path);
@@ -772,100 +748,82 @@ ojson bodyJson(const BodyDef& b) {
     return j;
 }
 
+// A field writes the keys of its type.
 ojson fieldJson(const FieldDef& f) {
     ojson j;
-    j["type"] = std::string(toString(f.type));
-    switch (f.type) {
-        case FieldType::Buoyancy:
-            j["fluidDensity"] = f.fluidDensity;
-            j["surface"] = ojson{{"normal", vec(f.surfaceNormal)}, {"offset", f.surfaceOffset}};
-            j["linearDrag"] = f.linearDrag;
-            j["angularDrag"] = f.angularDrag;
-            break;
-        case FieldType::Drag: j["airDensity"] = f.airDensity; break;
-        case FieldType::Wind:
-            j["velocity"] = vec(f.velocity);
-            j["airDensity"] = f.airDensity;
-            break;
-        case FieldType::Explosion:
-            j["center"] = vec(f.center);
-            j["time"] = f.time;
-            j["impulse"] = f.impulse;
-            j["radius"] = f.radius;
-            break;
-    }
+    const auto own = [&](std::string_view key) {
+        if (key == "type") j["type"] = std::string(toString(f.type));
+        if (key == "surface") {
+            ojson surface;
+            writeFields(surface, schema::fieldSurfaceFields(), f, [](const auto&) { return true; }, [](std::string_view) {});
+            j["surface"] = surface;
+        }
+    };
+    writeFields(j, schema::fieldDefFields(), f, ofFieldType(f.type), own);
     return j;
 }
 
 ojson fluidJson(const FluidDef& f) {
     ojson j;
-    j["name"] = f.name;
-    j["box"] = ojson{{"min", vec(f.boxMin)}, {"max", vec(f.boxMax)}};
-    j["spacing"] = f.spacing;
-    j["density"] = f.density;
-    j["viscosity"] = f.viscosity;
+    const auto own = [&](std::string_view key) {
+        if (key != "box") return;
+        ojson box;
+        writeFields(box, schema::fluidBoxFields(), f, [](const auto&) { return true; }, [](std::string_view) {});
+        j["box"] = box;
+    };
+    writeFields(j, schema::fluidDefFields(), f, [](const auto&) { return true; }, own);
     return j;
 }
 
 ojson clothJson(const ClothDef& c) {
     ojson j;
-    j["name"] = c.name;
-    j["corner"] = vec(c.corner);
-    j["size"] = ojson::array({c.size[0], c.size[1]});
-    j["resolution"] = ojson::array({c.resolution[0], c.resolution[1]});
-    j["axisU"] = vec(c.axisU);
-    j["axisV"] = vec(c.axisV);
-    j["areaDensity"] = c.areaDensity;
-    j["stiffness"] = c.stiffness;
-    j["bending"] = c.bending;
-    j["damping"] = c.damping;
-    j["thickness"] = c.thickness;
-    j["pinned"] = ojson::array();
-    for (const auto& p : c.pinned) j["pinned"].push_back(ojson::array({p[0], p[1]}));
+    const auto own = [&](std::string_view key) {
+        if (key == "size") j["size"] = ojson::array({c.size[0], c.size[1]});
+        if (key == "resolution") j["resolution"] = ojson::array({c.resolution[0], c.resolution[1]});
+        if (key == "pinned") {
+            j["pinned"] = ojson::array();
+            for (const auto& p : c.pinned) j["pinned"].push_back(ojson::array({p[0], p[1]}));
+        }
+    };
+    writeFields(j, schema::clothDefFields(), c, [](const auto&) { return true; }, own);
     return j;
 }
 
-ojson limitsJson(const JointLimits& l) { return ojson{{"lower", l.lower}, {"upper", l.upper}}; }
+ojson limitsJson(const JointLimits& l) {
+    ojson j;
+    writeFields(j, schema::jointLimitsFields(), l, [](const auto&) { return true; }, [](std::string_view) {});
+    return j;
+}
 
 ojson jointJson(const SceneJoint& sj) {
     const JointDef& d = sj.def;
-    const JointDef defaults;
-    const JointFields f = jointFields(d.type);
     ojson j;
-    if (!d.name.empty()) j["name"] = d.name;
-    j["type"] = std::string(toString(d.type));
-    if (!sj.bodyA.empty()) j["bodyA"] = sj.bodyA;
-    j["bodyB"] = sj.bodyB;
-    if (f.anchor) j["anchor"] = vec(d.anchor);
-    if (f.axis) j["axis"] = vec(d.axis);
-    if (f.distance) {
-        j["anchorA"] = vec(d.anchorA);
-        j["anchorB"] = vec(d.anchorB);
-        if (d.length) j["length"] = *d.length;
-        if (d.minLength) j["minLength"] = *d.minLength;
-        if (d.maxLength) j["maxLength"] = *d.maxLength;
-    }
-    if (f.cone) {
-        j["swingLimit"] = d.swingLimit;
-        if (d.twistLimits) j["twistLimits"] = limitsJson(*d.twistLimits);
-    }
-    if (f.wheel) {
-        j["spinAxis"] = vec(d.spinAxis);
-        j["steering"] = d.steering;
-    }
-    if (d.limits) j["limits"] = limitsJson(*d.limits);
-    if (d.motor) j["motor"] = ojson{{"speed", d.motor->speed}, {"maxForce", d.motor->maxForce}};
-    if (d.spring) {
-        if (d.spring->hertz > 0)
-            j["spring"] = ojson{{"hertz", d.spring->hertz}, {"dampingRatio", d.spring->dampingRatio}};
-        else
-            j["spring"] = ojson{{"stiffness", d.spring->stiffness}, {"damping", d.spring->damping}};
-    }
-    // Infinite thresholds (never break) are the default and have no JSON spelling.
-    if (d.breakForce < defaults.breakForce) j["breakForce"] = d.breakForce;
-    if (d.breakTorque < defaults.breakTorque) j["breakTorque"] = d.breakTorque;
-    j["collideConnected"] = d.collideConnected;
-    writeUserData(j, sj.userData, d.userData);
+    const auto own = [&](std::string_view key) {
+        if (key == "type") j["type"] = std::string(toString(d.type));
+        if (key == "bodyA" && !sj.bodyA.empty()) j["bodyA"] = sj.bodyA;
+        if (key == "bodyB") j["bodyB"] = sj.bodyB;
+        if (key == "twistLimits" && d.twistLimits) j["twistLimits"] = limitsJson(*d.twistLimits);
+        if (key == "limits" && d.limits) j["limits"] = limitsJson(*d.limits);
+        if (key == "motor" && d.motor) {
+            ojson m;
+            writeFields(m, schema::jointMotorFields(), *d.motor, [](const auto&) { return true; }, [](std::string_view) {});
+            j["motor"] = m;
+        }
+        // A spring is written as the pair it is given by: stiffness and damping, or hertz and dampingRatio.
+        if (key == "spring" && d.spring) {
+            const bool hertz = d.spring->hertz > 0;
+            ojson sp;
+            writeFields(sp, schema::jointSpringFields(), *d.spring,
+                        [hertz](const auto& f) { return (f.key == "hertz" || f.key == "dampingRatio") == hertz; },
+                        [](std::string_view) {});
+            j["spring"] = sp;
+        }
+        if (key == "userData") writeUserData(j, sj.userData, d.userData);
+    };
+    // Each type writes the keys it uses (infinite break thresholds, the default, have no JSON spelling
+    // and are not written).
+    writeFields(j, schema::jointDefFields(), d,
+                [&d](const auto& f) { return f.ownCode || (f.types & schema::bit(d.type)) != 0; }, own);
     return j;
 }
 

@@ -12,6 +12,7 @@
 #include "anyphys/backends.hpp"
 #include "anyphys/containers/scene.hpp"
 #include "anyphys/error.hpp"
+#include "anyphys/fields/schema_markdown.hpp"
 #include "anyphys/schema/markdown.hpp"
 #include "anyphys/schema/parameters.hpp"
 #include "anyphys/validation.hpp"
@@ -106,6 +107,7 @@ std::optional<Value> invalid(const Field<Def>& f) {
         case Check::UnitQuaternion: return Quat(2, 0, 0, 0);
         case Check::Direction: return Vec3(0, 0, 0);
         case Check::NonEmpty: return std::string();
+        case Check::Threshold: return number(-1);
         default: return std::nullopt;
     }
 }
@@ -169,6 +171,15 @@ TEST(Schema, DefaultsAreTheDefsDefaults) {
     expectDefaults(schema::bodyFields());
     expectDefaults(schema::shapeFields());
     expectDefaults(schema::materialFields());
+    expectDefaults(schema::jointDefFields());
+    expectDefaults(schema::jointLimitsFields());
+    expectDefaults(schema::jointMotorFields());
+    expectDefaults(schema::jointSpringFields());
+    expectDefaults(schema::fieldDefFields());
+    expectDefaults(schema::fieldSurfaceFields());
+    expectDefaults(schema::fluidDefFields());
+    expectDefaults(schema::fluidBoxFields());
+    expectDefaults(schema::clothDefFields());
 }
 
 TEST(Schema, KeysAreUniqueAndPathsEndInTheirKey) {
@@ -187,6 +198,15 @@ TEST(Schema, KeysAreUniqueAndPathsEndInTheirKey) {
     check(schema::bodyFields());
     check(schema::shapeFields());
     check(schema::materialFields());
+    check(schema::jointDefFields());
+    check(schema::jointLimitsFields());
+    check(schema::jointMotorFields());
+    check(schema::jointSpringFields());
+    check(schema::fieldDefFields());
+    check(schema::fieldSurfaceFields());
+    check(schema::fluidDefFields());
+    check(schema::fluidBoxFields());
+    check(schema::clothDefFields());
 }
 
 // Every row code can write round-trips through a scene file with a value other than its default
@@ -208,6 +228,144 @@ TEST(Schema, EveryRowRoundTripsANonDefaultValue) {
         const Scene back = parseScene(sceneToJson(scene));
         EXPECT_TRUE(same(f.get(back.materials.get("m")), sample(f))) << f.path;
     }
+}
+
+// A scene with a joint of the first type that uses JointDef row `f`, between two dynamic bodies;
+// a distance joint's anchors 1 m apart.
+Scene jointSceneFor(const Field<JointDef>& f) {
+    Scene scene;
+    for (const char* name : {"a", "b"}) {
+        BodyDef b;
+        b.name = name;
+        b.shape = ShapeDef::sphere(0.5);
+        scene.bodies.push_back(b);
+    }
+    SceneJoint j;
+    j.bodyA = "a";
+    j.bodyB = "b";
+    for (const auto& [type, name] : EnumNames<JointType>::values)
+        if (f.types & schema::bit(type)) {
+            j.def.type = type;
+            break;
+        }
+    j.def.anchorB = Vec3(0, 1, 0);
+    scene.joints.push_back(j);
+    return scene;
+}
+
+// A value other than the default that the joint rules between fields accept.
+Value jointSample(const Field<JointDef>& f) {
+    if (f.key == "minLength") return 0.25;
+    if (f.key == "maxLength") return 4.0;
+    if (f.key == "spinAxis") return Vec3(0, 1, 0);  // perpendicular to the default axis
+    if (f.key == "breakForce" || f.key == "breakTorque") return 100.0;
+    return sample(f);
+}
+
+// Every JointDef row code can write round-trips through a scene file on a type that uses it, and a
+// value its check refuses is refused by the loader in the row's words.
+TEST(Schema, EveryJointRowRoundTripsAndIsRefusedInItsWords) {
+    std::size_t refused = 0;
+    for (const auto& f : schema::jointDefFields()) {
+        if (!f.set) continue;
+        Scene scene = jointSceneFor(f);
+        const Value value = jointSample(f);
+        ASSERT_TRUE(f.set(scene.joints[0].def, value)) << f.path;
+        Scene back;
+        ASSERT_NO_THROW(back = parseScene(sceneToJson(scene))) << f.path;
+        EXPECT_TRUE(same(f.get(back.joints.at(0).def), value)) << f.path << ": not read back";
+
+        const auto bad = invalid(f);
+        if (!bad) continue;
+        std::string expected;
+        try {
+            schema::checkValue(f, *bad, "joints[0]." + std::string(f.key));
+        } catch (const Error& e) {
+            expected = e.what();
+        }
+        ASSERT_FALSE(expected.empty()) << f.path;
+        Scene wrong = jointSceneFor(f);
+        ASSERT_TRUE(f.set(wrong.joints[0].def, *bad));
+        try {
+            parseScene(sceneToJson(wrong));
+            ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()), expected) << f.path;
+        }
+        ++refused;
+    }
+    EXPECT_EQ(refused, 8u);  // anchor, anchorA, anchorB, length, minLength, maxLength, breakForce, breakTorque
+}
+
+// Every row of fields, fluids and cloths that code can write round-trips through a scene file (a
+// field of the first type that has the row), and a value its check refuses is refused by the
+// loader in the row's words.
+TEST(Schema, EveryFieldFluidAndClothRowRoundTripsAndIsRefusedInItsWords) {
+    std::size_t refused = 0;
+    // `make(f)`: a scene holding one def that has row f; `where(scene)`: that def.
+    const auto run = [&refused](const auto& rows, auto make, auto where, const std::string& path, auto override) {
+        for (const auto& f : rows) {
+            if (!f.set) continue;
+            Scene scene = make(f);
+            const Value value = override(f).value_or(sample(f));
+            ASSERT_TRUE(f.set(where(scene), value)) << f.path;
+            Scene back;
+            ASSERT_NO_THROW(back = parseScene(sceneToJson(scene))) << f.path;
+            EXPECT_TRUE(same(f.get(where(back)), value)) << f.path << ": not read back";
+            const auto bad = invalid(f);
+            if (!bad) continue;
+            std::string expected;
+            try {
+                schema::checkValue(f, *bad, path + "." + std::string(f.key));
+            } catch (const Error& e) {
+                expected = e.what();
+            }
+            ASSERT_FALSE(expected.empty()) << f.path;
+            Scene wrong = make(f);
+            ASSERT_TRUE(f.set(where(wrong), *bad));
+            try {
+                parseScene(sceneToJson(wrong));
+                ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
+            } catch (const Error& e) {
+                EXPECT_EQ(std::string(e.what()), expected) << f.path;
+            }
+            ++refused;
+        }
+    };
+    const auto none = [](const auto&) { return std::optional<Value>(); };
+    run(schema::fieldDefFields(),
+        [](const Field<FieldDef>& f) {
+            Scene scene;
+            FieldDef def;
+            for (const auto& n : kFieldTypeNames)
+                if (f.types & schema::bit(n.type)) {
+                    def.type = n.type;
+                    break;
+                }
+            scene.fields.push_back(def);
+            return scene;
+        },
+        [](Scene& s) -> FieldDef& { return s.fields.at(0); }, "fields[0]", none);
+    run(schema::fluidDefFields(), [](const auto&) {
+            Scene scene;
+            scene.fluids.push_back(FluidDef{});
+            return scene;
+        },
+        [](Scene& s) -> FluidDef& { return s.fluids.at(0); }, "fluids[0]", none);
+    run(schema::clothDefFields(), [](const auto&) {
+            Scene scene;
+            scene.cloths.push_back(ClothDef{});
+            return scene;
+        },
+        [](Scene& s) -> ClothDef& { return s.cloths.at(0); }, "cloths[0]",
+        [](const Field<ClothDef>& f) -> std::optional<Value> {
+            // Unit and perpendicular to the other axis's default.
+            if (f.key == "axisU" || f.key == "axisV") return Vec3(0, 0, 1);
+            return std::nullopt;
+        });
+    // fluidDensity, linearDrag, angularDrag, airDensity, center, time, impulse, radius; spacing,
+    // density, viscosity; corner, areaDensity, stiffness, bending, damping, thickness.
+    EXPECT_EQ(refused, 17u);
 }
 
 // A value a row's check refuses is refused by the loader with the row's rule in the same words.
@@ -241,7 +399,6 @@ TEST(Schema, CapabilityParametersComeFromTheTable) {
     const auto described = schema::describedParameters();
     for (const BackendInfo& b : availableBackends()) {
         for (const std::string& p : b.capabilities.parameters) {
-            if (p.starts_with("joint.")) continue;  // JointDef is not in the table yet
             EXPECT_TRUE(described.contains(p)) << b.name << " lists " << p << ", which no row describes";
         }
         for (const std::string& p : schema::layerParameters(b.capabilities))
@@ -278,7 +435,7 @@ TEST(Schema, SceneFormatDocMatchesTheTable) {
     std::stringstream text;
     text << in.rdbuf();
     std::vector<std::string> missing;
-    const std::string updated = schema::updateMarkdown(text.str(), missing);
+    const std::string updated = schema::updateMarkdown(text.str(), missing, schema::allMarkdownTables());
     EXPECT_TRUE(missing.empty()) << path << " lacks the markers of " << missing.size() << " tables, e.g. "
                                  << (missing.empty() ? "" : missing[0]);
     EXPECT_TRUE(updated == text.str()) << "docs/scene-format.md's key tables differ from the field table "

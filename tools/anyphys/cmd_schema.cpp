@@ -6,7 +6,7 @@
 #include <memory>
 #include <sstream>
 
-#include "anyphys/schema/markdown.hpp"
+#include "anyphys/fields/schema_markdown.hpp"
 #include "cli.hpp"
 
 namespace anyphys::cli {
@@ -20,7 +20,7 @@ Command addSchemaCommand(CLI::App& parent) {
     // The command owns both values: CLI11 writes through the references above when it parses.
     return {app, [update, markdown] {
                 if (update->empty()) {
-                    std::cout << schema::markdown();
+                    std::cout << schema::markdown(schema::allMarkdownTables());
                     return 0;
                 }
                 std::ifstream in(*update, std::ios::binary);
@@ -28,7 +28,7 @@ Command addSchemaCommand(CLI::App& parent) {
                 std::ostringstream text;
                 text << in.rdbuf();
                 std::vector<std::string> missing;
-                const std::string doc = schema::updateMarkdown(text.str(), missing);
+                const std::string doc = schema::updateMarkdown(text.str(), missing, schema::allMarkdownTables());
                 if (!missing.empty())
                     throw Error(ErrorKind::InvalidArgument, "", *update + ": no markers for the tables " + join(missing));
                 writeFile(*update, doc);

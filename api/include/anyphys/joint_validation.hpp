@@ -2,6 +2,8 @@
 // Validation of joint defs. Shared by World::createJoint (path "JointDef") and the scene loader
 // (path "joints[2]") so both report the same rule in the same words:
 //   "joints[0].limits: lower must be <= upper, got 1.2 > 0.4".
+// Each field's own rule comes from its row (schema/joint_fields.hpp); the rules between fields
+// and types are code here.
 // The rules on the bodies themselves (which body, which world) are checked where the bodies are
 // known; validateJointBodies holds the ones both places share.
 #include <cmath>
@@ -11,9 +13,11 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "anyphys/error.hpp"
 #include "anyphys/joint_def.hpp"
+#include "anyphys/schema/joint_fields.hpp"
 #include "anyphys/validation.hpp"
 
 namespace anyphys {
@@ -96,8 +100,7 @@ inline void requireNonZeroAxis(const std::string& field, const Vec3& v) {
 
 /// lower <= upper, both finite, 0 inside (where the joint starts), and within [-bound, bound].
 inline void validateRange(const JointLimits& l, const std::string& field, double bound, const std::string& boundName) {
-    requireFinite(field + ".lower", l.lower);
-    requireFinite(field + ".upper", l.upper);
+    schema::checkFields(schema::jointLimitsFields(), l, field, [](const auto&) { return true; });
     if (!(l.lower <= l.upper))
         throw Error(ErrorKind::InvalidArgument, field, field + ": lower must be <= upper, got " + formatNumber(l.lower) + " > " + formatNumber(l.upper));
     if (l.lower < -bound) throw Error::invalid(field + ".lower", l.lower, "must be >= -" + boundName);
@@ -110,9 +113,7 @@ inline void requireContainsZero(const JointLimits& l, const std::string& field) 
                              "must contain 0 (every position is measured from the pose at creation, where it is 0)");
 }
 
-inline void requireBreakThreshold(const std::string& field, double v) {
-    if (!(v > 0)) throw Error::invalid(field, v, "must be > 0 (infinity, the default: never breaks)");
-}
+using schema::checkRow;
 
 }  // namespace detail
 
@@ -125,16 +126,12 @@ inline void validateJointLimits(const JointLimits& l, JointType type, const std:
 }
 
 inline void validateJointMotor(const JointMotor& m, const std::string& field) {
-    detail::requireFinite(field + ".speed", m.speed);
-    detail::requireNonNegative(field + ".maxForce", m.maxForce);
+    schema::checkFields(schema::jointMotorFields(), m, field, [](const auto&) { return true; });
 }
 
 /// Either stiffness and damping, or hertz and dampingRatio; not all zero.
 inline void validateJointSpring(const JointSpring& s, const std::string& field) {
-    detail::requireNonNegative(field + ".stiffness", s.stiffness);
-    detail::requireNonNegative(field + ".damping", s.damping);
-    detail::requireNonNegative(field + ".hertz", s.hertz);
-    detail::requireNonNegative(field + ".dampingRatio", s.dampingRatio);
+    schema::checkFields(schema::jointSpringFields(), s, field, [](const auto&) { return true; });
     const auto both = [](double a, double b) { return detail::formatNumber(a) + " and " + detail::formatNumber(b); };
     if (s.hertz > 0 && (s.stiffness > 0 || s.damping > 0))
         throw Error::invalid(field, "stiffness and damping " + both(s.stiffness, s.damping) + " with hertz " +
@@ -153,11 +150,8 @@ inline void validate(const JointDef& j, const std::string& path) {
     using namespace detail;
     const JointFields f = jointFields(j.type);
     // Anchors have the bodies' ceiling: one 1e308 m away made Box2D's state NaN in the first step.
-    requireCoordinate(path + ".anchor", j.anchor);
-    requireFinite(path + ".axis", j.axis);
-    requireCoordinate(path + ".anchorA", j.anchorA);
-    requireCoordinate(path + ".anchorB", j.anchorB);
-    requireFinite(path + ".spinAxis", j.spinAxis);
+    const auto& rows = schema::jointDefFields();
+    for (std::string_view key : {"anchor", "axis", "anchorA", "anchorB", "spinAxis"}) checkRow(rows, key, j, path);
     if (f.axis) requireNonZeroAxis(path + ".axis", j.axis);
 
     // Optional fields belong to some types only: setting one elsewhere is a mistake, not a no-op.
@@ -202,9 +196,7 @@ inline void validate(const JointDef& j, const std::string& path) {
         if (!(d > kMinAnchorDistance))
             throw Error::invalid(path + ".anchorB", formatVec3(j.anchorB),
                                  "must differ from anchorA (the line between them is the joint's direction)");
-        if (j.length) requirePositive(path + ".length", *j.length);
-        if (j.minLength) requireNonNegative(path + ".minLength", *j.minLength);
-        if (j.maxLength) requirePositive(path + ".maxLength", *j.maxLength);
+        for (std::string_view key : {"length", "minLength", "maxLength"}) checkRow(rows, key, j, path);
         if (j.minLength && j.maxLength && !(*j.minLength <= *j.maxLength))
             throw Error(ErrorKind::InvalidArgument, path + ".maxLength", path + ".maxLength: must be >= minLength, got " + formatNumber(*j.maxLength) + " < " +
                         formatNumber(*j.minLength));
@@ -216,8 +208,8 @@ inline void validate(const JointDef& j, const std::string& path) {
             throw Error::invalid(path + ".maxLength", *j.maxLength,
                                  "must be >= the anchors' distance at creation (" + formatNumber(d) + " m)");
     }
-    requireBreakThreshold(path + ".breakForce", j.breakForce);
-    requireBreakThreshold(path + ".breakTorque", j.breakTorque);
+    checkRow(rows, "breakForce", j, path);
+    checkRow(rows, "breakTorque", j, path);
 }
 
 /// The extra rules of a planar world (XY plane, rotation about Z): anchors at z = 0, hinge axes

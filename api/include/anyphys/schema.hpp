@@ -4,13 +4,13 @@
 // The rows drive validation (validation.hpp), scene files (containers/src/scene_json.cpp), the
 // key tables of docs/scene-format.md (`anyphys schema --markdown`) and the capability parameter
 // list (schema/parameters.hpp), so these cannot disagree about a field.
-#include <cmath>
+// The rows themselves are defined out of line (api/src/schema/*.cpp): a row's accessors are
+// std::function objects, and building them in every file that validates a def cost minutes of
+// compile time. Headers declare the tables; schema/rows.hpp has the helpers that build them.
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <string>
 #include <string_view>
-#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -44,6 +44,7 @@ enum class Check {
     UnitQuaternion,  ///< norm 1 within kUnitQuaternionTolerance
     Direction,       ///< finite, non-zero vector
     NonEmpty,        ///< non-empty string; `words` is the whole rule
+    Threshold,       ///< > 0, infinity allowed (a joint's break force: infinite never breaks)
 };
 
 /// Who makes a field take effect, which decides where it is listed as a capability parameter.
@@ -87,63 +88,6 @@ struct Field {
     std::string (*allowed)() = nullptr;  ///< Enum: the allowed names, "a, b, c"
 };
 
-/// Getter and setter of a member, for the `get` and `set` of a row.
-template <class Def>
-struct Access {
-    std::function<Value(const Def&)> get;
-    std::function<bool(Def&, const Value&)> set;
-};
-
-namespace detail {
-template <class T> struct IsOptional : std::false_type {};
-template <class T> struct IsOptional<std::optional<T>> : std::true_type { using type = T; };
-
-template <class T>
-Value toValue(const T& v) {
-    if constexpr (std::is_enum_v<T>) return std::string(toString(v));
-    else return v;
-}
-template <class T>
-bool fromValue(const Value& v, T& out) {
-    if constexpr (std::is_enum_v<T>) {
-        const auto e = fromString<T>(std::get<std::string>(v));
-        if (e) out = *e;
-        return e.has_value();
-    } else {
-        out = std::get<T>(v);
-        return true;
-    }
-}
-}  // namespace detail
-
-/// The accessors of a plain or optional member (enums through their names).
-template <class Def, class M>
-Access<Def> member(M Def::*m) {
-    if constexpr (detail::IsOptional<M>::value) {
-        using T = typename detail::IsOptional<M>::type;
-        return {[m](const Def& d) -> Value { return d.*m ? detail::toValue(*(d.*m)) : Value{}; },
-                [m](Def& d, const Value& v) {
-                    if (std::holds_alternative<std::monostate>(v)) return (d.*m).reset(), true;
-                    T out{};
-                    if (!detail::fromValue(v, out)) return false;
-                    d.*m = out;
-                    return true;
-                }};
-    } else {
-        return {[m](const Def& d) -> Value { return detail::toValue(d.*m); },
-                [m](Def& d, const Value& v) { return detail::fromValue(v, d.*m); }};
-    }
-}
-
-/// A row with the accessors of `access` (a designated-initialiser row cannot take them from a helper).
-template <class Def>
-Field<Def> with(Field<Def> row, Access<Def> access, std::string (*allowed)() = nullptr) {
-    row.get = std::move(access.get);
-    row.set = std::move(access.set);
-    row.allowed = allowed;
-    return row;
-}
-
 /// Number as the docs print it: 1e7 rather than 1e+07.
 inline std::string docNumber(double v) {
     std::string s = anyphys::detail::ceilingText(v);
@@ -175,6 +119,7 @@ std::string ruleText(const Field<Def>& f) {
         case Check::UnitQuaternion: return "unit quaternion (norm 1 within 1e-4)";
         case Check::Direction: return "finite, non-zero";
         case Check::NonEmpty: return "non-empty";
+        case Check::Threshold: return "> 0" + std::string(f.words);
     }
     switch (f.type) {
         case Type::Bool: return f.note.empty() ? "`true` or `false`" : "";
@@ -190,75 +135,14 @@ std::string ruleText(const Field<Def>& f) {
     }
 }
 
-namespace detail {
-/// One scalar against a scalar rule, with the wording of validation.hpp.
-inline void checkNumber(Check check, double bound, std::string_view words, const std::string& field, double v) {
-    using namespace anyphys::detail;
-    switch (check) {
-        case Check::Finite: requireFinite(field, v); break;
-        case Check::Positive: requirePositive(field, v); break;
-        case Check::NonNegative: requireNonNegative(field, v); break;
-        case Check::Fraction:
-            requireNonNegative(field, v);
-            if (v > 1) throw Error::invalid(field, v, "must be in [0, 1]");
-            break;
-        case Check::UnitInterval:
-            if (!(std::isfinite(v) && v >= 0 && v <= 1)) throw Error::invalid(field, v, "must be in [0, 1]");
-            break;
-        case Check::Within:
-            requireFinite(field, v);
-            if (std::abs(v) > bound) throw Error::invalid(field, v, "must be within +-" + ceilingText(bound));
-            break;
-        case Check::Coordinate: requireCoordinate(field, v); break;
-        case Check::Length: requireLength(field, v); break;
-        case Check::LengthOrZero: requireLength(field, v, true); break;
-        case Check::TimeStep: requireTimeStep(field, v); break;
-        case Check::PositiveAtMost:
-            requirePositive(field, v);
-            if (v > bound) throw Error::invalid(field, v, "must be <= " + ceilingText(bound) + std::string(words));
-            break;
-        default: break;
-    }
-}
-}  // namespace detail
+/// Checks one value against a rule; `field` names it in messages ("settings.timeStep"). Unset
+/// optionals pass (absent means the default). Out of line: api/src/schema/check_value.cpp.
+void checkValue(Check check, double bound, std::string_view words, const Value& value, const std::string& field);
 
-/// Checks one value of a row; `field` names it in messages ("settings.timeStep"). Unset
-/// optionals pass (absent means the default).
+/// Checks one value of a row.
 template <class Def>
 void checkValue(const Field<Def>& f, const Value& value, const std::string& field) {
-    using namespace anyphys::detail;
-    if (const double* d = std::get_if<double>(&value)) return detail::checkNumber(f.check, f.bound, f.words, field, *d);
-    if (const int* n = std::get_if<int>(&value)) {
-        if (f.check == Check::CountIn && (*n < 1 || *n > f.bound))
-            throw Error::invalid(field, *n, "must be in [1, " + std::to_string(static_cast<int>(f.bound)) + "]" + std::string(f.words));
-        return;
-    }
-    if (const Vec3* v = std::get_if<Vec3>(&value)) {
-        switch (f.check) {
-            case Check::Finite: return requireFinite(field, *v);
-            case Check::Coordinate: return requireCoordinate(field, *v);
-            case Check::Magnitude:
-                requireFinite(field, *v);
-                if (v->norm() > f.bound)
-                    throw Error::invalid(field, formatVec3(*v), "magnitude must be <= " + ceilingText(f.bound) + std::string(f.words));
-                return;
-            case Check::Direction:
-                requireFinite(field, *v);
-                if (v->norm() < 1e-12) throw Error::invalid(field, formatVec3(*v), "must be non-zero");
-                return;
-            default:
-                for (int i = 0; i < 3; ++i) detail::checkNumber(f.check, f.bound, f.words, field + "[" + std::to_string(i) + "]", (*v)[i]);
-                return;
-        }
-    }
-    if (const Quat* q = std::get_if<Quat>(&value)) {
-        if (f.check == Check::UnitQuaternion &&
-            (!q->coeffs().allFinite() || std::abs(q->norm() - 1.0) > kUnitQuaternionTolerance))
-            throw Error::invalid(field, formatQuat(*q), "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
-        return;
-    }
-    if (const std::string* s = std::get_if<std::string>(&value))
-        if (f.check == Check::NonEmpty && s->empty()) throw Error::invalid(field, "\"\"", std::string(f.words));
+    checkValue(f.check, f.bound, f.words, value, field);
 }
 
 /// Checks every row of `rows` that `keep` selects on `def`; `path` prefixes the keys.
@@ -274,6 +158,14 @@ const Field<Def>* findField(const std::vector<Field<Def>>& rows, std::string_vie
     for (const Field<Def>& f : rows)
         if (f.key == key) return &f;
     return nullptr;
+}
+
+/// The rule of the row `key` of `rows` on `def`, the field named `path.key` (for rules checked in
+/// an order or under conditions of their own).
+template <class Def>
+void checkRow(const std::vector<Field<Def>>& rows, std::string_view key, const Def& def, const std::string& path) {
+    const Field<Def>& f = *findField(rows, key);
+    checkValue(f, f.get(def), path + "." + std::string(key));
 }
 
 /// Bit of a shape type in Field::types.

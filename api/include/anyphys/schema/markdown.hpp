@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anyphys/schema/body_fields.hpp"
+#include "anyphys/schema/joint_fields.hpp"
 #include "anyphys/schema/material_fields.hpp"
 #include "anyphys/schema/settings_fields.hpp"
 
@@ -79,6 +80,23 @@ inline std::string shapeTypeTable() {
     }
     return out;
 }
+
+// Joints: a column names the types that use each key.
+inline std::string jointTable() {
+    std::string out = "| key | unit | default | types | rule |\n|---|---|---|---|---|\n";
+    for (const auto& f : jointDefFields()) {
+        std::string types;
+        bool all = true;
+        for (const auto& [type, name] : EnumNames<JointType>::values) {
+            if (f.types & bit(type)) types += (types.empty() ? "" : ", ") + std::string(name);
+            else all = false;
+        }
+        const std::string r = row(f);  // "| `key` | unit | default | rule |\n"
+        const auto ruleAt = r.rfind(" | ", r.size() - 4);
+        out += r.substr(0, ruleAt) + " | " + (all ? std::string("all") : types) + r.substr(ruleAt);
+    }
+    return out;
+}
 }  // namespace detail
 
 /// The generated tables by marker name, in the doc's order.
@@ -92,23 +110,31 @@ inline std::vector<std::pair<std::string, std::string>> markdownTables() {
                                              [](const auto& f) { return f.types == ~0u && !f.childOnly && !f.ownCode; })},
         {"shape-types", detail::shapeTypeTable()},
         {"shape-child", detail::keyTable(shapeFields(), [](const auto& f) { return f.childOnly; })},
+        {"joint", detail::jointTable()},
+        {"joint-limits", detail::keyTable(jointLimitsFields(), all)},
+        {"joint-motor", detail::keyTable(jointMotorFields(), all)},
+        {"joint-spring", detail::keyTable(jointSpringFields(), all)},
     };
 }
 
 inline std::string beginMarker(const std::string& name) { return "<!-- schema:" + name + " -->\n"; }
 inline std::string endMarker(const std::string& name) { return "<!-- /schema:" + name + " -->\n"; }
 
+/// Tables by marker name. fields/ adds its own (anyphys/fields/schema_markdown.hpp).
+using Tables = std::vector<std::pair<std::string, std::string>>;
+
 /// Every table with its markers, as `anyphys schema --markdown` prints them.
-inline std::string markdown() {
+inline std::string markdown(const Tables& tables = markdownTables()) {
     std::string out;
-    for (const auto& [name, table] : markdownTables()) out += beginMarker(name) + table + endMarker(name) + "\n";
+    for (const auto& [name, table] : tables) out += beginMarker(name) + table + endMarker(name) + "\n";
     return out;
 }
 
 /// `doc` with each marked table replaced by the generated one; `missing` gets the names of
 /// tables whose markers the doc lacks.
-inline std::string updateMarkdown(std::string doc, std::vector<std::string>& missing) {
-    for (const auto& [name, table] : markdownTables()) {
+inline std::string updateMarkdown(std::string doc, std::vector<std::string>& missing,
+                                  const Tables& tables = markdownTables()) {
+    for (const auto& [name, table] : tables) {
         const std::string begin = beginMarker(name), end = endMarker(name);
         const auto from = doc.find(begin);
         const auto to = from == std::string::npos ? from : doc.find(end, from);

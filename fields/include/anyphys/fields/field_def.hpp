@@ -128,31 +128,7 @@ inline double defaultDragCoefficient(ShapeType type) {
 }
 
 /// Checks the members `type` uses, naming them under `path` ("fields[2].radius: must be > 0, got
-/// -1" from a file, "FieldDef.radius: ..." from code).
-inline void validate(const FieldDef& f, const std::string& path) {
-    using namespace detail;
-    switch (f.type) {
-        case FieldType::Buoyancy:
-            requirePositive(path + ".fluidDensity", f.fluidDensity);
-            requireFinite(path + ".surface.normal", f.surfaceNormal);
-            if (std::abs(f.surfaceNormal.norm() - 1.0) > 1e-6)
-                throw Error::invalid(path + ".surface.normal", formatVec3(f.surfaceNormal), "must be a unit vector (norm 1 within 1e-6)");
-            requireCoordinate(path + ".surface.offset", f.surfaceOffset);
-            requireNonNegative(path + ".linearDrag", f.linearDrag);
-            requireNonNegative(path + ".angularDrag", f.angularDrag);
-            break;
-        case FieldType::Drag: requirePositive(path + ".airDensity", f.airDensity); break;
-        case FieldType::Wind:
-            requirePositive(path + ".airDensity", f.airDensity);
-            requireFinite(path + ".velocity", f.velocity);
-            break;
-        case FieldType::Explosion:
-            requireCoordinate(path + ".center", f.center);
-            requireNonNegative(path + ".time", f.time);
-            requireNonNegative(path + ".impulse", f.impulse);
-            requireLength(path + ".radius", f.radius);
-            break;
-    }
-}
+/// -1" from a file, "FieldDef.radius: ..." from code). Rows: schema_fields.hpp.
+void validate(const FieldDef& f, const std::string& path);
 
 }  // namespace anyphys

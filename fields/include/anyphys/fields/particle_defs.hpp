@@ -45,56 +45,8 @@ struct ClothDef {
 };
 
 /// Checks a fluid, naming fields under `path` ("fluids[0].spacing: must be > 0, got 0").
-inline void validate(const FluidDef& f, const std::string& path) {
-    using namespace detail;
-    requireCoordinate(path + ".box.min", f.boxMin);
-    requireCoordinate(path + ".box.max", f.boxMax);
-    requirePositive(path + ".spacing", f.spacing);
-    requirePositive(path + ".density", f.density);
-    requireNonNegative(path + ".viscosity", f.viscosity);
-    for (int k = 0; k < 3; ++k)
-        if (!(f.boxMax[k] > f.boxMin[k]))
-            throw Error::invalid(path + ".box.max", formatVec3(f.boxMax),
-                                 "must exceed box.min " + formatVec3(f.boxMin) + " in every coordinate");
-    double count = 1.0;
-    for (int k = 0; k < 3; ++k) count *= std::max(1.0, std::floor((f.boxMax[k] - f.boxMin[k]) / f.spacing));
-    if (count > static_cast<double>(kMaxParticles))
-        throw Error::invalid(path + ".spacing", f.spacing,
-                             "gives " + std::to_string(static_cast<long long>(count)) + " particles in the box; at most " +
-                                 std::to_string(kMaxParticles) + " are allowed");
-}
-
+void validate(const FluidDef& f, const std::string& path);
 /// Checks a cloth, naming fields under `path`.
-inline void validate(const ClothDef& c, const std::string& path) {
-    using namespace detail;
-    requireCoordinate(path + ".corner", c.corner);
-    for (int k = 0; k < 2; ++k) {
-        requirePositive(path + ".size[" + std::to_string(k) + "]", c.size[k]);
-        if (c.resolution[k] < 1 || c.resolution[k] > 1000)
-            throw Error::invalid(path + ".resolution[" + std::to_string(k) + "]", std::to_string(c.resolution[k]),
-                                 "must be an integer in [1, 1000]");
-    }
-    for (const auto& [field, axis] : {std::pair{".axisU", c.axisU}, std::pair{".axisV", c.axisV}}) {
-        requireFinite(path + field, axis);
-        if (std::abs(axis.norm() - 1.0) > 1e-6)
-            throw Error::invalid(path + field, formatVec3(axis), "must be a unit vector (norm 1 within 1e-6)");
-    }
-    if (std::abs(c.axisU.dot(c.axisV)) > 1e-6)
-        throw Error::invalid(path + ".axisV", formatVec3(c.axisV), "must be perpendicular to axisU " + formatVec3(c.axisU));
-    requirePositive(path + ".areaDensity", c.areaDensity);
-    requirePositive(path + ".stiffness", c.stiffness);
-    requireNonNegative(path + ".bending", c.bending);
-    if (c.bending > 1.0) throw Error::invalid(path + ".bending", c.bending, "must be in [0, 1]");
-    requireNonNegative(path + ".damping", c.damping);
-    requirePositive(path + ".thickness", c.thickness);
-    for (std::size_t n = 0; n < c.pinned.size(); ++n) {
-        const auto& p = c.pinned[n];
-        if (p[0] < 0 || p[0] > c.resolution[0] || p[1] < 0 || p[1] > c.resolution[1])
-            throw Error::invalid(path + ".pinned[" + std::to_string(n) + "]",
-                                 "[" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + "]",
-                                 "must name a node [i, j] with 0 <= i <= " + std::to_string(c.resolution[0]) +
-                                     " and 0 <= j <= " + std::to_string(c.resolution[1]));
-    }
-}
+void validate(const ClothDef& c, const std::string& path);
 
 }  // namespace anyphys
