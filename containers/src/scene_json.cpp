@@ -959,7 +959,10 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
         const auto* sceneName = find(item, "scene");
         if (!sceneName) missing(join(path, "scene"), "every instance names a scene file or a built-in assembly");
         Transform pose;
-        if (auto* x = find(item, "position")) pose.position = readVec3(*x, join(path, "position"));
+        if (auto* x = find(item, "position")) {
+            pose.position = readVec3(*x, join(path, "position"));
+            detail::requireCoordinate(join(path, "position"), pose.position);
+        }
         if (auto* x = find(item, "orientation")) pose.orientation = readQuat(*x, join(path, "orientation"));
         std::string prefix;
         if (auto* x = find(item, "prefix")) prefix = readString(*x, join(path, "prefix"));
@@ -983,8 +986,15 @@ void readInstances(const json& v, Scene& scene, const LoadContext& context) {
         } catch (const Error& e) {
             throw e.within(path);
         }
-        for (std::size_t b = firstBody; b < scene.bodies.size(); ++b)
-            validateLimits(scene.bodies[b], scene.settings, path + " body \"" + scene.bodies[b].name + "\"", "settings");
+        // A placed body or joint meets the rules of one written in the scene (a position within
+        // kMaxCoordinate may still carry a body beyond it), so what is loaded also saves and loads again.
+        for (std::size_t b = firstBody; b < scene.bodies.size(); ++b) {
+            const std::string bodyPath = path + " body \"" + scene.bodies[b].name + "\"";
+            validate(scene.bodies[b], bodyPath);
+            validateLimits(scene.bodies[b], scene.settings, bodyPath, "settings");
+        }
+        for (std::size_t j = firstJoint; j < scene.joints.size(); ++j)
+            validate(scene.joints[j].def, path + " joint " + std::to_string(j - firstJoint));
         if (scene.settings.planar) {
             for (std::size_t b = firstBody; b < scene.bodies.size(); ++b)
                 validatePlanar(scene.bodies[b], path + " body \"" + scene.bodies[b].name + "\"");

@@ -154,6 +154,26 @@ TEST(SceneInstances, ClashesAreRefusedAndLeaveTheSceneAsItWas) {
     EXPECT_EQ(target.bodies.size(), 4u);
 }
 
+// A placed copy meets the rules of a body written in the file: what loads also saves and loads
+// again (found by the scene fuzzer: an instance at 8.9e26 m loaded, and its saved file did not).
+TEST(SceneInstances, PlacedBodiesMeetTheCoordinateCeiling) {
+    const std::string far = errorOf([] {
+        parseScene(R"({"instances": [{"scene": "ragdoll", "prefix": "r.", "position": [8.9e26, 2, 0]}]})");
+    });
+    EXPECT_NE(far.find("instances[0].position"), std::string::npos) << far;
+    EXPECT_NE(far.find("1e+07"), std::string::npos) << far;
+    // The instance's own position is within kMaxCoordinate (1e7 m), but the ragdoll's bodies
+    // stand up to 1.7 m above it: the head is refused, by name.
+    const std::string edge = errorOf([] {
+        parseScene(R"({"instances": [{"scene": "ragdoll", "prefix": "r.", "position": [0, 9999999.5, 0]}]})");
+    });
+    EXPECT_NE(edge.find("instances[0] body \"r."), std::string::npos) << edge;
+    EXPECT_NE(edge.find(".position"), std::string::npos) << edge;
+    // Just inside, the whole ragdoll is accepted and survives save + load unchanged.
+    const Scene inside = parseScene(R"({"instances": [{"scene": "ragdoll", "prefix": "r.", "position": [0, 9999990, 0]}]})");
+    EXPECT_EQ(sceneToJson(parseScene(sceneToJson(inside))), sceneToJson(inside));
+}
+
 // The built-in assemblies are well-formed scenes: a 70 kg ragdoll of 11 bodies and 10 joints, a
 // car of 5 bodies with 4 wheel joints, and their planar versions.
 TEST(SceneInstances, BuiltinAssemblies) {
