@@ -3,7 +3,8 @@
 #   1. scripts/setup.sh (Debian packages; a no-op when installed)
 #   2. Release build into build/ and its ctest run
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build into build-asan/ and its ctest run
-#   4. install check: `cmake --install build` into a temporary prefix, then configure, build and
+#   4. ThreadSanitizer build of the library and the concurrent-worlds test (scripts/tsan.sh)
+#   5. install check: `cmake --install build` into a temporary prefix, then configure, build and
 #      run the consumer project tests/consumer/ against it (find_package(anyphys)).
 # Exits non-zero on the first failure. Usage: scripts/test.sh
 set -euo pipefail
@@ -101,8 +102,16 @@ stage "sanitizer tests (build-asan/, detect_leaks=$detect_leaks)"
 ctest --test-dir build-asan --output-on-failure -j2
 done_stage asan-tests
 
-# ---- install check ------------------------------------------------------------------------
+# ---- threads ------------------------------------------------------------------------------
 unset ASAN_OPTIONS UBSAN_OPTIONS
+
+stage "ThreadSanitizer (build-tsan/: the library and the concurrent-worlds test)"
+# Worlds of every backend stepped on two threads at once (docs/threads.md). Only the library and
+# that one test are built with -fsanitize=thread: the stage's cost is one more library build.
+bash scripts/tsan.sh
+done_stage tsan
+
+# ---- install check ------------------------------------------------------------------------
 
 
 stage "install check (find_package(anyphys) from tests/consumer/)"
