@@ -74,7 +74,11 @@ inline std::string shapeTypeTable() {
         bool first = true;
         for (const auto& f : shapeFields()) {
             if (f.types == ~0u || (f.types & bit(type)) == 0) continue;
-            out += "| " + (first ? "`" + std::string(name) + "`" : std::string()) + " " + row(f);
+            // Appended piece by piece: g++ 12 at -O3 reports a false overflow (-Werror) on
+            // `"literal" + std::string(...)` here.
+            out += "| ";
+            if (first) out.append("`").append(name).append("`");
+            out += " " + row(f);
             first = false;
         }
     }
