@@ -2,13 +2,13 @@
 # ThreadSanitizer stage (docs/threads.md): builds the library and the one test target that steps
 # worlds of every backend concurrently (tests/threads) into build-tsan/ with -fsanitize=thread,
 # and runs it. Nothing else is built, to keep the stage cheap.
-# Usage: scripts/tsan.sh
+# Usage: scripts/tsan.sh   (TSAN_BUILD_DIR overrides the build folder)
 # The engines (ODE, Bullet, Box2D) are Debian's uninstrumented libraries: TSan sees what our code
 # does around them (their globals reached through our calls), not races inside them.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build_dir="$root/build-tsan"
+build_dir="${TSAN_BUILD_DIR:-$root/build-tsan}"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
