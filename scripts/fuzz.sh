@@ -23,6 +23,10 @@ case "${1:---short}" in
   *) echo "usage: scripts/fuzz.sh [--short|--long|--time SECONDS]" >&2; exit 2 ;;
 esac
 
+if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
+  echo "fuzz.sh: needs clang and libFuzzer: apt-get install clang libclang-rt-14-dev" >&2
+  exit 1
+fi
 build_dir="${FUZZ_BUILD_DIR:-$root/build-fuzz}"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi

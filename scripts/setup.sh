@@ -28,8 +28,6 @@ packages=(
   libgl1-mesa-dri    # Mesa's software OpenGL (llvmpipe) under Xvfb
   libglx-mesa0
   ffmpeg             # the testbed's --video FILE.mp4 / .gif
-  clang              # clang 14: the libFuzzer targets (scripts/fuzz.sh, run by scripts/test.sh)
-  libclang-rt-14-dev # libFuzzer and clang's sanitizer runtimes
 )
 
 missing=()
