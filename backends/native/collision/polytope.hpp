@@ -43,7 +43,8 @@ struct Polytope {
     /// Faces whose normals are separating axes: all, or the front of a one-sided triangle (a
     /// shape overlapping it is pushed out of the front, never through to the back).
     int axisFaceCount() const { return oneSided ? 1 : faceCount(); }
-    /// A closed solid (every edge between two faces with distinct normals), not a flat triangle.
+    /// A closed solid (every edge between two faces with distinct normals), not a flat triangle
+    /// nor a hull with an edge only one face walks.
     bool closed() const { return !edgeFaces.empty(); }
 
     Vec3 vertex(int i) const { return position + rotation * vertices[static_cast<std::size_t>(i)]; }

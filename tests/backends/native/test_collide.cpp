@@ -496,6 +496,43 @@ TEST(Collide, MovingBySeparationAlongTheNormalJustTouches) {
             }
 }
 
+// A hull with an edge only one face walks (a vertex on an edge that one face's loop holds and its
+// neighbour's skips: the API fuzzer built such a hull from nearly coplanar points, and the edge
+// query read a face index of -1). The geometry is still the box's, so it must collide like it.
+TEST(Collide, HullWithAnEdgeOneFaceWalksCollidesLikeItsClosedTwin) {
+    const Vec3 half(0.5, 0.5, 0.5);
+    HullData split = makeBoxHull(half);
+    std::vector<int>& loop = split.faces[0];
+    const int v0 = loop[0], v1 = loop[1];
+    split.vertices.push_back((split.vertices[static_cast<std::size_t>(v0)] + split.vertices[static_cast<std::size_t>(v1)]) / 2);
+    loop.insert(loop.begin() + 1, static_cast<int>(split.vertices.size()) - 1);  // face 0 only
+    split.edges.clear();  // recomputed from the loops: three edges now have a face on one side only
+    split.edgeFaces.clear();
+    Shape tJunction;
+    tJunction.type = ShapeType::Convex;
+    tJunction.hull = std::make_shared<const HullData>(split);
+    const Shape closed = boxHull(half), other = box(Vec3(0.3, 0.2, 0.4));
+
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int touching = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        const Transform xa = at(Vec3::Zero(), rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+        const Transform xb = at(Vec3(u(rng), u(rng), u(rng)) * 0.9, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+        const std::vector<Manifold> expected = run(closed, xa, other, xb, 0.05);
+        const std::vector<Manifold> got = run(tJunction, xa, other, xb, 0.05);
+        ASSERT_EQ(expected.size(), got.size()) << trial;
+        if (expected.empty()) continue;
+        ++touching;
+        expectWellFormed(got[0]);
+        // Same solid, same minimum over the same axes: the depth agrees to rounding, the normal
+        // to the tolerance with which a face is preferred over a nearly equal edge axis.
+        EXPECT_NEAR(deepest(expected[0]), deepest(got[0]), 1e-6) << trial;
+        EXPECT_GT(expected[0].normal.dot(got[0].normal), 0.99) << trial;
+    }
+    EXPECT_GT(touching, 50);  // the poses must exercise the contact path, not only separation
+}
+
 TEST(Collide, ManySidedHullsLyingOnEachOtherKeepFourPointsOfTheirOverlap) {
     // Two 24-sided prisms, the upper one turned 7.5 degrees and sunk 0.01: their clipped faces
     // give more candidates than any fixed buffer holds (the per-thread scratch takes them).
