@@ -37,11 +37,7 @@ void requireAboutZ(const World* world, const char* field, const Vec3& angular) {
 void requireForceWithinCeiling(const World* world, BodyType type, double mass, const char* field, const Vec3& force) {
     if (type != BodyType::Dynamic) return;
     const double dv = force.stableNorm() / mass * world->settings().timeStep;
-    if (!(dv <= world->settings().maxSpeed))
-        throw Error::invalid(field, formatVec3(force),
-                             "would change the body's speed by " + detail::ceilingText(dv) +
-                                 " m/s in one step (WorldSettings.timeStep), more than WorldSettings.maxSpeed (" +
-                                 detail::ceilingText(world->settings().maxSpeed) + " m/s)");
+    detail::requirePushWithinCeiling(field, force, dv, detail::PushedMotion::Speed, true, world->settings().maxSpeed);
 }
 
 }  // namespace
@@ -145,11 +141,8 @@ void Body::applyTorque(const Vec3& torque) {
         // The spin change over one step, I^-1 torque dt, in the peer's principal frame.
         const Vec3 local = slot.peer->state().orientation.conjugate() * torque;
         const double dw = local.cwiseQuotient(slot.mass.inertia).stableNorm() * world()->settings().timeStep;
-        if (!(dw <= world()->settings().maxAngularSpeed))
-            throw Error::invalid("Body.applyTorque.torque", formatVec3(torque),
-                                 "would change the body's spin by " + detail::ceilingText(dw) +
-                                     " rad/s in one step (WorldSettings.timeStep), more than WorldSettings.maxAngularSpeed (" +
-                                     detail::ceilingText(world()->settings().maxAngularSpeed) + " rad/s)");
+        detail::requirePushWithinCeiling("Body.applyTorque.torque", torque, dw, detail::PushedMotion::Spin, true,
+                                         world()->settings().maxAngularSpeed);
     }
     world()->noteForcesUsed();
     slot.peer->addTorque(aboutZ(world(), torque));
@@ -160,11 +153,8 @@ void Body::applyLinearImpulse(const Vec3& impulse) {
     detail::requireFinite("Body.applyLinearImpulse.impulse", impulse);
     if (slot.def.type == BodyType::Dynamic) {
         const double dv = impulse.stableNorm() / slot.mass.mass;
-        if (!(dv <= world()->settings().maxSpeed))
-            throw Error::invalid("Body.applyLinearImpulse.impulse", formatVec3(impulse),
-                                 "would change the body's speed by " + detail::ceilingText(dv) +
-                                     " m/s, more than WorldSettings.maxSpeed (" +
-                                     detail::ceilingText(world()->settings().maxSpeed) + " m/s)");
+        detail::requirePushWithinCeiling("Body.applyLinearImpulse.impulse", impulse, dv, detail::PushedMotion::Speed,
+                                         false, world()->settings().maxSpeed);
     }
     slot.peer->applyLinearImpulse(inPlane(world(), impulse));
 }
@@ -176,11 +166,8 @@ void Body::applyAngularImpulse(const Vec3& impulse) {
         // The spin change I^-1 impulse, in the peer's principal frame.
         const Vec3 local = slot.peer->state().orientation.conjugate() * impulse;
         const double dw = local.cwiseQuotient(slot.mass.inertia).stableNorm();
-        if (!(dw <= world()->settings().maxAngularSpeed))
-            throw Error::invalid("Body.applyAngularImpulse.impulse", formatVec3(impulse),
-                                 "would change the body's spin by " + detail::ceilingText(dw) +
-                                     " rad/s, more than WorldSettings.maxAngularSpeed (" +
-                                     detail::ceilingText(world()->settings().maxAngularSpeed) + " rad/s)");
+        detail::requirePushWithinCeiling("Body.applyAngularImpulse.impulse", impulse, dw, detail::PushedMotion::Spin,
+                                         false, world()->settings().maxAngularSpeed);
     }
     slot.peer->applyAngularImpulse(aboutZ(world(), impulse));
 }

@@ -97,12 +97,8 @@ private:
         const double dt = world_.settings().timeStep;
         const double change = value.stableNorm() / (torque ? m.inertia.minCoeff() : m.mass) * dt;
         const double ceiling = torque ? world_.settings().maxAngularSpeed : world_.settings().maxSpeed;
-        if (!(change <= ceiling))
-            throw Error::invalid(field, formatVec3(value),
-                                 std::string("would change the body's ") + (torque ? "spin" : "speed") + " by " +
-                                     detail::ceilingText(change) + (torque ? " rad/s" : " m/s") +
-                                     " in one step (WorldSettings.timeStep), more than WorldSettings." +
-                                     (torque ? "maxAngularSpeed (" : "maxSpeed (") + detail::ceilingText(ceiling) + ")");
+        detail::requirePushWithinCeiling(field, value, change, torque ? detail::PushedMotion::Spin : detail::PushedMotion::Speed,
+                                         true, ceiling);
     }
 
     World& world_;

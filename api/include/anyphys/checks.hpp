@@ -123,6 +123,22 @@ inline void requireSpeed(const std::string& field, const Vec3& v, double ceiling
         throw Error::invalid(field, formatVec3(v),
                              "magnitude must be <= " + setting + " (" + ceilingText(ceiling) + " " + unit + ")");
 }
+/// What a push changes, each with its ceiling: a body's speed (WorldSettings::maxSpeed, m/s) or its
+/// spin (WorldSettings::maxAngularSpeed, rad/s).
+enum class PushedMotion { Speed, Spin };
+/// A push that changes a body's speed or spin by `change` beyond the world's `ceiling` is absurd
+/// (an engine handed it integrates an infinite velocity): refused naming `field` and its `value`.
+/// `overOneStep`: a force or torque, acting for WorldSettings::timeStep; otherwise an impulse.
+inline void requirePushWithinCeiling(const std::string& field, const Vec3& value, double change, PushedMotion motion,
+                                     bool overOneStep, double ceiling) {
+    if (change <= ceiling) return;  // false for NaN: refused
+    const bool speed = motion == PushedMotion::Speed;
+    const char* unit = speed ? " m/s" : " rad/s";
+    throw Error::invalid(field, formatVec3(value),
+                         std::string("would change the body's ") + (speed ? "speed" : "spin") + " by " + ceilingText(change) +
+                             unit + (overOneStep ? " in one step (WorldSettings.timeStep)" : "") + ", more than WorldSettings." +
+                             (speed ? "maxSpeed (" : "maxAngularSpeed (") + ceilingText(ceiling) + unit + ")");
+}
 }  // namespace detail
 
 }  // namespace anyphys
