@@ -112,6 +112,25 @@ std::optional<Value> invalid(const Field<Def>& f) {
     }
 }
 
+// Expects the loader to refuse `scene`, where row `f` holds `bad`, in the words the row's own check
+// gives for that value at `path` (the key's path in messages).
+template <class Def>
+void expectRefusedInTheRowsWords(const Field<Def>& f, const Value& bad, const Scene& scene, const std::string& path) {
+    std::string expected;
+    try {
+        schema::checkValue(f, bad, path);
+    } catch (const Error& e) {
+        expected = e.what();
+    }
+    ASSERT_FALSE(expected.empty()) << f.path << ": the check accepts the value meant to be refused";
+    try {
+        parseScene(sceneToJson(scene));
+        ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), expected) << f.path;
+    }
+}
+
 // A scene with one body of a shape that has the shape row `f` (a compound's child for children's rows).
 Scene sceneFor(const Field<ShapeDef>& f) {
     Scene scene;
@@ -281,21 +300,9 @@ TEST(Schema, EveryJointRowRoundTripsAndIsRefusedInItsWords) {
 
         const auto bad = invalid(f);
         if (!bad) continue;
-        std::string expected;
-        try {
-            schema::checkValue(f, *bad, "joints[0]." + std::string(f.key));
-        } catch (const Error& e) {
-            expected = e.what();
-        }
-        ASSERT_FALSE(expected.empty()) << f.path;
         Scene wrong = jointSceneFor(f);
         ASSERT_TRUE(f.set(wrong.joints[0].def, *bad));
-        try {
-            parseScene(sceneToJson(wrong));
-            ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
-        } catch (const Error& e) {
-            EXPECT_EQ(std::string(e.what()), expected) << f.path;
-        }
+        expectRefusedInTheRowsWords(f, *bad, wrong, "joints[0]." + std::string(f.key));
         ++refused;
     }
     EXPECT_EQ(refused, 8u);  // anchor, anchorA, anchorB, length, minLength, maxLength, breakForce, breakTorque
@@ -318,21 +325,9 @@ TEST(Schema, EveryFieldFluidAndClothRowRoundTripsAndIsRefusedInItsWords) {
             EXPECT_TRUE(same(f.get(where(back)), value)) << f.path << ": not read back";
             const auto bad = invalid(f);
             if (!bad) continue;
-            std::string expected;
-            try {
-                schema::checkValue(f, *bad, path + "." + std::string(f.key));
-            } catch (const Error& e) {
-                expected = e.what();
-            }
-            ASSERT_FALSE(expected.empty()) << f.path;
             Scene wrong = make(f);
             ASSERT_TRUE(f.set(where(wrong), *bad));
-            try {
-                parseScene(sceneToJson(wrong));
-                ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
-            } catch (const Error& e) {
-                EXPECT_EQ(std::string(e.what()), expected) << f.path;
-            }
+            expectRefusedInTheRowsWords(f, *bad, wrong, path + "." + std::string(f.key));
             ++refused;
         }
     };
@@ -378,20 +373,8 @@ TEST(Schema, RefusedValuesGiveTheRowsRule) {
     forEachRow([&checked](const auto& f, Scene& scene, auto where, const std::string& path) {
         const auto bad = invalid(f);
         if (!f.set || !bad) return;
-        std::string expected;
-        try {
-            schema::checkValue(f, *bad, path + "." + std::string(f.key));
-        } catch (const Error& e) {
-            expected = e.what();
-        }
-        ASSERT_FALSE(expected.empty()) << f.path << ": the check accepts the value meant to be refused";
         ASSERT_TRUE(f.set(where(scene), *bad));
-        try {
-            parseScene(sceneToJson(scene));
-            ADD_FAILURE() << f.path << ": the loader accepted a value the table refuses";
-        } catch (const Error& e) {
-            EXPECT_EQ(std::string(e.what()), expected) << f.path;
-        }
+        expectRefusedInTheRowsWords(f, *bad, scene, path + "." + std::string(f.key));
         ++checked;
     });
     EXPECT_GE(checked, 30u);
