@@ -389,6 +389,12 @@ void computeEdges(HullData& h) {
             if (it != index.end()) h.edgeFaces[it->second][a < b ? 0 : 1] = f;
         }
     }
+    // An edge only one face walks: no valid topology to hand on (collision then derives and checks its own).
+    for (const auto& faces : h.edgeFaces)
+        if (faces[0] < 0 || faces[1] < 0) {
+            h.edgeFaces.clear();
+            return;
+        }
 }
 
 }  // namespace

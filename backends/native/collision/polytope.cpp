@@ -127,12 +127,13 @@ Polytope::Polytope(HullTag, const HullData& hull, const Mat3& r, const Vec3& p) 
         ownEdgeFaces_ = edgeFacesOf(hull.faces, ownEdges_);
         edges = ownEdges_;
         edgeFaces = ownEdgeFaces_;
+        // An edge walked by one face only (a vertex in one face's loop that its neighbour's loop
+        // skips; the API fuzzer found such a hull) has no face on one side: the Gauss-map edge
+        // query needs both, so such a hull takes the full queries. Precomputed topology never has
+        // one (computeEdges leaves edgeFaces empty instead), so only this path checks.
+        if (std::any_of(edgeFaces.begin(), edgeFaces.end(), [](const std::array<int, 2>& f) { return f[0] < 0 || f[1] < 0; }))
+            edgeFaces = {};
     }
-    // An edge walked by one face only (a vertex in one face's loop that its neighbour's loop
-    // skips, as a hull of nearly coplanar points can have; the API fuzzer found one) has no face
-    // on one side: the Gauss-map edge query needs both, so such a hull takes the full queries.
-    if (std::any_of(edgeFaces.begin(), edgeFaces.end(), [](const std::array<int, 2>& f) { return f[0] < 0 || f[1] < 0; }))
-        edgeFaces = {};
     center = p + r * hull.centroid;
     localCentroid_ = hull.centroid;
 }
