@@ -785,6 +785,9 @@ TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
 
     expectParseError(R"({"settings": {"contactHertz": 0}})", {"settings.contactHertz: must be > 0, got 0"});
     expectParseError(R"({"settings": {"baumgarte": 1.5}})", {"settings.baumgarte: must be in [0, 1], got 1.5"});
+    // Below the interval in the same words as above it (one rule for every [0, 1] field).
+    expectParseError(R"({"settings": {"baumgarte": -0.5}})", {"settings.baumgarte: must be in [0, 1], got -0.5"});
+    expectParseError(R"({"materials": {"m": {"restitution": -0.5}}})", {"materials.m.restitution: must be in [0, 1], got -0.5"});
     expectParseError(R"({"settings": {"linearSlop": "tiny"}})", {"settings.linearSlop: must be a number, got \"tiny\""});
     expectParseError(R"({"settings": {"timeToSleep": -1}})", {"settings.timeToSleep: must be >= 0, got -1"});
     expectParseError(R"({"settings": {"sleepVelocity": 1}})", {"settings.sleepVelocity: unknown key", "sleepLinearVelocity"});

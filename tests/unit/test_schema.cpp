@@ -96,7 +96,6 @@ std::optional<Value> invalid(const Field<Def>& f) {
         case Check::NonNegative:
         case Check::Length:
         case Check::LengthOrZero: return number(-1);
-        case Check::Fraction:
         case Check::UnitInterval: return number(2);
         case Check::Within: return number(2 * f.bound);
         case Check::Coordinate: return number(2 * kMaxCoordinate);

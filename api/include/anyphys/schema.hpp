@@ -31,8 +31,7 @@ enum class Check {
     Finite,          ///< finite
     Positive,        ///< > 0
     NonNegative,     ///< >= 0
-    Fraction,        ///< in [0, 1]; below 0 worded as ">= 0" (WorldSettings::baumgarte)
-    UnitInterval,    ///< in [0, 1], one wording (Material::restitution)
+    UnitInterval,    ///< finite, in [0, 1] (Material::restitution, WorldSettings::baumgarte)
     Within,          ///< finite, |v| <= bound
     Coordinate,      ///< finite, each coordinate within +-kMaxCoordinate
     Length,          ///< a size: in [kMinLength, kMaxCoordinate]
@@ -106,7 +105,6 @@ std::string ruleText(const Field<Def>& f) {
         case Check::Finite: return "finite";
         case Check::Positive: return each + "> 0";
         case Check::NonNegative: return each + ">= 0";
-        case Check::Fraction:
         case Check::UnitInterval: return "in [0, 1]";
         case Check::Within: return "within +-" + bound;
         case Check::Coordinate: return (each.empty() ? "" : "finite, each coordinate ") + std::string("within +-1e7 (`kMaxCoordinate`)");

@@ -16,10 +16,6 @@ void checkNumber(Check check, double bound, std::string_view words, const std::s
         case Check::Finite: requireFinite(field, v); break;
         case Check::Positive: requirePositive(field, v); break;
         case Check::NonNegative: requireNonNegative(field, v); break;
-        case Check::Fraction:
-            requireNonNegative(field, v);
-            if (v > 1) throw Error::invalid(field, v, "must be in [0, 1]");
-            break;
         case Check::UnitInterval:
             if (!(std::isfinite(v) && v >= 0 && v <= 1)) throw Error::invalid(field, v, "must be in [0, 1]");
             break;

@@ -66,7 +66,7 @@ const std::vector<Field<WorldSettings>>& settingsFields() {
         with<S>({.key = "contactPushMaxVelocity", .path = "settings.contactPushMaxVelocity", .unit = "m/s", .value = 3.0,
                  .check = Check::Positive, .note = "fastest speed at which overlap is pushed apart"},
                 member(&S::contactPushMaxVelocity)),
-        with<S>({.key = "baumgarte", .path = "settings.baumgarte", .unit = "1", .value = 0.2, .check = Check::Fraction,
+        with<S>({.key = "baumgarte", .path = "settings.baumgarte", .unit = "1", .value = 0.2, .check = Check::UnitInterval,
                  .note = "PGS: fraction of overlap corrected per step"},
                 member(&S::baumgarte)),
         with<S>({.key = "restitutionThreshold", .path = "settings.restitutionThreshold", .unit = "m/s", .value = 1.0,

@@ -139,7 +139,7 @@ const std::vector<Field<ClothDef>>& clothDefFields() {
         with<D>({.key = "stiffness", .path = "cloth.stiffness", .unit = "N/m", .value = 1e4, .check = Check::Positive,
                  .note = "stretch stiffness, force per unit width per unit strain", .honour = Honour::Parent},
                 member(&D::stiffness)),
-        with<D>({.key = "bending", .path = "cloth.bending", .unit = "1", .value = 0.01, .check = Check::Fraction,
+        with<D>({.key = "bending", .path = "cloth.bending", .unit = "1", .value = 0.01, .check = Check::UnitInterval,
                  .note = "the bending springs' stiffness as a fraction of the stretch springs'",
                  .honour = Honour::Parent},
                 member(&D::bending)),
