@@ -2,6 +2,7 @@
 #include "cli.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <fstream>
 
 namespace anyphys::cli {
@@ -24,6 +25,12 @@ std::string exactNumber(double value) {
     char buffer[32];
     const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
     return std::string(buffer, end);
+}
+
+std::string printfNumber(const char* pattern, double value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, pattern, value);
+    return buffer;
 }
 
 void writeFile(const std::string& path, const std::string& text) {

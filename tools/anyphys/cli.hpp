@@ -48,6 +48,9 @@ Integrator parseIntegrator(const std::string& option, const std::string& name);
 /// "inf" for a blow-up), for results files.
 std::string exactNumber(double value);
 
+/// One number through a printf pattern ("%.3g"), for tables meant to be read.
+std::string printfNumber(const char* pattern, double value);
+
 /// Writes text to a file (for --out); throws anyphys::Error if it cannot.
 void writeFile(const std::string& path, const std::string& text);
 

@@ -57,20 +57,14 @@ Selection select(const CompareOptions& o) {
     return s;
 }
 
-std::string format(const char* pattern, double value) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, pattern, value);
-    return buffer;
-}
-
 std::string orDash(const std::optional<double>& value, const char* pattern) {
-    return value ? format(pattern, *value) : "-";
+    return value ? printfNumber(pattern, *value) : "-";
 }
 
 std::string verdictText(const ComboResult& r) {
     if (r.checkPassed) return "ok";
     if (r.knownDeviation) return "FAIL (declared known deviation)";
-    if (r.overCeiling) return "FAIL (declared, over its ceiling " + format("%.3g", *r.ceiling) + ")";
+    if (r.overCeiling) return "FAIL (declared, over its ceiling " + printfNumber("%.3g", *r.ceiling) + ")";
     return "FAIL";
 }
 
@@ -79,8 +73,8 @@ std::string checkText(const ComboResult& r) {
     if (!r.checkValue) return "-";
     const SceneCheck& check = *catalogueScene(r.scene).check;
     const std::string unit = check.unit.empty() ? "" : " " + check.unit;
-    return check.label + " " + format("%.4g", *r.checkValue) + unit + " (want " + format("%g", check.expected) +
-           " +- " + format("%.3g", check.tolerance) + ") " + verdictText(r);
+    return check.label + " " + printfNumber("%.4g", *r.checkValue) + unit + " (want " + printfNumber("%g", check.expected) +
+           " +- " + printfNumber("%.3g", check.tolerance) + ") " + verdictText(r);
 }
 
 std::string statusWord(ComboResult::Status status) {
@@ -96,7 +90,7 @@ void printTable(const std::vector<ComboResult>& results) {
             rows.push_back({r.scene, r.backend, r.integrator, statusWord(r.status) + ": " + r.reason});
             continue;
         }
-        rows.push_back({r.scene, r.backend, r.integrator, std::to_string(r.steps), format("%.2f", r.wallMs),
+        rows.push_back({r.scene, r.backend, r.integrator, std::to_string(r.steps), printfNumber("%.2f", r.wallMs),
                         orDash(r.positionError, "%.3e"), orDash(r.angularMomentumDrift, "%+.3e"),
                         orDash(r.energyDrift, "%+.3e"), checkText(r)});
     }

@@ -81,16 +81,10 @@ Cell judge(const CatalogueScene& scene, const BackendInfo& backend) {
     return cell;
 }
 
-std::string format(const char* pattern, double value) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, pattern, value);
-    return buffer;
-}
-
 std::string cellText(const Cell& c) {
     if (c.verdict == Verdict::NotApplicable) return "n/a";
     if (c.verdict == Verdict::Error) return "ERROR";
-    return format("%.3g", *c.result.checkValue) + " " + word(c.verdict);
+    return printfNumber("%.3g", *c.result.checkValue) + " " + word(c.verdict);
 }
 
 void printMatrix(const std::vector<const CatalogueScene*>& cases, const std::vector<BackendInfo>& backends,
@@ -105,7 +99,7 @@ void printMatrix(const std::vector<const CatalogueScene*>& cases, const std::vec
     std::printf("\n");
     for (std::size_t i = 0; i < cases.size(); ++i) {
         const SceneCheck& check = *cases[i]->check;
-        const std::string measure = check.label + " (" + format("%g", check.tolerance) + (check.unit.empty() ? "" : " ") + check.unit + ")";
+        const std::string measure = check.label + " (" + printfNumber("%g", check.tolerance) + (check.unit.empty() ? "" : " ") + check.unit + ")";
         std::printf("%-*s  %-22s", int(nameWidth), cases[i]->name.c_str(), measure.c_str());
         for (const Cell& cell : cells[i]) std::printf("  %-*s", int(cellWidth), cellText(cell).c_str());
         std::printf("\n");
@@ -122,7 +116,7 @@ void printMatrix(const std::vector<const CatalogueScene*>& cases, const std::vec
                             cell.result.reason.c_str());
             else if (cell.verdict == Verdict::Known || cell.verdict == Verdict::OverCeiling)
                 std::printf("  %s on %s: %s%s: %s\n", cases[i]->name.c_str(), backends[j].name.c_str(), word(cell.verdict),
-                            cell.ceiling ? (" (ceiling " + format("%g", *cell.ceiling) + ")").c_str() : "",
+                            cell.ceiling ? (" (ceiling " + printfNumber("%g", *cell.ceiling) + ")").c_str() : "",
                             backends[j].capabilities.knownDeviations.at(cases[i]->check->criterion).c_str());
         }
 }
