@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,8 @@
 namespace anyphys::test {
 
 constexpr double kG = 9.81;  // m/s^2, the default gravity's magnitude
+constexpr double kPi = std::numbers::pi;
+constexpr double kDegree = std::numbers::pi / 180.0;  // rad
 
 /// Capability text for ANYPHYS_REQUIRE: "" when the backend has all, else what it lacks.
 inline std::string lacking(const Capabilities& caps, std::initializer_list<ShapeType> shapes, Effects effects) {

@@ -12,8 +12,6 @@
 namespace anyphys::test {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-
 class ContactsTest : public ContractTest {
 public:
     using ContractTest::expectCriterion;

@@ -17,7 +17,7 @@ constexpr double kBallRadius = 0.2;         // m
 const Vec3 kHingeAnchor(3.0, 2.0, 0.0);     // m: the ball hangs 1 m below it, at rest
 constexpr double kHingeLimit = 0.5;         // rad, both sides
 
-struct Scene {
+struct DrawnScene {
     Body ground;
     std::vector<Body> boxes;  // three, apart from each other, on the ground
     Body ball;                // hangs from the hinge, off the ground
@@ -36,8 +36,8 @@ protected:
 
     /// Ground plane, three boxes dropped 1 cm onto it, and a ball hanging from a hinge to the world
     /// (about Z, so planar worlds have it too) with limits where the backend honours them.
-    Scene build(World& world, bool allowSleep) const {
-        Scene s;
+    DrawnScene build(World& world, bool allowSleep) const {
+        DrawnScene s;
         s.ground = world.createBody(groundDef());
         for (int k = 0; k < 3; ++k) {
             BodyDef d = boxDef("box" + std::to_string(k), Vec3::Constant(kBoxHalf), Vec3(-2.0 + k, kBoxHalf + 0.01, 0));
@@ -82,7 +82,7 @@ std::vector<Vec3> corners(const Vec3& half, const Transform& pose) {
 TEST_P(DebugDrawTest, ShapesAreDrawnAtTheBodiesPoses) {
     ANYPHYS_REQUIRE(missing().empty(), missing());
     World world(settings());
-    const Scene scene = build(world, false);
+    const DrawnScene scene = build(world, false);
     for (int i = 0; i < 30; ++i) world.step();
     RecordingDrawer drawer;
     world.debugDraw(drawer);
@@ -137,7 +137,7 @@ TEST_P(DebugDrawTest, CompoundChildrenAreDrawnAtComposedPoses) {
 TEST_P(DebugDrawTest, RestingContactsLieOnTheGroundWithNormalsUp) {
     ANYPHYS_REQUIRE(missing().empty(), missing());
     World world(settings());
-    const Scene scene = build(world, false);
+    const DrawnScene scene = build(world, false);
     while (world.time() < 1.5) world.step();  // a 1 cm drop is over within 0.1 s
     RecordingDrawer drawer;
     DebugDrawOptions o;
@@ -185,7 +185,7 @@ TEST_P(DebugDrawTest, JointFramesMeetAtTheAnchor) {
     ANYPHYS_REQUIRE(missing().empty(), missing());
     ANYPHYS_REQUIRE(hasHinge(), "joint type hinge");
     World world(settings());
-    Scene scene = build(world, false);
+    DrawnScene scene = build(world, false);
     scene.ball.applyLinearImpulse(Vec3(5, 0, 0));  // 0.15 m/s: a swing of 0.05 rad, within the limits
     while (world.time() < 1.0) world.step();
     RecordingDrawer drawer;
@@ -232,7 +232,7 @@ TEST_P(DebugDrawTest, JointFramesMeetAtTheAnchor) {
 TEST_P(DebugDrawTest, BoundsHoldEachShape) {
     ANYPHYS_REQUIRE(missing().empty(), missing());
     World world(settings());
-    Scene scene = build(world, false);
+    DrawnScene scene = build(world, false);
     scene.boxes[0].setAngularVelocity(Vec3(0, 0, 3));  // a turned box: bounds larger than its sizes
     for (int i = 0; i < 20; ++i) world.step();
     RecordingDrawer drawer;
@@ -265,7 +265,7 @@ TEST_P(DebugDrawTest, SleepingBodiesAreDrawnAsleep) {
     ANYPHYS_REQUIRE(missing().empty(), missing());
     ANYPHYS_REQUIRE(caps().effects.has(Effect::Sleeping), "effect sleeping");
     World world(settings());
-    const Scene scene = build(world, true);
+    const DrawnScene scene = build(world, true);
     const auto boxesAsleep = [&scene] {
         return std::none_of(scene.boxes.begin(), scene.boxes.end(), [](const Body& b) { return b.isAwake(); });
     };
@@ -333,7 +333,7 @@ TEST_P(DebugDrawTest, EachOptionOffDrawsNothingOfItsKind) {
 TEST_P(DebugDrawTest, DestroyedBodiesAreNotDrawn) {
     ANYPHYS_REQUIRE(missing().empty(), missing());
     World world(settings());
-    const Scene scene = build(world, false);
+    const DrawnScene scene = build(world, false);
     while (world.time() < 0.5) world.step();
     const BodyId box = scene.boxes[1].id(), ball = scene.ball.id();
     world.destroyBody(scene.boxes[1]);

@@ -9,12 +9,10 @@
 
 #include "anyphys/fields/field_forces.hpp"
 #include "contract_fixture.hpp"
+#include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
-
-constexpr double kG = 9.81;
-constexpr double kPi = std::numbers::pi;
 
 // ---- shared cases, run in a 3D and in a planar world ------------------------------------------
 

@@ -7,12 +7,10 @@
 
 #include "anyphys/joint_capabilities.hpp"
 #include "contract_fixture.hpp"
+#include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
-
-constexpr double kG = 9.81;
-constexpr double kPi = std::numbers::pi;
 
 // Complete elliptic integral of the first kind, by the arithmetic-geometric mean.
 double ellipticK(double k) {

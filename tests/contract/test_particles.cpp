@@ -9,11 +9,10 @@
 #include <vector>
 
 #include "contract_fixture.hpp"
+#include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
-
-constexpr double kG = 9.81;
 
 // A static box from its lower and upper corner.
 Body staticBox(World& world, const Vec3& lo, const Vec3& hi, const std::string& name = "") {

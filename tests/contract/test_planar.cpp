@@ -13,8 +13,6 @@
 namespace anyphys::test {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-
 class PlanarTest : public ContractTest {
 protected:
     bool planarTest() const override { return true; }
