@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz) with clang, ASan and UBSan into build-fuzz/ (the
 # library and the fuzzers only) and runs both, side by side. See docs/reliability.md.
-#   scripts/fuzz.sh --short      60 s (both fuzzers at once; CI, scripts/test.sh)
+#   scripts/fuzz.sh --short      30 s (both fuzzers at once; CI, scripts/test.sh)
 #   scripts/fuzz.sh --long       until each fuzzer has run FUZZ_RUNS inputs (default 1000000)
 #   scripts/fuzz.sh --time N     N seconds per fuzzer
 # New inputs that reach new code go to build-fuzz/corpus/<target>/ (seeded from the repository's
@@ -14,17 +14,17 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 
 mode=short
-seconds=60
+seconds=30
 runs=${FUZZ_RUNS:-1000000}
 case "${1:---short}" in
-  --short) mode=short; seconds=60 ;;
+  --short) mode=short; seconds=30 ;;
   --long) mode=long ;;
   --time) mode=short; seconds=${2:?--time needs seconds} ;;
   *) echo "usage: scripts/fuzz.sh [--short|--long|--time SECONDS]" >&2; exit 2 ;;
 esac
 
 if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
-  echo "fuzz.sh: needs clang and libFuzzer: apt-get install clang libclang-rt-14-dev" >&2
+  echo "fuzz.sh: needs clang and libFuzzer: run scripts/setup.sh --fuzz (apt-get install clang libclang-rt-14-dev)" >&2
   exit 1
 fi
 build_dir="${FUZZ_BUILD_DIR:-$root/build-fuzz}"

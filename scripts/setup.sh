@@ -1,8 +1,16 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package that anyphys' build, tests and tools need.
 # Idempotent: when everything is already installed it does nothing (no apt-get at all).
-# Usage: scripts/setup.sh
+# Usage: scripts/setup.sh [--fuzz]
+#   --fuzz  also clang and libFuzzer, for the fuzz targets (scripts/fuzz.sh; scripts/test.sh runs them)
 set -euo pipefail
+
+with_fuzz=0
+case "${1:-}" in
+  "") ;;
+  --fuzz) with_fuzz=1 ;;
+  *) echo "usage: scripts/setup.sh [--fuzz]" >&2; exit 2 ;;
+esac
 
 packages=(
   build-essential    # g++ 12, make, libc headers
@@ -29,6 +37,12 @@ packages=(
   libglx-mesa0
   ffmpeg             # the testbed's --video FILE.mp4 / .gif
 )
+if [[ $with_fuzz -eq 1 ]]; then
+  packages+=(
+    clang              # clang 14: the libFuzzer targets of tests/fuzz
+    libclang-rt-14-dev # libFuzzer and clang's sanitizer runtimes
+  )
+fi
 
 missing=()
 for pkg in "${packages[@]}"; do
