@@ -180,6 +180,8 @@ void validatePlanar(const BodyDef& b, const std::string& path) {
     validatePlanarShape(b.shape, path + ".shape", who);
 }
 
+void validatePlanar(const ShapeDef& s, const std::string& path) { validatePlanarShape(s, path, ""); }
+
 void validate(const WorldSettings& s, const std::string& path) {
     using namespace detail;
     schema::checkFields(schema::settingsFields(), s, path, [](const auto&) { return true; });

@@ -722,10 +722,20 @@ Ray validateRay(const Vec3& origin, const Vec3& direction, double maxDistance, c
     detail::requireNonNegative(w + ".maxDistance", maxDistance);
     return {(direction / scale).normalized(), std::min(maxDistance, kMaxRayLength)};
 }
+
+// A planar world's queries stay in its plane, on every backend: a ray leaving it would see the
+// bodies' depth on a 3D engine and nothing on a planar one.
+void requireRayInPlane(const Vec3& origin, const Vec3& direction, const char* what) {
+    const std::string w(what);
+    const char* rule = "must lie in the XY plane (z = 0) in a planar world";
+    if (std::abs(origin.z()) > detail::kPlanarTolerance) throw Error::invalid(w + ".origin", formatVec3(origin), rule);
+    if (std::abs(direction.z()) > detail::kPlanarTolerance) throw Error::invalid(w + ".direction", formatVec3(direction), rule);
+}
 }  // namespace
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycast");
+    if (settings_.planar) requireRayInPlane(origin, direction, "World.raycast");
     const auto hits = impl_->peer->raycast(origin, ray.direction, ray.maxDistance, true, mask);
     if (hits.empty()) return std::nullopt;
     return RayHit{Body(this, unpackId(hits.front().body)), hits.front().point, hits.front().normal, hits.front().distance};
@@ -733,6 +743,7 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, 
 
 std::vector<RayHit> World::raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycastAll");
+    if (settings_.planar) requireRayInPlane(origin, direction, "World.raycastAll");
     std::vector<RayHit> out;
     for (const PeerRayHit& h : impl_->peer->raycast(origin, ray.direction, ray.maxDistance, false, mask))
         out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, h.distance});
@@ -750,6 +761,14 @@ std::vector<Body> World::overlap(const ShapeDef& shape, const Transform& pose, s
         throw Error::invalid("World.overlap.pose.orientation", formatQuat(pose.orientation),
                              "must be a unit quaternion [w, x, y, z] (norm 1 within 1e-4)");
     const Transform unit{pose.position, pose.orientation.normalized()};
+    if (settings_.planar) {
+        validatePlanar(shape, "World.overlap.shape");
+        if (std::abs(pose.position.z()) > detail::kPlanarTolerance)
+            throw Error::invalid("World.overlap.pose.position", formatVec3(pose.position), "must have z = 0 in a planar world");
+        if (!detail::rotatesAboutZOnly(unit.orientation))
+            throw Error::invalid("World.overlap.pose.orientation", formatQuat(pose.orientation),
+                                 "must be a rotation about Z (x = y = 0) in a planar world");
+    }
     std::vector<Body> out;
     for (std::uint64_t key : impl_->peer->overlap(flattenShape(shape), unit, mask)) out.emplace_back(this, unpackId(key));
     return out;

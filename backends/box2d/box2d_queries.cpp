@@ -1,11 +1,9 @@
 // Ray casts and overlap queries. Both answer about the user's geometry (each fixture's exact
-// outline, without the contact skin), and both refuse a query that leaves the XY plane: a planar
-// world cannot say what lies off it, so it says so rather than flatten the query silently.
+// outline, without the contact skin). A query that leaves the XY plane never gets here: the layer
+// refuses it in every planar world (World::raycast, World::overlap), whichever the backend.
 #include <algorithm>
 #include <cmath>
 
-#include "anyphys/error.hpp"
-#include "anyphys/validation.hpp"
 #include "box2d_world.hpp"
 
 namespace anyphys::box2d {
@@ -86,17 +84,11 @@ private:
     std::vector<std::uint64_t>& found_;
 };
 
-void requireInPlane(const char* field, double z, const std::string& value) {
-    if (std::abs(z) > detail::kPlanarTolerance)
-        throw Error::invalid(field, value, "must lie in the XY plane (z = 0) on backend \"box2d\", which simulates planar worlds only");
-}
-
 }  // namespace
 
 std::vector<PeerRayHit> Box2dWorld::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                             std::uint32_t mask) {
-    requireInPlane("World.raycast.origin", origin.z(), formatVec3(origin));
-    requireInPlane("World.raycast.direction", direction.z(), formatVec3(direction));
+    // Box2D worlds are planar: World::raycast has refused a ray that leaves the plane.
     if (maxDistance <= 0.0) return {};  // Box2D casts segments of non-zero length
     const Vec3 dir(direction.x(), direction.y(), 0.0);
     b2RayCastInput input;
@@ -112,10 +104,7 @@ std::vector<PeerRayHit> Box2dWorld::raycast(const Vec3& origin, const Vec3& dire
 }
 
 std::vector<std::uint64_t> Box2dWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose, std::uint32_t mask) {
-    requireInPlane("World.overlap.pose.position", pose.position.z(), formatVec3(pose.position));
-    if (!detail::rotatesAboutZOnly(pose.orientation))
-        throw Error::invalid("World.overlap.pose.orientation", formatQuat(pose.orientation),
-                             "must be a rotation about Z (x = y = 0) on backend \"box2d\", which simulates planar worlds only");
+    // World::overlap has refused a pose out of the plane or turned about another axis.
     double angle = 0.0;
     const Embedding embedding = Embedding::of(pose, angle);
     const b2Transform xf(toB2(pose.position), b2Rot(static_cast<float>(angle)));

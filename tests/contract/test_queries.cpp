@@ -115,5 +115,59 @@ TEST_P(QueriesTest, OverlapFindsTheBodiesAShapeTouches) {
 
 ANYPHYS_CONTRACT_SUITE(QueriesTest);
 
+// The same queries in a planar world, on every backend that has one: a query leaving the XY plane
+// is refused by the layer in one wording (a 3D engine would see the bodies' depth, a planar one
+// nothing), and the world still answers in-plane queries afterwards.
+class PlanarQueriesTest : public QueriesTest {
+protected:
+    bool planarTest() const override { return true; }
+};
+
+template <class F>
+void expectQueryRefused(F&& query, const std::string& field, const std::string& rule) {
+    try {
+        query();
+        ADD_FAILURE() << "query accepted; expected a refusal of " << field;
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::InvalidArgument) << e.what();
+        EXPECT_EQ(e.field(), field) << e.what();
+        EXPECT_NE(std::string(e.what()).find(rule), std::string::npos) << e.what();
+    }
+}
+
+TEST_P(PlanarQueriesTest, QueriesLeavingThePlaneAreRefusedOnEveryBackend) {
+    ANYPHYS_REQUIRE(has("raycast") && has("overlap") && caps().shapes.contains(ShapeType::Box), "queries raycast and overlap on boxes");
+    World world(settings());
+    build(world);
+    const std::string inPlane = "must lie in the XY plane (z = 0) in a planar world";
+    expectQueryRefused([&] { world.raycast(Vec3(0, 0.5, 0.25), Vec3(1, 0, 0), 10.0); }, "World.raycast.origin", inPlane);
+    expectQueryRefused([&] { world.raycast(Vec3(0, 0.5, 0), Vec3(1, 0, 0.1), 10.0); }, "World.raycast.direction", inPlane);
+    expectQueryRefused([&] { world.raycastAll(Vec3(0, 0.5, 0), Vec3(0, 0, 1), 10.0); }, "World.raycastAll.direction", inPlane);
+
+    const ShapeDef cube = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
+    expectQueryRefused([&] { world.overlap(cube, Transform{Vec3(2, 0.5, 0.3), Quat::Identity()}); },
+                       "World.overlap.pose.position", "must have z = 0 in a planar world");
+    const Quat aboutY(Eigen::AngleAxisd(0.3, Vec3::UnitY()));
+    expectQueryRefused([&] { world.overlap(cube, Transform{Vec3(2, 0.5, 0), aboutY}); }, "World.overlap.pose.orientation",
+                       "must be a rotation about Z (x = y = 0) in a planar world");
+    ANYPHYS_REQUIRE(caps().shapes.contains(ShapeType::Compound), "compound shapes");
+    const ShapeDef offPlane = ShapeDef::compound({ShapeDef::box(Vec3(0.5, 0.5, 0.5)).placed(Vec3(0, 0, 0.2))});
+    expectQueryRefused([&] { world.overlap(offPlane, Transform{Vec3(2, 0.5, 0), Quat::Identity()}); },
+                       "World.overlap.shape.shapes[0].position", "must have z = 0 in a planar world");
+
+    // Nothing was lost: in-plane queries answer as in QueriesTest, and the world steps.
+    const auto hit = world.raycast(Vec3(0, 0.5, 0), Vec3(1, 0, 0), 10.0);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_TRUE(hit->body == boxes[0]) << "hit " << hit->body.name();
+    EXPECT_NEAR(hit->distance, 1.5, kExact);
+    // A small cube inside b2's top half, well clear of the ground (y from 0.75 to 0.95).
+    const auto inB2 = world.overlap(ShapeDef::box(Vec3(0.1, 0.1, 0.1)), Transform{Vec3(4, 0.85, 0), Quat::Identity()});
+    ASSERT_EQ(inB2.size(), 1u);
+    EXPECT_TRUE(inB2.front() == boxes[1]) << "found " << inB2.front().name();
+    world.step();
+}
+
+ANYPHYS_CONTRACT_SUITE(PlanarQueriesTest);
+
 }  // namespace
 }  // namespace anyphys::test

@@ -37,4 +37,8 @@ inline bool rotatesAboutZOnly(const Quat& q) {
 /// turns about Z only and moves in the plane. Messages name the body.
 void validatePlanar(const BodyDef& b, const std::string& path);
 
+/// The same for a shape on its own (a query's): a compound's children lie in the plane and turn
+/// about Z only; a plane's normal lies in the plane.
+void validatePlanar(const ShapeDef& s, const std::string& path);
+
 }  // namespace anyphys

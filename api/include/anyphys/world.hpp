@@ -175,6 +175,9 @@ public:
     Vec3 particleForce(Body body) const;
 
     // ---- queries ------------------------------------------------------------------------
+    /// In a planar world a query stays in the XY plane on every backend: a ray's origin and
+    /// direction have z = 0, an overlap's pose has z = 0 and turns about Z only (else an
+    /// anyphys::Error naming the field).
     /// Closest hit of the ray origin + t direction, 0 <= t <= maxDistance (direction need not
     /// be unit), on bodies whose layer is in `mask`. Triggers are not hit.
     std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
