@@ -497,6 +497,7 @@ void World::step(double dt) {
     impl_->refuseWhileStepping("World.step");
     impl_->refuseWhileDrawing("World.step");
     detail::requireTimeStep("World.step.dt", dt);
+    if (impl_->divergedUnresolved) refuseStillDiverged();
     {
         SteppingGuard guard(impl_->stepping);
         if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);
@@ -603,6 +604,7 @@ void World::checkDivergence(double dt) {
         }
         if (i.lastDiverged.size() > kNamed) message += "; and " + std::to_string(i.lastDiverged.size() - kNamed) + " more";
         message += " (WorldSettings.divergencePolicy throw; freeze holds such bodies still and keeps stepping)";
+        i.divergedUnresolved = true;
         throw Error(ErrorKind::Diverged, firstField, message);
     }
     for (const DivergedBody& d : i.lastDiverged) {
@@ -613,6 +615,30 @@ void World::checkDivergence(double dt) {
              " diverged" + when + ": " + d.reason + "; frozen at its last checked pose (WorldSettings.divergencePolicy freeze)");
     }
     holdFrozen();
+}
+
+// After a Diverged throw the engine still holds the diverged states, for the caller to inspect
+// (docs/errors.md). Stepping them on would hand the engine what it cannot take: ODE aborted the
+// process hashing a body 1e18 m away (API fuzzer). So the next step goes ahead only once each
+// of those bodies is destroyed or set right; until then it throws and the world stays as it is.
+void World::refuseStillDiverged() {
+    Impl& i = *impl_;
+    const double maxSpeed2 = settings_.maxSpeed * settings_.maxSpeed;
+    const double maxAngularSpeed2 = settings_.maxAngularSpeed * settings_.maxAngularSpeed;
+    for (const DivergedBody& d : i.lastDiverged) {
+        const BodyId id = d.body.id();
+        if (id.index >= i.slots.size()) continue;
+        const Slot& s = i.slots[id.index];
+        if (!s.peer || s.generation != id.generation) continue;  // destroyed since
+        const char* what = divergence(s.peer->state(), maxSpeed2, maxAngularSpeed2);
+        if (!what) continue;
+        const std::string who = d.name.empty() ? "body #" + std::to_string(id.index) : "body \"" + d.name + "\"";
+        const std::string quantity = what == std::string_view("non-finite state") ? "state" : what;
+        throw Error(ErrorKind::Diverged, who + "." + quantity,
+                    "World.step: " + who + " is still diverged (" + d.reason +
+                        "); destroy it, or set it right (setTransform, setLinearVelocity, setAngularVelocity), before stepping on");
+    }
+    i.divergedUnresolved = false;
 }
 
 void World::holdFrozen() {

@@ -272,6 +272,58 @@ TEST_P(DivergenceTest, ThrowPolicyNamesTheBody) {
     EXPECT_FALSE(rocket.isFrozen());
 }
 
+// After a Diverged throw the engine keeps the diverged states (for the caller to read); stepping
+// on must not hand them to the engine again (ODE aborted on a body left 1e18 m away: API fuzzer,
+// crash-ode-step-after-diverged in the corpus). The next step throws until the body is set right
+// or destroyed, and changes nothing meanwhile.
+TEST_P(DivergenceTest, StepAfterAThrowWaitsUntilTheBodyIsSetRight) {
+    World world(divergenceSettings(DivergencePolicy::Throw));
+    Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
+    BodyDef walkerDef = ball("walker", Vec3(0, 10, 0));
+    walkerDef.linearVelocity = Vec3(1, 0, 0);
+    Body walker = world.createBody(walkerDef);
+    bool diverged = false;
+    for (int step = 0; step < 10 && !diverged; ++step) {
+        push(world, rocket);
+        try {
+            world.step();
+        } catch (const Error& e) {
+            diverged = e.kind() == ErrorKind::Diverged;
+        }
+    }
+    ASSERT_TRUE(diverged) << "the rocket never passed maxSpeed; speed " << rocket.linearVelocity().norm();
+
+    const double time = world.time();
+    const Vec3 walkerAt = walker.position();
+    for (int again = 0; again < 3; ++again)
+        expectError([&] { world.step(); }, ErrorKind::Diverged, "body \"rocket\".linearVelocity",
+                    {"still diverged", "WorldSettings.maxSpeed 25", "set it right"});
+    EXPECT_EQ(world.time(), time);  // refused before the engine stepped
+    EXPECT_EQ(walker.position(), walkerAt);
+
+    rocket.setLinearVelocity(Vec3(5, 0, 0));  // within the ceiling again
+    ASSERT_NO_THROW(world.step());
+    EXPECT_GT(walker.position().x(), walkerAt.x());  // the world moves on
+    EXPECT_TRUE(world.lastDiverged().empty());
+}
+
+TEST_P(DivergenceTest, StepAfterAThrowGoesOnOnceTheBodyIsDestroyed) {
+    World world(divergenceSettings(DivergencePolicy::Throw));
+    Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
+    bool diverged = false;
+    for (int step = 0; step < 10 && !diverged; ++step) {
+        push(world, rocket);
+        try {
+            world.step();
+        } catch (const Error& e) {
+            diverged = e.kind() == ErrorKind::Diverged;
+        }
+    }
+    ASSERT_TRUE(diverged);
+    world.destroyBody(rocket);
+    EXPECT_NO_THROW(world.step());
+}
+
 TEST_P(DivergenceTest, FreezePolicyHoldsTheBodyAndWarns) {
     World world(divergenceSettings(DivergencePolicy::Freeze));
     std::vector<std::string> warnings;

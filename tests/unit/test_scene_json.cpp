@@ -790,6 +790,8 @@ TEST(SceneJson, ContactFieldErrorsNamePathValueAndRule) {
     expectParseError(R"({"materials": {"m": {"restitution": -0.5}}})", {"materials.m.restitution: must be in [0, 1], got -0.5"});
     expectParseError(R"({"settings": {"linearSlop": "tiny"}})", {"settings.linearSlop: must be a number, got \"tiny\""});
     expectParseError(R"({"settings": {"timeToSleep": -1}})", {"settings.timeToSleep: must be >= 0, got -1"});
+    // A speed ceiling past 1e6 m/s let a body leave the world within one substep (ODE aborted).
+    expectParseError(R"({"settings": {"maxSpeed": 1e20}})", {"settings.maxSpeed: must be <= 1e+06 m/s (anyphys::kMaxSpeedCeiling), got 1e+20"});
     expectParseError(R"({"settings": {"sleepVelocity": 1}})", {"settings.sleepVelocity: unknown key", "sleepLinearVelocity"});
 }
 

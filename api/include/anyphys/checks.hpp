@@ -38,6 +38,12 @@ inline constexpr double kMaxCoordinate = 1e7;
 /// m/s^2: largest magnitude of WorldSettings::gravity, 1000 g; at the default step it adds
 /// 170 m/s per step, far below the default maxSpeed.
 inline constexpr double kMaxGravity = 1e4;
+/// m/s and rad/s: largest WorldSettings::maxSpeed and maxAngularSpeed. At that speed for the
+/// longest step a body moves a tenth of kMaxCoordinate, which every engine's broad phase takes;
+/// with a ceiling of 1e20 m/s a body left the world within one substep and ODE aborted in its hash
+/// grid, which counts 1/8 m cells in 32-bit integers (API fuzzer).
+inline constexpr double kMaxSpeedCeiling = 1e6;
+inline constexpr double kMaxAngularSpeedCeiling = 1e6;
 /// s: longest time step (WorldSettings::timeStep, World::step dt). A step longer than a second is
 /// a units mistake, and moves a body at maxSpeed farther than the world is wide.
 inline constexpr double kMaxTimeStep = 1.0;

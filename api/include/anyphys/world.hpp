@@ -265,6 +265,7 @@ private:
     void stepParticles(double dt);              // world_particles.cpp: fluids and cloths after the rigid step
     void warn(const std::string& message);
     void checkDivergence(double dt);  // after a step: non-finite or over-ceiling states (settings_.divergencePolicy)
+    void refuseStillDiverged();       // before a step that follows a Diverged throw
     void holdFrozen();                // after a step: frozen bodies back to their held pose
 
     std::shared_ptr<detail::WorldLink> link_;  // shared with every handle; cleared by ~World
