@@ -618,9 +618,9 @@ void World::checkDivergence(double dt) {
 }
 
 // After a Diverged throw the engine still holds the diverged states, for the caller to inspect
-// (docs/errors.md). Stepping them on would hand the engine what it cannot take: ODE aborted the
-// process hashing a body 1e18 m away (API fuzzer). So the next step goes ahead only once each
-// of those bodies is destroyed or set right; until then it throws and the world stays as it is.
+// (docs/errors.md). Stepping on would hand an engine non-finite or out-of-world states again, the
+// kind it aborts on (ODE's hash grid, its normalisations). So the next step goes ahead only once
+// each of those bodies is destroyed or set right; until then it throws and the world stays as it is.
 void World::refuseStillDiverged() {
     Impl& i = *impl_;
     const double maxSpeed2 = settings_.maxSpeed * settings_.maxSpeed;

@@ -273,9 +273,8 @@ TEST_P(DivergenceTest, ThrowPolicyNamesTheBody) {
 }
 
 // After a Diverged throw the engine keeps the diverged states (for the caller to read); stepping
-// on must not hand them to the engine again (ODE aborted on a body left 1e18 m away: API fuzzer,
-// crash-ode-step-after-diverged in the corpus). The next step throws until the body is set right
-// or destroyed, and changes nothing meanwhile.
+// on must not hand them to the engine again (engines abort on non-finite and out-of-world states).
+// The next step throws until the body is set right or destroyed, and changes nothing meanwhile.
 TEST_P(DivergenceTest, StepAfterAThrowWaitsUntilTheBodyIsSetRight) {
     World world(divergenceSettings(DivergencePolicy::Throw));
     Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
