@@ -243,6 +243,18 @@ protected:
     void push(World& world, Body rocket) const {
         rocket.applyForce(Vec3(rocket.massProperties().mass * kGain / world.settings().timeStep, 0, 0));
     }
+    // Pushes and steps until a step throws Diverged (true), for at most 10 steps.
+    bool pushUntilDiverged(World& world, Body rocket) const {
+        for (int step = 0; step < 10; ++step) {
+            push(world, rocket);
+            try {
+                world.step();
+            } catch (const Error& e) {
+                if (e.kind() == ErrorKind::Diverged) return true;
+            }
+        }
+        return false;
+    }
 };
 
 TEST_P(DivergenceTest, ThrowPolicyNamesTheBody) {
@@ -281,15 +293,7 @@ TEST_P(DivergenceTest, StepAfterAThrowWaitsUntilTheBodyIsSetRight) {
     BodyDef walkerDef = ball("walker", Vec3(0, 10, 0));
     walkerDef.linearVelocity = Vec3(1, 0, 0);
     Body walker = world.createBody(walkerDef);
-    bool diverged = false;
-    for (int step = 0; step < 10 && !diverged; ++step) {
-        push(world, rocket);
-        try {
-            world.step();
-        } catch (const Error& e) {
-            diverged = e.kind() == ErrorKind::Diverged;
-        }
-    }
+    const bool diverged = pushUntilDiverged(world, rocket);
     ASSERT_TRUE(diverged) << "the rocket never passed maxSpeed; speed " << rocket.linearVelocity().norm();
 
     const double time = world.time();
@@ -309,15 +313,7 @@ TEST_P(DivergenceTest, StepAfterAThrowWaitsUntilTheBodyIsSetRight) {
 TEST_P(DivergenceTest, StepAfterAThrowGoesOnOnceTheBodyIsDestroyed) {
     World world(divergenceSettings(DivergencePolicy::Throw));
     Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
-    bool diverged = false;
-    for (int step = 0; step < 10 && !diverged; ++step) {
-        push(world, rocket);
-        try {
-            world.step();
-        } catch (const Error& e) {
-            diverged = e.kind() == ErrorKind::Diverged;
-        }
-    }
+    const bool diverged = pushUntilDiverged(world, rocket);
     ASSERT_TRUE(diverged);
     world.destroyBody(rocket);
     EXPECT_NO_THROW(world.step());
