@@ -11,16 +11,13 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "bullet_test_helpers.hpp"
 #include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
 
-WorldSettings bulletSettings() {
-    WorldSettings s;
-    s.backend = "bullet";
-    return s;
-}
+using bullet::test::bulletSettings;
 
 BodyDef ground(const std::string& material = "") { return groundDef(material); }
 

@@ -10,16 +10,13 @@
 #include "../step_allocations.hpp"
 #include "anyphys/anyphys.hpp"
 #include "bullet_dynamics_world.hpp"
+#include "bullet_test_helpers.hpp"
 #include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
 
-WorldSettings bulletSettings() {
-    WorldSettings s;
-    s.backend = "bullet";
-    return s;
-}
+using bullet::test::bulletSettings;
 
 const bullet::AnyphysDynamicsWorld& engineOf(World& world) {
     return *static_cast<const bullet::AnyphysDynamicsWorld*>(world.native<btDiscreteDynamicsWorld>());

@@ -12,61 +12,23 @@
 #include "collision/gjk.hpp"
 #include "collision/manifold_builder.hpp"
 #include "collision/mesh_data.hpp"
+#include "native_test_shapes.hpp"
 
 namespace anyphys::native {
 namespace {
+
+using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
 
 // Exact configurations: only rounding separates the result from the closed form.
 constexpr double kTol = 1e-9;
 const double kSqrt2 = std::sqrt(2.0);
 
-Shape sphere(double r) {
-    Shape s;
-    s.type = ShapeType::Sphere;
-    s.radius = r;
-    return s;
-}
-Shape capsule(double r, double halfHeight) {
-    Shape s;
-    s.type = ShapeType::Capsule;
-    s.radius = r;
-    s.halfHeight = halfHeight;
-    return s;
-}
-Shape box(const Vec3& half) {
-    Shape s;
-    s.type = ShapeType::Box;
-    s.halfExtents = half;
-    return s;
-}
-Shape plane(const Vec3& n, double offset) {
-    Shape s;
-    s.type = ShapeType::Plane;
-    s.normal = n;
-    s.offset = offset;
-    return s;
-}
-Shape convex(const std::vector<Vec3>& points) {
-    Shape s;
-    s.type = ShapeType::Convex;
-    s.hull = buildConvexHull(points);
-    return s;
-}
 Shape boxHull(const Vec3& half) {
     Shape s;
     s.type = ShapeType::Convex;
     s.hull = std::make_shared<const HullData>(makeBoxHull(half));
     return s;
 }
-Shape mesh(const std::vector<Vec3>& vertices, const std::vector<std::uint32_t>& indices) {
-    Shape s;
-    s.type = ShapeType::Mesh;
-    s.mesh = MeshData::build(ShapeDef::mesh(vertices, indices));
-    return s;
-}
-
-Transform at(const Vec3& p, const Quat& q = Quat::Identity()) { return {p, q}; }
-Quat rotation(double angle, const Vec3& axis) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
 
 std::vector<Manifold> run(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double speculative = 0.0) {
     std::vector<Manifold> out;

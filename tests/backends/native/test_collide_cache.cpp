@@ -8,22 +8,13 @@
 
 #include "../../../api/src/geometry/convex_hull.hpp"
 #include "collision/collide.hpp"
+#include "native_test_shapes.hpp"
 
 namespace anyphys::native {
 namespace {
 
-Shape box(const Vec3& half) {
-    Shape s;
-    s.type = ShapeType::Box;
-    s.halfExtents = half;
-    return s;
-}
-Shape convex(const std::vector<Vec3>& points) {
-    Shape s;
-    s.type = ShapeType::Convex;
-    s.hull = buildConvexHull(points);
-    return s;
-}
+using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
+
 // A prism of `sides` sides, radius r and half height h: many faces and edges.
 Shape prism(int sides, double r, double h) {
     std::vector<Vec3> points;
@@ -43,9 +34,6 @@ Shape blob(unsigned seed) {
         points.push_back(Vec3(g(rng), g(rng), g(rng)).normalized().cwiseProduct(Vec3(0.5, 0.4, 0.6)));
     return convex(points);
 }
-
-Transform at(const Vec3& p, const Quat& q = Quat::Identity()) { return {p, q}; }
-Quat rotation(double angle, const Vec3& axis) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
 
 std::vector<Manifold> run(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double speculative,
                           CollideCache* cache = nullptr) {

@@ -11,34 +11,13 @@
 #include "../../../api/src/geometry/convex_hull.hpp"
 #include "collision/collide.hpp"
 #include "collision/mesh_data.hpp"
+#include "native_test_shapes.hpp"
 
 namespace anyphys::native {
 namespace {
 
-Shape sphere(double r) {
-    Shape s;
-    s.type = ShapeType::Sphere;
-    s.radius = r;
-    return s;
-}
-Shape capsule(double r, double halfHeight) {
-    Shape s;
-    s.type = ShapeType::Capsule;
-    s.radius = r;
-    s.halfHeight = halfHeight;
-    return s;
-}
-Shape box(const Vec3& half) {
-    Shape s;
-    s.type = ShapeType::Box;
-    s.halfExtents = half;
-    return s;
-}
-Shape plane() {
-    Shape s;
-    s.type = ShapeType::Plane;
-    return s;
-}
+using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
+
 // A prism of 20 sides (larger than every fixed-size buffer: hull faces use the scratch buffers).
 Shape prism() {
     std::vector<Vec3> points;
@@ -47,10 +26,7 @@ Shape prism() {
         points.emplace_back(0.5 * std::cos(a), -0.5, 0.5 * std::sin(a));
         points.emplace_back(0.5 * std::cos(a), 0.5, 0.5 * std::sin(a));
     }
-    Shape s;
-    s.type = ShapeType::Convex;
-    s.hull = buildConvexHull(points);
-    return s;
+    return convex(points);
 }
 // A bumpy 4 x 4 floor of 32 triangles around y = 0.
 Shape floorMesh() {
@@ -63,10 +39,7 @@ Shape floorMesh() {
             const std::uint32_t v = 5 * i + k;
             indices.insert(indices.end(), {v, v + 1, v + 5, v + 1, v + 6, v + 5});
         }
-    Shape s;
-    s.type = ShapeType::Mesh;
-    s.mesh = MeshData::build(ShapeDef::mesh(vertices, indices));
-    return s;
+    return mesh(vertices, indices);
 }
 
 struct Case {
@@ -121,7 +94,7 @@ bool same(const std::vector<Manifold>& x, const std::vector<Manifold>& y) {
 
 TEST(CollideParallel, ThreadsGetTheSequentialResults) {
     const std::vector<Shape> shapes{sphere(0.4), capsule(0.25, 0.5), box(Vec3(0.5, 0.4, 0.3)), prism()};
-    const Shape ground = plane(), terrain = floorMesh();
+    const Shape ground = plane(Vec3::UnitY(), 0.0), terrain = floorMesh();
     const std::vector<Case> list = cases(shapes, ground, terrain, 600);
     const std::vector<std::vector<Manifold>> expected = collideAll(list);
     std::size_t manifolds = 0;

@@ -10,42 +10,15 @@
 
 #include "collision/mesh_data.hpp"
 #include "collision/queries.hpp"
+#include "native_test_shapes.hpp"
 
 namespace anyphys::native {
 namespace {
 
+using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
+
 constexpr double kTol = 1e-9;
 constexpr double kPi = std::numbers::pi;
-
-Shape sphere(double r) {
-    Shape s;
-    s.type = ShapeType::Sphere;
-    s.radius = r;
-    return s;
-}
-
-Shape box(const Vec3& half) {
-    Shape s;
-    s.type = ShapeType::Box;
-    s.halfExtents = half;
-    return s;
-}
-
-Shape capsule(double r, double h) {
-    Shape s;
-    s.type = ShapeType::Capsule;
-    s.radius = r;
-    s.halfHeight = h;
-    return s;
-}
-
-Shape plane(const Vec3& n, double offset) {
-    Shape s;
-    s.type = ShapeType::Plane;
-    s.normal = n.normalized();
-    s.offset = offset;
-    return s;
-}
 
 // A cube hull built by hand (the quickhull lives elsewhere): 8 corners, 6 quads.
 Shape hullCube(double h) {
@@ -62,21 +35,11 @@ Shape hullCube(double h) {
     return s;
 }
 
-Shape meshShape(const std::vector<Vec3>& vertices, const std::vector<std::uint32_t>& indices) {
-    Shape s;
-    s.type = ShapeType::Mesh;
-    s.mesh = MeshData::build(ShapeDef::mesh(vertices, indices));
-    return s;
-}
-
 // A square of side 2 * half on y = 0, facing +y.
 Shape floorQuad(double half) {
-    return meshShape({Vec3(-half, 0, -half), Vec3(half, 0, -half), Vec3(half, 0, half), Vec3(-half, 0, half)},
+    return mesh({Vec3(-half, 0, -half), Vec3(half, 0, -half), Vec3(half, 0, half), Vec3(-half, 0, half)},
                      {0, 2, 1, 0, 3, 2});
 }
-
-Transform at(const Vec3& p, const Quat& q = Quat::Identity()) { return {p, q}; }
-Quat rotation(double angle, const Vec3& axis) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
 
 void expectVec(const Vec3& actual, const Vec3& expected, double tol = kTol) {
     EXPECT_LT((actual - expected).norm(), tol) << "actual " << actual.transpose() << ", expected " << expected.transpose();
@@ -260,7 +223,7 @@ TEST(Queries, RayMeshIsTwoSidedAndMatchesBruteForce) {
             const std::uint32_t a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
             indices.insert(indices.end(), {a, b, c, b, d, c});
         }
-    const Shape grid = meshShape(vertices, indices);
+    const Shape grid = mesh(vertices, indices);
     // The grid's height under p, interpolated on the triangle (a, b, c) or (b, d, c) of its cell.
     auto surfaceY = [&](const Vec3& p) {
         const double gx = p.x() + n / 2.0, gz = p.z() + n / 2.0;
@@ -558,7 +521,7 @@ TEST(Queries, TimeOfImpactAgainstPlaneAndMesh) {
 
     // Skimming 0.3 m over a mesh floor into a mesh wall at x = 3: the floor triangle is the
     // nearest throughout, so only per-triangle advancement finds the wall.
-    const Shape room = meshShape({Vec3(-5, 0, -5), Vec3(5, 0, -5), Vec3(5, 0, 5), Vec3(-5, 0, 5), Vec3(3, 0, -5),
+    const Shape room = mesh({Vec3(-5, 0, -5), Vec3(5, 0, -5), Vec3(5, 0, 5), Vec3(-5, 0, 5), Vec3(3, 0, -5),
                                   Vec3(3, 5, -5), Vec3(3, 5, 5), Vec3(3, 0, 5)},
                                  {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7});
     t = timeOfImpact(ball, at(Vec3(0, 0.4, 0)), at(Vec3(4, 0.4, 0)), room, Transform{}, target);

@@ -10,28 +10,22 @@
 #include "anyphys/containers/scene_catalogue.hpp"
 #include "anyphys/scene_objects.hpp"
 #include "contact_helpers.hpp"
+#include "ode_test_helpers.hpp"
 #include "ode_world.hpp"
 
 namespace anyphys {
 namespace {
 
-using test::kG;
+using ode::test::odeSettings;
+using ode::test::peerOf;
 
-WorldSettings odeSettings() {
-    WorldSettings s;
-    s.backend = "ode";
-    return s;
-}
+using test::kG;
 
 BodyDef ground(const std::string& material = "") { return test::groundDef(material); }
 
 BodyDef box(const Vec3& at, const std::string& material = "") {
     return test::boxDef("", Vec3(0.5, 0.5, 0.5), at, material);
 }
-
-/// The backend's world behind a World, reached through the escape hatch (the peer registers
-/// itself as the dWorld's user data).
-ode::OdeWorld& peerOf(World& world) { return *static_cast<ode::OdeWorld*>(dWorldGetData(world.native<dxWorld>())); }
 
 // ODE's convex-convex test returns NaN normals for hull faces that touch exactly; one such
 // contact made the step's quaternions NaN and ODE aborted the whole process

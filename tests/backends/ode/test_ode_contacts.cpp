@@ -10,20 +10,16 @@
 #include "anyphys/anyphys.hpp"
 #include "contact_helpers.hpp"
 #include "ode_init.hpp"
+#include "ode_test_helpers.hpp"
 #include "ode_world.hpp"
 
 namespace anyphys {
 namespace {
 
+using ode::test::odeSettings;
+using ode::test::peerOf;
+
 using Pass = ode::OdeWorld::CollidePass;
-
-WorldSettings odeSettings() {
-    WorldSettings s;
-    s.backend = "ode";
-    return s;
-}
-
-ode::OdeWorld& peerOf(World& world) { return *static_cast<ode::OdeWorld*>(dWorldGetData(world.native<dxWorld>())); }
 
 /// `columns` x `columns` stacks of `height` unit boxes resting on the ground (1.2 m apart, so
 /// stacks do not touch), created awake or asleep.
