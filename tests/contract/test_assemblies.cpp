@@ -6,6 +6,7 @@
 
 #include "anyphys/containers/assembly.hpp"
 #include "anyphys/containers/mass_regularization.hpp"
+#include "anyphys/containers/scene.hpp"
 #include "contract_fixture.hpp"
 
 namespace anyphys::test {
@@ -146,7 +147,7 @@ protected:
                   << " m/s, lowest body " << lowest << " m\n";
         EXPECT_TRUE(finite) << "a state went non-finite";
         // 5 cm: soft joints stretch for a moment when a 70 kg body lands on another from 4 m
-        // (native: 3.1 cm, planar 2.4 cm); a torn limb is metres.
+        // (native: 2.2 cm, planar 2.4 cm); a torn limb is metres.
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_gap" : "assemblies.ragdoll_gap", worstGap < 0.05,
                         "worst joint gap " + std::to_string(worstGap) + " m", worstGap);
         // At rest after 10 s: 0.1 m/s, well below a limb still falling (1 m/s after 0.1 s).
@@ -174,6 +175,61 @@ protected:
 };
 
 TEST_P(AssemblyTest, RagdollPileStaysWholeAndComesToRest) { ragdollPile("ragdoll"); }
+
+// The state of anyphys_soak (seed 15, native) 40 steps before its pile blew up at step 943 243:
+// four ragdolls and 24 boxes, an elbow pinched 70 degrees off its hinge between the chest, the
+// ground and another ragdoll's shin. The ragdolls are built where they were spawned (so their
+// joints keep the frames they were made with), then every body is set to its state in the file.
+// Native's old hinge rows (small-angle, axis . yB) went from 10 m/s to 1e4 m/s within 3 steps of
+// this; every backend must hold it for 10 s, whole.
+TEST_P(AssemblyTest, PinchedPileFromTheSoakRunStaysWhole) {
+    ANYPHYS_REQUIRE(caps().dimensions == 3 && !planarTest(), "3D worlds");
+    const Scene& ragdoll = builtinAssembly("ragdoll");
+    for (const SceneJoint& j : ragdoll.joints)
+        ANYPHYS_REQUIRE(caps().jointTypes.contains(std::string(toString(j.def.type))),
+                        "joint type " + std::string(toString(j.def.type)));
+    const Scene snapshot = loadScene(std::string(ANYPHYS_CONTRACT_DATA_DIR) + "/soak_pinched_ragdolls.json");
+    Scene scene;
+    scene.settings = settings();  // the soak's: the backend's defaults
+    std::vector<std::string> prefixes;
+    for (const BodyDef& b : snapshot.bodies) {
+        const auto slash = b.name.find('/');
+        if (slash == std::string::npos) scene.bodies.push_back(b);  // the ground and the boxes
+        else if (std::find(prefixes.begin(), prefixes.end(), b.name.substr(0, slash + 1)) == prefixes.end())
+            prefixes.push_back(b.name.substr(0, slash + 1));
+    }
+    for (const std::string& prefix : prefixes) {
+        // Spawned unturned: the offset is any joint's anchor in the file less the assembly's.
+        const SceneJoint& first = ragdoll.joints.front();
+        const auto spawned = std::find_if(snapshot.joints.begin(), snapshot.joints.end(),
+                                          [&](const SceneJoint& j) { return j.def.name == prefix + first.def.name; });
+        ASSERT_NE(spawned, snapshot.joints.end()) << prefix;
+        appendInstance(scene, ragdoll, Transform{spawned->def.anchor - first.def.anchor, Quat::Identity()}, prefix);
+    }
+    World world(scene.settings, scene.materials);
+    const SceneObjects objects = createSceneObjects(world, scene);
+    JointGapMeter gaps(scene, objects);  // the anchors as made
+    for (const BodyDef& b : snapshot.bodies) {
+        Body body = objects.body(b.name);
+        body.setTransform(b.position, b.orientation);
+        body.setLinearVelocity(b.linearVelocity);
+        body.setAngularVelocity(b.angularVelocity);
+    }
+    double fastest = 0.0;
+    while (world.time() < 10.0 && gaps.observe()) {
+        world.step();  // a diverged state throws (the default policy), failing the test
+        for (const Body& body : objects.bodies) fastest = std::max(fastest, body.linearVelocity().norm());
+    }
+    std::cout << "[ MEASURED ] " << backend() << " pinched pile from the soak run: worst joint gap "
+              << gaps.worst() * 1e3 << " mm, fastest body " << fastest << " m/s over 10 s\n";
+    EXPECT_TRUE(gaps.finite());
+    // Nothing is thrown: the fastest body in the file moves at 10 m/s; falling 10 m gives 14 m/s.
+    EXPECT_LT(fastest, 20.0);
+    // Whole, by the pile's own criterion (5 cm; ODE's and Bullet's joints open further in any
+    // pile, their declared deviation): native 3.4 cm.
+    expectCriterion("assemblies.ragdoll_gap", gaps.worst() < 0.05, "worst joint gap " + std::to_string(gaps.worst()) + " m",
+                    gaps.worst());
+}
 
 TEST_P(AssemblyTest, RegularisedMassesHoldAHeavyEndedChainTogether) {
     ANYPHYS_REQUIRE(caps().jointTypes.contains("ball"), "joint type ball");
