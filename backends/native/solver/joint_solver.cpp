@@ -344,7 +344,9 @@ private:
     // rate is (wB - wA) . frameA (s e + v x e). The lever |s e + v x e|^2 = 1 - (v.e)^2 stays near
     // full at wide errors (the small-angle rows axis . yB lost it: an elbow wrenched 70 degrees in
     // a ragdoll pile asked for 400 rad/s through a row of a third of its strength and the pile blew
-    // up), and the rows are the gradient of their error, so the joint does no work on the free turn.
+    // up). The rows are the gradient of their error: their impulses do no work on a motion that
+    // keeps it (the free turn), and the hinge has one rest pose (those rows also rested with B
+    // turned right over).
     void hingeLocks(int free) {
         const Quat rel = frameA_.conjugate() * frameB_;
         const Vec3 v = rel.vec();
