@@ -30,6 +30,13 @@ inline std::string lacking(const Capabilities& caps, std::initializer_list<Shape
 }
 
 /// The static ground: the plane y = 0.
+/// Default settings on one backend (the backend tests' worlds).
+inline WorldSettings backendSettings(const std::string& backend) {
+    WorldSettings s;
+    s.backend = backend;
+    return s;
+}
+
 inline BodyDef groundDef(const std::string& material = "") {
     BodyDef def;
     def.name = "ground";

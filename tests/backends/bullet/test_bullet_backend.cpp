@@ -11,13 +11,10 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
-#include "bullet_test_helpers.hpp"
 #include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
-
-using bullet::test::bulletSettings;
 
 BodyDef ground(const std::string& material = "") { return groundDef(material); }
 
@@ -37,7 +34,7 @@ std::vector<double> pointFrictions(World& world) {
 }
 
 TEST(BulletBackend, EscapeHatchReturnsBulletObjects) {
-    World world(bulletSettings());
+    World world(backendSettings("bullet"));
     Body floor = world.createBody(ground());
     Body b = world.createBody(box(Vec3(0, 2, 0)));
     auto* dynamics = world.native<btDiscreteDynamicsWorld>();
@@ -64,7 +61,7 @@ TEST(BulletBackend, PairFrictionIsTheLayersValueNotBulletsProduct) {
     MaterialLibrary materials;
     materials.add("box", Material{0.2, 0.0, 1000.0});
     materials.add("floor", Material{0.8, 0.0, 1000.0});
-    World world(bulletSettings(), materials);
+    World world(backendSettings("bullet"), materials);
     const double angle = 35 * std::numbers::pi / 180;
     const Quat tilt(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
     const Vec3 normal = tilt * Vec3::UnitY();
@@ -97,7 +94,7 @@ TEST(BulletBackend, TwoWorldsWithDifferentTablesDoNotInterfere) {
         m.add("floor", Material{mu, 0.0, 1000.0});
         return m;
     };
-    World slippery(bulletSettings(), library(0.1)), grippy(bulletSettings(), library(0.5));
+    World slippery(backendSettings("bullet"), library(0.1)), grippy(backendSettings("bullet"), library(0.5));
     std::vector<Body> boxes;
     for (World* w : {&slippery, &grippy}) {
         w->createBody(ground("floor"));
@@ -125,7 +122,7 @@ TEST(BulletBackend, TwoWorldsWithDifferentTablesDoNotInterfere) {
 TEST(BulletBackend, PairRestitutionIsTheLayersValue) {
     MaterialLibrary materials;
     materials.add("ball", Material{0.5, 0.7, 1000.0});
-    World world(bulletSettings(), materials);
+    World world(backendSettings("bullet"), materials);
     world.createBody(ground());
     BodyDef def;
     def.shape = ShapeDef::sphere(0.25);
@@ -147,7 +144,7 @@ TEST(BulletBackend, PairRestitutionIsTheLayersValue) {
 TEST(BulletBackend, BothSolversHoldABoxAtRest) {
     for (Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
         SCOPED_TRACE(std::string(toString(solver)));
-        WorldSettings s = bulletSettings();
+        WorldSettings s = backendSettings("bullet");
         s.solver = solver;
         World world(s);
         world.createBody(ground());
@@ -165,7 +162,7 @@ TEST(BulletBackend, BothSolversHoldABoxAtRest) {
 
 // Damping: Bullet's v *= (1 - d)^dt with d = 1 - exp(-c) is exactly v0 exp(-c t).
 TEST(BulletBackend, DampingMatchesExponentialDecay) {
-    WorldSettings s = bulletSettings();
+    WorldSettings s = backendSettings("bullet");
     s.gravity = Vec3::Zero();
     World world(s);
     BodyDef def;
@@ -185,11 +182,11 @@ TEST(BulletBackend, DampingMatchesExponentialDecay) {
 // Worlds and bodies created and destroyed in mixed orders, a Bullet world next to a native one,
 // events on: nothing leaks or dangles (run under LeakSanitizer in the sanitizer build).
 TEST(BulletBackend, MixedLifetimesNextToANativeWorld) {
-    auto a = std::make_unique<World>(bulletSettings());
+    auto a = std::make_unique<World>(backendSettings("bullet"));
     WorldSettings nativeSettings;
     nativeSettings.backend = "native";
     auto n = std::make_unique<World>(nativeSettings);
-    auto b = std::make_unique<World>(bulletSettings());
+    auto b = std::make_unique<World>(backendSettings("bullet"));
     std::vector<Body> inA, inB;
     for (World* w : {a.get(), n.get(), b.get()}) w->createBody(ground());
     for (int i = 0; i < 6; ++i) {
@@ -226,7 +223,7 @@ TEST(BulletBackend, MixedLifetimesNextToANativeWorld) {
     }
     for (std::size_t i = 1; i < inB.size(); ++i) EXPECT_TRUE(inB[i].position().allFinite());
     n.reset();
-    auto c = std::make_unique<World>(bulletSettings());
+    auto c = std::make_unique<World>(backendSettings("bullet"));
     c->createBody(ground());
     b.reset();
     c->step();
@@ -238,7 +235,7 @@ TEST(BulletBackend, EachWorldSleepsAfterItsOwnTimeToSleep) {
     std::vector<std::unique_ptr<World>> worlds;
     std::vector<Body> boxes;
     for (double t : {0.3, 1.5}) {
-        WorldSettings s = bulletSettings();
+        WorldSettings s = backendSettings("bullet");
         s.timeToSleep = t;
         worlds.push_back(std::make_unique<World>(s));
         worlds.back()->createBody(ground());
@@ -260,7 +257,7 @@ TEST(BulletBackend, EachWorldSleepsAfterItsOwnTimeToSleep) {
 
 // Kinematic bodies follow their velocity exactly and push dynamic ones.
 TEST(BulletBackend, KinematicBodyPushesADynamicOne) {
-    WorldSettings s = bulletSettings();
+    WorldSettings s = backendSettings("bullet");
     World world(s);
     world.createBody(ground());
     BodyDef pusher = box(Vec3(-1, 0.25, 0));

@@ -10,13 +10,10 @@
 #include "../step_allocations.hpp"
 #include "anyphys/anyphys.hpp"
 #include "bullet_dynamics_world.hpp"
-#include "bullet_test_helpers.hpp"
 #include "contact_helpers.hpp"
 
 namespace anyphys::test {
 namespace {
-
-using bullet::test::bulletSettings;
 
 const bullet::AnyphysDynamicsWorld& engineOf(World& world) {
     return *static_cast<const bullet::AnyphysDynamicsWorld*>(world.native<btDiscreteDynamicsWorld>());
@@ -34,7 +31,7 @@ void restingStacks(World& world, int columns, int height, bool allowSleep) {
 }
 
 TEST(BulletContacts, SteadyStepsWithEventsAllocateNothing) {
-    World world(bulletSettings());
+    World world(backendSettings("bullet"));
     world.createBody(groundDef());
     restingStacks(world, 4, 2, false);
     ASSERT_TRUE(world.activeEffects().has(Effect::Events));
@@ -55,7 +52,7 @@ TEST(BulletContacts, SteadyStepsWithEventsAllocateNothing) {
 }
 
 TEST(BulletContacts, AllAsleepReportsNoAwakeBodiesAndNoEvents) {
-    World world(bulletSettings());
+    World world(backendSettings("bullet"));
     world.createBody(groundDef());
     restingStacks(world, 2, 1, true);
     for (int i = 0; i < 180; ++i) {
@@ -78,7 +75,7 @@ TEST(BulletContacts, AllAsleepReportsNoAwakeBodiesAndNoEvents) {
 /// The ball is created first and the mesh after it, so the world must turn reaching on for a
 /// body it already has (the contract's EveryGroundCatchesALandingAlike creates the floor first).
 double landingSinkWithMeshAddedLast(bool removeAMeshFirst) {
-    World world(bulletSettings());
+    World world(backendSettings("bullet"));
     BodyDef ball = ballDef("ball", 0.25, Vec3(0.3, 0.25024, 0.2));
     ball.linearVelocity = Vec3(0, -3.55, 0);
     Body b = world.createBody(ball);

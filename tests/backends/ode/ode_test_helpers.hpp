@@ -1,17 +1,11 @@
 #pragma once
-// What the ODE backend tests share: a world on ODE and the backend's peer behind it.
+// What the ODE backend tests share: the backend's peer behind a World.
 #include <ode/ode.h>
 
 #include "anyphys/anyphys.hpp"
 #include "ode_world.hpp"
 
 namespace anyphys::ode::test {
-
-inline WorldSettings odeSettings() {
-    WorldSettings s;
-    s.backend = "ode";
-    return s;
-}
 
 /// The backend's world behind a World, reached through the escape hatch (the peer registers
 /// itself as the dWorld's user data).

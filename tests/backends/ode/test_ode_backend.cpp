@@ -16,7 +16,6 @@
 namespace anyphys {
 namespace {
 
-using ode::test::odeSettings;
 using ode::test::peerOf;
 
 using test::kG;
@@ -45,7 +44,7 @@ TEST(OdeBackend, FlushHullFacesNeitherAbortNorPoisonTheState) {
 }
 
 TEST(OdeBackend, EscapeHatchReturnsEngineObjects) {
-    World world(odeSettings());
+    World world(test::backendSettings("ode"));
     Body floor = world.createBody(ground());
     Body cube = world.createBody(box(Vec3(1, 2, 3)));
     dxWorld* w = world.native<dxWorld>();
@@ -71,7 +70,7 @@ TEST(OdeBackend, EscapeHatchReturnsEngineObjects) {
 TEST(OdeBackend, QuickStepAndDirectSolverBothHoldABoxAtRest) {
     for (Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
         SCOPED_TRACE(std::string(toString(solver)));
-        WorldSettings s = odeSettings();
+        WorldSettings s = test::backendSettings("ode");
         s.solver = solver;
         World world(s);
         world.createBody(ground());
@@ -94,7 +93,7 @@ TEST(OdeBackend, QuickStepAndDirectSolverBothHoldABoxAtRest) {
 }
 
 TEST(OdeBackend, ErpAndCfmOptionsReachTheWorld) {
-    WorldSettings s = odeSettings();
+    WorldSettings s = test::backendSettings("ode");
     s.backendOptions["erp"] = 0.4;
     s.backendOptions["cfm"] = 1e-7;
     World world(s);
@@ -102,7 +101,7 @@ TEST(OdeBackend, ErpAndCfmOptionsReachTheWorld) {
     EXPECT_EQ(dWorldGetCFM(world.native<dxWorld>()), 1e-7);
 
     // Without options: erp follows settings.baumgarte.
-    WorldSettings plain = odeSettings();
+    WorldSettings plain = test::backendSettings("ode");
     plain.baumgarte = 0.3;
     World defaults(plain);
     EXPECT_EQ(dWorldGetERP(defaults.native<dxWorld>()), 0.3);
@@ -116,7 +115,7 @@ TEST(OdeBackend, ErpAndCfmOptionsReachTheWorld) {
         EXPECT_NE(std::string(e.what()).find("backendOptions.erp"), std::string::npos) << e.what();
     }
     // An option the backend does not list: refused by the layer.
-    WorldSettings unknown = odeSettings();
+    WorldSettings unknown = test::backendSettings("ode");
     unknown.backendOptions["soft_erp"] = 0.5;
     try {
         World bad(unknown);
@@ -130,13 +129,13 @@ TEST(OdeBackend, ErpAndCfmOptionsReachTheWorld) {
 // bodies destroyed while in contact. Under LeakSanitizer this also checks that every geom, body,
 // space and joint group is released.
 TEST(OdeBackend, MixedLifetimesAndWorldsOfTwoBackends) {
-    auto a = std::make_unique<World>(odeSettings());
+    auto a = std::make_unique<World>(test::backendSettings("ode"));
     WorldSettings nativeSettings;
     nativeSettings.backend = "native";
     auto native = std::make_unique<World>(nativeSettings);
     // Lenient: this world holds a hull and a mesh (the pair ODE cannot collide, refused under the
     // strict policy) so that every kind of geom and its arrays is created and released.
-    WorldSettings lenient = odeSettings();
+    WorldSettings lenient = test::backendSettings("ode");
     lenient.capabilityPolicy = CapabilityPolicy::Lenient;
     auto b = std::make_unique<World>(lenient);
     b->setWarningHandler([](const std::string&) {});
@@ -169,7 +168,7 @@ TEST(OdeBackend, MixedLifetimesAndWorldsOfTwoBackends) {
     EXPECT_EQ(b->bodyCount(), 5u);  // ground, 2 boxes, hull, mesh
     native = nullptr;
     b = nullptr;
-    World again(odeSettings());  // ODE stays initialised for later worlds
+    World again(test::backendSettings("ode"));  // ODE stays initialised for later worlds
     again.createBody(box(Vec3(0, 1, 0)));
     again.step();
 }
@@ -177,7 +176,7 @@ TEST(OdeBackend, MixedLifetimesAndWorldsOfTwoBackends) {
 // Quickstep reorders rows with ODE's one global random generator; each world keeps its own
 // stream, so identical worlds give identical results even when stepped interleaved.
 TEST(OdeBackend, IdenticalWorldsStayIdenticalWhenInterleaved) {
-    World first(odeSettings()), second(odeSettings());
+    World first(test::backendSettings("ode")), second(test::backendSettings("ode"));
     std::vector<Body> a, b;
     for (World* w : {&first, &second}) {
         w->createBody(ground());
@@ -195,7 +194,7 @@ TEST(OdeBackend, IdenticalWorldsStayIdenticalWhenInterleaved) {
 // Damping dv/dt = -c v is applied as ODE's per-step scale 1 - exp(-c dt), so free motion decays
 // as exp(-c t) to rounding.
 TEST(OdeBackend, DampingMatchesExponentialDecay) {
-    WorldSettings s = odeSettings();
+    WorldSettings s = test::backendSettings("ode");
     s.gravity = Vec3::Zero();
     World world(s);
     BodyDef def;
@@ -225,7 +224,7 @@ TEST(OdeBackend, PairOverrideSetsTheContactFriction) {
         materials.add("box", Material{0.2, 0.0, 1000.0});
         materials.add("floor", Material{0.8, 0.0, 1000.0});
         if (pairFriction) materials.setPairOverride("box", "floor", PairOverride{pairFriction, std::nullopt});
-        World world(odeSettings(), materials);
+        World world(test::backendSettings("ode"), materials);
         world.createBody(ground("floor"));
         BodyDef def = box(Vec3(0, 0.5, 0), "box");
         def.linearVelocity = Vec3(kV0, 0, 0);
@@ -244,7 +243,7 @@ TEST(OdeBackend, PairOverrideSetsTheContactFriction) {
 // Contact impulses come from ODE's joint feedback: a box at rest on the ground receives m g dt of
 // normal impulse per step, summed over its contact points.
 TEST(OdeBackend, RestingContactImpulsesCarryTheWeight) {
-    World world(odeSettings());
+    World world(test::backendSettings("ode"));
     world.createBody(ground());
     BodyDef def = box(Vec3(0, 0.5, 0));
     def.allowSleep = false;  // sleeping pairs send no events

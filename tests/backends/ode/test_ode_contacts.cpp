@@ -16,7 +16,6 @@
 namespace anyphys {
 namespace {
 
-using ode::test::odeSettings;
 using ode::test::peerOf;
 
 using Pass = ode::OdeWorld::CollidePass;
@@ -37,7 +36,7 @@ std::vector<Body> restingStacks(World& world, int columns, int height, bool awak
 }
 
 TEST(OdeContacts, SleepingPileSkipsTheCollidePassAndReportsNothing) {
-    World world(odeSettings());
+    World world(test::backendSettings("ode"));
     world.createBody(test::groundDef());
     restingStacks(world, 4, 3, true);
     for (int i = 0; i < 600; ++i) {
@@ -54,7 +53,7 @@ TEST(OdeContacts, SleepingPileSkipsTheCollidePassAndReportsNothing) {
 // One box dropped onto a sleeping pile: the pass collides its geom alone against the space, and
 // the box it lands on wakes (through ODE's contact joint) and reports the enter.
 TEST(OdeContacts, BoxDroppedOnASleepingPileWakesWhatItHits) {
-    World world(odeSettings());
+    World world(test::backendSettings("ode"));
     world.createBody(test::groundDef());
     const std::vector<Body> pile = restingStacks(world, 4, 2, false);
     const Body& below = pile[1];  // top of the first stack, at y = 1.5
@@ -78,7 +77,7 @@ TEST(OdeContacts, BoxDroppedOnASleepingPileWakesWhatItHits) {
 
 // With most bodies awake the whole space is collided at once, as before.
 TEST(OdeContacts, MostlyAwakeWorldCollidesTheWholeSpace) {
-    World world(odeSettings());
+    World world(test::backendSettings("ode"));
     world.createBody(test::groundDef());
     restingStacks(world, 3, 2, true);
     world.step();
@@ -89,7 +88,7 @@ TEST(OdeContacts, MostlyAwakeWorldCollidesTheWholeSpace) {
 // A resting, awake pile (sleeping off) reports the same stays every step: after the first steps
 // the layer and the backend reuse their buffers. With a listener too.
 TEST(OdeContacts, SteadyStepsWithEventsAllocateNothing) {
-    World world(odeSettings());
+    World world(test::backendSettings("ode"));
     world.createBody(test::groundDef());
     restingStacks(world, 4, 3, true, false);
     ASSERT_TRUE(world.activeEffects().has(Effect::Events));
@@ -115,7 +114,7 @@ TEST(OdeContacts, SteadyStepsWithEventsAllocateNothing) {
 // kind of message once per process. Counted on stderr while two direct-solver stacks run 5 s
 // each; ODE must have sent more than 10 messages meanwhile, or the case proves nothing.
 TEST(OdeContacts, SolverMessagesArePrintedOncePerKind) {
-    WorldSettings s = odeSettings();
+    WorldSettings s = test::backendSettings("ode");
     s.solver = Solver::Direct;
     const long before = ode::odeMessagesReceived();
     testing::internal::CaptureStderr();
