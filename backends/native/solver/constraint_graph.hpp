@@ -43,9 +43,13 @@ public:
     const std::vector<int>& lanes() const { return order_; }
 
 private:
+    /// Fills byBody_ with the constraint indices ordered by their lower solver body index.
+    void sortByFirstBody(std::span<const ContactLane> constraints, std::size_t bodyCount);
+
     std::vector<std::uint32_t> used_;  // per body: colours taken
     std::vector<std::int8_t> colorOf_; // per constraint; kMaxColors = overflow
     std::vector<int> visit_;           // constraint indices in visiting order
+    std::vector<int> byBody_;          // constraint indices by first body
     std::vector<int> bucketStart_;
     std::vector<int> order_;
     std::vector<Color> colors_;

@@ -52,12 +52,13 @@ void StepSolver::collect(NativeWorld& world) {
     bodyOrder_.clear();
     auto& bodies = world.bodies();
     if (solverIndex_.size() < bodies.size()) solverIndex_.resize(bodies.size(), kStaticBody);
+    std::size_t enlisted = 0;  // solverIndex_ marks them, numbered at the end
     const auto enlist = [&](std::uint32_t index) {
         NativeBody& body = bodies[index];
         if (!body.moves() || !body.awake || body.constrained) return;
         body.constrained = true;
-        solverIndex_[index] = static_cast<std::int32_t>(bodyOrder_.size());
-        bodyOrder_.push_back(index);
+        solverIndex_[index] = 0;  // numbered below
+        ++enlisted;
     };
     jointList_.clear();
     const bool joints = world.effects().has(Effect::Joints);
@@ -72,18 +73,30 @@ void StepSolver::collect(NativeWorld& world) {
         if (joint.bodyA != kWorldBody) enlist(joint.bodyA);
         enlist(joint.bodyB);
     }
-    if (!world.effects().has(Effect::Contacts)) return;
-    world.contactManager().forEach([&](Contact& contact) {
-        if (contact.trigger || contact.manifolds.empty()) return;
-        const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
-        if (!((a.isDynamic() && a.awake) || (b.isDynamic() && b.awake))) return;
-        for (ContactManifold& m : contact.manifolds)
-            if (m.pointCount > 0)
-                lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
-                                  contact.friction, contact.restitution, orderKey(contact, m)});
-        enlist(contact.bodyA);
-        enlist(contact.bodyB);
-    });
+    if (world.effects().has(Effect::Contacts)) {
+        world.contactManager().forEach([&](Contact& contact) {
+            if (contact.trigger || contact.manifolds.empty()) return;
+            const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
+            if (!((a.isDynamic() && a.awake) || (b.isDynamic() && b.awake))) return;
+            for (ContactManifold& m : contact.manifolds)
+                if (m.pointCount > 0)
+                    lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
+                                      contact.friction, contact.restitution, orderKey(contact, m)});
+            enlist(contact.bodyA);
+            enlist(contact.bodyB);
+        });
+    }
+    // Solver bodies numbered in world order, not in the order constraints named them: bodies
+    // created together (a grid's layer, a pyramid's row) are mostly neighbours, and the colours
+    // visit their constraints in body order (ConstraintGraph), so the passes read the state
+    // array nearly in sequence. The numbering changes no result: every stage treats bodies
+    // alike whatever their index.
+    bodyOrder_.reserve(enlisted);
+    for (std::uint32_t index = 0; bodyOrder_.size() < enlisted; ++index) {
+        if (solverIndex_[index] == kStaticBody) continue;
+        solverIndex_[index] = static_cast<std::int32_t>(bodyOrder_.size());
+        bodyOrder_.push_back(index);
+    }
 }
 
 void StepSolver::clear() {

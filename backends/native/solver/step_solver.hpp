@@ -39,8 +39,8 @@ class NativeWorld;
 class StepSolver final : private StageRunner::Work {
 public:
     /// Gathers this step's constraints (manifolds with points of non-trigger contacts with an
-    /// awake dynamic body) in contact order, and marks the awake bodies they move `constrained`
-    /// so the free-body integrator leaves them to the solver.
+    /// awake dynamic body) in contact order, numbers the awake bodies they move in world order and
+    /// marks them `constrained` so the free-body integrator leaves them to the solver.
     void collect(NativeWorld& world);
     /// No constraints this step (nothing awake).
     void clear();
