@@ -84,6 +84,13 @@ public:
         for (const Contact& c : slots_)
             if (c.alive) fn(c);
     }
+    /// The live contacts among slots [begin, end), in slot order (to split the slots among workers).
+    template <class Fn>
+    void forEachInSlots(std::size_t begin, std::size_t end, Fn&& fn) const {
+        for (std::size_t i = begin; i < end; ++i)
+            if (slots_[i].alive) fn(slots_[i]);
+    }
+    std::size_t slotCount() const { return slots_.size(); }
     std::size_t size() const { return index_.size(); }
 
 private:

@@ -366,22 +366,59 @@ void NativeWorld::bodyTeleported(std::uint32_t index) {
 
 void NativeWorld::reportContacts(ContactReport& out) {
     if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
-    const auto asleep = [](const NativeBody& b) { return b.moves() && !b.awake; };
-    contacts_.forEach([&](const Contact& c) {
-        const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
-        if (!a.isActive() && !b.isActive()) return;  // both at rest: the layer keeps the pair
-        const bool sleeping = asleep(a) || asleep(b);
-        if (c.trigger) {
-            if (c.touching) out.addPair(a.userData, b.userData, true, Vec3::Zero(), sleeping);
-            return;
+    // In two passes over fixed chunks of the contact slots, each chunk on any worker: count
+    // each chunk's pairs and points, then write them at the chunk's offsets. The report is in
+    // slot order whatever the workers.
+    const std::size_t slots = contacts_.slotCount();
+    constexpr std::size_t kSlotsPerChunk = 512;
+    const std::size_t chunks = (slots + kSlotsPerChunk - 1) / kSlotsPerChunk;
+    reportChunks_.assign(chunks + 1, ReportChunk{out.pairs.size(), out.points.size()});
+    const auto visitChunk = [&](std::size_t chunk, auto&& onPair) {
+        const std::size_t begin = chunk * kSlotsPerChunk;
+        contacts_.forEachInSlots(begin, std::min(slots, begin + kSlotsPerChunk), [&](const Contact& c) {
+            const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
+            if (!a.isActive() && !b.isActive()) return;  // both at rest: the layer keeps the pair
+            if (c.trigger ? c.touching : !c.manifolds.empty()) onPair(c, a, b);
+        });
+    };
+    auto count = [&](int begin, int end, int) {
+        for (int chunk = begin; chunk < end; ++chunk) {
+            ReportChunk& n = reportChunks_[static_cast<std::size_t>(chunk) + 1];
+            n = {};
+            visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody&, const NativeBody&) {
+                ++n.pairs;
+                if (!c.trigger)
+                    for (const ContactManifold& m : c.manifolds) n.points += static_cast<std::size_t>(m.pointCount);
+            });
         }
-        if (c.manifolds.empty()) return;
-        out.addPair(a.userData, b.userData, false, c.manifolds.front().normal, sleeping);
-        // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
-        for (const ContactManifold& m : c.manifolds)
-            for (int i = 0; i < m.pointCount; ++i)
-                out.addPoint({m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].stepImpulse});
-    });
+    };
+    parallelFor(tasks_, static_cast<int>(chunks), 1, count);
+    for (std::size_t k = 1; k <= chunks; ++k) {
+        reportChunks_[k].pairs += reportChunks_[k - 1].pairs;
+        reportChunks_[k].points += reportChunks_[k - 1].points;
+    }
+    out.pairs.resize(reportChunks_[chunks].pairs);
+    out.points.resize(reportChunks_[chunks].points);
+    const auto asleep = [](const NativeBody& b) { return b.moves() && !b.awake; };
+    auto write = [&](int begin, int end, int) {
+        for (int chunk = begin; chunk < end; ++chunk) {
+            std::size_t pair = reportChunks_[static_cast<std::size_t>(chunk)].pairs;
+            std::size_t point = reportChunks_[static_cast<std::size_t>(chunk)].points;
+            visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
+                ContactReport::Pair& p = out.pairs[pair++];
+                p = {a.userData, b.userData, c.trigger, asleep(a) || asleep(b), Vec3::Zero(),
+                     static_cast<std::uint32_t>(point), 0};
+                if (c.trigger) return;
+                p.normal = c.manifolds.front().normal;
+                // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
+                for (const ContactManifold& m : c.manifolds)
+                    for (int i = 0; i < m.pointCount; ++i, ++p.pointCount)
+                        out.points[point++] = {m.points[i].geometry.point, -m.points[i].geometry.separation,
+                                               m.points[i].stepImpulse};
+            });
+        }
+    };
+    parallelFor(tasks_, static_cast<int>(chunks), 1, write);
     out.sleepKnown = true;
     // A body of several shapes meets another in several shape pairs: one report per body pair.
     if (multiShapeBodies_ > 0) out.mergeRepeatedPairs();

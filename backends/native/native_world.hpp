@@ -114,6 +114,10 @@ private:
     ContactManager contacts_;
     StepSolver solver_;
     TaskSystem* tasks_ = nullptr;
+    struct ReportChunk {  // reportContacts: a chunk's first pair and point (its counts while counting)
+        std::size_t pairs = 0, points = 0;
+    };
+    std::vector<ReportChunk> reportChunks_;
     MaterialTable materials_;
     std::vector<Vec3> hookForces_, hookTorques_;
     struct ProxyMove {

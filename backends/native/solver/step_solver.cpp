@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "anyphys/peers/gyroscopic.hpp"
+#include "anyphys/task_system.hpp"
 #include "native_world.hpp"
 #include "solver/body_integration.hpp"
 
@@ -141,37 +142,42 @@ void StepSolver::buildBodies(NativeWorld& world, const StepInfo& step) {
     bodies_.resize(n);
     states_.resize(n);
     auto& worldBodies = world.bodies();
-    for (std::size_t i = 0; i < n; ++i) {
-        const NativeBody& nb = worldBodies[bodyOrder_[i]];
-        SolverBody& sb = bodies_[i];
-        sb = SolverBody{};
-        sb.body = bodyOrder_[i];
-        sb.dynamic = nb.isDynamic();
-        sb.position0 = nb.state.position;
-        sb.orientation0 = nb.state.orientation;
-        if (sb.dynamic) {
-            sb.invMass = nb.invMass * nb.linearFreedom();
-            sb.invInertia = nb.worldInverseInertia();
-            sb.inertia = nb.inertia;
-            sb.linearAcceleration = nb.gravityScale * gravity;
-            if (userForces) {
-                sb.linearAcceleration += sb.invMass.cwiseProduct(nb.force);
-                sb.angularAcceleration = sb.invInertia * nb.torque;
-            }
-            if (damping) {  // exact decay of dv/dt = -c v over a substep: stable for any c
-                sb.linearDampingFactor = std::exp(-nb.linearDamping * h_);
-                sb.angularDampingFactor = std::exp(-nb.angularDamping * h_);
-            }
-            if (gyroscopic && gyroscopic::isAnisotropic(nb.inertia)) sb.gyroscopic = nb.gyroscopic;
-        }
-        SolverState& s = states_[i];
-        s = SolverState{};
-        for (int k = 0; k < 3; ++k) {
-            s.v[k] = nb.state.linearVelocity[k];
-            s.w[k] = nb.state.angularVelocity[k];
-        }
-    }
+    // Each body on its own: split among the workers like the other body stages.
+    auto buildRange = [&](int begin, int end, int) {
+        for (int i = begin; i < end; ++i)
+            buildBody(bodyOrder_[i], worldBodies[bodyOrder_[i]], bodies_[i], states_[i], gravity, userForces, damping, gyroscopic);
+    };
+    parallelFor(world.taskSystem(), static_cast<int>(n), kMinBodyBlock, buildRange);
     (void)step;
+}
+
+void StepSolver::buildBody(std::uint32_t index, const NativeBody& nb, SolverBody& sb, SolverState& s, const Vec3& gravity,
+                           bool userForces, bool damping, bool gyroscopic) const {
+    sb = SolverBody{};
+    sb.body = index;
+    sb.dynamic = nb.isDynamic();
+    sb.position0 = nb.state.position;
+    sb.orientation0 = nb.state.orientation;
+    if (sb.dynamic) {
+        sb.invMass = nb.invMass * nb.linearFreedom();
+        sb.invInertia = nb.worldInverseInertia();
+        sb.inertia = nb.inertia;
+        sb.linearAcceleration = nb.gravityScale * gravity;
+        if (userForces) {
+            sb.linearAcceleration += sb.invMass.cwiseProduct(nb.force);
+            sb.angularAcceleration = sb.invInertia * nb.torque;
+        }
+        if (damping) {  // exact decay of dv/dt = -c v over a substep: stable for any c
+            sb.linearDampingFactor = std::exp(-nb.linearDamping * h_);
+            sb.angularDampingFactor = std::exp(-nb.angularDamping * h_);
+        }
+        if (gyroscopic && gyroscopic::isAnisotropic(nb.inertia)) sb.gyroscopic = nb.gyroscopic;
+    }
+    s = SolverState{};
+    for (int k = 0; k < 3; ++k) {
+        s.v[k] = nb.state.linearVelocity[k];
+        s.w[k] = nb.state.angularVelocity[k];
+    }
 }
 
 void StepSolver::buildConstraints() {

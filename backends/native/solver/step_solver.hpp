@@ -35,6 +35,7 @@
 namespace anyphys::native {
 
 class NativeWorld;
+struct NativeBody;
 
 class StepSolver final : private StageRunner::Work {
 public:
@@ -78,6 +79,9 @@ private:
     };
 
     void buildBodies(NativeWorld& world, const StepInfo& step);
+    /// One solver body and its state from world body `index`.
+    void buildBody(std::uint32_t index, const NativeBody& nb, SolverBody& sb, SolverState& s, const Vec3& gravity,
+                   bool userForces, bool damping, bool gyroscopic) const;
     void buildConstraints();
     void planStages(const NativeWorld& world);
     void addStage(StageKind kind, int items, int color = 0, int substep = 0, bool endOfSubstep = false);
