@@ -130,9 +130,12 @@ void NativeWorld::destroyBody(BodyPeer& peer) {
     for (int proxy : body.proxies) broadPhase_.destroyProxy(proxy);
     if (body.awake && body.moves()) --awakeBodies_;
     if (body.shapes.size() > 1) --multiShapeBodies_;
-    if (body.sleepingIsland >= 0) {
-        auto& members = sleepingIslands_[body.sleepingIsland];
+    if (const auto island = sleepingIslands_.find(body.sleepingIsland); island != sleepingIslands_.end()) {
+        auto& members = island->second;
         members.erase(std::remove(members.begin(), members.end(), index), members.end());
+        // An island whose last member is gone goes too: kept, the map grew by one entry for every
+        // sleeping pile removed (the soak run's resident memory crept up 2 MiB in 1e6 steps).
+        if (members.empty()) sleepingIslands_.erase(island);
     }
     body = NativeBody{};
     body.alive = false;

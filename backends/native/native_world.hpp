@@ -81,6 +81,8 @@ public:
     void sleepBody(std::uint32_t body);
     /// Puts a set of resting bodies to sleep together; waking one wakes them all.
     void sleepIsland(const std::vector<std::uint32_t>& members);
+    /// Islands asleep now (tests: an island goes when it wakes or its last body is destroyed).
+    std::size_t sleepingIslandCount() const { return sleepingIslands_.size(); }
     /// Sets a body's awake flag, keeping the count of awake moving bodies.
     void setAwakeFlag(NativeBody& body, bool awake);
     /// Moves the body's proxies after a teleport and wakes it.

@@ -62,6 +62,24 @@ TEST(NativePipeline, DestroyKeepsOtherPeersConsistent) {
     EXPECT_EQ(peers[3]->state().position.x(), 3);
 }
 
+// A sleeping island goes when its last body is destroyed. It used to stay, empty, in the world's
+// island map: the soak run (spawning and removing ragdolls and boxes, many of them asleep) grew
+// its heap by about 22 bytes per spawn, 2 MiB of resident memory over 1e6 steps.
+TEST(NativePipeline, DestroyingASleepingIslandsBodiesFreesTheIsland) {
+    NativeWorld world{resolvedDefaults()};
+    for (int round = 0; round < 50; ++round) {
+        auto a = world.createBody(dynamicBody(Vec3(1, 1, 1), GyroscopicMode::None));
+        auto b = world.createBody(dynamicBody(Vec3(1, 1, 1), GyroscopicMode::None));
+        const std::uint32_t ia = static_cast<NativeBodyPeer&>(*a).index(), ib = static_cast<NativeBodyPeer&>(*b).index();
+        world.sleepIsland({ia, ib});
+        ASSERT_EQ(world.sleepingIslandCount(), 1u);
+        world.destroyBody(*a);
+        EXPECT_EQ(world.sleepingIslandCount(), 1u);  // b still sleeps in it
+        world.destroyBody(*b);
+        EXPECT_EQ(world.sleepingIslandCount(), 0u) << "round " << round;
+    }
+}
+
 // The implicit gyroscopic solve is the backward-Euler solution: its residual vanishes.
 TEST(NativeGyroscopic, ImplicitSolveSatisfiesBackwardEuler) {
     const Vec3 inertia(1, 2, 3), w0(0.3, 5, -1);
