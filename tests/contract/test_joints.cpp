@@ -37,6 +37,16 @@ protected:
         return s;
     }
 
+    /// A forearm-like limb (1 kg, 0.3 m long and thin) hanging below the origin, its top end there.
+    static Body createThinLimb(World& world) {
+        BodyDef limb;
+        limb.shape = ShapeDef::box(Vec3(0.04, 0.15, 0.04));
+        limb.mass = 1.0;
+        limb.position = Vec3(0, -0.15, 0);
+        limb.allowSleep = false;
+        return world.createBody(limb);
+    }
+
     // Every "joint.*" parameter and joint type a backend declares is one the layer knows.
     void checkDeclaredNames() const {
         const auto known = allJointParameters();
@@ -782,12 +792,7 @@ TEST_P(JointTest, ConeTwistLimitsSurviveAHalfTurnSwing) {
 TEST_P(JointTest, HingeWrenchedOffItsAxisTurnsBack) {
     ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
     World world(jointSettings(false));
-    BodyDef forearm;  // 1 kg, 0.3 m long and thin, as a limb
-    forearm.shape = ShapeDef::box(Vec3(0.04, 0.15, 0.04));
-    forearm.mass = 1.0;
-    forearm.position = Vec3(0, -0.15, 0);
-    forearm.allowSleep = false;
-    Body body = world.createBody(forearm);
+    Body body = createThinLimb(world);
     JointDef d;
     d.type = JointType::Hinge;
     d.bodyB = body;
@@ -839,12 +844,7 @@ TEST_P(JointTest, FixedAndSliderWrenchedFarTurnBack) {
         }
         for (const auto& wrench : wrenches) {
             World world(jointSettings(false));
-            BodyDef limb;  // 1 kg, 0.3 m long and thin
-            limb.shape = ShapeDef::box(Vec3(0.04, 0.15, 0.04));
-            limb.mass = 1.0;
-            limb.position = Vec3(0, -0.15, 0);
-            limb.allowSleep = false;
-            Body body = world.createBody(limb);
+            Body body = createThinLimb(world);
             JointDef d;
             d.type = joint.type;
             d.bodyB = body;
