@@ -29,7 +29,6 @@ inline std::string lacking(const Capabilities& caps, std::initializer_list<Shape
     return missing;
 }
 
-/// The static ground: the plane y = 0.
 /// Default settings on one backend (the backend tests' worlds).
 inline WorldSettings backendSettings(const std::string& backend) {
     WorldSettings s;
@@ -37,6 +36,7 @@ inline WorldSettings backendSettings(const std::string& backend) {
     return s;
 }
 
+/// The static ground: the plane y = 0.
 inline BodyDef groundDef(const std::string& material = "") {
     BodyDef def;
     def.name = "ground";
