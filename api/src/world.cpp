@@ -526,20 +526,14 @@ const std::vector<DivergedBody>& World::lastDiverged() const { return impl_->las
 
 namespace {
 
-// Why a body state has diverged, or nullptr. One branch per body in the common case: every test
-// is written so that a NaN fails it.
-const char* divergence(const BodyState& s, double maxSpeed2, double maxAngularSpeed2) {
-    const double v2 = s.linearVelocity.squaredNorm(), w2 = s.angularVelocity.squaredNorm();
-    const Vec3& p = s.position;
-    const bool sound = v2 <= maxSpeed2 && w2 <= maxAngularSpeed2 && std::abs(p.x()) <= kMaxCoordinate &&
-                       std::abs(p.y()) <= kMaxCoordinate && std::abs(p.z()) <= kMaxCoordinate &&
-                       std::isfinite(s.orientation.w() + s.orientation.x() + s.orientation.y() + s.orientation.z());
-    if (sound) return nullptr;
-    if (!(s.linearVelocity.allFinite() && s.angularVelocity.allFinite() && p.allFinite() &&
+// Why a body state has diverged, or nullptr when `limits` admit it.
+const char* divergence(const BodyState& s, const MotionLimits& limits) {
+    if (limits.admit(s)) return nullptr;
+    if (!(s.linearVelocity.allFinite() && s.angularVelocity.allFinite() && s.position.allFinite() &&
           s.orientation.coeffs().allFinite()))
         return "non-finite state";
-    if (!(v2 <= maxSpeed2)) return "linearVelocity";
-    if (!(w2 <= maxAngularSpeed2)) return "angularVelocity";
+    if (!(s.linearVelocity.squaredNorm() <= limits.maxSpeed2)) return "linearVelocity";
+    if (!(s.angularVelocity.squaredNorm() <= limits.maxAngularSpeed2)) return "angularVelocity";
     return "position";
 }
 
@@ -551,25 +545,20 @@ std::string number(double v) {
 
 }  // namespace
 
+MotionLimits World::motionLimits() const {
+    return {settings_.maxSpeed * settings_.maxSpeed, settings_.maxAngularSpeed * settings_.maxAngularSpeed, kMaxCoordinate};
+}
+
 void World::checkDivergence(double dt) {
     (void)dt;
     Impl& i = *impl_;
     i.lastDiverged.clear();
     // Every dynamic and kinematic body asleep: no state changed since the last check.
     if (!i.peer->hasAwakeBodies()) return;
-    const double maxSpeed2 = settings_.maxSpeed * settings_.maxSpeed;
-    const double maxAngularSpeed2 = settings_.maxAngularSpeed * settings_.maxAngularSpeed;
+    const MotionLimits limits = motionLimits();
     std::string firstField;
-    for (std::uint32_t k = 0; k < i.slots.size(); ++k) {
+    const auto noteDiverged = [&](std::uint32_t k, const BodyState& state, const char* what) {
         Slot& s = i.slots[k];
-        if (!s.peer || s.def.type == BodyType::Static || s.frozen) continue;
-        const BodyState state = s.peer->state();
-        const char* what = divergence(state, maxSpeed2, maxAngularSpeed2);
-        if (!what) {
-            s.checkedPose = {state.position, state.orientation};
-            continue;
-        }
-        // Rare: describe it.
         std::string reason;
         const std::string who = s.def.name.empty() ? "body #" + std::to_string(k) : "body \"" + s.def.name + "\"";
         std::string field = who + ".";
@@ -591,6 +580,29 @@ void World::checkDivergence(double dt) {
         }
         if (firstField.empty()) firstField = field;
         i.lastDiverged.push_back({Body(this, BodyId{k, s.generation}), s.def.name, reason});
+    };
+    if (settings_.divergencePolicy == DivergencePolicy::Freeze) {
+        // A body that diverges is held at its last sound pose: every pose is read and kept.
+        for (std::uint32_t k = 0; k < i.slots.size(); ++k) {
+            Slot& s = i.slots[k];
+            if (!s.peer || s.def.type == BodyType::Static || s.frozen) continue;
+            const BodyState state = s.peer->state();
+            if (const char* what = divergence(state, limits))
+                noteDiverged(k, state, what);
+            else
+                s.checkedPose = {state.position, state.orientation};
+        }
+    } else {
+        // Throw keeps no pose: the peer scans its own arrays, and only what it finds is read here,
+        // in slot order (the keys lead with the slot index).
+        i.unsound.clear();
+        i.peer->findUnsound(limits, i.unsound);
+        std::sort(i.unsound.begin(), i.unsound.end());
+        for (const std::uint64_t key : i.unsound) {
+            const std::uint32_t k = unpackId(key).index;
+            const BodyState state = i.slots[k].peer->state();
+            if (const char* what = divergence(state, limits)) noteDiverged(k, state, what);
+        }
     }
     if (i.lastDiverged.empty()) return;
     const std::string when = " at step " + std::to_string(stepCount_) + " (t = " + number(time_) + " s)";
@@ -623,14 +635,13 @@ void World::checkDivergence(double dt) {
 // each of those bodies is destroyed or set right; until then it throws and the world stays as it is.
 void World::refuseStillDiverged() {
     Impl& i = *impl_;
-    const double maxSpeed2 = settings_.maxSpeed * settings_.maxSpeed;
-    const double maxAngularSpeed2 = settings_.maxAngularSpeed * settings_.maxAngularSpeed;
+    const MotionLimits limits = motionLimits();
     for (const DivergedBody& d : i.lastDiverged) {
         const BodyId id = d.body.id();
         if (id.index >= i.slots.size()) continue;
         const Slot& s = i.slots[id.index];
         if (!s.peer || s.generation != id.generation) continue;  // destroyed since
-        const char* what = divergence(s.peer->state(), maxSpeed2, maxAngularSpeed2);
+        const char* what = divergence(s.peer->state(), limits);
         if (!what) continue;
         const std::string who = d.name.empty() ? "body #" + std::to_string(id.index) : "body \"" + d.name + "\"";
         const std::string quantity = what == std::string_view("non-finite state") ? "state" : what;

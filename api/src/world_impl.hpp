@@ -160,6 +160,7 @@ struct World::Impl {
     std::set<std::string> warned;
     std::vector<std::string> warningLog;     // World::warnings(), in order
     std::vector<DivergedBody> lastDiverged;  // what the last step's divergence check found
+    std::vector<std::uint64_t> unsound;      // the divergence check's scratch: keys the peer found unsound
     bool divergedUnresolved = false;         // the last step threw Diverged: lastDiverged not yet set right
     std::vector<std::uint32_t> frozenSlots;  // slots held still under the freeze policy
     bool stepping = false;  // inside a step: structural changes are refused

@@ -269,6 +269,19 @@ bool Box2dWorld::hasAwakeBodies() const {
     return std::any_of(bodies_.begin(), bodies_.end(), [](const Box2dBody* b) { return b->b2()->IsAwake(); });
 }
 
+// In Box2D's floats, widened exactly: the same verdicts as on Box2dBody::state, whose orientation
+// is finite exactly when the angle is.
+void Box2dWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const {
+    for (const Box2dBody* body : bodies_) {
+        const b2Body& b = *body->b2();
+        if (b.GetType() == b2_staticBody) continue;
+        const b2Vec2 p = b.GetPosition(), v = b.GetLinearVelocity();
+        if (!limits.admit(Vec3(p.x, p.y, body->embedding().height), b.GetAngle(), Vec3(v.x, v.y, 0.0),
+                          Vec3(0.0, 0.0, b.GetAngularVelocity())))
+            out.push_back(body->userData());
+    }
+}
+
 void Box2dWorld::reportContacts(ContactReport& out) {
     const auto asleep = [](const b2Body* b) { return b->GetType() != b2_staticBody && !b->IsAwake(); };
     // The layer's key (see createBody); Box2D 2.4.1 has no const GetUserData.

@@ -148,6 +148,18 @@ BodyState BulletBodyPeer::state() const {
     return s;
 }
 
+bool BulletBodyPeer::admittedBy(const MotionLimits& limits) const {
+    if (type_ == BodyType::Kinematic) return limits.admit(kinematic_);
+    const btTransform& xf = body_->getWorldTransform();
+    const btMatrix3x3& basis = xf.getBasis();
+    double basisSum = 0.0;  // finite exactly when the rotation state() builds from it is
+    for (int r = 0; r < 3; ++r) basisSum += static_cast<double>(basis[r].x() + basis[r].y() + basis[r].z());
+    const btVector3& v = body_->getLinearVelocity();
+    const btVector3& w = body_->getAngularVelocity();
+    return limits.admit(sameBt(xf.getOrigin(), btPosition_) ? setPosition_ : fromBt(xf.getOrigin()), basisSum,
+                        sameBt(v, btLinear_) ? setLinear_ : fromBt(v), sameBt(w, btAngular_) ? setAngular_ : fromBt(w));
+}
+
 void BulletBodyPeer::setTransform(const Vec3& position, const Quat& orientation) {
     setPosition_ = position;
     setOrientation_ = orientation.normalized();

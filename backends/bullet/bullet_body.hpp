@@ -78,6 +78,8 @@ public:
     /// See ShapeSet::setReaching; the world turns it on while it holds a mesh.
     void setReaching(bool on) { shapes_->setReaching(on); }
     bool moves() const { return type_ != BodyType::Static; }
+    /// A dynamic or kinematic body: MotionLimits::admit on state(), read in place (the basis for the quaternion).
+    bool admittedBy(const MotionLimits& limits) const;
     bool dynamic() const { return type_ == BodyType::Dynamic; }
     double linearDamping() const { return linearDamping_; }    // 1/s
     double angularDamping() const { return angularDamping_; }  // 1/s

@@ -297,6 +297,11 @@ bool BulletWorld::hasAwakeBodies() const {
     return !effects_.has(Effect::Contacts) || world_->awakeBodyCount() > 0;
 }
 
+void BulletWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const {
+    for (const BulletBodyPeer* body : bodies_)
+        if (body->moves() && !body->admittedBy(limits)) out.push_back(body->userData());
+}
+
 BulletWorld::ObjectPair BulletWorld::pairOf(const btPersistentManifold& manifold) {
     const btCollisionObject* a = manifold.getBody0();
     const btCollisionObject* b = manifold.getBody1();

@@ -43,6 +43,7 @@ public:
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
     bool hasAwakeBodies() const override;
+    void findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                     std::uint32_t mask) override;
     std::vector<std::uint64_t> overlap(const std::vector<PeerShape>& shapes, const Transform& pose,

@@ -367,6 +367,11 @@ void NativeWorld::bodyTeleported(std::uint32_t index) {
     updateProxies(index, Vec3::Zero());
 }
 
+void NativeWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const {
+    for (const NativeBody& b : bodies_)
+        if (b.alive && b.moves() && !limits.admit(b.state)) out.push_back(b.userData);
+}
+
 void NativeWorld::reportContacts(ContactReport& out) {
     if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
     // In two passes over fixed chunks of the contact slots, each chunk on any worker: count

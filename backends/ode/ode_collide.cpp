@@ -180,6 +180,17 @@ bool OdeWorld::hasAwakeBodies() const {
     return !effects_.has(Effect::Contacts) || awakeBodies_ > 0;
 }
 
+void OdeWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const {
+    for (const OdeBody* body : bodies_) {
+        const dBodyID b = body->id();
+        if (!b) continue;  // static: a geom without a body
+        const dReal* q = dBodyGetQuaternion(b);
+        if (!limits.admit(toVec3(dBodyGetPosition(b)), q[0] + q[1] + q[2] + q[3], toVec3(dBodyGetLinearVel(b)),
+                          toVec3(dBodyGetAngularVel(b))))
+            out.push_back(body->userData());
+    }
+}
+
 void OdeWorld::reportContacts(ContactReport& out) {
     // ODE reports each joint's constraint force averaged over the ODE step; over the anyphys step
     // the normal impulse is that force along the normal times dt (with substeps: the last

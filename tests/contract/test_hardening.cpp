@@ -319,6 +319,53 @@ TEST_P(DivergenceTest, StepAfterAThrowGoesOnOnceTheBodyIsDestroyed) {
     EXPECT_NO_THROW(world.step());
 }
 
+// Each backend scans its own bodies for the throw policy (WorldPeer::findUnsound); the layer
+// then names them in body-slot order, whatever order the backend keeps. "rocket" takes the slot a
+// destroyed body freed, so the backend lists it after "spinner" while the layer numbers it first.
+// Both pass a ceiling in the same step: the rocket its speed, the spinner its angular speed
+// (+10 rad/s per step about Z, a planar world's axis too: 10, 20, then 30 rad/s > 25).
+TEST_P(DivergenceTest, ThrowPolicyNamesEveryDivergedBodyInSlotOrder) {
+    WorldSettings s = divergenceSettings(DivergencePolicy::Throw);
+    s.maxAngularSpeed = kMaxSpeed;
+    World world(s);
+    Body placeholder = world.createBody(ball("placeholder", Vec3(0, 0, 0)));
+    Body spinner = world.createBody(ball("spinner", Vec3(0, 5, 0)));
+    world.destroyBody(placeholder);
+    Body rocket = world.createBody(ball("rocket", Vec3(0, 0, 0)));
+    ASSERT_LT(rocket.id().index, spinner.id().index);
+    const double spinTorque = spinner.massProperties().inertia.z() * kGain / s.timeStep;
+    int steps = 0;
+    try {
+        for (; steps < 10; ++steps) {
+            push(world, rocket);
+            spinner.applyTorque(Vec3(0, 0, spinTorque));
+            world.step();
+        }
+        ADD_FAILURE() << "no Diverged error after 10 steps; angular speed " << spinner.angularVelocity().norm();
+    } catch (const Error& e) {
+        EXPECT_EQ(toString(e.kind()), toString(ErrorKind::Diverged)) << e.what();
+        EXPECT_EQ(e.field(), "body \"rocket\".linearVelocity") << e.what();  // the first in slot order
+        EXPECT_THAT(e.what(), HasSubstr("body \"spinner\" angular speed"));
+        EXPECT_THAT(e.what(), HasSubstr("WorldSettings.maxAngularSpeed 25"));
+        EXPECT_EQ(steps, 2) << e.what();
+    }
+    ASSERT_EQ(world.lastDiverged().size(), 2u);
+    EXPECT_EQ(world.lastDiverged()[0].name, "rocket");
+    EXPECT_EQ(world.lastDiverged()[1].name, "spinner");
+}
+
+// A body leaving the world: one 1 s step at 20 m/s takes it from 1 m inside kMaxCoordinate to
+// beyond it (Box2D clamps a step's move at 2 m: still 1 m beyond; its floats hold whole metres there).
+TEST_P(DivergenceTest, ThrowPolicyNamesABodyBeyondTheCoordinateCeiling) {
+    World world(divergenceSettings(DivergencePolicy::Throw));
+    BodyDef farDef = ball("far", Vec3(kMaxCoordinate - 1.0, 0, 0));
+    farDef.linearVelocity = Vec3(20, 0, 0);
+    world.createBody(farDef);
+    expectError([&] { world.step(1.0); }, ErrorKind::Diverged, "body \"far\".position", {"beyond +-1e+07 m"});
+    ASSERT_EQ(world.lastDiverged().size(), 1u);
+    EXPECT_EQ(world.lastDiverged()[0].name, "far");
+}
+
 TEST_P(DivergenceTest, FreezePolicyHoldsTheBodyAndWarns) {
     World world(divergenceSettings(DivergencePolicy::Freeze));
     std::vector<std::string> warnings;

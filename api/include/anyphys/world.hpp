@@ -264,6 +264,7 @@ private:
     void fireExplosions(double dt);             // world_fields.cpp: explosions due in this step
     void stepParticles(double dt);              // world_particles.cpp: fluids and cloths after the rigid step
     void warn(const std::string& message);
+    struct MotionLimits motionLimits() const;  // the settings' ceilings on a body's state
     void checkDivergence(double dt);  // after a step: non-finite or over-ceiling states (settings_.divergencePolicy)
     void refuseStillDiverged();       // before a step that follows a Diverged throw
     void holdFrozen();                // after a step: frozen bodies back to their held pose

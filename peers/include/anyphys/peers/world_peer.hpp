@@ -13,6 +13,7 @@
 #include "anyphys/listeners/events.hpp"
 #include "anyphys/peers/body_peer.hpp"
 #include "anyphys/peers/joint_peer.hpp"
+#include "anyphys/peers/motion_limits.hpp"
 #include "anyphys/peers/shape_data.hpp"
 #include "anyphys/task_system.hpp"
 
@@ -192,6 +193,11 @@ public:
     /// contact can begin, stay or end (each has a sleeping body), and the layer skips the step's
     /// events. True when the peer cannot tell cheaply (the default).
     virtual bool hasAwakeBodies() const { return true; }
+    /// Appends the userData of every dynamic and kinematic body, awake or asleep, whose state
+    /// `limits` do not admit (MotionLimits::admit on the state BodyPeer::state would return), in
+    /// any order. Runs after every step: a backend reads its own arrays in place, without building
+    /// a BodyState per body.
+    virtual void findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const = 0;
     /// Hits along origin + t direction (unit), 0 <= t <= maxDistance, on bodies whose layer is
     /// in `mask`; only the closest if closestOnly, otherwise all sorted by distance. Triggers are skipped.
     virtual std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
