@@ -40,13 +40,38 @@ void ContactRules::updateBounces() {
 // Runs for every touching contact every step: with nothing that bounces it returns at once (the
 // lookups of both bodies' materials were 7 % of a 5 050-box pile's step when done here).
 void ContactRules::PreSolve(b2Contact* contact, const b2Manifold* /*oldManifold*/) {
+    if (solved_) {  // only time of impact updates contacts after a solve
+        timeOfImpact_ = true;
+        // The update may re-collide the manifold after the main solve stored its impulses in it:
+        // the contact's impulses are summed from the reports (this entry adds nothing to them).
+        if (firstSummed_ == kNone) firstSummed_ = solvedImpulses_.size();
+        solvedImpulses_.push_back(SolvedImpulses{contact, {}});
+    }
     if (!bounces_) return;
     const ContactMaterial& m = materials_.get(fixtureInfo(contact->GetFixtureA()).material, fixtureInfo(contact->GetFixtureB()).material);
     contact->SetRestitution(impactRestitution(contact, static_cast<float>(m.restitution)));
 }
 
+namespace {
+// The main solve stores its impulses in the manifold before it reports them (b2Island::Solve:
+// StoreImpulses, then Report); a time-of-impact solve reports without storing.
+bool storedInManifold(b2Contact& contact, const b2ContactImpulse& impulse) {
+    const b2Manifold& m = *contact.GetManifold();
+    if (m.pointCount != impulse.count) return false;
+    for (int32 p = 0; p < m.pointCount; ++p)
+        if (m.points[p].normalImpulse != impulse.normalImpulses[p]) return false;
+    return true;
+}
+}  // namespace
+
 void ContactRules::PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) {
-    solved_ = true;
+    if (!solved_) {
+        solved_ = true;
+        // The substep's first report: from the main solve, unless that solved nothing and time
+        // of impact reports first (then no pre-solve after a solve marked the phase).
+        if (!storedInManifold(*contact, *impulse)) timeOfImpact_ = true;
+    }
+    if (timeOfImpact_ && firstSummed_ == kNone) firstSummed_ = solvedImpulses_.size();
     SolvedImpulses& entry = solvedImpulses_.emplace_back(SolvedImpulses{contact, {}});
     for (int32 p = 0; p < impulse->count && p < b2_maxManifoldPoints; ++p) entry.normal[static_cast<std::size_t>(p)] = impulse->normalImpulses[p];
 }

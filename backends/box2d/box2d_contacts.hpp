@@ -34,6 +34,7 @@ public:
         h_ = h;
         gravity_ = gravity;
         solved_ = false;
+        timeOfImpact_ = false;
     }
 
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) override;
@@ -44,13 +45,24 @@ public:
     void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) override;
 
     /// Every normal impulse a solve applied since the last clear, one entry per contact and
-    /// solve: the main solve's, and time of impact's, whose impulses Box2D does not store in the
-    /// manifold (a fast body turned around there would otherwise report none).
+    /// solve, in the order of the solves: the main solve's, and time of impact's, whose impulses
+    /// Box2D does not store in the manifold (a fast body turned around there would otherwise
+    /// report none).
     struct SolvedImpulses {
         const b2Contact* contact;
         std::array<float, b2_maxManifoldPoints> normal;
     };
     std::vector<SolvedImpulses>& solvedImpulses() { return solvedImpulses_; }
+    /// Before an anyphys step's first b2World::Step. With substeps every contact's impulse is a
+    /// sum over solves; without, only those of contacts a time-of-impact solve reported.
+    void clearSolvedImpulses(bool substeps) {
+        solvedImpulses_.clear();
+        firstSummed_ = substeps ? 0 : kNone;
+    }
+    /// The contacts whose step impulse is not what their manifold holds are those of the
+    /// entries from this one on (none when it is past the end): the manifold keeps the last main
+    /// solve's impulses, and misses time of impact's.
+    std::size_t firstSummedEntry() const { return firstSummed_; }
 
     /// Sets the pair's friction, and no bounce until pre-solve gives one; again for every contact
     /// when the table or the effects change (Box2dWorld).
@@ -67,6 +79,9 @@ private:
     b2Vec2 gravity_{0.0f, 0.0f};
     bool bounces_ = false;  // restitution is on and some pair of materials has some
     bool solved_ = false;  // the step's main solve is done: pre-solve calls now come from time of impact
+    bool timeOfImpact_ = false;  // this substep's time-of-impact phase has begun
+    static constexpr std::size_t kNone = ~std::size_t(0);
+    std::size_t firstSummed_ = kNone;
     std::vector<SolvedImpulses> solvedImpulses_;
     Effects effects_;
     MaterialTable materials_;

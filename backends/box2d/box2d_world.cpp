@@ -225,7 +225,7 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
         b->updateBullet(continuous, h);
         b->flushForces(userForces);
     }
-    rules_.solvedImpulses().clear();
+    rules_.clearSolvedImpulses(substeps_ > 1);
     for (Box2dJoint* j : joints_) j->beginStep();
     for (int i = 0; i < substeps_; ++i) {
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
@@ -239,30 +239,36 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
     sumImpulses();
 }
 
+namespace {
+/// The entry of `contact` in sums sorted by contact, or nullptr.
+template <class Sums>
+auto findSum(Sums& sums, const b2Contact* contact) -> decltype(sums.data()) {
+    const auto it = std::lower_bound(sums.begin(), sums.end(), contact,
+                                     [](const auto& s, const b2Contact* c) { return std::less<const b2Contact*>{}(s.contact, c); });
+    return it != sums.end() && it->contact == contact ? &*it : nullptr;
+}
+}  // namespace
+
 // The step's impulse per contact point is the sum over every solve of the step: each substep's
-// main solve and any time-of-impact solve.
+// main solve and any time-of-impact solve. Most steps solve each contact once, in the main solve,
+// which leaves those impulses in the manifold: only the contacts whose manifold misses some (all
+// of them with substeps) get a sum here, in the order of the solves.
 void Box2dWorld::sumImpulses() {
     std::vector<ContactRules::SolvedImpulses>& solved = rules_.solvedImpulses();
-    // std::sort, not stable_sort: stable_sort takes a temporary buffer from the heap every step.
-    // Entries of one contact may change order; their sum is the same to rounding, and the same
-    // input always sorts the same way.
-    std::sort(solved.begin(), solved.end(), [](const auto& x, const auto& y) {
-        return std::less<const b2Contact*>{}(x.contact, y.contact);
-    });
     impulses_.clear();
-    for (const ContactRules::SolvedImpulses& s : solved) {
-        if (impulses_.empty() || impulses_.back().contact != s.contact) impulses_.push_back(SummedImpulses{s.contact, {}});
-        for (std::size_t p = 0; p < s.normal.size(); ++p) impulses_.back().sum[p] += s.normal[p];
-    }
+    for (std::size_t k = rules_.firstSummedEntry(); k < solved.size(); ++k) impulses_.push_back(SummedImpulses{solved[k].contact, {}});
+    const auto byContact = [](const SummedImpulses& x, const SummedImpulses& y) { return std::less<const b2Contact*>{}(x.contact, y.contact); };
+    std::sort(impulses_.begin(), impulses_.end(), byContact);
+    impulses_.erase(std::unique(impulses_.begin(), impulses_.end(), [](const auto& x, const auto& y) { return x.contact == y.contact; }),
+                    impulses_.end());
+    if (!impulses_.empty())
+        for (const ContactRules::SolvedImpulses& s : solved)
+            if (SummedImpulses* summed = findSum(impulses_, s.contact))
+                for (std::size_t p = 0; p < summed->sum.size(); ++p) summed->sum[p] += s.normal[p];
     solved.clear();
 }
 
-const Box2dWorld::SummedImpulses* Box2dWorld::summedImpulses(const b2Contact* contact) const {
-    const auto it = std::lower_bound(impulses_.begin(), impulses_.end(), contact, [](const SummedImpulses& s, const b2Contact* c) {
-        return std::less<const b2Contact*>{}(s.contact, c);
-    });
-    return it != impulses_.end() && it->contact == contact ? &*it : nullptr;
-}
+const Box2dWorld::SummedImpulses* Box2dWorld::summedImpulses(const b2Contact* contact) const { return findSum(impulses_, contact); }
 
 bool Box2dWorld::hasAwakeBodies() const {
     if (!effects_.has(Effect::Contacts)) return true;
@@ -300,7 +306,8 @@ void Box2dWorld::reportContacts(ContactReport& out) {
         const WorldManifold wm = worldManifold(*c);
         out.addPair(a, b, false, fromB2(wm.normal), sleeping);  // Box2D's normal points from fixture A to B
         const b2Manifold* m = c->GetManifold();
-        const SummedImpulses* summed = summedImpulses(c);  // none: not solved this step (asleep)
+        // None: the manifold holds the step's impulses, or the contact was not solved (asleep).
+        const SummedImpulses* summed = summedImpulses(c);
         for (int32 p = 0; p < m->pointCount; ++p) {
             const float impulse = summed ? summed->sum[static_cast<std::size_t>(p)] : m->points[p].normalImpulse;
             // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.

@@ -76,8 +76,9 @@ private:
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
 
-    /// Per solved contact, the normal impulses summed over this step's solves (substeps and time
-    /// of impact). Sorted by contact, so a step looks them up without allocating.
+    /// Per contact whose manifold misses part of its step impulse (see sumImpulses), the normal
+    /// impulses summed over this step's solves. Sorted by contact, so a step looks them up
+    /// without allocating.
     struct SummedImpulses {
         const b2Contact* contact;
         std::array<float, b2_maxManifoldPoints> sum;
