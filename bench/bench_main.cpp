@@ -20,7 +20,7 @@ RunPlan tableRun(const ScenePlan& plan) {
 
 RunPlan scalingRun() { return gQuick ? RunPlan{10, 10, 5} : RunPlan{30, 30, 15}; }
 
-int overheadRounds() { return gQuick ? 1 : 3; }
+int comparisonRounds() { return gQuick ? 1 : 3; }
 
 void report(benchmark::State& state, const RunResult& r, const std::string& label) {
     state.SetIterationTime(r.wallMs / 1e3);

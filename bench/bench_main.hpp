@@ -20,8 +20,9 @@ RunPlan tableRun(const ScenePlan& plan);
 /// the pile.
 RunPlan scalingRun();
 
-/// Rounds of the overhead comparison (anyphys and raw alternate; the fastest of each counts).
-int overheadRounds();
+/// Rounds of every side-by-side comparison (anyphys against the raw engine, 2 workers against 1,
+/// effects on against off): the two alternate, and the fastest run of each counts.
+int comparisonRounds();
 
 /// Sets the manual time (wall seconds per step) and the counters of one run.
 void report(benchmark::State& state, const RunResult& result, const std::string& label);

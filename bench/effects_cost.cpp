@@ -3,7 +3,7 @@
 //   no_effects/<scene>/<backend>           the pile with no special effect, World::step against its
 //   no_effects_noevents/<scene>/<backend>  own backend peer stepped directly (the bare engine work
 //                                          through the peer, what World::step wraps). Alternating,
-//                                          overheadRounds() each, fastest run of each counts.
+//                                          comparisonRounds() each, fastest run of each counts.
 //                                          ratio_cpu = world / peer: the layer's whole per-step work
 //                                          (effect checks, divergence check and, in no_effects,
 //                                          contact events), so an upper bound on what the effect
@@ -43,11 +43,11 @@ struct Best {
 };
 
 /// `a` and `b` built afresh and run alternately, each first in every other round (neither always
-/// meets a warm or a cold cache), overheadRounds() times each.
+/// meets a warm or a cold cache), comparisonRounds() times each.
 void alternate(const ScenePlan& plan, const std::string& backend, const PileOptions& a, const PileOptions& b,
                Best& bestA, Best& bestB) {
     const RunPlan run = tableRun(plan);
-    for (int round = 0; round < overheadRounds(); ++round)
+    for (int round = 0; round < comparisonRounds(); ++round)
         for (int k = 0; k < 2; ++k) {
             const bool first = (k == 0) == (round % 2 == 0);
             PileSimulation simulation(plan, backend, first ? a : b);
@@ -78,7 +78,7 @@ void noEffects(benchmark::State& state, const std::string& scene, const BackendI
         auto& c = state.counters;
         c["bodies"] = plan.count();
         c["steps"] = tableRun(plan).steps;
-        c["rounds"] = overheadRounds();
+        c["rounds"] = comparisonRounds();
         c["world_cpu_ms"] = world.cpuMs;
         c["peer_cpu_ms"] = peer.cpuMs;
         c["ratio_cpu"] = world.cpuMs / peer.cpuMs;
@@ -86,7 +86,7 @@ void noEffects(benchmark::State& state, const std::string& scene, const BackendI
         c["peer_median_ms"] = peer.medianMs;
         c["ratio_median"] = world.medianMs / peer.medianMs;
         c["same_states"] = sameStates(world.boxes, peer.boxes) ? 1 : 0;
-        state.SetLabel(world.described + ", best of " + std::to_string(overheadRounds()));
+        state.SetLabel(world.described + ", best of " + std::to_string(comparisonRounds()));
     }
 }
 
@@ -107,7 +107,7 @@ void effectCost(benchmark::State& state, SpecialEffect effect, const std::string
         state.SetIterationTime(with.wallMs / 1e3);
         auto& c = state.counters;
         c["steps"] = tableRun(plan).steps;
-        c["rounds"] = overheadRounds();
+        c["rounds"] = comparisonRounds();
         c["units"] = units;
         c["base_cpu_ms"] = base.cpuMs;
         c["effect_cpu_ms"] = with.cpuMs;
@@ -117,7 +117,7 @@ void effectCost(benchmark::State& state, SpecialEffect effect, const std::string
         c["base_median_ms"] = base.medianMs;
         c["effect_median_ms"] = with.medianMs;
         c["cost_median_ms"] = with.medianMs - base.medianMs;
-        state.SetLabel(plan.name + ", " + with.described + ", best of " + std::to_string(overheadRounds()));
+        state.SetLabel(plan.name + ", " + with.described + ", best of " + std::to_string(comparisonRounds()));
     }
 }
 

@@ -33,7 +33,7 @@ struct Best {
 void overhead(benchmark::State& state, const std::string& scene, const std::string& backend, const RawFactory& make) {
     const ScenePlan plan = makeScene(scene);
     const RunPlan run = tableRun(plan);
-    const int rounds = overheadRounds();
+    const int rounds = comparisonRounds();
     for (auto _ : state) {
         Best layer, raw;
         std::string described;

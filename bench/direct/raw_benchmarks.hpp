@@ -4,7 +4,7 @@
 //   raw/<scene>/<engine>        the scene written directly against the engine, one run, with the
 //                               same counters as the anyphys rows (bench_main.cpp's report())
 //   overhead/<scene>/<engine>   anyphys on backend <engine> (effects derived, so events on) and
-//                               the raw version, alternating, overheadRounds() times each, in this
+//                               the raw version, alternating, comparisonRounds() times each, in this
 //                               one process; the fastest run of each counts (the least disturbed
 //                               on a shared machine). Counters: anyphys_cpu_ms, raw_cpu_ms and
 //                               overhead_pct = 100 (anyphys / raw - 1), CPU time per step; the same
