@@ -7,8 +7,9 @@
 # comparing across runs).
 #
 # Usage: scripts/bench.sh [--quick] [--all] [--effects] [BUILD_DIR]
-#   --quick     (or QUICK=1) a fifth of each scene's steps and one round of each side-by-side comparison, about 4 minutes:
-#               checks that the instruments work; its figures are not measurements
+#   --quick     (or QUICK=1) a fifth of each scene's steps and one round of each side-by-side
+#               comparison, about 4 minutes: checks that the instruments work; its figures are
+#               not measurements
 #   --all       (or ALL=1) also what a default run leaves out for time (listed in its output): ODE
 #               on the 5 050-box pyramids (about 1 s per step) and the per-body cost series on
 #               every backend; about 15 minutes more
