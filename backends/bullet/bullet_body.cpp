@@ -56,6 +56,7 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
     int flags = body_->getCollisionFlags();
     if (type_ == BodyType::Kinematic) flags = (flags & ~btCollisionObject::CF_STATIC_OBJECT) | btCollisionObject::CF_KINEMATIC_OBJECT;
     if (trigger_) flags |= btCollisionObject::CF_NO_CONTACT_RESPONSE;
+    flags |= btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK;  // points take the table's values as they are made
     body_->setCollisionFlags(flags);
     body_->setFlags(BT_DISABLE_WORLD_GRAVITY);  // gravity is per body: world gravity x gravity scale
 

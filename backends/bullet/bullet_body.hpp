@@ -41,6 +41,7 @@ public:
     void* nativeObject(const std::type_info& pointerType) override;
 
     // ---- for the world -------------------------------------------------------------------
+    BulletWorld& world() const { return world_; }
     btRigidBody& rigidBody() { return *body_; }
     const btRigidBody& rigidBody() const { return *body_; }
     BodyType type() const { return type_; }

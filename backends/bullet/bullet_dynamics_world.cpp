@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bullet_body.hpp"
+#include "bullet_world.hpp"
 
 namespace anyphys::bullet {
 
@@ -77,9 +78,11 @@ void AnyphysDynamicsWorld::sortChildPoints() {
         for (int i = manifold->getNumContacts() - 1; i >= 0; --i) {
             btManifoldPoint& p = manifold->getContactPoint(i);
             // Continuous collision's predictive points name no child: found by position, and
-            // written back so the materials pass reads the same child.
+            // written back with that child's material.
+            const bool unnamed = (p.m_index0 < 0 && a->mixedSurfaces()) || (p.m_index1 < 0 && b->mixedSurfaces());
             if (p.m_index0 < 0 && a->mixedSurfaces()) p.m_index0 = a->childNear(p.getPositionWorldOnA());
             if (p.m_index1 < 0 && b->mixedSurfaces()) p.m_index1 = b->childNear(p.getPositionWorldOnB());
+            if (unnamed) writeMaterial(p, *a, *b);
             const ChildSurface &sa = a->surface(p.m_index0), &sb = b->surface(p.m_index1);
             const bool sensor = sa.trigger || sb.trigger;
             const bool responds = sensor ? a->moves() || b->moves() : a->dynamic() || b->dynamic();
@@ -114,13 +117,81 @@ void AnyphysDynamicsWorld::integrateTransforms(btScalar timeStep) {
     sweep([&] { btDiscreteDynamicsWorld::integrateTransforms(timeStep); });
 }
 
+namespace {
+
+// Bullet calls this for every point the narrow phase adds or replaces, right after it wrote its
+// own product of the two bodies' frictions into it, when one of the bodies has
+// CF_CUSTOM_MATERIAL_CALLBACK (every anyphys body does). The point names its compound children
+// (m_index0 / m_index1) and follows the manifold's body order, as obj0 and obj1 do.
+bool materialOnContactAdded(btManifoldPoint& p, const btCollisionObjectWrapper* obj0, int, int,
+                            const btCollisionObjectWrapper* obj1, int, int) {
+    const auto* a = static_cast<const BulletBodyPeer*>(obj0->getCollisionObject()->getUserPointer());
+    const auto* b = static_cast<const BulletBodyPeer*>(obj1->getCollisionObject()->getUserPointer());
+    if (a != nullptr && b != nullptr) a->world().dynamicsWorld().writeMaterial(p, *a, *b);
+    return false;  // ignored by Bullet
+}
+
+// Installed once for the process, unless someone else's callback is there: then every world
+// writes all its points every step instead (applyMaterials).
+void installMaterialCallback() {
+    static const bool installed = [] {
+        if (gContactAddedCallback == nullptr) gContactAddedCallback = &materialOnContactAdded;
+        return true;
+    }();
+    (void)installed;
+}
+
+bool materialCallbackInstalled() { return gContactAddedCallback == &materialOnContactAdded; }
+
+}  // namespace
+
+AnyphysDynamicsWorld::AnyphysDynamicsWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase,
+                                           btConstraintSolver* solver, btCollisionConfiguration* configuration)
+    : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration) {
+    installMaterialCallback();
+}
+
+void AnyphysDynamicsWorld::setMaterials(const MaterialTable* table) {
+    materials_ = table;
+    setEffects(effects_);
+}
+
+void AnyphysDynamicsWorld::setEffects(Effects effects) {
+    effects_ = effects;
+    pointsStale_ = true;
+    bouncing_ = false;
+    if (materials_ != nullptr && effects.has(Effect::Restitution))
+        for (const ContactMaterial& m : materials_->values) bouncing_ = bouncing_ || m.restitution > 0;
+}
+
+void AnyphysDynamicsWorld::writeMaterial(btManifoldPoint& p, const BulletBodyPeer& a, const BulletBodyPeer& b) const {
+    // Per point: a compound child may carry its own material (the child indices say which).
+    const ContactMaterial& mix = materials_->get(a.material(p.m_index0), b.material(p.m_index1));
+    p.m_combinedFriction = effects_.has(Effect::Friction) ? static_cast<btScalar>(mix.friction) : btScalar(0);
+    // Below the restitution threshold Bullet's solver uses 0.
+    p.m_combinedRestitution = effects_.has(Effect::Restitution) ? static_cast<btScalar>(mix.restitution) : btScalar(0);
+    p.m_combinedRollingFriction = 0;
+    p.m_combinedSpinningFriction = 0;
+}
+
+// Bullet writes its own product into a point whenever the narrow phase adds or replaces it; the
+// callback above overwrites it at once. Points Bullet keeps hold the values until the table or
+// the effects change. Continuous collision's predictive points bypass the callback (made anew
+// every step), and so do all points while another contact-added callback is installed.
 void AnyphysDynamicsWorld::applyMaterials() {
     if (materials_ == nullptr) return;
-    const bool friction = effects_.has(Effect::Friction), restitution = effects_.has(Effect::Restitution);
-    btDispatcher* dispatcher = getDispatcher();
-    const int count = dispatcher->getNumManifolds();
+    if (bouncing_ || pointsStale_ || !materialCallbackInstalled()) {
+        btDispatcher* dispatcher = getDispatcher();
+        writeMaterials(dispatcher->getInternalManifoldPointer(), dispatcher->getNumManifolds(), bouncing_);
+        pointsStale_ = false;
+    } else if (m_predictiveManifolds.size() > 0) {
+        writeMaterials(&m_predictiveManifolds[0], m_predictiveManifolds.size(), false);
+    }
+}
+
+void AnyphysDynamicsWorld::writeMaterials(btPersistentManifold* const* manifolds, int count, bool bouncing) {
     for (int m = 0; m < count; ++m) {
-        btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+        btPersistentManifold* manifold = manifolds[m];
         const int points = manifold->getNumContacts();
         if (points == 0) continue;
         const auto* a = static_cast<const BulletBodyPeer*>(manifold->getBody0()->getUserPointer());
@@ -130,44 +201,45 @@ void AnyphysDynamicsWorld::applyMaterials() {
         const auto* bodyB = btRigidBody::upcast(manifold->getBody1());
         for (int i = 0; i < points; ++i) {
             btManifoldPoint& p = manifold->getContactPoint(i);
-            // Per point: a compound child may carry its own material (the child indices say which).
-            const ContactMaterial& mix = materials_->get(a->material(p.m_index0), b->material(p.m_index1));
-            const btScalar mu = friction ? static_cast<btScalar>(mix.friction) : btScalar(0);
-            const btScalar e = restitution ? static_cast<btScalar>(mix.restitution) : btScalar(0);
-            p.m_combinedFriction = mu;
-            p.m_combinedRestitution = e;  // below the restitution threshold Bullet's solver uses 0
-            p.m_combinedRollingFriction = 0;
-            p.m_combinedSpinningFriction = 0;
-            // An impact that bounces gets no Baumgarte push-out: the push would add to the
-            // rebound (+0.3 m/s for a ball landing at 6 m/s, +15 % height at e = 0.5); the overlap
-            // goes as the bodies separate. Resting and sliding contacts keep the push.
-            bool bouncing = false;
-            if (e > 0 && bodyA != nullptr && bodyB != nullptr) {
-                const btVector3 va = bodyA->getVelocityInLocalPoint(p.getPositionWorldOnA() - bodyA->getCenterOfMassPosition());
-                const btVector3 vb = bodyB->getVelocityInLocalPoint(p.getPositionWorldOnB() - bodyB->getCenterOfMassPosition());
-                const btScalar closing = -(va - vb).dot(p.m_normalWorldOnB);
-                bouncing = closing > restitutionThreshold_;
-                // A speculative point (still apart by d): Bullet would let the bodies close the
-                // gap this step and take d / dt off the rebound, so an impact that falls early in
-                // a step rebounds at a fraction of e v. A gap this step closes bounces now, as if
-                // touching; a gap it does not close waits for a later step without restitution.
-                const btScalar gap = p.getDistance();
-                if (bouncing && gap > 0) {
-                    if (gap < closing * timeStep_) {
-                        p.m_distance1 = 0;
-                    } else {
-                        p.m_combinedRestitution = 0;
-                        bouncing = false;
-                    }
-                }
-            }
+            writeMaterial(p, *a, *b);
             if (bouncing) {
-                p.m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_ERP;
-                p.m_contactERP = 0;
+                judgeImpact(p, bodyA, bodyB);
             } else {
-                p.m_contactPointFlags &= ~BT_CONTACT_FLAG_HAS_CONTACT_ERP;
+                p.m_contactPointFlags &= ~BT_CONTACT_FLAG_HAS_CONTACT_ERP;  // a bounce's, from before the change
             }
         }
+    }
+}
+
+// An impact that bounces gets no Baumgarte push-out: the push would add to the rebound (+0.3 m/s
+// for a ball landing at 6 m/s, +15 % height at e = 0.5); the overlap goes as the bodies separate.
+// Resting and sliding contacts keep the push.
+void AnyphysDynamicsWorld::judgeImpact(btManifoldPoint& p, const btRigidBody* bodyA, const btRigidBody* bodyB) const {
+    bool bouncing = false;
+    if (p.m_combinedRestitution > 0 && bodyA != nullptr && bodyB != nullptr) {
+        const btVector3 va = bodyA->getVelocityInLocalPoint(p.getPositionWorldOnA() - bodyA->getCenterOfMassPosition());
+        const btVector3 vb = bodyB->getVelocityInLocalPoint(p.getPositionWorldOnB() - bodyB->getCenterOfMassPosition());
+        const btScalar closing = -(va - vb).dot(p.m_normalWorldOnB);
+        bouncing = closing > restitutionThreshold_;
+        // A speculative point (still apart by d): Bullet would let the bodies close the gap this
+        // step and take d / dt off the rebound, so an impact that falls early in a step rebounds
+        // at a fraction of e v. A gap this step closes bounces now, as if touching; a gap it does
+        // not close waits for a later step without restitution.
+        const btScalar gap = p.getDistance();
+        if (bouncing && gap > 0) {
+            if (gap < closing * timeStep_) {
+                p.m_distance1 = 0;
+            } else {
+                p.m_combinedRestitution = 0;
+                bouncing = false;
+            }
+        }
+    }
+    if (bouncing) {
+        p.m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_ERP;
+        p.m_contactERP = 0;
+    } else {
+        p.m_contactPointFlags &= ~BT_CONTACT_FLAG_HAS_CONTACT_ERP;
     }
 }
 

@@ -1,10 +1,14 @@
 #pragma once
-// btDiscreteDynamicsWorld with the two per-world hooks anyphys needs, both through virtual
-// overrides so that two worlds in one process never share state (Bullet's own ways, such as
-// gContactAddedCallback and gDeactivationTime, are process globals):
-//  - solveConstraints: before Bullet solves, every contact point gets the layer's resolved
-//    friction and restitution for its pair of materials, per compound child (Bullet would
-//    multiply the two bodies' values);
+// btDiscreteDynamicsWorld with the per-world hooks anyphys needs, through virtual overrides so
+// that two worlds in one process never share state (Bullet's own ways, such as gDeactivationTime,
+// are process globals):
+//  - solveConstraints: before Bullet solves, contact points get the layer's resolved friction and
+//    restitution for their pair of materials, per compound child (Bullet would multiply the two
+//    bodies' values). A point takes them when the narrow phase adds or replaces it, through
+//    Bullet's gContactAddedCallback (a process global, but stateless: it reaches the point's world
+//    through the bodies), so only continuous collision's predictive points are left to this pass;
+//    every point is written again after the table or the effects change, and every step while
+//    some material bounces (restitution depends on the closing speed);
 //  - updateActivationState: sleeping with this world's timeToSleep, or never.
 //  - predictUnconstraintMotion: damping by the exact factor exp(-c h) per Bullet step;
 //  - performDiscreteCollisionDetection: stale convex-plane points dropped before the narrow
@@ -29,11 +33,11 @@ class BulletBodyPeer;
 class AnyphysDynamicsWorld final : public btDiscreteDynamicsWorld {
 public:
     AnyphysDynamicsWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
-                         btCollisionConfiguration* configuration)
-        : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration) {}
+                         btCollisionConfiguration* configuration);
 
-    void setMaterials(const MaterialTable* table) { materials_ = table; }
-    void setEffects(Effects effects) { effects_ = effects; }
+    /// The table the points' materials come from; called again after it changed.
+    void setMaterials(const MaterialTable* table);
+    void setEffects(Effects effects);
     void setTimeToSleep(double seconds) { timeToSleep_ = static_cast<btScalar>(seconds); }
     void setRestitutionThreshold(double speed) { restitutionThreshold_ = static_cast<btScalar>(speed); }
     /// Drop stale points of convex-plane manifolds before the narrow phase (with planeMultipoint,
@@ -61,9 +65,12 @@ public:
         std::erase_if(childOverlaps_, [object](const ChildOverlap& o) { return o.a == object || o.b == object; });
     }
 
-    /// Writes the table's friction and restitution into every contact point (also called by
-    /// tests to check the table reaches the points).
+    /// Gives the contact points that lack them the table's friction and restitution, and every
+    /// point its restitution for this step while some material bounces (see the .cpp).
     void applyMaterials();
+    /// The table's values for the two shapes the point joins (a and b: the manifold's body 0 and
+    /// body 1).
+    void writeMaterial(btManifoldPoint& p, const BulletBodyPeer& a, const BulletBodyPeer& b) const;
     /// Continuous collision's predictive contacts of the last step (they live in the dispatcher
     /// next to the ordinary manifolds, so one pair may have both).
     int predictiveManifoldCount() const { return m_predictiveManifolds.size(); }
@@ -81,6 +88,11 @@ protected:
 
 private:
     void sortChildPoints();
+    /// Writes the table into every point of the manifolds; with bouncing, judges each point's
+    /// impact too.
+    void writeMaterials(btPersistentManifold* const* manifolds, int count, bool bouncing);
+    /// A point closing faster than the restitution threshold rebounds without Baumgarte push-out.
+    void judgeImpact(btManifoldPoint& p, const btRigidBody* bodyA, const btRigidBody* bodyB) const;
 
     const MaterialTable* materials_ = nullptr;
     Effects effects_;
@@ -91,6 +103,11 @@ private:
     bool refreshPlaneManifoldsFirst_ = false;
     bool clearSensorManifolds_ = false;
     bool sortChildPoints_ = false;
+    // Set when the table or the effects change: the points Bullet keeps hold the old values.
+    bool pointsStale_ = true;
+    // Restitution is on and some pair of materials has some: each point's rebound is judged
+    // every step from its closing speed.
+    bool bouncing_ = false;
     const std::vector<BulletBodyPeer*>* sensorCompounds_ = nullptr;
 
     /// Runs one of Bullet's sweep phases with sensor children out of the way.

@@ -263,7 +263,10 @@ void BulletWorld::setEffects(Effects effects) {
     }
 }
 
-void BulletWorld::setMaterialTable(const MaterialTable& table) { materials_ = table; }
+void BulletWorld::setMaterialTable(const MaterialTable& table) {
+    materials_ = table;
+    world_->setMaterials(&materials_);  // the points hold the old table's values
+}
 
 void BulletWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     // One internal Bullet step per substep, of exactly dt / substeps: the layer already takes
