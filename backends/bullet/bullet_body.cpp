@@ -41,6 +41,7 @@ BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
       shapes_(std::make_unique<ShapeSet>(def.shapes)) {
     for (const PeerShape& s : def.shapes) surfaces_.push_back({s.material, s.layer, s.mask, s.isTrigger});
     coreExtent_ = shapes_->coreExtent();
+    compound_ = shapes_->root()->isCompound();
     const bool dyn = type_ == BodyType::Dynamic;
     const btScalar m = dyn ? static_cast<btScalar>(mass_.mass) : btScalar(0);
     const btVector3 inertia = dyn ? toBt(mass_.inertia) : btVector3(0, 0, 0);

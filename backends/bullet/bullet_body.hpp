@@ -72,7 +72,7 @@ public:
     /// Gives the body its solid part (on) or its whole shape back (off) around Bullet's sweeps.
     void sweepSolidPartOnly(bool on) { body_->setCollisionShape(on ? shapes_->solidPart() : shapes_->root()); }
     /// Several shapes (a btCompoundShape): one manifold per touching child pair.
-    bool compound() const { return shapes_->root()->isCompound(); }
+    bool compound() const { return compound_; }
     bool hasMesh() const { return shapes_->hasMesh(); }
     /// Its shape is a plane (and not a compound holding one).
     bool isPlane() const { return body_->getCollisionShape()->getShapeType() == STATIC_PLANE_PROXYTYPE; }
@@ -108,6 +108,7 @@ private:
     std::vector<ChildSurface> surfaces_;  // per shape, in the compound's child order
     std::uint32_t layer_, mask_;
     bool trigger_, anyTrigger_, mixed_, allowSleep_;
+    bool compound_;  // kept here: the contact report asks per manifold, the shape is two loads away
     MassProperties mass_;
     double linearDamping_, angularDamping_, gravityScale_;
     GyroscopicMode gyroscopic_;

@@ -321,12 +321,24 @@ void BulletWorld::accumulateSubstepImpulses() {
     }
 }
 
+// A first pass over every manifold, short and independent per manifold, lets the processor load
+// many of them at once; most of a pile's manifolds have no points (bounding boxes overlap, shapes
+// do not). The report's walk then finds the rest in cache.
+const std::vector<const btPersistentManifold*>& BulletWorld::manifoldsWithPoints() {
+    withPoints_.clear();
+    btPersistentManifold* const* manifolds = dispatcher_->getInternalManifoldPointer();
+    const int count = dispatcher_->getNumManifolds();
+    for (int m = 0; m < count; ++m)
+        if (manifolds[m]->getNumContacts() > 0) withPoints_.push_back(manifolds[m]);
+    return withPoints_;
+}
+
 void BulletWorld::reportContacts(ContactReport& out) {
     // Compound bodies (one manifold per child pair) and continuous collision's predictive
     // contacts make several manifolds per body pair: merged at the end, only then.
     bool repeats = world_->predictiveManifoldCount() > 0;
     const auto asleep = [](const BulletBodyPeer& body) { return body.moves() && !body.isAwake(); };
-    const int manifolds = dispatcher_->getNumManifolds();
+    const std::vector<const btPersistentManifold*>& manifolds = manifoldsWithPoints();
     // With substeps, each pair's impulse of the earlier substeps is shared among its points in
     // proportion to their last impulses (evenly when those are zero): the pair's total is the
     // step's, its split among points the last substep's.
@@ -336,8 +348,7 @@ void BulletWorld::reportContacts(ContactReport& out) {
     };
     std::map<ObjectPair, LastSolve> lastSolve;
     if (!earlierImpulses_.empty())
-        for (int m = 0; m < manifolds; ++m) {
-            const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+        for (const btPersistentManifold* manifold : manifolds) {
             LastSolve& last = lastSolve[pairOf(*manifold)];
             for (int i = 0; i < manifold->getNumContacts(); ++i) {
                 last.impulse += manifold->getContactPoint(i).getAppliedImpulse();
@@ -351,10 +362,8 @@ void BulletWorld::reportContacts(ContactReport& out) {
         const LastSolve& last = lastSolve[pairOf(manifold)];
         return last.impulse > 0.0 ? earlier->second * p.getAppliedImpulse() / last.impulse : earlier->second / last.points;
     };
-    for (int m = 0; m < manifolds; ++m) {
-        const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+    for (const btPersistentManifold* manifold : manifolds) {
         const int count = manifold->getNumContacts();
-        if (count == 0) continue;
         const auto* a = static_cast<const BulletBodyPeer*>(manifold->getBody0()->getUserPointer());
         const auto* b = static_cast<const BulletBodyPeer*>(manifold->getBody1()->getUserPointer());
         if (a == nullptr || b == nullptr) continue;

@@ -78,6 +78,8 @@ private:
     void accumulateSubstepImpulses();
     /// Brings the broad phase's bounds up to the poses a step left (queries see where bodies are).
     void refreshBounds();
+    /// The manifolds holding contact points, in the dispatcher's order.
+    const std::vector<const btPersistentManifold*>& manifoldsWithPoints();
 
     WorldSettings settings_;
     Effects effects_;
@@ -101,6 +103,7 @@ private:
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
     std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
+    std::vector<const btPersistentManifold*> withPoints_;  // scratch of manifoldsWithPoints
     int jointIterations_ = 300;                // solver iterations of joint rows (backend option)
     bool decoupledJoints_ = true;              // DecoupledConstraint on (backend option)
 
