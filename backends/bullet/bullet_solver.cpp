@@ -8,6 +8,9 @@ btScalar AnyphysSequentialImpulseSolver::solveSingleIteration(int iteration, btC
                                                               const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
     btScalar residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
         iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+    // Past the contacts' iterations Bullet solves only joint rows (which may ask for 10 x more):
+    // no contact or friction row changes, and the last pass left none to take back.
+    if (iteration >= info.m_numIterations) return residual;
     // Walked from the contact rows, which the iteration just read: most carry load and are
     // skipped without touching their friction rows. A contact's friction rows are the run from its
     // m_frictionIndex to the next contact's (Bullet appends them as it converts each contact), so
