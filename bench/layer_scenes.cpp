@@ -9,7 +9,7 @@
 //                                   comparisonRounds() runs, the one of least CPU time counting
 // Time = wall ms per step; the counters are listed in bench_main.cpp's report() and explained in
 // docs/benchmarks.md. A backend that cannot run a scene is skipped with the reason.
-#include <algorithm>
+#include <utility>
 #include <functional>
 #include <limits>
 #include <string>
@@ -19,6 +19,21 @@
 
 namespace anyphys::bench {
 namespace {
+
+/// Of identical runs offered in turn, the one of least `time` (CPU or wall ms per step): the
+/// least disturbed by other load on a shared machine.
+struct FastestRun {
+    double RunResult::*time;
+    RunResult run;
+    std::string described;
+
+    explicit FastestRun(double RunResult::*key) : time(key) { run.*time = std::numeric_limits<double>::infinity(); }
+    void offer(const RunResult& r, const LayerSimulation& simulation) {
+        if (r.*time >= run.*time) return;
+        run = r;
+        described = simulation.describe();
+    }
+};
 
 void runScene(benchmark::State& state, const std::string& scene, const BackendInfo& backend, int workers,
               bool scaling) {
@@ -31,18 +46,13 @@ void runScene(benchmark::State& state, const std::string& scene, const BackendIn
     // machine visibly inflates. Its runs are identical, so the least CPU time of a few is the cost.
     const int rounds = scaling ? comparisonRounds() : 1;
     for (auto _ : state) {
-        RunResult fastest;
-        fastest.cpuMs = std::numeric_limits<double>::infinity();
-        std::string described;
+        FastestRun fastest(&RunResult::cpuMs);
         for (int round = 0; round < rounds; ++round) {
             LayerSimulation simulation(plan, backend.name, workers);
-            const RunResult result = measure(simulation, plan, scaling ? scalingRun() : tableRun(plan));
-            if (result.cpuMs < fastest.cpuMs) {
-                fastest = result;
-                described = simulation.describe();
-            }
+            fastest.offer(measure(simulation, plan, scaling ? scalingRun() : tableRun(plan)), simulation);
         }
-        report(state, fastest, rounds > 1 ? described + ", best of " + std::to_string(rounds) : described);
+        const std::string& described = fastest.described;
+        report(state, fastest.run, rounds > 1 ? described + ", best of " + std::to_string(rounds) : described);
         state.counters["rounds"] = rounds;
     }
 }
@@ -59,25 +69,16 @@ void runWorkers(benchmark::State& state, const std::string& scene, const Backend
     const RunPlan run = tableRun(plan);
     const int rounds = comparisonRounds();
     for (auto _ : state) {
-        double oneWorkerMs = std::numeric_limits<double>::infinity();
-        RunResult fastest;
-        fastest.wallMs = std::numeric_limits<double>::infinity();
-        std::string described;
+        FastestRun oneWorker(&RunResult::wallMs), moreWorkers(&RunResult::wallMs);
         for (int round = 0; round < rounds; ++round)
             for (const bool one : {round % 2 == 0, round % 2 != 0}) {  // which goes first alternates too
                 LayerSimulation simulation(plan, backend.name, one ? 1 : workers);
-                const RunResult r = measure(simulation, plan, run);
-                if (one) {
-                    oneWorkerMs = std::min(oneWorkerMs, r.wallMs);
-                } else if (r.wallMs < fastest.wallMs) {
-                    fastest = r;
-                    described = simulation.describe();
-                }
+                (one ? oneWorker : moreWorkers).offer(measure(simulation, plan, run), simulation);
             }
-        report(state, fastest, described + ", best of " + std::to_string(rounds));
+        report(state, moreWorkers.run, moreWorkers.described + ", best of " + std::to_string(rounds));
         state.counters["rounds"] = rounds;
-        state.counters["one_worker_wall_ms"] = oneWorkerMs;
-        state.counters["speedup"] = oneWorkerMs / fastest.wallMs;
+        state.counters["one_worker_wall_ms"] = oneWorker.run.wallMs;
+        state.counters["speedup"] = oneWorker.run.wallMs / moreWorkers.run.wallMs;
     }
 }
 
