@@ -1,10 +1,12 @@
 // Quickhull (Barber, Dobkin, Huhdanpaa 1996) on triangles, then coplanar triangles merged into
-// polygon faces, then mass properties by decomposition into tetrahedra.
+// polygon faces, then mass properties by decomposition into tetrahedra; a hull that fails the
+// soundness check is built again at a coarser tolerance.
 #include "convex_hull.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
@@ -229,21 +231,27 @@ private:
     }
 
     // Indices of `edges` in loop order, or empty if they do not form one simple loop.
-    std::vector<int> orderHorizon(const std::vector<HorizonEdge>& edges) const {
+    std::vector<int> orderHorizon(const std::vector<HorizonEdge>& edges) {
         if (edges.size() < 3) return {};
-        std::vector<int> startOf(p_.size(), -1);
-        for (int i = 0; i < static_cast<int>(edges.size()); ++i) {
-            if (startOf[edges[i].a] >= 0) return {};
-            startOf[edges[i].a] = i;
-        }
+        // startOf_ is all -1 between calls: only the entries of this horizon are set, and reset
+        // on the way out (a fresh array per point made a hull of n points cost n^2).
+        startOf_.resize(p_.size(), -1);
         std::vector<int> cycle;
-        int e = 0;
-        do {
-            cycle.push_back(e);
-            e = startOf[edges[e].b];
-            if (e < 0 || cycle.size() > edges.size()) return {};
-        } while (e != 0);
-        if (cycle.size() != edges.size()) return {};
+        bool simple = true;
+        for (int i = 0; i < static_cast<int>(edges.size()) && simple; ++i) {
+            simple = startOf_[edges[i].a] < 0;
+            if (simple) startOf_[edges[i].a] = i;
+        }
+        if (simple) {
+            int e = 0;
+            do {
+                cycle.push_back(e);
+                e = startOf_[edges[e].b];
+            } while (e >= 0 && e != 0 && cycle.size() <= edges.size());
+            simple = e == 0 && cycle.size() == edges.size();
+        }
+        for (const HorizonEdge& edge : edges) startOf_[edge.a] = -1;
+        if (!simple) cycle.clear();
         return cycle;
     }
 
@@ -251,6 +259,7 @@ private:
     double eps_;
     std::vector<Triangle> tris_;
     std::vector<int> visibleMark_;
+    std::vector<int> startOf_;  // orderHorizon's scratch: the horizon edge leaving each point
     int mark_;
 };
 
@@ -287,54 +296,57 @@ std::vector<std::vector<int>> coplanarGroups(const std::vector<Triangle>& tris, 
 }
 
 // The boundary of a group of triangles as one vertex loop, or empty if it is not one loop.
-std::vector<int> boundaryLoop(const std::vector<Triangle>& tris, const std::vector<int>& group, const std::vector<int>& groupOf,
-                              std::size_t pointCount) {
+std::vector<int> boundaryLoop(const std::vector<Triangle>& tris, const std::vector<int>& group, const std::vector<int>& groupOf) {
     const int g = groupOf[group.front()];
-    std::vector<int> next(pointCount, -1);
-    int edges = 0, start = -1;
+    // The group's outer edges (from, to), sorted by `from` to walk them: a handful per face, so
+    // no array over all the points (one per face made a hull of n points cost n^2).
+    std::vector<std::pair<int, int>> edges;
     for (int t : group)
-        for (int k = 0; k < 3; ++k) {
-            if (groupOf[tris[t].adj[k]] == g) continue;
-            const int a = tris[t].v[k], b = tris[t].v[(k + 1) % 3];
-            if (next[a] >= 0) return {};
-            next[a] = b;
-            start = a;
-            ++edges;
-        }
+        for (int k = 0; k < 3; ++k)
+            if (groupOf[tris[t].adj[k]] != g) edges.emplace_back(tris[t].v[k], tris[t].v[(k + 1) % 3]);
+    if (edges.empty()) return {};
+    const int start = edges.back().first;  // the walk starts where it always did: same vertex order
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 1; i < edges.size(); ++i)
+        if (edges[i].first == edges[i - 1].first) return {};  // two edges leave one vertex: not one loop
+    const auto next = [&](int from) {
+        const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(from, std::numeric_limits<int>::min()));
+        return it != edges.end() && it->first == from ? it->second : -1;
+    };
     std::vector<int> loop;
     int v = start;
     do {
         loop.push_back(v);
-        v = next[v];
-        if (v < 0 || static_cast<int>(loop.size()) > edges) return {};
+        v = next(v);
+        if (v < 0 || loop.size() > edges.size()) return {};
     } while (v != start);
-    if (static_cast<int>(loop.size()) != edges) return {};
+    if (loop.size() != edges.size()) return {};
     return loop;
 }
 
-// Whether `b` walks the same vertices as `a` in the opposite direction.
-bool reversedLoops(const std::vector<int>& a, const std::vector<int>& b) {
-    if (a.size() != b.size()) return false;
-    const auto start = std::find(b.begin(), b.end(), a.front());
-    if (start == b.end()) return false;
-    const std::size_t n = a.size(), s = static_cast<std::size_t>(start - b.begin());
-    for (std::size_t i = 0; i < n; ++i)
-        if (a[i] != b[(s + n - i) % n]) return false;
-    return true;
+// The loop turned to start at its smallest vertex: equal for two loops that walk the same
+// vertices in the same direction.
+std::vector<int> canonical(std::vector<int> loop) {
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+    return loop;
 }
 
 // Drops pairs of faces that are one flat polygon seen from both sides: quickhull can leave such
 // a flap where a point within the tolerance of a face was taken as a vertex. It encloses nothing,
-// and without it the faces around its rim pair their edges with each other.
+// and without it the faces around its rim pair their edges with each other. Loops are looked up
+// by their canonical form, so a hull of many faces is not compared pair by pair.
 /// True if it dropped any.
 bool removeFlaps(std::vector<std::vector<int>>& loops) {
-    for (std::size_t i = 0; i < loops.size(); ++i)
-        for (std::size_t j = i + 1; j < loops.size(); ++j)
-            if (reversedLoops(loops[i], loops[j])) {
-                loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(j));
-                loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(i));
-                return true;
-            }
+    std::map<std::vector<int>, std::size_t> loopIndex;
+    for (std::size_t i = 0; i < loops.size(); ++i) loopIndex.emplace(canonical(loops[i]), i);
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+        const auto twin = loopIndex.find(canonical({loops[i].rbegin(), loops[i].rend()}));
+        if (twin == loopIndex.end() || twin->second == i) continue;
+        const std::size_t j = twin->second;
+        loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(std::max(i, j)));
+        loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(std::min(i, j)));
+        return true;
+    }
     return false;
 }
 
@@ -456,7 +468,7 @@ std::shared_ptr<HullData> hullAtTolerance(const std::vector<Vec3>& points, doubl
     std::vector<int> groupOf;
     std::vector<std::vector<int>> loops;
     for (const std::vector<int>& group : coplanarGroups(tris, points, mergeTol, groupOf)) {
-        std::vector<int> loop = boundaryLoop(tris, group, groupOf, points.size());
+        std::vector<int> loop = boundaryLoop(tris, group, groupOf);
         if (loop.empty()) {  // not expected for a convex group; keep its triangles as they are
             for (int t : group) loops.push_back({tris[t].v.begin(), tris[t].v.end()});
             continue;
@@ -491,17 +503,66 @@ std::shared_ptr<HullData> hullAtTolerance(const std::vector<Vec3>& points, doubl
     return hull;
 }
 
+// The points in clusters of nearby ones with their bounding boxes, so that a plane can pass
+// over a whole cluster with one test: a grid of about kPerCell points per occupied cell.
+struct PointClusters {
+    static constexpr double kPerCell = 32;
+    std::vector<Vec3> points;  // sorted by cell
+    struct Cluster {
+        std::size_t first, end;
+        Vec3 center, half;  // bounding box
+    };
+    std::vector<Cluster> clusters;
+
+    PointClusters(const std::vector<Vec3>& input, const Vec3& lo, double extent) {
+        const double cells = std::max(1.0, std::cbrt(static_cast<double>(input.size()) / kPerCell));
+        const double cellSize = extent / cells;
+        const auto cellOf = [&](const Vec3& q) {
+            const auto at = [&](int k) {
+                const double cell = std::floor((q[k] - lo[k]) / cellSize);  // 0 .. cells (validated input)
+                return static_cast<std::uint64_t>(cell >= 0 ? std::min(cell, cells) : 0.0);
+            };
+            return (at(0) << 42) | (at(1) << 21) | at(2);
+        };
+        std::vector<std::pair<std::uint64_t, std::size_t>> keyed;
+        keyed.reserve(input.size());
+        for (std::size_t i = 0; i < input.size(); ++i) keyed.emplace_back(cellOf(input[i]), i);
+        std::sort(keyed.begin(), keyed.end());
+        for (std::size_t i = 0; i < keyed.size();) {
+            std::size_t j = i;
+            Vec3 min = input[keyed[i].second], max = min;
+            for (; j < keyed.size() && keyed[j].first == keyed[i].first; ++j) {
+                const Vec3& q = input[keyed[j].second];
+                min = min.cwiseMin(q);
+                max = max.cwiseMax(q);
+                points.push_back(q);
+            }
+            clusters.push_back({i, j, (min + max) / 2, (max - min) / 2});
+            i = j;
+        }
+    }
+
+    /// Whether some point lies farther than `slack` above the plane n.x = offset.
+    bool anyAbove(const Vec3& n, double offset, double slack) const {
+        for (const Cluster& c : clusters) {
+            if (n.dot(c.center) + n.cwiseAbs().dot(c.half) - offset <= slack) continue;
+            for (std::size_t i = c.first; i < c.end; ++i)
+                if (n.dot(points[i]) - offset > slack) return true;
+        }
+        return false;
+    }
+};
+
 // Whether `hull` is a closed convex polyhedron holding every input point: positive volume, every
 // edge walked once each way with Euler's V - E + F = 2, and no point farther than `slack` outside
 // any face.
-bool isSound(const HullData& hull, const std::vector<Vec3>& points, double slack) {
+bool isSound(const HullData& hull, const PointClusters& points, double slack) {
     if (!(hull.volume > 0) || hull.edgeFaces.empty()) return false;
     const auto v = static_cast<long>(hull.vertices.size()), e = static_cast<long>(hull.edges.size()),
                f = static_cast<long>(hull.faces.size());
     if (v - e + f != 2) return false;
     for (std::size_t face = 0; face < hull.faces.size(); ++face)
-        for (const Vec3& q : points)
-            if (hull.faceNormals[face].dot(q) - hull.faceOffsets[face] > slack) return false;
+        if (points.anyAbove(hull.faceNormals[face], hull.faceOffsets[face], slack)) return false;
     return true;
 }
 
@@ -524,13 +585,14 @@ std::shared_ptr<const HullData> buildConvexHull(const std::vector<Vec3>& points)
     // tolerance, under which such points are on the face. Of 3 000 clouds jittered by 1e-4 to
     // 1e-13 of their size, 47 need the second tolerance and 1 the third (folds merged in
     // coplanarGroups; 81 without that); the coarsest result is kept whatever the check says.
+    const PointClusters clusters(points, lo, extent);
     std::shared_ptr<HullData> hull;
     for (const double relative : {kBuildTolerance, 100 * kBuildTolerance, 1e4 * kBuildTolerance}) {
         // Relative to the size, plus rounding of coordinates far from the origin.
         const double eps = relative * extent + 16 * std::numeric_limits<double>::epsilon() * magnitude;
         const double mergeTol = std::max(kMergeTolerance / kBuildTolerance * relative * extent, 10 * eps);
         hull = hullAtTolerance(points, eps, mergeTol);
-        if (isSound(*hull, points, 10 * mergeTol)) break;
+        if (isSound(*hull, clusters, 10 * mergeTol)) break;
     }
     if (!(hull->volume > 0)) throwDegenerate(points.size());
     return hull;
