@@ -165,9 +165,9 @@ Backend makeOdeBackend() {
         {"planar.hard.pyramid100.drift",
          "the 5050-box planar pyramid spreads 17 cm within 5 s (quickstep at 1 substep x 50 iterations)"},
         {"hard.arch.displacement",
-         "the arch collapses (2.4 m): ODE's convex-convex test gives NaN normals for flush hull faces, which the backend drops, so the blocks lose their support"},
+         "the arch's blocks shift 4.7 cm: ODE's convex-convex test gives NaN normals for flush hull faces, which the backend drops, and one point per pair, which it completes by tilting (ode_contact_completion.hpp); with one point the arch collapsed (2.4 m)"},
         {"planar.hard.arch.displacement",
-         "as hard.arch.displacement, planar: 26 cm"},
+         "as hard.arch.displacement, planar: 4.7 cm"},
         {"hard.heavy_plank.displacement",
          "the 1 kg boxes sink 2.4 cm under the 100 kg plank: at a mass ratio of 100 quickstep's 50 iterations do not converge. Verified: 500 iterations leave 3.2 mm, the direct solver 0, while CFM 1e-10 still leaves 1.7 cm (so the softness is not the cause)"},
         {"planar.hard.heavy_plank.displacement",
@@ -177,9 +177,9 @@ Backend makeOdeBackend() {
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 5.8 m/s"},
         {"hard.ragdoll_pile.joint_gap",
-         "joints of a pile of 10 ragdolls open by up to 37.5 cm (as assemblies.ragdoll_gap)"},
+         "joints of a pile of 10 ragdolls open by up to 14.1 cm (as assemblies.ragdoll_gap)"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "as hard.ragdoll_pile.joint_gap, planar: 11 cm"},
+         "as hard.ragdoll_pile.joint_gap, planar: 16.3 cm"},
     });
     caps.deviationCeilings.insert({
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
@@ -212,14 +212,14 @@ Backend makeOdeBackend() {
         {"planar.assemblies.ragdoll_rest", 0.578},
         {"hard.stack20.drift", 3.0},
         {"planar.hard.pyramid100.drift", 0.3},
-        {"hard.arch.displacement", 4.0},
-        {"planar.hard.arch.displacement", 0.5},
+        {"hard.arch.displacement", 0.08},
+        {"planar.hard.arch.displacement", 0.08},
         {"hard.heavy_plank.displacement", 0.04},
         {"planar.hard.heavy_plank.displacement", 0.04},
         {"hard.overlap25.speed", 8.0},
         {"planar.hard.overlap25.speed", 8.0},
-        {"hard.ragdoll_pile.joint_gap", 0.6},
-        {"planar.hard.ragdoll_pile.joint_gap", 0.2},
+        {"hard.ragdoll_pile.joint_gap", 0.3},
+        {"planar.hard.ragdoll_pile.joint_gap", 0.3},
     });
     return backend;
 }

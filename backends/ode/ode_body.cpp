@@ -72,6 +72,12 @@ const GeomSurface& OdeBody::surface(dGeomID geom) const {
     return shapes_.front()->surface();  // not one of ours: never happens for geoms carrying this body
 }
 
+const OdeShape& OdeBody::shapeOf(dGeomID geom) const {
+    for (const auto& shape : shapes_)
+        if (shape->geom() == geom) return *shape;
+    return *shapes_.front();  // not one of ours: never happens for geoms carrying this body
+}
+
 OdeBody::~OdeBody() {
     shapes_.clear();  // geoms first: they refer to the body
     if (planeJoint_) dJointDestroy(planeJoint_);

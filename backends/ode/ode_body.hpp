@@ -53,6 +53,8 @@ public:
     bool isTrigger() const { return trigger_; }
     /// The surface of one of its geoms (material, filter, sensor flag: per compound child).
     const GeomSurface& surface(dGeomID geom) const;
+    /// The shape owning `geom`, one of this body's.
+    const OdeShape& shapeOf(dGeomID geom) const;
     double gravityScale() const { return gravityScale_; }
     double mass() const { return mass_.mass; }
     double coreExtent() const { return coreExtent_; }

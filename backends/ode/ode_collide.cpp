@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "ode_contact_completion.hpp"
 #include "ode_math.hpp"
 #include "ode_tuning.hpp"
 #include "ode_world.hpp"
@@ -77,6 +78,8 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
     n = dropDegenerateContacts(found, n);
     if (n <= 0) return;
+    if (n == 1 && !trigger && collidesAtOnePoint(o1, o2))
+        n = completeManifold(a->shapeOf(o1), b->shapeOf(o2), found, kMaxContactsPerPair);
     if (!trigger) createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);  // sensors never collide
     if (!effects_.has(Effect::Events)) return;
     const auto first = static_cast<std::uint32_t>(points_.size());

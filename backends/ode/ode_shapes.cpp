@@ -43,9 +43,14 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
     switch (d.type) {
         case ShapeType::Sphere: geom_ = dCreateSphere(space, d.radius); break;
         case ShapeType::Box:
+            halfExtents_ = d.halfExtents;
             geom_ = dCreateBox(space, 2 * d.halfExtents.x(), 2 * d.halfExtents.y(), 2 * d.halfExtents.z());
             break;
-        case ShapeType::Capsule: geom_ = dCreateCapsule(space, d.radius, 2 * d.halfHeight); break;
+        case ShapeType::Capsule:
+            radius_ = d.radius;
+            length_ = 2 * d.halfHeight;
+            geom_ = dCreateCapsule(space, radius_, length_);
+            break;
         case ShapeType::Plane:
             planeNormal_ = d.normal.normalized();
             planeOffset_ = d.offset / d.normal.norm();
@@ -80,8 +85,37 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
 }
 
 OdeShape::~OdeShape() {
+    if (twin_) dGeomDestroy(twin_);
     if (geom_) dGeomDestroy(geom_);
     if (meshData_) dGeomTriMeshDataDestroy(meshData_);  // after the geom that reads it
+}
+
+dGeomID OdeShape::twin() const {
+    if (twin_) return twin_;
+    switch (type_) {
+        case ShapeType::Box:
+            twin_ = dCreateBox(nullptr, 2 * halfExtents_.x(), 2 * halfExtents_.y(), 2 * halfExtents_.z());
+            break;
+        case ShapeType::Capsule: twin_ = dCreateCapsule(nullptr, radius_, length_); break;
+        case ShapeType::Convex:  // the same arrays: ODE reads them in place
+            twin_ = dCreateConvex(nullptr, convexPlanes_.data(), static_cast<unsigned int>(convexPlanes_.size() / 4),
+                                  convexPoints_.data(), static_cast<unsigned int>(convexPoints_.size() / 3),
+                                  convexPolygons_.data());
+            break;
+        default: break;
+    }
+    return twin_;
+}
+
+bool OdeShape::hasFaceAlong(const Vec3& direction, double cosine) const {
+    if (type_ != ShapeType::Box && type_ != ShapeType::Convex) return false;
+    dQuaternion q;
+    dGeomGetQuaternion(geom_, q);
+    const Vec3 local = toQuat(q).conjugate() * direction;  // in the geom's frame
+    if (type_ == ShapeType::Box) return local.cwiseAbs().maxCoeff() >= cosine;
+    for (std::size_t f = 0; f + 3 < convexPlanes_.size(); f += 4)
+        if (Vec3(convexPlanes_[f], convexPlanes_[f + 1], convexPlanes_[f + 2]).dot(local) >= cosine) return true;
+    return false;
 }
 
 Transform OdeShape::geomLocal() const {

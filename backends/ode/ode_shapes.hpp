@@ -37,6 +37,15 @@ public:
     ShapeType type() const { return type_; }
     const GeomSurface& surface() const { return surface_; }
 
+    /// A second geom of the same shape in no space and on no body, made on first use, for
+    /// colliding the shape at a pose of its own (ode_contact_completion.hpp); null for shapes
+    /// that never need one (spheres, planes, meshes).
+    dGeomID twin() const;
+
+    /// Whether a face of the shape, where its geom is now, has an outward normal within
+    /// `cosine` of `direction` (world frame, unit). Boxes and hulls; false for other shapes.
+    bool hasFaceAlong(const Vec3& direction, double cosine) const;
+
     /// Attaches the geom to a moving body at its pose in the body frame.
     void attach(dBodyID body);
     /// Places the geom of a static body (or a query probe) whose frame is at `bodyPose`.
@@ -53,10 +62,13 @@ private:
     Transform geomLocal() const;
 
     dGeomID geom_ = nullptr;
+    mutable dGeomID twin_ = nullptr;
     ShapeType type_;
     GeomSurface surface_;
     Transform local_;
     double coreExtent_ = 0.0;
+    Vec3 halfExtents_ = Vec3::Zero();  // box
+    double radius_ = 0.0, length_ = 0.0;  // capsule
     // plane: n . x = offset in the body frame
     Vec3 planeNormal_ = Vec3::UnitY();
     double planeOffset_ = 0.0;
