@@ -29,6 +29,9 @@ namespace {
 constexpr double kFaceAlignment = 0.999;
 // Edge directions closer than this (1 - cosine) are one direction.
 constexpr double kSameDirection = 1e-9;
+// Corners of an incident patch count when at most this fraction of the incident shape's size
+// above the deepest clipped point: noise on a flat face, not a facet the shape does not rest on.
+constexpr double kPatchBand = 1e-4;
 // An edge within this fraction of the size of the extreme projection is at the extreme.
 constexpr double kSupportTolerance = 1e-9;
 
@@ -64,6 +67,7 @@ struct Scratch {
     std::vector<Vec3> directionsA, directionsB;  // distinct edge directions
     std::vector<Vec3> normalsB;                  // b's face normals in a's frame, negated
     std::vector<EdgeInFrame> keptA, keptB;       // edges whose pairs may matter
+    std::vector<int> patchCorners;               // corners of faces beside the incident face
 };
 
 Scratch& scratch() {
@@ -355,6 +359,47 @@ EdgeAxis edgeQuery(const Polytope& a, const Polytope& b, bool oneSided) {
     return best;
 }
 
+// Whether `p` lies over the reference face: inside every side plane (corners counter-clockwise
+// about the normal).
+bool overFace(const Vec3& p, const ReferenceFace& face) {
+    const std::size_t n = face.corners.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& c = face.corners[i];
+        const Vec3 outward = (face.corners[(i + 1) % n] - c).cross(face.normal);
+        if ((p - c).dot(outward) > 0) return false;
+    }
+    return true;
+}
+
+// A hull whose points carry a little noise (a scan, rounding) has its bottom split into facets
+// tilted by less than a thousandth of a radian against each other. Clipping only the facet most
+// opposed to the reference face, the manifold held one facet, the next step another, and such a
+// cube rocked on the ground for ever (0.03 to 0.12 m/s with points jittered by 1e-5 to 1e-4 of its
+// size). The corners of inc's other faces turned as far toward the reference face (within
+// kFaceAlignment) are contact points too, where they lie over it and within the speculative
+// distance; the builder keeps the four that span the most. A box's or a clean hull's face has
+// no such neighbour, so this adds nothing there.
+void addPatchCorners(const ReferenceFace& face, const Polytope& inc, int incFace, const Vec3& against, double speculative,
+                     std::uint32_t seed, ManifoldBuilder& out) {
+    std::vector<int>& corners = scratch().patchCorners;
+    corners.clear();
+    for (int f = 0; f < inc.faceCount(); ++f)
+        if (f != incFace && inc.normals[static_cast<std::size_t>(f)].dot(against) <= -kFaceAlignment)
+            corners.insert(corners.end(), inc.face(f).begin(), inc.face(f).end());
+    if (corners.empty()) return;
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    const std::vector<int>& clippedLoop = inc.face(incFace);  // its corners are in the clip already
+    const double deepestAllowed = out.deepest() + kPatchBand * inc.size();
+    for (const int v : corners) {
+        if (std::find(clippedLoop.begin(), clippedLoop.end(), v) != clippedLoop.end()) continue;
+        const Vec3 corner = inc.vertex(v);
+        if (face.normal.dot(corner) - face.offset > deepestAllowed || !overFace(corner, face)) continue;
+        const ClipVertex point{corner, feature::vertexTag(static_cast<std::uint32_t>(v)), 0};
+        addFacePoints({&point, 1}, face, 0.0, speculative, seed, out);
+    }
+}
+
 // Clips the face of `inc` most opposed to face `refFace` of `ref`. With keepDeepest, inc's
 // deepest vertex is added when the clip does not reach its depth (it lies beside the face).
 void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, feature::Kind kind, double speculative,
@@ -379,6 +424,7 @@ void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, 
     const std::span<const ClipVertex> clipped = clipToFace(polygon, static_cast<int>(loop.size()), spare, face);
     const std::uint32_t seed = feature::id(kind, refFace, incFace);
     addFacePoints(clipped, face, 0.0, speculative, seed, out);
+    addPatchCorners(face, inc, incFace, against, speculative, seed, out);
     if (!keepDeepest) return;
     const int v = inc.support(-face.normal);
     const Vec3 deepest = inc.vertex(v);
