@@ -73,9 +73,9 @@ Backend makeOdeBackend() {
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
         {"assemblies.ragdoll_limits",
-         "an elbow bends 57 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg"},
+         "an elbow bends 34 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations; 9 to 51 deg over eight starting turns of the pile, 2026-11-27); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg (measured before hull and capsule contacts were completed)"},
         {"planar.assemblies.ragdoll_limits",
-         "as assemblies.ragdoll_limits, planar: 16.6 deg"},
+         "as assemblies.ragdoll_limits, planar: 33.7 deg"},
         {"stack10.top_drift",
          "the 10-box stack's top drifts 1.7 cm sideways over 10 s with sleeping off (quickstep at 1 substep x 50 iterations); 0.5 mm at 4 substeps (as stability.stack10.pgs.s1)"},
         {"joints.wide_pendulum_energy",
@@ -123,7 +123,7 @@ Backend makeOdeBackend() {
         {"planar.joints.chain_gap_heavy.direct",
          "as joints.chain_gap_heavy.direct, in a planar world"},
         {"assemblies.ragdoll_gap",
-         "joints of a pile of four ragdolls open by up to 79 mm as the ragdolls land on each other (bound 5 cm): quickstep at one 1/60 s step yields under the impacts"},
+         "joints of a pile of four ragdolls open by up to 214 mm as the ragdolls land on each other (bound 5 cm; 98 to 456 mm over eight starting turns of the pile, 80 to 420 without the completed capsule contacts): quickstep at one 1/60 s step yields under the impacts"},
         {"planar.assemblies.ragdoll_gap",
          "as assemblies.ragdoll_gap, in a planar world (52 mm)"},
         {"assemblies.ragdoll_rest",
@@ -149,7 +149,7 @@ Backend makeOdeBackend() {
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
         {"assemblies.ragdoll_limits", 90.0},
-        {"planar.assemblies.ragdoll_limits", 25.0},
+        {"planar.assemblies.ragdoll_limits", 60.0},
         {"stack10.top_drift", 0.025},
         {"stability.stack10.pgs.s1", 2.5},
         {"stability.stack10.direct.s1", 5000},
@@ -177,9 +177,9 @@ Backend makeOdeBackend() {
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 5.8 m/s"},
         {"hard.ragdoll_pile.joint_gap",
-         "joints of a pile of 10 ragdolls open by up to 14.1 cm (as assemblies.ragdoll_gap)"},
+         "joints of a pile of 10 ragdolls open by up to 28 cm (as assemblies.ragdoll_gap)"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "as hard.ragdoll_pile.joint_gap, planar: 16.3 cm"},
+         "as hard.ragdoll_pile.joint_gap, planar: 14.4 cm"},
     });
     caps.deviationCeilings.insert({
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
@@ -206,7 +206,7 @@ Backend makeOdeBackend() {
         {"planar.joints.double_pendulum_slow", 0.0381},
         {"planar.joints.wheel_travel", 0.229},
         {"planar.joints.wide_pendulum_energy", 0.217},
-        {"assemblies.ragdoll_gap", 0.219},
+        {"assemblies.ragdoll_gap", 0.45},
         {"assemblies.ragdoll_rest", 0.544},
         {"planar.assemblies.ragdoll_gap", 0.179},
         {"planar.assemblies.ragdoll_rest", 0.578},
@@ -218,7 +218,7 @@ Backend makeOdeBackend() {
         {"planar.hard.heavy_plank.displacement", 0.04},
         {"hard.overlap25.speed", 8.0},
         {"planar.hard.overlap25.speed", 8.0},
-        {"hard.ragdoll_pile.joint_gap", 0.3},
+        {"hard.ragdoll_pile.joint_gap", 0.5},
         {"planar.hard.ragdoll_pile.joint_gap", 0.3},
     });
     return backend;

@@ -78,8 +78,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
     n = dropDegenerateContacts(found, n);
     if (n <= 0) return;
-    if (n == 1 && !trigger && collidesAtOnePoint(o1, o2))
-        n = completeManifold(a->shapeOf(o1), b->shapeOf(o2), found, kMaxContactsPerPair);
+    if (n == 1 && !trigger) n = completeOnePointContact(a->shapeOf(o1), b->shapeOf(o2), found, kMaxContactsPerPair);
     if (!trigger) createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);  // sensors never collide
     if (!effects_.has(Effect::Events)) return;
     const auto first = static_cast<std::uint32_t>(points_.size());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "ode_math.hpp"
 
@@ -34,14 +35,21 @@ struct Candidate {
     Vec3 inPlane;  // position projected onto the contact plane (for spacing)
 };
 
-}  // namespace
-
+// Whether ODE's collider can give one point where `moving` rests on a face of `other`.
 bool collidesAtOnePoint(dGeomID moving, dGeomID other) {
     const int a = dGeomGetClass(moving), b = dGeomGetClass(other);
     if (!hasFlatOrStraightSides(a) || !(b == dBoxClass || b == dConvexClass)) return false;
     return a == dConvexClass || b == dConvexClass || a == dCapsuleClass;
 }
 
+// The same contact seen from the other geom: normal reversed, geoms and sides swapped.
+void flip(dContactGeom& g) {
+    for (int k = 0; k < 3; ++k) g.normal[k] = -g.normal[k];
+    std::swap(g.g1, g.g2);
+    std::swap(g.side1, g.side2);
+}
+
+// completeOnePointContact with `moving` as geom 1 (the contact's normal into it).
 int completeManifold(const OdeShape& movingShape, const OdeShape& otherShape, dContact* contacts, int capacity) {
     const dContactGeom first = contacts[0].geom;
     const Vec3 normal = toVec3(first.normal);  // into `moving`: it leaves along +normal
@@ -131,6 +139,18 @@ int completeManifold(const OdeShape& movingShape, const OdeShape& otherShape, dC
         contacts[kept++].geom = found[best].geom;
     }
     return kept;
+}
+
+}  // namespace
+
+int completeOnePointContact(const OdeShape& first, const OdeShape& second, dContact* contacts, int capacity) {
+    if (collidesAtOnePoint(first.geom(), second.geom())) return completeManifold(first, second, contacts, capacity);
+    if (!collidesAtOnePoint(second.geom(), first.geom())) return 1;
+    // A capsule or hull lying on a box (or hull) that comes first: tilt the second geom instead.
+    flip(contacts[0].geom);
+    const int count = completeManifold(second, first, contacts, capacity);
+    for (int i = 0; i < count; ++i) flip(contacts[i].geom);
+    return count;
 }
 
 }  // namespace anyphys::ode

@@ -12,14 +12,12 @@
 
 namespace anyphys::ode {
 
-/// Whether ODE's collider for this pair of geoms can return one point where `moving` rests a
-/// face or a straight side on a face of `other` (so a tilted twin finds the rest).
-bool collidesAtOnePoint(dGeomID moving, dGeomID other);
-
-/// With `contacts[0]` ODE's one contact of `moving` (geom 1, on a moving body) against `other`,
-/// adds the points found by colliding the moving shape's twin at poses tilted about axes across
-/// the normal; returns the new count, at most `capacity`. Only where the normal is a face normal
-/// of `other`: the depth of a point carried back is measured to that face's plane.
-int completeManifold(const OdeShape& moving, const OdeShape& other, dContact* contacts, int capacity);
+/// With `contacts[0]` ODE's one contact of geom 1 (`first`) against geom 2 (`second`): where one
+/// of the two can rest a face or a straight side on a face of the other and ODE's collider gives
+/// one point for such a pair, adds the points found by colliding that shape's twin at poses
+/// tilted about axes across the normal. Only where the normal is a face normal of the other
+/// shape: the depth of a point carried back is measured to that face's plane. Returns the new
+/// count, at most `capacity`; the contacts keep ODE's orientation (normal into geom 1).
+int completeOnePointContact(const OdeShape& first, const OdeShape& second, dContact* contacts, int capacity);
 
 }  // namespace anyphys::ode
