@@ -65,14 +65,10 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
     if (body_ && !def.isAwake) dBodyDisable(body_);
 }
 
-const GeomSurface& OdeBody::surface(dGeomID geom) const {
-    // A compound has a few children: a scan is cheaper than a map, and one shape needs none.
-    for (const auto& shape : shapes_)
-        if (shape->geom() == geom) return shape->surface();
-    return shapes_.front()->surface();  // not one of ours: never happens for geoms carrying this body
-}
+const GeomSurface& OdeBody::surface(dGeomID geom) const { return shapeOf(geom).surface(); }
 
 const OdeShape& OdeBody::shapeOf(dGeomID geom) const {
+    // A compound has a few children: a scan is cheaper than a map, and one shape needs none.
     for (const auto& shape : shapes_)
         if (shape->geom() == geom) return *shape;
     return *shapes_.front();  // not one of ours: never happens for geoms carrying this body

@@ -43,14 +43,9 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
     switch (d.type) {
         case ShapeType::Sphere: geom_ = dCreateSphere(space, d.radius); break;
         case ShapeType::Box:
-            halfExtents_ = d.halfExtents;
             geom_ = dCreateBox(space, 2 * d.halfExtents.x(), 2 * d.halfExtents.y(), 2 * d.halfExtents.z());
             break;
-        case ShapeType::Capsule:
-            radius_ = d.radius;
-            length_ = 2 * d.halfHeight;
-            geom_ = dCreateCapsule(space, radius_, length_);
-            break;
+        case ShapeType::Capsule: geom_ = dCreateCapsule(space, d.radius, 2 * d.halfHeight); break;
         case ShapeType::Plane:
             planeNormal_ = d.normal.normalized();
             planeOffset_ = d.offset / d.normal.norm();
@@ -92,11 +87,19 @@ OdeShape::~OdeShape() {
 
 dGeomID OdeShape::twin() const {
     if (twin_) return twin_;
-    switch (type_) {
-        case ShapeType::Box:
-            twin_ = dCreateBox(nullptr, 2 * halfExtents_.x(), 2 * halfExtents_.y(), 2 * halfExtents_.z());
+    switch (type_) {  // the sizes as the geom has them
+        case ShapeType::Box: {
+            dVector3 lengths;
+            dGeomBoxGetLengths(geom_, lengths);
+            twin_ = dCreateBox(nullptr, lengths[0], lengths[1], lengths[2]);
             break;
-        case ShapeType::Capsule: twin_ = dCreateCapsule(nullptr, radius_, length_); break;
+        }
+        case ShapeType::Capsule: {
+            dReal radius = 0, length = 0;
+            dGeomCapsuleGetParams(geom_, &radius, &length);
+            twin_ = dCreateCapsule(nullptr, radius, length);
+            break;
+        }
         case ShapeType::Convex:  // the same arrays: ODE reads them in place
             twin_ = dCreateConvex(nullptr, convexPlanes_.data(), static_cast<unsigned int>(convexPlanes_.size() / 4),
                                   convexPoints_.data(), static_cast<unsigned int>(convexPoints_.size() / 3),

@@ -67,8 +67,6 @@ private:
     GeomSurface surface_;
     Transform local_;
     double coreExtent_ = 0.0;
-    Vec3 halfExtents_ = Vec3::Zero();  // box
-    double radius_ = 0.0, length_ = 0.0;  // capsule
     // plane: n . x = offset in the body frame
     Vec3 planeNormal_ = Vec3::UnitY();
     double planeOffset_ = 0.0;

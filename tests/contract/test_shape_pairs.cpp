@@ -2,6 +2,7 @@
 // a check that each backend collides each pair of shape types it claims. A pair a backend
 // declares missing (Capabilities::missingShapePairs) must be refused with a clear error instead.
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -19,13 +20,24 @@ struct Ground {
     Vec3 position;  // the top surface is y = 0 in every case
 };
 
+Ground boxGround() { return {"box", ShapeDef::box(Vec3(10, 0.5, 10)), Vec3(0, -0.5, 0)}; }
+
+/// The ground as a static body in `world`.
+void addGround(World& world, const Ground& ground) {
+    BodyDef def;
+    def.type = BodyType::Static;
+    def.shape = ground.shape;
+    def.position = ground.position;
+    world.createBody(def);
+}
+
 std::vector<Ground> grounds() {
     const std::vector<Vec3> slab{Vec3(-10, -1, -10), Vec3(10, -1, -10), Vec3(10, -1, 10), Vec3(-10, -1, 10),
                                  Vec3(-10, 0, -10),  Vec3(10, 0, -10),  Vec3(10, 0, 10),  Vec3(-10, 0, 10)};
     // Two triangles, counter-clockwise seen from above (the side a one-sided mesh collides on).
     const std::vector<Vec3> square{Vec3(-10, 0, -10), Vec3(10, 0, -10), Vec3(10, 0, 10), Vec3(-10, 0, 10)};
     return {{"plane", ShapeDef::plane(Vec3(0, 1, 0), 0.0), Vec3::Zero()},
-            {"box", ShapeDef::box(Vec3(10, 0.5, 10)), Vec3(0, -0.5, 0)},
+            boxGround(),
             {"mesh", ShapeDef::mesh(square, {0, 2, 1, 0, 3, 2}), Vec3::Zero()},
             {"convex", ShapeDef::convex(slab), Vec3::Zero()}};
 }
@@ -53,6 +65,26 @@ std::vector<Dropped> droppedShapes() {
             {"compound", twoBoxes, Quat::Identity(), 0.5, std::sqrt(1.5)}};
 }
 
+/// A body and its reach: the distance from its centre to its farthest point.
+struct Reaching {
+    Body body;
+    double reach;
+};
+
+/// The fastest point of `bodies` over the next `steps` steps: the speed of the centre plus reach
+/// times the angular speed, an upper bound for every point of the body.
+double fastestPointOver(World& world, std::initializer_list<Reaching> bodies, int steps) {
+    double fastest = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        world.step();
+        for (const Reaching& r : bodies) {
+            const BodyState s = r.body.state();
+            fastest = std::max(fastest, s.linearVelocity.norm() + r.reach * s.angularVelocity.norm());
+        }
+    }
+    return fastest;
+}
+
 class ShapePairsTest : public ContractTest {
 protected:
     bool runsPlanarWithout3D() const override { return true; }  // every drop is straight down, every shape lies in XY
@@ -72,11 +104,7 @@ TEST_P(ShapePairsTest, EveryShapeRestsOnEveryGround) {
                 continue;
             }
             World world(settings());
-            BodyDef groundDef;
-            groundDef.type = BodyType::Static;
-            groundDef.shape = ground.shape;
-            groundDef.position = ground.position;
-            world.createBody(groundDef);
+            addGround(world, ground);
             BodyDef body;
             body.shape = dropped.shape;
             body.orientation = dropped.orientation;
@@ -107,12 +135,7 @@ TEST_P(ShapePairsTest, EveryShapeRestsOnEveryGround) {
             // hulls on boxes and hulls, capsules on boxes: 0.17 to 0.5 m/s before the backend
             // completed those manifolds); resting pairs measure under 16 mm/s on every backend
             // (the most: ODE's triangle meshes and its capsule on a hull, which rolls slowly).
-            double fastest = 0.0;
-            for (int i = 0; i < 30; ++i) {
-                world.step();
-                const BodyState s = b.state();
-                fastest = std::max(fastest, s.linearVelocity.norm() + dropped.reach * s.angularVelocity.norm());
-            }
+            const double fastest = fastestPointOver(world, {{b, dropped.reach}}, 30);
             std::cout << "[ MEASURED ] " << backend() << ": " << dropped.name << " on " << ground.name << " rests at y = "
                       << height << ", fastest point " << fastest << " m/s\n";
             expectCriterion("shape_pairs.rests_" + std::string(dropped.name) + "_on_" + ground.name, fastest < 0.02,
@@ -136,11 +159,7 @@ TEST_P(ShapePairsTest, EveryShapeRestsOnABoxThatMoves) {
         for (const bool boxFirst : {true, false}) {  // creation order: an engine may pair by it
             SCOPED_TRACE(std::string(dropped.name) + (boxFirst ? ", box created first" : ", box created last"));
             World world(settings());
-            BodyDef ground;
-            ground.type = BodyType::Static;
-            ground.shape = ShapeDef::box(Vec3(10, 0.5, 10));
-            ground.position = Vec3(0, -0.5, 0);
-            world.createBody(ground);
+            addGround(world, boxGround());
             BodyDef lowerDef;
             lowerDef.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
             lowerDef.position = Vec3(0, 0.5, 0);
@@ -155,14 +174,7 @@ TEST_P(ShapePairsTest, EveryShapeRestsOnABoxThatMoves) {
             upper = world.createBody(body);
             if (!boxFirst) lower = world.createBody(lowerDef);
             for (int i = 0; i < 120; ++i) world.step();
-            double fastest = 0.0;
-            for (int i = 0; i < 30; ++i) {
-                world.step();
-                for (const auto& [b, reach] : {std::pair{*lower, std::sqrt(0.75)}, std::pair{*upper, dropped.reach}}) {
-                    const BodyState st = b.state();
-                    fastest = std::max(fastest, st.linearVelocity.norm() + reach * st.angularVelocity.norm());
-                }
-            }
+            const double fastest = fastestPointOver(world, {{*lower, std::sqrt(0.75)}, {*upper, dropped.reach}}, 30);
             std::cout << "[ MEASURED ] " << backend() << ": " << dropped.name << " on a box that moves ("
                       << (boxFirst ? "box first" : "box last") << ") rests at y = " << upper->position().y()
                       << ", fastest point of the two " << fastest << " m/s\n";
@@ -198,23 +210,14 @@ TEST_P(ShapePairsTest, NoisyCubeHullRestsLikeACube) {
             points.push_back(q);
         }
         World world(settings());
-        BodyDef ground;
-        ground.type = BodyType::Static;
-        ground.shape = ShapeDef::box(Vec3(10, 0.5, 10));
-        ground.position = Vec3(0, -0.5, 0);
-        world.createBody(ground);
+        addGround(world, boxGround());
         BodyDef cube;
         cube.shape = ShapeDef::convex(points);
         cube.position = Vec3(0, 0.51, 0);
         cube.allowSleep = false;
         Body b = world.createBody(cube);
         for (int i = 0; i < 120; ++i) world.step();
-        double fastest = 0.0;
-        for (int i = 0; i < 30; ++i) {
-            world.step();
-            const BodyState st = b.state();
-            fastest = std::max(fastest, st.linearVelocity.norm() + std::sqrt(3.0) / 2 * st.angularVelocity.norm());
-        }
+        const double fastest = fastestPointOver(world, {{b, std::sqrt(3.0) / 2}}, 30);
         std::cout << "[ MEASURED ] " << backend() << ": cube hull with noise " << noise << " of its size rests at y = "
                   << b.position().y() << ", fastest point " << fastest << " m/s\n";
         EXPECT_NEAR(b.position().y(), 0.5, 0.02);  // as EveryShapeRestsOnEveryGround
@@ -235,11 +238,7 @@ TEST_P(ShapePairsTest, EveryGroundCatchesALandingAlike) {
     constexpr double kRadius = 0.25, kGap = 0.00024, kSpeed = 3.55;
     auto deepestSink = [&](const Ground& ground) {
         World world(settings());
-        BodyDef groundDef;
-        groundDef.type = BodyType::Static;
-        groundDef.shape = ground.shape;
-        groundDef.position = ground.position;
-        world.createBody(groundDef);
+        addGround(world, ground);
         BodyDef ball;
         ball.shape = ShapeDef::sphere(kRadius);
         // Off the meshes' diagonal and the hull's centre (in the plane, z = 0, for planar worlds).

@@ -408,13 +408,16 @@ void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, 
     SmallCorners small;
     const ReferenceFace face = referenceFace(ref, refFace, cornerRoom(small, ref, refFace));
     const Vec3 against = inc.rotation.transpose() * face.normal;
-    int incFace = 0;
+    int incFace = 0, turnedToRef = 0;  // turnedToRef: faces within kFaceAlignment of facing it
     double lowest = kInfinity;
-    for (int f = 0; f < inc.faceCount(); ++f)
-        if (const double d = inc.normals[static_cast<std::size_t>(f)].dot(against); d < lowest) {
+    for (int f = 0; f < inc.faceCount(); ++f) {
+        const double d = inc.normals[static_cast<std::size_t>(f)].dot(against);
+        if (d <= -kFaceAlignment) ++turnedToRef;
+        if (d < lowest) {
             lowest = d;
             incFace = f;
         }
+    }
     const std::vector<int>& loop = inc.face(incFace);
     const std::size_t capacity = loop.size() + face.corners.size();
     std::array<ClipVertex, 16> smallPolygon, smallSpare;
@@ -424,7 +427,7 @@ void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, 
     const std::span<const ClipVertex> clipped = clipToFace(polygon, static_cast<int>(loop.size()), spare, face);
     const std::uint32_t seed = feature::id(kind, refFace, incFace);
     addFacePoints(clipped, face, 0.0, speculative, seed, out);
-    addPatchCorners(face, inc, incFace, against, speculative, seed, out);
+    if (turnedToRef > 1) addPatchCorners(face, inc, incFace, against, speculative, seed, out);
     if (!keepDeepest) return;
     const int v = inc.support(-face.normal);
     const Vec3 deepest = inc.vertex(v);
