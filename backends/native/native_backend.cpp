@@ -52,6 +52,8 @@ Backend makeNativeBackend() {
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
+        {"assemblies.ragdoll_gap",
+         "joints open 5.0 cm in the pile of four ragdolls and 5.9 cm in the soak run's pinched pile (bound 5 cm), as the ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst gap's median is 4.1 cm and the largest 12 cm; before round shapes' contacts were anchored on their cores, 3.8 and 11.6 cm, when the unshifted pile happened to give 2.2 cm"},
         {"assemblies.ragdoll_limits",
          "an elbow goes 5.4 deg past its limit as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration (bound 3 deg); the limit rows converge with more work: 8 x 4: 2.3 deg, 16 x 1: 1.4 deg, 32 x 1: 0.3 deg"},
         {"planar.assemblies.ragdoll_limits",
@@ -79,6 +81,7 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"assemblies.ragdoll_gap", 0.09},
         {"assemblies.ragdoll_limits", 9.0},
         {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},
@@ -97,13 +100,10 @@ Backend makeNativeBackend() {
          "each overlap is pushed apart at up to settings.contactPushMaxVelocity (3 m/s, Box2D v3's default); the upper box, pushed off the lower one while that rises off the ground, reaches 3.4 m/s. Verified by the setting: 2 m/s gives 2.27, 1.5 gives 1.70 (within the 2.2 bound)"},
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 3.2 m/s"},
-        {"planar.hard.ragdoll_pile.joint_gap",
-         "a ragdoll that slides off the planar pile lands at 6 to 8 m/s after 2.9 s and a joint opens 5.1 cm (bound 5): the joint rows are soft at the default substeps and give under the landing; 16 substeps leave 4.6 cm. (Before planar friction acted in full, the pile settled differently: 3.0 cm.)"},
     });
     caps.deviationCeilings.insert({
         {"hard.overlap25.speed", 4.5},
         {"planar.hard.overlap25.speed", 4.5},
-        {"planar.hard.ragdoll_pile.joint_gap", 0.1},
     });
     return backend;
 }

@@ -63,6 +63,14 @@ struct Manifold {
     std::uint32_t key = 0;         // tells apart several manifolds of one shape pair (mesh triangle index)
 };
 
+/// How far the surface lies outside the shape's core (a point for a sphere, a segment for a
+/// capsule): rotating the body about any axis through the core leaves that part of the surface
+/// where it was, so a contact point moved back by this much along the normal turns with the body
+/// as the surface does. Zero for shapes whose surface is their own (box, hull, mesh, plane).
+inline double roundingRadius(const Shape& s) {
+    return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius : 0.0;
+}
+
 /// World pose of a shape of a body at `bodyPose`.
 inline Transform shapeWorldPose(const Shape& s, const Transform& bodyPose) {
     return {bodyPose.position + bodyPose.orientation * s.local.position, bodyPose.orientation * s.local.orientation};

@@ -132,8 +132,13 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         WideContactPoint& cp = wc.points[i];
         const Vec3 p = mp.geometry.point;
         // A static body's anchor is the point itself (zero offset): it never moves or turns.
-        const Vec3 rA = a.moves ? Vec3(p - a.center) : Vec3::Zero();
-        const Vec3 rB = b.moves ? Vec3(p - b.center) : Vec3::Zero();
+        // A round shape's anchor lies on its core (the point moved in by the radius along the
+        // normal), where turning the body does not move the surface: a ball's surface point turned
+        // with the ball rose, so the contact unloaded within each step, the ball sank and a
+        // sliding one lost speed 28 % faster than mu g. Moving an anchor along the normal changes
+        // neither a normal impulse's moment nor the normal velocity: only the separation sees it.
+        const Vec3 rA = a.moves ? Vec3(p - in.roundA * n - a.center) : Vec3::Zero();
+        const Vec3 rB = b.moves ? Vec3(p + in.roundB * n - b.center) : Vec3::Zero();
         setLane(cp.anchorA, lane, rA);
         setLane(cp.anchorB, lane, rB);
         const double s = mp.geometry.separation;

@@ -66,6 +66,7 @@ struct ContactLane {
     std::int32_t bodyA = kStaticBody, bodyB = kStaticBody;
     double friction = 0.0, restitution = 0.0;
     std::uint32_t orderKey = 0;  // a hash of the pair and manifold: where the solver visits it (ConstraintGraph)
+    double roundA = 0.0, roundB = 0.0;  // rounding radius of each shape (roundingRadius)
 };
 
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h

@@ -74,9 +74,12 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         PlanarContactPoint& cp = pc.points[i];
         PlanarContactPointCold& cold = pc.cold[i];
         const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
-        // A static body's anchor is the point itself (zero offset): it never moves or turns.
-        const double rAx = a.moves ? px - a.cx : 0.0, rAy = a.moves ? py - a.cy : 0.0;
-        const double rBx = b.moves ? px - b.cx : 0.0, rBy = b.moves ? py - b.cy : 0.0;
+        // A static body's anchor is the point itself (zero offset): it never moves or turns. A
+        // round shape's anchor lies on its core, as in the 3D path (contact_constraint.cpp).
+        const double coreAx = px - in.roundA * nx, coreAy = py - in.roundA * ny;
+        const double coreBx = px + in.roundB * nx, coreBy = py + in.roundB * ny;
+        const double rAx = a.moves ? coreAx - a.cx : 0.0, rAy = a.moves ? coreAy - a.cy : 0.0;
+        const double rBx = b.moves ? coreBx - b.cx : 0.0, rBy = b.moves ? coreBy - b.cy : 0.0;
         cp.anchorAx[lane] = rAx;
         cp.anchorAy[lane] = rAy;
         cp.anchorBx[lane] = rBx;

@@ -79,10 +79,12 @@ void StepSolver::collect(NativeWorld& world) {
             if (contact.trigger || contact.manifolds.empty()) return;
             const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
             if (!((a.isDynamic() && a.awake) || (b.isDynamic() && b.awake))) return;
+            const double roundA = roundingRadius(a.shapes[contact.shapeA]);
+            const double roundB = roundingRadius(b.shapes[contact.shapeB]);
             for (ContactManifold& m : contact.manifolds)
                 if (m.pointCount > 0)
                     lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
-                                      contact.friction, contact.restitution, orderKey(contact, m)});
+                                      contact.friction, contact.restitution, orderKey(contact, m), roundA, roundB});
             enlist(contact.bodyA);
             enlist(contact.bodyB);
         });
