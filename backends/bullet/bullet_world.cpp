@@ -77,6 +77,10 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     world_->setTimeToSleep(settings.timeToSleep);
     world_->setRestitutionThreshold(settings.restitutionThreshold);
     planeMultipoint_ = planeMultipoint(settings);  // its refresh pass runs while a plane is here (createBody)
+    if (planeMultipoint_) {  // a capsule's whole line of contact too (bullet_capsule_plane.hpp)
+        dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &capsulePlane_);
+        dispatcher_->registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, &planeCapsule_);
+    }
     // Only moving bodies need fresh bounds each step; static ones are refreshed when teleported.
     world_->setForceUpdateAllAabbs(false);
 
