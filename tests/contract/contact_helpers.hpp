@@ -1,6 +1,7 @@
 #pragma once
 // Small builders and measurements shared by the contact-era contract tests (contacts, events,
 // materials, sleeping, queries).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "anyphys/mass_properties.hpp"
 #include "anyphys/containers/scene_catalogue.hpp"
 
 namespace anyphys::test {
@@ -130,6 +132,82 @@ inline FastSphereRun runFastSphereAtThinWall(WorldSettings s, bool dynamicWall =
     run.finite = finite(ball.state());
     return run;
 }
+/// A round body (a ball, or a capsule lying across the motion) set sliding along +x at 5 m/s
+/// without spin on the ground plane, friction mu = 0.1. While it slips, friction mu m g slows it,
+/// v = v0 - mu g t, and turns it about -z, w = mu g r t / k (k = I / m about its axis: 2/5 r^2 for
+/// a ball); from t* = v0 k / (mu g (k + r^2)) it rolls at v0 r^2 / (k + r^2), 5/7 v0 for a ball.
+/// Measured at 0.5 s (slipping: t* is 1.46 s for the ball, 1.45 s for the capsule) and at 3 s
+/// (rolling), each as its error relative to the exact value.
+struct RollingRun {
+    double slipSlowdownError = 0.0;  // |dv - mu g t| / (mu g t) at 0.5 s
+    double slipSpinError = 0.0;      // |w - mu g r t / k| / (mu g r t / k) at 0.5 s
+    double rollingSpeedError = 0.0;  // |v - v0 r^2 / (k + r^2)| / (v0 r^2 / (k + r^2)) at 3 s
+    double rollingSpinError = 0.0;   // |w r - v| / v at 3 s: rolling without slipping
+    double deepestSink = 0.0;        // m, the centre's lowest point below r over the run
+};
+/// Bounds, each the measure as a multiple of it in `rollingWorst`: friction is a constant force
+/// while the body slips, which every integrator carries exactly, so 2 % of the slowdown and of the
+/// spin leaves room only for where a step ends; once rolling, 1 % of the speed; and the centre
+/// may sink no more than a contact may overlap (linearSlop).
+constexpr double kSlipBound = 0.02, kRollingBound = 0.01;
+struct RollingWorst {
+    double multiple = 0.0;  // the worst measure over its bound (<= 1 passes; NaN fails)
+    std::string what;
+};
+inline RollingWorst rollingWorst(const RollingRun& run, const WorldSettings& settings) {
+    RollingWorst worst;
+    const auto check = [&](double multiple, const std::string& what) {
+        if (!(multiple <= worst.multiple)) {  // also takes a NaN, which must fail
+            worst.multiple = multiple;
+            worst.what = what;
+        }
+    };
+    check(run.slipSlowdownError / kSlipBound, "slowdown while slipping " + std::to_string(100 * run.slipSlowdownError) + " % off mu g t");
+    check(run.slipSpinError / kSlipBound, "spin while slipping " + std::to_string(100 * run.slipSpinError) + " % off");
+    check(run.rollingSpeedError / kRollingBound, "rolling speed " + std::to_string(100 * run.rollingSpeedError) + " % off");
+    check(run.rollingSpinError / kRollingBound, "w r " + std::to_string(100 * run.rollingSpinError) + " % off v when rolling");
+    check(run.deepestSink / settings.linearSlop, "sank " + std::to_string(run.deepestSink) + " m");
+    return worst;
+}
+inline RollingRun slideUntilRolling(const WorldSettings& settings, const ShapeDef& shape) {
+    constexpr double kMu = 0.1, kV0 = 5.0, kSlipTime = 0.5, kRollTime = 3.0;
+    MaterialLibrary materials;
+    materials.add("round", Material{kMu, 0.0, 1000.0});
+    World world(settings, materials);
+    world.createBody(groundDef("round"));
+    const double r = shape.radius;
+    BodyDef def;
+    def.name = "round";
+    def.shape = shape;
+    def.position = Vec3(0, r, 0);
+    def.linearVelocity = Vec3(kV0, 0, 0);
+    def.material = "round";
+    def.allowSleep = false;
+    if (shape.type == ShapeType::Capsule)  // lying along z, the axis it rolls about
+        def.orientation = Quat(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitX()));
+    Body body = world.createBody(def);
+    const double k = unitInertia(shape).y();  // the sphere's any axis, the capsule's own axis (Y)
+    RollingRun run;
+    const int slipSteps = static_cast<int>(std::lround(kSlipTime / settings.timeStep));
+    const int rollSteps = static_cast<int>(std::lround(kRollTime / settings.timeStep));
+    for (int i = 1; i <= rollSteps; ++i) {
+        world.step();
+        run.deepestSink = std::max(run.deepestSink, r - body.position().y());
+        const double t = i * settings.timeStep;
+        const double v = body.linearVelocity().x(), w = -body.angularVelocity().z();
+        if (i == slipSteps) {
+            run.slipSlowdownError = std::abs((kV0 - v) - kMu * kG * t) / (kMu * kG * t);
+            run.slipSpinError = std::abs(w - kMu * kG * r * t / k) / (kMu * kG * r * t / k);
+        }
+        if (i == rollSteps) {
+            const double rolling = kV0 * r * r / (k + r * r);
+            run.rollingSpeedError = std::abs(v - rolling) / rolling;
+            run.rollingSpinError = std::abs(w * r - v) / v;
+        }
+    }
+    return run;
+}
+
 /// Exact geometry: the centre stops at the wall's face minus the radius (9.9 m); 1 cm more allows
 /// the backend's slop (linearSlop 5 mm) and a speculative contact's gap. The middle plane is 10 m.
 constexpr double kFastSphereBound = 9.9 + 0.01;

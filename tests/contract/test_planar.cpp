@@ -69,6 +69,17 @@ TEST_P(PlanarTest, BoxSlidesWithKineticAcceleration) {
     expectCatalogueCheck("slope_slide_planar");
 }
 
+// A ball set sliding in the plane slows at mu g while it slips, then rolls without slipping at
+// 5/7 of its speed, as in 3D (slideUntilRolling).
+TEST_P(PlanarTest, SlidingBallSlowsAtMuGUntilItRolls) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const RollingWorst worst = rollingWorst(slideUntilRolling(settings(), ShapeDef::sphere(0.25)), settings());
+    report(backend() + " planar sliding ball: worst check as a multiple of its bound (" + worst.what + ")", worst.multiple);
+    expectCriterion("planar.friction.rolling", worst.multiple <= 1.0,
+                    "worst " + worst.what + ", " + std::to_string(worst.multiple) + " x its bound", worst.multiple);
+}
+
 // 10 unit boxes stand 10 s in the plane: the top box moves less than 1 cm sideways.
 TEST_P(PlanarTest, TenBoxStackStands) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
