@@ -80,6 +80,14 @@ TEST_P(PlanarTest, SlidingBallSlowsAtMuGUntilItRolls) {
                     "worst " + worst.what + ", " + std::to_string(worst.multiple) + " x its bound", worst.multiple);
 }
 
+// The glancing hit of ContactsTest, in the plane (its paths and line of centres lie in XY).
+TEST_P(PlanarTest, GlancingBallsLeaveInTheElasticDirections) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere}, Effect::Contacts | Effect::Restitution);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const GlancingWorst worst = glancingHits(settings(), backend());
+    expectCriterion("planar.restitution.glancing_direction", worst.degrees <= 4.0, worst.what, worst.degrees);
+}
+
 // 10 unit boxes stand 10 s in the plane: the top box moves less than 1 cm sideways.
 TEST_P(PlanarTest, TenBoxStackStands) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
