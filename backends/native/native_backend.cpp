@@ -96,20 +96,17 @@ Backend makeNativeBackend() {
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.
     caps.knownDeviations.insert({
-        {"restitution.glancing_direction",
-         "two balls meeting in a glancing hit (the line of centres 30 deg off their paths) are held apart along the normal between them at the step start, not at the moment they meet: the first leaves 7.4 deg off the elastic direction at 3 m/s each (bound 4), 0.7 deg at 1 m/s, 19 deg at 10 m/s. (ODE, Bullet and Box2D take the normal once the balls overlap: 3.2 deg.) The normal of the moment of impact alone is not the fix: with a normal not along the line of centres the shared contact point gives one ball's normal impulse a moment (tried: at 3 m/s the balls kept 92.4 % of their energy of motion), and after meeting the balls slide along the fixed normal to the step's end (16 deg at 10 m/s)"},
-        {"planar.restitution.glancing_direction",
-         "as restitution.glancing_direction, planar: 7.4 deg"},
         {"hard.overlap25.speed",
          "each overlap is pushed apart at up to settings.contactPushMaxVelocity (3 m/s, Box2D v3's default); the upper box, pushed off the lower one while that rises off the ground, reaches 3.4 m/s. Verified by the setting: 2 m/s gives 2.27, 1.5 gives 1.70 (within the 2.2 bound)"},
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 3.2 m/s"},
+        {"planar.hard.ragdoll_pile.joint_gap",
+         "a joint opens 5.6 cm (bound 5) as the ragdolls of the planar pile land on each other: the joint rows are soft at the default substeps and give under the landings (16 substeps: 4.6 cm in an earlier course of the pile). The pile is chaotic: it gave 5.1, then 4.4 cm, as contacts of round shapes were anchored on their cores and then balls' normals aimed at their impact, changes that left the contract's pile of four ragdolls the same over 24 shifted layouts"},
     });
     caps.deviationCeilings.insert({
-        {"restitution.glancing_direction", 11.0},
-        {"planar.restitution.glancing_direction", 11.0},
         {"hard.overlap25.speed", 4.5},
         {"planar.hard.overlap25.speed", 4.5},
+        {"planar.hard.ragdoll_pile.joint_gap", 0.1},
     });
     return backend;
 }

@@ -95,6 +95,14 @@ double effectiveMass(const BodyView& a, const Vec3& rA, const BodyView& b, const
            rb.dot(b.invI * rb);
 }
 
+// The anchor of one side, relative to its centre of mass: `inward` points from the contact into
+// the shape (the normal, which runs from A to B, for B; its opposite for A).
+Vec3 anchorOn(const ContactCore& core, bool moves, const Vec3& center, const Vec3& point, const Vec3& inward) {
+    if (!moves) return Vec3::Zero();
+    if (core.sphere) return core.centre;
+    return point + core.round * inward - center;
+}
+
 void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
                  const ContactPrepareParams& params) {
     ContactManifold& m = *in.manifold;
@@ -132,13 +140,12 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         WideContactPoint& cp = wc.points[i];
         const Vec3 p = mp.geometry.point;
         // A static body's anchor is the point itself (zero offset): it never moves or turns.
-        // A round shape's anchor lies on its core (the point moved in by the radius along the
-        // normal), where turning the body does not move the surface: a ball's surface point turned
-        // with the ball rose, so the contact unloaded within each step, the ball sank and a
-        // sliding one lost speed 28 % faster than mu g. Moving an anchor along the normal changes
-        // neither a normal impulse's moment nor the normal velocity: only the separation sees it.
-        const Vec3 rA = a.moves ? Vec3(p - in.roundA * n - a.center) : Vec3::Zero();
-        const Vec3 rB = b.moves ? Vec3(p + in.roundB * n - b.center) : Vec3::Zero();
+        // A round shape's anchor lies on its core (ContactCore), where turning the body does not
+        // move the surface: a ball's surface point turned with the ball rose, so the contact
+        // unloaded within each step, the ball sank and a sliding one lost speed 28 % faster than
+        // mu g. A normal impulse through a sphere's centre turns it not at all, whatever the point.
+        const Vec3 rA = anchorOn(in.coreA, a.moves, a.center, p, -n);
+        const Vec3 rB = anchorOn(in.coreB, b.moves, b.center, p, n);
         setLane(cp.anchorA, lane, rA);
         setLane(cp.anchorB, lane, rB);
         const double s = mp.geometry.separation;

@@ -76,10 +76,20 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
         // A static body's anchor is the point itself (zero offset): it never moves or turns. A
         // round shape's anchor lies on its core, as in the 3D path (contact_constraint.cpp).
-        const double coreAx = px - in.roundA * nx, coreAy = py - in.roundA * ny;
-        const double coreBx = px + in.roundB * nx, coreBy = py + in.roundB * ny;
-        const double rAx = a.moves ? coreAx - a.cx : 0.0, rAy = a.moves ? coreAy - a.cy : 0.0;
-        const double rBx = b.moves ? coreBx - b.cx : 0.0, rBy = b.moves ? coreBy - b.cy : 0.0;
+        const auto anchorOn = [&](const ContactCore& core, const PlanarView& body, double side, double& rx, double& ry) {
+            rx = ry = 0.0;
+            if (!body.moves) return;
+            if (core.sphere) {
+                rx = core.centre.x();
+                ry = core.centre.y();
+                return;
+            }
+            rx = px + side * core.round * nx - body.cx;
+            ry = py + side * core.round * ny - body.cy;
+        };
+        double rAx, rAy, rBx, rBy;
+        anchorOn(in.coreA, a, -1.0, rAx, rAy);
+        anchorOn(in.coreB, b, 1.0, rBx, rBy);
         cp.anchorAx[lane] = rAx;
         cp.anchorAy[lane] = rAy;
         cp.anchorBx[lane] = rBx;
