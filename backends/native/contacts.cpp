@@ -87,13 +87,13 @@ void flattenPlanarManifold(Manifold& m, double tolerance) {
 
 // Two balls closing fast were held apart along the normal between them at the step start,
 // though they meet later along another: a glancing hit (the line of centres 30 deg off the paths)
-// sent a ball off 0.7 deg at 1 m/s each, 7.4 deg at 3 m/s and 19 deg at 10 m/s (now exact to
-// 0.01 deg at all three, energy kept). A speculative
-// contact of two spheres (its point's separation > 0) takes the normal of the moment within the
-// step they meet, or, if they miss, of their closest approach, along which they do not close at
-// all (so a near miss is not pushed apart). The centres move in straight lines over the step;
-// turning does not move a sphere's surface. The solver anchors each sphere at its centre
-// (ContactCore), so a normal off the line of centres still gives no moment.
+// sent a ball off 0.7 deg at 1 m/s each, 7.4 deg at 3 m/s and 19 deg at 10 m/s (now within
+// 0.01 deg at all three, energy kept). A speculative contact of two spheres (its point's
+// separation > 0) takes the normal of the moment within the step they meet, or, if they miss,
+// of their closest approach, along which they do not close at all (so a near miss is not pushed
+// apart). The centres move in straight lines over the step; turning does not move a sphere's
+// surface. The solver anchors each sphere at its centre (ContactCore), so a normal off the line
+// of centres still gives no moment.
 void aimAtImpact(Manifold& m, const Vec3& centerA, const Vec3& velocityA, double radiusA, const Vec3& centerB,
                  const Vec3& velocityB, double radiusB, double dt) {
     if (m.pointCount != 1 || !(m.points[0].separation > 0.0)) return;
