@@ -92,7 +92,7 @@ void flattenPlanarManifold(Manifold& m, double tolerance) {
 // separation > 0) takes the normal of the moment within the step they meet, or, if they miss,
 // of their closest approach, along which they do not close at all (so a near miss is not pushed
 // apart). The centres move in straight lines over the step; turning does not move a sphere's
-// surface. The solver anchors each sphere at its centre (ContactCore), so a normal off the line
+// surface. The solver anchors each sphere at its centre (contactAnchor), so a normal off the line
 // of centres still gives no moment.
 void aimAtImpact(Manifold& m, const Vec3& centerA, const Vec3& velocityA, double radiusA, const Vec3& centerB,
                  const Vec3& velocityB, double radiusB, double dt) {

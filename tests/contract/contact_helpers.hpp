@@ -73,6 +73,19 @@ inline BodyDef boxDef(const std::string& name, const Vec3& half, const Vec3& pos
 /// height: 5 % at 6 m/s, which the drop-height sweep's bound allows and this one does not.)
 inline double reboundTolerance(const WorldSettings& s) { return kG * s.timeStep * s.timeStep / 8.0 + s.linearSlop; }
 
+/// The worst of several checks and what it was. `check` keeps a value if it is worse than the
+/// worst so far, and a NaN always, so that it fails.
+struct WorstCheck {
+    double value = 0.0;
+    std::string what;
+    void check(double v, const std::string& description) {
+        if (!(v <= value)) {
+            value = v;
+            what = description;
+        }
+    }
+};
+
 /// Prints a measured value in the test log, so a run reports numbers, not just pass / fail.
 inline void report(const std::string& what, double value, const std::string& unit = "") {
     std::cout << "[ MEASURED ] " << what << " = " << value << (unit.empty() ? "" : " " + unit) << '\n';
@@ -145,28 +158,20 @@ struct RollingRun {
     double rollingSpinError = 0.0;   // |w r - v| / v at 3 s: rolling without slipping
     double deepestSink = 0.0;        // m, the centre's lowest point below r over the run
 };
-/// Bounds, each the measure as a multiple of it in `rollingWorst`: friction is a constant force
+/// Bounds, each the measure as a multiple of it in `rollingWorst` (the worst multiple; <= 1 passes): friction is a constant force
 /// while the body slips, which every integrator carries exactly, so 2 % of the slowdown and of the
 /// spin leaves room only for where a step ends; once rolling, 1 % of the speed; and the centre
 /// may sink no more than a contact may overlap (linearSlop).
 constexpr double kSlipBound = 0.02, kRollingBound = 0.01;
-struct RollingWorst {
-    double multiple = 0.0;  // the worst measure over its bound (<= 1 passes; NaN fails)
-    std::string what;
-};
-inline RollingWorst rollingWorst(const RollingRun& run, const WorldSettings& settings) {
-    RollingWorst worst;
-    const auto check = [&](double multiple, const std::string& what) {
-        if (!(multiple <= worst.multiple)) {  // also takes a NaN, which must fail
-            worst.multiple = multiple;
-            worst.what = what;
-        }
-    };
-    check(run.slipSlowdownError / kSlipBound, "slowdown while slipping " + std::to_string(100 * run.slipSlowdownError) + " % off mu g t");
-    check(run.slipSpinError / kSlipBound, "spin while slipping " + std::to_string(100 * run.slipSpinError) + " % off");
-    check(run.rollingSpeedError / kRollingBound, "rolling speed " + std::to_string(100 * run.rollingSpeedError) + " % off");
-    check(run.rollingSpinError / kRollingBound, "w r " + std::to_string(100 * run.rollingSpinError) + " % off v when rolling");
-    check(run.deepestSink / settings.linearSlop, "sank " + std::to_string(run.deepestSink) + " m");
+inline WorstCheck rollingWorst(const RollingRun& run, const WorldSettings& settings) {
+    WorstCheck worst;
+    worst.check(run.slipSlowdownError / kSlipBound,
+                "slowdown while slipping " + std::to_string(100 * run.slipSlowdownError) + " % off mu g t");
+    worst.check(run.slipSpinError / kSlipBound, "spin while slipping " + std::to_string(100 * run.slipSpinError) + " % off");
+    worst.check(run.rollingSpeedError / kRollingBound, "rolling speed " + std::to_string(100 * run.rollingSpeedError) + " % off");
+    worst.check(run.rollingSpinError / kRollingBound,
+                "w r " + std::to_string(100 * run.rollingSpinError) + " % off v when rolling");
+    worst.check(run.deepestSink / settings.linearSlop, "sank " + std::to_string(run.deepestSink) + " m");
     return worst;
 }
 inline RollingRun slideUntilRolling(const WorldSettings& settings, const ShapeDef& shape) {
@@ -242,21 +247,15 @@ inline GlancingHit glancingHit(WorldSettings settings, double speed) {
 
 /// glancingHit at 1 and 3 m/s each: reports each direction error, expects momentum and energy
 /// kept, and returns the worse direction error (deg) with a line saying where it was.
-struct GlancingWorst {
-    double degrees = 0.0;
-    std::string what;
-};
-inline GlancingWorst glancingHits(const WorldSettings& settings, const std::string& backend) {
-    GlancingWorst worst;
+inline WorstCheck glancingHits(const WorldSettings& settings, const std::string& backend) {
+    WorstCheck worst;
     for (double speed : {1.0, 3.0}) {
         const GlancingHit hit = glancingHit(settings, speed);
         report(backend + " glancing hit at " + std::to_string(speed) + " m/s each: direction off", hit.directionError, "deg");
         EXPECT_LT(hit.momentumError, 1e-6) << speed << " m/s";  // no external force: kept to rounding
         EXPECT_NEAR(hit.energyRatio, 1.0, 0.01) << speed << " m/s";  // e = 1 keeps it (1.0000 measured on each backend)
-        if (!(hit.directionError <= worst.degrees)) {  // also takes a NaN, which must fail
-            worst.degrees = hit.directionError;
-            worst.what = std::to_string(hit.directionError) + " deg off at " + std::to_string(speed) + " m/s each (bound 4)";
-        }
+        worst.check(hit.directionError,
+                    std::to_string(hit.directionError) + " deg off at " + std::to_string(speed) + " m/s each (bound 4)");
     }
     return worst;
 }

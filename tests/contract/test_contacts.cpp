@@ -58,8 +58,8 @@ TEST_P(ContactsTest, BallReboundsToRestitutionSquaredOfDropHeight) {
 TEST_P(ContactsTest, GlancingBallsLeaveInTheElasticDirections) {
     const std::string missing = lacking(caps(), {ShapeType::Sphere}, Effect::Contacts | Effect::Restitution);
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    const GlancingWorst worst = glancingHits(settings(), backend());
-    expectCriterion("restitution.glancing_direction", worst.degrees <= 4.0, worst.what, worst.degrees);
+    const WorstCheck worst = glancingHits(settings(), backend());
+    expectCriterion("restitution.glancing_direction", worst.value <= 4.0, worst.what, worst.value);
 }
 
 // A box on a plane tilted by `angle` about a horizontal `axis`. Friction mu on both materials
@@ -234,12 +234,12 @@ TEST_P(ContactsTest, SlidingRoundBodiesSlowAtMuGUntilTheyRoll) {
     for (const WorldSettings& s : variants) {
         const std::string variant = s.solver ? variantName(s) : "default";
         for (const auto& [shape, name] : {std::pair{ShapeDef::sphere(0.25), "ball"}, std::pair{ShapeDef::capsule(0.25, 0.3), "capsule"}}) {
-            const RollingWorst worst = rollingWorst(slideUntilRolling(s, shape), s);
+            const WorstCheck worst = rollingWorst(slideUntilRolling(s, shape), s);
             report(backend() + " sliding " + name + " " + variant + ": worst check as a multiple of its bound (" + worst.what + ")",
-                   worst.multiple);
-            expectCriterion(std::string("friction.rolling.") + name + "." + variant, worst.multiple <= 1.0,
-                            variant + " " + name + ": worst " + worst.what + ", " + std::to_string(worst.multiple) + " x its bound",
-                            worst.multiple);
+                   worst.value);
+            expectCriterion(std::string("friction.rolling.") + name + "." + variant, worst.value <= 1.0,
+                            variant + " " + name + ": worst " + worst.what + ", " + std::to_string(worst.value) + " x its bound",
+                            worst.value);
         }
     }
 }
@@ -265,35 +265,29 @@ TEST_P(ContactsTest, FrictionHoldsForEverySolverAndSubstepCount) {
     ANYPHYS_REQUIRE(missing.empty(), missing);
     for (const WorldSettings& s : everySolverAndSubstepCount(settings())) {
         const std::string variant = variantName(s);
-        double worst = 0.0;
-        std::string worstWhat;
-        const auto check = [&](double multiple, const std::string& what) {
-            if (!(multiple <= worst)) {  // also takes a NaN, which must fail
-                worst = multiple;
-                worstWhat = what;
-            }
-        };
+        WorstCheck worst;  // each check as a multiple of its bound
         for (const TiltAxis& tilt : kTiltAxes) {
             const double moved = slopeCreep(s, tilt);
-            check(moved / kCreepBound, "creep " + std::to_string(moved) + " m about " + tilt.name);
+            worst.check(moved / kCreepBound, "creep " + std::to_string(moved) + " m about " + tilt.name);
             for (const auto& [angle, criterion] : kSlideAngles) {
                 const SlopeSlide slide = slideDownSlope(s, angle, tilt);
                 const double exact = kineticAcceleration(angle);
-                check(std::abs(slide.acceleration - exact) / exact / kAccelerationBound,
-                      "slide a = " + std::to_string(slide.acceleration) + " m/s^2 (exact " + std::to_string(exact) +
-                          ") at " + std::to_string(angle / kDegree) + " deg about " + tilt.name);
-                check(std::abs(slide.height - 0.25) / kHeightBound,
-                      "sliding centre " + std::to_string(slide.height) + " m above the plane (exact 0.25) at " +
-                          std::to_string(angle / kDegree) + " deg about " + tilt.name);
+                worst.check(std::abs(slide.acceleration - exact) / exact / kAccelerationBound,
+                            "slide a = " + std::to_string(slide.acceleration) + " m/s^2 (exact " + std::to_string(exact) +
+                                ") at " + std::to_string(angle / kDegree) + " deg about " + tilt.name);
+                worst.check(std::abs(slide.height - 0.25) / kHeightBound,
+                            "sliding centre " + std::to_string(slide.height) + " m above the plane (exact 0.25) at " +
+                                std::to_string(angle / kDegree) + " deg about " + tilt.name);
             }
         }
         const FlatSlides slides = slideOnFlat(s, backend() + " " + variant);
-        check(slides.worstDistance / kSlideDistanceBound,
-              "stopping distance " + std::to_string(100 * slides.worstDistance) + " % off:" + slides.distances);
-        check(slides.worstOffLine / kOffLineBound, "stopped " + std::to_string(slides.worstOffLine) + " m off the line");
-        report(backend() + " friction " + variant + ": worst check as a multiple of its bound (" + worstWhat + ")", worst);
-        expectCriterion("friction." + variant, worst <= 1.0,
-                        variant + ": worst " + worstWhat + ", " + std::to_string(worst) + " x its bound", worst);
+        worst.check(slides.worstDistance / kSlideDistanceBound,
+                    "stopping distance " + std::to_string(100 * slides.worstDistance) + " % off:" + slides.distances);
+        worst.check(slides.worstOffLine / kOffLineBound, "stopped " + std::to_string(slides.worstOffLine) + " m off the line");
+        report(backend() + " friction " + variant + ": worst check as a multiple of its bound (" + worst.what + ")",
+               worst.value);
+        expectCriterion("friction." + variant, worst.value <= 1.0,
+                        variant + ": worst " + worst.what + ", " + std::to_string(worst.value) + " x its bound", worst.value);
     }
 }
 

@@ -74,18 +74,18 @@ TEST_P(PlanarTest, BoxSlidesWithKineticAcceleration) {
 TEST_P(PlanarTest, SlidingBallSlowsAtMuGUntilItRolls) {
     const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    const RollingWorst worst = rollingWorst(slideUntilRolling(settings(), ShapeDef::sphere(0.25)), settings());
-    report(backend() + " planar sliding ball: worst check as a multiple of its bound (" + worst.what + ")", worst.multiple);
-    expectCriterion("planar.friction.rolling", worst.multiple <= 1.0,
-                    "worst " + worst.what + ", " + std::to_string(worst.multiple) + " x its bound", worst.multiple);
+    const WorstCheck worst = rollingWorst(slideUntilRolling(settings(), ShapeDef::sphere(0.25)), settings());
+    report(backend() + " planar sliding ball: worst check as a multiple of its bound (" + worst.what + ")", worst.value);
+    expectCriterion("planar.friction.rolling", worst.value <= 1.0,
+                    "worst " + worst.what + ", " + std::to_string(worst.value) + " x its bound", worst.value);
 }
 
 // The glancing hit of ContactsTest, in the plane (its paths and line of centres lie in XY).
 TEST_P(PlanarTest, GlancingBallsLeaveInTheElasticDirections) {
     const std::string missing = lacking(caps(), {ShapeType::Sphere}, Effect::Contacts | Effect::Restitution);
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    const GlancingWorst worst = glancingHits(settings(), backend());
-    expectCriterion("planar.restitution.glancing_direction", worst.degrees <= 4.0, worst.what, worst.degrees);
+    const WorstCheck worst = glancingHits(settings(), backend());
+    expectCriterion("planar.restitution.glancing_direction", worst.value <= 4.0, worst.what, worst.value);
 }
 
 // 10 unit boxes stand 10 s in the plane: the top box moves less than 1 cm sideways.

@@ -63,12 +63,17 @@ struct Manifold {
     std::uint32_t key = 0;         // tells apart several manifolds of one shape pair (mesh triangle index)
 };
 
-/// How far the surface lies outside the shape's core (a point for a sphere, a segment for a
-/// capsule): rotating the body about any axis through the core leaves that part of the surface
-/// where it was, so a contact point moved back by this much along the normal turns with the body
-/// as the surface does. Zero for shapes whose surface is their own (box, hull, mesh, plane).
-inline double roundingRadius(const Shape& s) {
-    return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius : 0.0;
+/// Where a contact's anchor lies on a moving body with this shape, relative to the body's centre
+/// of mass `center` (world frame, the body turned by `orientation`), for a contact at `point`
+/// whose `inward` direction (unit) points from the contact into the shape. A round shape's anchor
+/// lies on its core, where turning the body does not move the surface: a sphere's at its centre
+/// whatever the point (a normal impulse through it does not turn the ball), a capsule's at the
+/// point moved in by its radius (onto its segment). Any other shape's is the point itself.
+inline Vec3 contactAnchor(const Shape& s, const Quat& orientation, const Vec3& center, const Vec3& point,
+                          const Vec3& inward) {
+    if (s.type == ShapeType::Sphere) return orientation * s.local.position;
+    const double round = s.type == ShapeType::Capsule ? s.radius : 0.0;
+    return point + round * inward - center;
 }
 
 /// World pose of a shape of a body at `bodyPose`.

@@ -69,6 +69,7 @@ struct BodyView {
     Vec3 invMass = Vec3::Zero();
     Mat3 invI = Mat3::Zero();
     Vec3 center = Vec3::Zero();
+    Quat orientation = Quat::Identity();
     Vec3 v = Vec3::Zero(), w = Vec3::Zero();
     Vec3 acceleration = Vec3::Zero();
     bool moves = false;  // has a solver state (dynamic or kinematic)
@@ -82,6 +83,7 @@ BodyView viewOf(std::int32_t index, const SolverBody* bodies, const SolverState*
     view.invMass = b.invMass;
     view.invI = b.invInertia;
     view.center = b.position0;
+    view.orientation = b.orientation0;
     view.v = Vec3(s.v[0], s.v[1], s.v[2]);
     view.w = Vec3(s.w[0], s.w[1], s.w[2]);
     view.acceleration = b.linearAcceleration;
@@ -93,14 +95,6 @@ double effectiveMass(const BodyView& a, const Vec3& rA, const BodyView& b, const
     const Vec3 ra = rA.cross(dir), rb = rB.cross(dir);
     return dir.dot(a.invMass.cwiseProduct(dir)) + dir.dot(b.invMass.cwiseProduct(dir)) + ra.dot(a.invI * ra) +
            rb.dot(b.invI * rb);
-}
-
-// The anchor of one side, relative to its centre of mass: `inward` points from the contact into
-// the shape (the normal, which runs from A to B, for B; its opposite for A).
-Vec3 anchorOn(const ContactCore& core, bool moves, const Vec3& center, const Vec3& point, const Vec3& inward) {
-    if (!moves) return Vec3::Zero();
-    if (core.sphere) return core.centre;
-    return point + core.round * inward - center;
 }
 
 void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
@@ -140,12 +134,12 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         WideContactPoint& cp = wc.points[i];
         const Vec3 p = mp.geometry.point;
         // A static body's anchor is the point itself (zero offset): it never moves or turns.
-        // A round shape's anchor lies on its core (ContactCore), where turning the body does not
+        // A round shape's anchor lies on its core (contactAnchor), where turning the body does not
         // move the surface: a ball's surface point turned with the ball rose, so the contact
         // unloaded within each step, the ball sank and a sliding one lost speed 28 % faster than
-        // mu g. A normal impulse through a sphere's centre turns it not at all, whatever the point.
-        const Vec3 rA = anchorOn(in.coreA, a.moves, a.center, p, -n);
-        const Vec3 rB = anchorOn(in.coreB, b.moves, b.center, p, n);
+        // mu g.
+        const Vec3 rA = a.moves ? contactAnchor(*in.shapeA, a.orientation, a.center, p, -n) : Vec3::Zero();
+        const Vec3 rB = b.moves ? contactAnchor(*in.shapeB, b.orientation, b.center, p, n) : Vec3::Zero();
         setLane(cp.anchorA, lane, rA);
         setLane(cp.anchorB, lane, rB);
         const double s = mp.geometry.separation;

@@ -14,7 +14,7 @@
 //   storeImpulses       once per step: impulses back to the manifolds for the next step
 #include <cstdint>
 
-#include "anyphys/defs.hpp"
+#include "collision/shape.hpp"
 #include "solver/solver_body.hpp"
 #include "solver/wide.hpp"
 
@@ -60,16 +60,6 @@ struct WideContact {
     WideContactPointCold cold[4];
 };
 
-/// Where the anchors of one side of a contact lie (see prepareContacts). A round shape's anchor
-/// lies on its core, where turning the body does not move the surface: a sphere's at its centre
-/// whatever the point and normal, a capsule's at the point moved in by its radius along the
-/// normal (on its segment).
-struct ContactCore {
-    double round = 0.0;            // rounding radius (roundingRadius): 0 for a shape that is its own surface
-    bool sphere = false;
-    Vec3 centre = Vec3::Zero();    // a sphere's centre relative to the body's centre of mass, world frame
-};
-
 /// One manifold to place in a lane: its solver bodies (kStaticBody for static or asleep) and
 /// the contact's mixed material.
 struct ContactLane {
@@ -77,7 +67,8 @@ struct ContactLane {
     std::int32_t bodyA = kStaticBody, bodyB = kStaticBody;
     double friction = 0.0, restitution = 0.0;
     std::uint32_t orderKey = 0;  // a hash of the pair and manifold: where the solver visits it (ConstraintGraph)
-    ContactCore coreA, coreB;
+    const Shape* shapeA = nullptr;  // the pair's shapes, where the anchors lie (contactAnchor)
+    const Shape* shapeB = nullptr;
 };
 
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h

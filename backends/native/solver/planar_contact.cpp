@@ -14,6 +14,7 @@ namespace {
 struct PlanarView {
     double invMass = 0.0, invI = 0.0;
     double cx = 0.0, cy = 0.0;             // centre of mass
+    Quat orientation = Quat::Identity();
     double vx = 0.0, vy = 0.0, w = 0.0;
     double ax = 0.0, ay = 0.0;             // linear acceleration
     bool moves = false;
@@ -28,6 +29,7 @@ PlanarView viewOf(std::int32_t index, const SolverBody* bodies, const SolverStat
     view.invI = b.invInertia(2, 2);
     view.cx = b.position0.x();
     view.cy = b.position0.y();
+    view.orientation = b.orientation0;
     view.vx = s.v[0];
     view.vy = s.v[1];
     view.w = s.w[2];
@@ -76,20 +78,12 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
         // A static body's anchor is the point itself (zero offset): it never moves or turns. A
         // round shape's anchor lies on its core, as in the 3D path (contact_constraint.cpp).
-        const auto anchorOn = [&](const ContactCore& core, const PlanarView& body, double side, double& rx, double& ry) {
-            rx = ry = 0.0;
-            if (!body.moves) return;
-            if (core.sphere) {
-                rx = core.centre.x();
-                ry = core.centre.y();
-                return;
-            }
-            rx = px + side * core.round * nx - body.cx;
-            ry = py + side * core.round * ny - body.cy;
-        };
-        double rAx, rAy, rBx, rBy;
-        anchorOn(in.coreA, a, -1.0, rAx, rAy);
-        anchorOn(in.coreB, b, 1.0, rBx, rBy);
+        const Vec3 point(px, py, 0.0), normal(nx, ny, 0.0);
+        const Vec3 rA =
+            a.moves ? contactAnchor(*in.shapeA, a.orientation, Vec3(a.cx, a.cy, 0.0), point, -normal) : Vec3::Zero();
+        const Vec3 rB =
+            b.moves ? contactAnchor(*in.shapeB, b.orientation, Vec3(b.cx, b.cy, 0.0), point, normal) : Vec3::Zero();
+        const double rAx = rA.x(), rAy = rA.y(), rBx = rB.x(), rBy = rB.y();
         cp.anchorAx[lane] = rAx;
         cp.anchorAy[lane] = rAy;
         cp.anchorBx[lane] = rBx;

@@ -45,14 +45,6 @@ constexpr int kMinBodyBlock = 64;   // bodies
 
 constexpr double kJointDampingRatio = 2.0;
 
-ContactCore coreOf(const NativeBody& body, const Shape& shape) {
-    ContactCore core;
-    core.round = roundingRadius(shape);
-    core.sphere = shape.type == ShapeType::Sphere;
-    if (core.sphere) core.centre = body.state.orientation * shape.local.position;  // body position: its centre of mass
-    return core;
-}
-
 }  // namespace
 
 void StepSolver::collect(NativeWorld& world) {
@@ -87,11 +79,10 @@ void StepSolver::collect(NativeWorld& world) {
             if (contact.trigger || contact.manifolds.empty()) return;
             const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
             if (!((a.isDynamic() && a.awake) || (b.isDynamic() && b.awake))) return;
-            const ContactCore coreA = coreOf(a, a.shapes[contact.shapeA]), coreB = coreOf(b, b.shapes[contact.shapeB]);
             for (ContactManifold& m : contact.manifolds)
                 if (m.pointCount > 0)
                     lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
-                                      contact.friction, contact.restitution, orderKey(contact, m), coreA, coreB});
+                                      contact.friction, contact.restitution, orderKey(contact, m), &a.shapes[contact.shapeA], &b.shapes[contact.shapeB]});
             enlist(contact.bodyA);
             enlist(contact.bodyB);
         });
