@@ -53,7 +53,9 @@ Backend makeNativeBackend() {
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
         {"assemblies.ragdoll_gap",
-         "joints open 5.0 cm in the pile of four ragdolls and 5.5 cm in the soak run's pinched pile (bound 5 cm), as the ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst gap's median is 4.1 cm and the largest 12 cm; before round shapes' contacts were anchored on their cores, 3.8 and 11.6 cm, when the unshifted pile happened to give 2.2 cm"},
+         "joints open 5.0 cm in the pile of four ragdolls (bound 5 cm), as the ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst gap's median is 4.1 cm and the largest 12 cm; before round shapes' contacts were anchored on their cores, 3.8 and 11.6 cm, when the unshifted pile happened to give 2.2 cm"},
+        {"assemblies.pinched_pile_gap",
+         "joints open 5.5 cm in the soak run's pinched pile (bound 5 cm) as its ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts"},
         {"assemblies.ragdoll_limits",
          "an elbow goes 4.4 deg past its limit as a ragdoll of the pile lands (5.4 before round shapes' contacts were anchored on their cores), at the default 8 substeps x 1 iteration (bound 3 deg); the limit rows converge with more work: 8 x 4: 2.3 deg, 16 x 1: 1.4 deg, 32 x 1: 0.3 deg"},
         {"planar.assemblies.ragdoll_limits",
@@ -82,6 +84,7 @@ Backend makeNativeBackend() {
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
         {"assemblies.ragdoll_gap", 0.09},
+        {"assemblies.pinched_pile_gap", 0.085},
         {"assemblies.ragdoll_limits", 9.0},
         {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},

@@ -225,9 +225,9 @@ TEST_P(AssemblyTest, PinchedPileFromTheSoakRunStaysWhole) {
     EXPECT_TRUE(gaps.finite());
     // Nothing is thrown: the fastest body in the file moves at 10 m/s; falling 10 m gives 14 m/s.
     EXPECT_LT(fastest, 20.0);
-    // Whole, by the pile's own criterion (5 cm; every 3D backend's joints open further in some
-    // pile, its declared deviation): native 5.5 cm.
-    expectCriterion("assemblies.ragdoll_gap", gaps.worst() < 0.05, "worst joint gap " + std::to_string(gaps.worst()) + " m",
+    // Whole, by the pile's criterion (5 cm), under a key of its own: this pile and the four-ragdoll
+    // pile above are different runs, and a backend may meet the bound in one and not the other.
+    expectCriterion("assemblies.pinched_pile_gap", gaps.worst() < 0.05, "worst joint gap " + std::to_string(gaps.worst()) + " m",
                     gaps.worst());
 }
 
