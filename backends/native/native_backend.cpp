@@ -52,24 +52,22 @@ Backend makeNativeBackend() {
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
-        {"assemblies.ragdoll_gap",
-         "joints open 5.0 cm in the pile of four ragdolls (bound 5 cm), as the ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst gap's median is 4.1 cm and the largest 12 cm; before round shapes' contacts were anchored on their cores, 3.8 and 11.6 cm, when the unshifted pile happened to give 2.2 cm"},
+        {"assemblies.ragdoll_rest",
+         "the pile of four ragdolls still moves at 0.20 m/s after 10 s (bound 0.1): a head rocks 2.3 cm each way on its neck joint with a period of 0.6 s, undamped, as nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.17 m/s and the bound is met in 23 of 72 (0.16 m/s and 33 of 72 before impacts got their friction)"},
         {"assemblies.pinched_pile_gap",
-         "joints open 5.5 cm in the soak run's pinched pile (bound 5 cm) as its ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts"},
-        {"assemblies.ragdoll_limits",
-         "an elbow goes 4.4 deg past its limit as a ragdoll of the pile lands (5.4 before round shapes' contacts were anchored on their cores), at the default 8 substeps x 1 iteration (bound 3 deg); the limit rows converge with more work: 8 x 4: 2.3 deg, 16 x 1: 1.4 deg, 32 x 1: 0.3 deg"},
+         "joints open 5.6 cm in the soak run's pinched pile (bound 5 cm) as its ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts"},
         {"planar.assemblies.ragdoll_limits",
-         "as assemblies.ragdoll_limits, planar: 4.0 deg"},
+         "an elbow goes 3.4 deg past its limit (bound 3 deg) as a ragdoll of the planar pile lands, at the default 8 substeps x 1 iteration: the limit rows are soft there and give under the landing"},
         {"stability.stack10.soft_step.s1",
          "at 1 substep (8 iterations; contacts capped at 30 Hz, half the step rate) a 10-box stack drifts 2.2 cm over 10 s (bound 1 cm); 4.3 mm at 4 substeps"},
         {"stability.stack10.pgs.s1",
-         "PGS at 1 substep x 8 iterations: the 10-box stack drifts 2.7 cm over 10 s (bound 1 cm); more iterations help (the velocity solve converges slowly on a stack), a block solve of each manifold's points would"},
+         "PGS at 1 substep x 8 iterations: the 10-box stack drifts 3.3 cm over 10 s (bound 1 cm); more iterations help (the velocity solve converges slowly on a stack), a block solve of each manifold's points would"},
         {"stability.stack10.pgs.s4",
          "PGS at 4 substeps x 2 iterations: the 10-box stack drifts 1.5 cm over 10 s (as stability.stack10.pgs.s1)"},
         {"stability.pyramid20.soft_step.s1",
          "at 1 substep the 20-row pyramid's boxes drift up to 1.8 cm over 5 s (bound 1 cm); 5.9 mm at 4 substeps"},
         {"stability.pyramid20.pgs.s1",
-         "PGS at 1 substep: the 20-row pyramid's boxes drift 7 cm over 5 s and its top sinks 6.2 cm (as stability.stack10.pgs.s1)"},
+         "PGS at 1 substep: the 20-row pyramid's boxes drift 5.1 cm over 5 s and its top sinks 6.2 cm (as stability.stack10.pgs.s1)"},
         {"planar.stability.stack10.soft_step.s1",
          "as stability.stack10.soft_step.s1, planar: 1.5 cm"},
         {"planar.stability.stack10.pgs.s1",
@@ -83,9 +81,8 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"assemblies.ragdoll_gap", 0.09},
+        {"assemblies.ragdoll_rest", 0.3},
         {"assemblies.pinched_pile_gap", 0.085},
-        {"assemblies.ragdoll_limits", 9.0},
         {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},
         {"stability.stack10.pgs.s1", 4},
@@ -104,7 +101,7 @@ Backend makeNativeBackend() {
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 3.2 m/s"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "a joint opens 5.6 cm (bound 5) as the ragdolls of the planar pile land on each other: the joint rows are soft at the default substeps and give under the landings (16 substeps: 4.6 cm in an earlier course of the pile). The pile is chaotic: it gave 5.1, then 4.4 cm, as contacts of round shapes were anchored on their cores and then balls' normals aimed at their impact, changes that left the contract's pile of four ragdolls the same over 24 shifted layouts"},
+         "a joint opens 6.6 cm (bound 5) as the ragdolls of the planar pile land on each other: the joint rows are soft at the default substeps and give under the landings (16 substeps: 4.6 cm in an earlier course of the pile). The pile is chaotic: it gave 5.1, 4.4, 5.6 and now 6.6 cm as contact changes that left the contract's planar pile of four ragdolls the same over 72 shifted layouts (round shapes' anchors on their cores, balls' normals aimed at their impact, friction within impacts) sent it another way"},
     });
     caps.deviationCeilings.insert({
         {"hard.overlap25.speed", 4.5},

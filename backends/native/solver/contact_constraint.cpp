@@ -128,7 +128,7 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
     const double normalAcceleration = n.dot(b.acceleration - a.acceleration);
     const double invTau = params.speculativeDistance > 0.0 ? 1.0 / params.speculativeDistance : 0.0;
     Vec3 center = Vec3::Zero();
-    double totalWeight = 0.0;
+    double totalWeight = 0.0, gap = 0.0;
     for (int i = 0; i < m.pointCount; ++i) {
         const ContactPointState& mp = m.points[i];
         WideContactPoint& cp = wc.points[i];
@@ -162,12 +162,17 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         // must not pull the friction centre around as they come and go.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
         center += weight * p;
+        gap += weight * s;
         totalWeight += weight;
     }
     center /= totalWeight;
+    gap /= totalWeight;
     for (int i = 0; i < m.pointCount; ++i) wc.points[i].leverArm[lane] = (m.points[i].geometry.point - center).norm();
-    const Vec3 cA = a.moves ? Vec3(center - a.center) : Vec3::Zero();
-    const Vec3 cB = b.moves ? Vec3(center - b.center) : Vec3::Zero();
+    // Friction acts where the surfaces touch: each body's anchor is on its own surface, half the
+    // gap from the midway point. At the midway point, a ball landing from a speculative contact
+    // took its friction 2.5 cm below its surface and left sliding and over-spun.
+    const Vec3 cA = a.moves ? Vec3(center - 0.5 * gap * n - a.center) : Vec3::Zero();
+    const Vec3 cB = b.moves ? Vec3(center + 0.5 * gap * n - b.center) : Vec3::Zero();
     setLane(wc.centerA, lane, cA);
     setLane(wc.centerB, lane, cB);
 

@@ -83,19 +83,20 @@ ANYPHYS_KERNEL Vec3W relativeVelocity(const BodyW& a, const BodyW& b, const Vec3
     return (b.v + cross(b.w, rB)) - (a.v + cross(a.w, rA));
 }
 
-// Central friction (two tangents in a circle of mu * sum of normal impulses) and twist friction
-// (in mu * sum of lever arm x normal impulse).
-ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b) {
+// Central friction (two tangents in a circle of mu * sum of the points' loads) and twist friction
+// (in mu * sum of lever arm x load). `load` is each point's normal impulse as the pass sees it;
+// lanes outside `lanes` keep their impulses.
+ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b, const FloatW* load, MaskW lanes) {
     FloatW totalNormal = zero(), twistLimit = zero();
     for (int j = 0; j < c.pointCount; ++j) {
-        totalNormal += c.points[j].normalImpulse;
-        twistLimit += c.points[j].leverArm * c.points[j].normalImpulse;
+        totalNormal += load[j];
+        twistLimit += c.points[j].leverArm * load[j];
     }
     {
         const FloatW twistSpeed = dot(c.normal, b.w - a.w);
         const FloatW maxTwist = c.friction * twistLimit;
         const FloatW old = c.twistImpulse;
-        c.twistImpulse = clamp(old - c.twistMass * twistSpeed, -maxTwist, maxTwist);
+        c.twistImpulse = select(lanes, clamp(old - c.twistMass * twistSpeed, -maxTwist, maxTwist), old);
         const Vec3W L = (c.twistImpulse - old) * c.normal;
         a.w = a.w - c.invIA * L;
         b.w = b.w + c.invIB * L;
@@ -109,8 +110,8 @@ ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b) {
     const MaskW outside = lengthSquared > maxImpulse * maxImpulse;
     // Outside the circle lengthSquared > 0, so the division is safe where it is used.
     const FloatW factor = select(outside, maxImpulse / sqrt(select(outside, lengthSquared, splat(1.0))), splat(1.0));
-    f1 *= factor;
-    f2 *= factor;
+    f1 = select(lanes, f1 * factor, c.frictionImpulse1);
+    f2 = select(lanes, f2 * factor, c.frictionImpulse2);
     const Vec3W P = (f1 - c.frictionImpulse1) * c.tangent1 + (f2 - c.frictionImpulse2) * c.tangent2;
     c.frictionImpulse1 = f1;
     c.frictionImpulse2 = f2;
@@ -148,6 +149,14 @@ ANYPHYS_KERNEL void warmStartImpl(WideContact* contacts, int count, SolverState*
     }
 }
 
+// Current separation of a point from the bodies' motion since the step began (no new collision
+// pass inside the step).
+ANYPHYS_KERNEL FloatW separation(const WideContact& c, const WideContactPoint& cp, const BodyW& a, const BodyW& b,
+                                 const Vec3W& dp) {
+    const Vec3W moved = dp + rotate(b.dq, cp.anchorB) - rotate(a.dq, cp.anchorA);
+    return dot(c.normal, moved) + cp.baseSeparation;
+}
+
 ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
                               bool useBias, bool endOfSubstep) {
     const FloatW invH = splat(params.invH);
@@ -155,12 +164,40 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* sta
     const FloatW one = splat(1.0);
     const FloatW baumgarte = splat(params.baumgarte * params.invH);
     const FloatW slop = splat(params.linearSlop);
+    // The relax pass reads each point's separation before its friction row (below).
+    // Where a point's row is rigid (the relax pass; PGS), its friction is bounded by the impulse the
+    // row will leave (below); the solve pass's soft rows keep the last impulses.
+    const bool predictLoad = params.friction && (!useBias || !params.soft);
+    // A rigid row's velocity bias from the point's separation s: a speculative point closes its
+    // gap this substep; PGS pushes overlap beyond linearSlop out by a Baumgarte fraction.
+    const auto rigidBias = [&](FloatW s) {
+        const FloatW push = useBias ? max(baumgarte * min(zero(), s + slop), maxPush) : zero();
+        return select(s > zero(), s * invH, push);
+    };
     for (int i = 0; i < count; ++i) {
         WideContact& c = contacts[i];
         BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
-        // Friction first, against the last normal impulses; non-penetration matters more and so
-        // has the last word in each pass.
-        if (params.friction) solveFriction(c, a, b);
+        const Vec3W dp = b.dp - a.dp;
+        // Friction first, so non-penetration has the last word in each pass. Its bound: in the
+        // solve pass the last normal impulses; in the relax pass each point's impulse as this
+        // pass's normal row would leave it. Against the last impulses alone, an impact (whose
+        // impulse comes in one relax pass, then leaves as the bodies part) got no friction at
+        // the default of one pass per substep: a ball landing obliquely kept sliding unspun.
+        FloatW rowBias[4];  // predictLoad: each point's rigidBias
+        if (params.friction) {
+            FloatW load[4];
+            for (int k = 0; k < c.pointCount; ++k) {
+                const WideContactPoint& cp = c.points[k];
+                load[k] = cp.normalImpulse;
+                if (predictLoad) {
+                    const FloatW s = separation(c, cp, a, b, dp);
+                    rowBias[k] = rigidBias(s);
+                    const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
+                    load[k] = max(cp.normalImpulse - cp.normalMass * (vn + rowBias[k]), zero());
+                }
+            }
+            solveFriction(c, a, b, load, kAllLanes);
+        }
 
         FloatW biasRate = zero(), massScale = one, impulseScale = zero();
         if (useBias && params.soft) {
@@ -168,32 +205,34 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* sta
             massScale = c.massScale;
             impulseScale = c.impulseScale;
         }
-        const Vec3W dp = b.dp - a.dp;
         // PGS alternates the order of a manifold's points from pass to pass: always first, the
         // first point of a symmetric face (a box on a box) takes more than its share and the pair
-        // starts to turn; a 10-box stack toppled at 1 substep (drift 2.9 m, now 2.7 cm). The soft
+        // starts to turn; a 10-box stack toppled at 1 substep (drift 2.9 m; 3.3 cm alternating). The soft
         // step keeps one order: its relax passes already even the points out, and alternating
         // there opened a ragdoll pile's joints (31 -> 73 mm).
         const bool reverse = !params.soft && c.reverse;
         c.reverse = !c.reverse;
-        for (int k = 0; k < c.pointCount; ++k) {
-            WideContactPoint& cp = c.points[reverse ? c.pointCount - 1 - k : k];
-            // Current separation from the bodies' motion since the step began (no new collision pass).
-            const Vec3W moved = dp + rotate(b.dq, cp.anchorB) - rotate(a.dq, cp.anchorA);
-            const FloatW s = dot(c.normal, moved) + cp.baseSeparation;
-            const MaskW speculative = s > zero();
-            FloatW bias;
-            if (!useBias) {
-                bias = zero();
-            } else if (params.soft) {
-                bias = max(biasRate * s, maxPush);
-            } else {  // Baumgarte: a fraction of the overlap beyond linearSlop per substep
-                bias = max(baumgarte * min(zero(), s + slop), maxPush);
+        for (int n = 0; n < c.pointCount; ++n) {
+            const int k = reverse ? c.pointCount - 1 - n : n;
+            WideContactPoint& cp = c.points[k];
+            FloatW bias = zero(), pointMassScale = one, pointImpulseScale = zero();
+            if (predictLoad) {
+                bias = rowBias[k];
+            } else {
+                const FloatW s = separation(c, cp, a, b, dp);
+                const MaskW speculative = s > zero();
+                if (!useBias) {
+                    bias = zero();
+                } else if (params.soft) {
+                    bias = max(biasRate * s, maxPush);
+                } else {  // Baumgarte: a fraction of the overlap beyond linearSlop per substep
+                    bias = max(baumgarte * min(zero(), s + slop), maxPush);
+                }
+                // A speculative point allows the approach to close exactly the gap this substep.
+                bias = select(speculative, s * invH, bias);
+                pointMassScale = select(speculative, one, massScale);
+                pointImpulseScale = select(speculative, zero(), impulseScale);
             }
-            // A speculative point allows the approach to close exactly the gap this substep.
-            bias = select(speculative, s * invH, bias);
-            const FloatW pointMassScale = select(speculative, one, massScale);
-            const FloatW pointImpulseScale = select(speculative, zero(), impulseScale);
 
             const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
             const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
@@ -215,20 +254,28 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, int count, SolverStat
         WideContact& c = contacts[i];
         if (allZero(c.restitution)) continue;
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        MaskW bounced = MaskW{};
+        FloatW load[4];
         for (int j = 0; j < c.pointCount; ++j) {
             WideContactPoint& cp = c.points[j];
             const WideContactPointCold& cold = c.cold[j];
             // Only where the approach was fast and the contact pushed (not speculative points
             // that never closed).
             const MaskW bounces = (cold.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            bounced |= bounces;
             const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
             const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget), zero());
             const FloatW total = max(cp.normalImpulse + impulse, zero());
             const FloatW applied = total - cp.normalImpulse;
             cp.normalImpulse = total;
             cp.stepImpulse += applied;
+            load[j] = total;
             applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
         }
+        // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
+        // times the bounce's impulse too (as ODE, Bullet and Box2D give it; without this, a ball
+        // landing at 3 m/s each way with e = 1 and mu = 0.1 left at 2.7 m/s where they give 2.4).
+        if (params.friction) solveFriction(c, a, b, load, bounced);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }

@@ -70,7 +70,7 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
 
     const double normalAcceleration = nx * (b.ax - a.ax) + ny * (b.ay - a.ay);
     const double invTau = params.speculativeDistance > 0.0 ? 1.0 / params.speculativeDistance : 0.0;
-    double centerX = 0.0, centerY = 0.0, totalWeight = 0.0;
+    double centerX = 0.0, centerY = 0.0, totalWeight = 0.0, gap = 0.0;
     for (int i = 0; i < m.pointCount; ++i) {
         const ContactPointState& mp = m.points[i];
         PlanarContactPoint& cp = pc.points[i];
@@ -106,12 +106,16 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
         centerX += weight * px;
         centerY += weight * py;
+        gap += weight * s;
         totalWeight += weight;
     }
     centerX /= totalWeight;
     centerY /= totalWeight;
-    const double cAx = a.moves ? centerX - a.cx : 0.0, cAy = a.moves ? centerY - a.cy : 0.0;
-    const double cBx = b.moves ? centerX - b.cx : 0.0, cBy = b.moves ? centerY - b.cy : 0.0;
+    gap /= totalWeight;
+    // Each body's friction anchor on its own surface, half the gap from the midway point (as in 3D).
+    const double halfGapX = 0.5 * gap * nx, halfGapY = 0.5 * gap * ny;
+    const double cAx = a.moves ? centerX - halfGapX - a.cx : 0.0, cAy = a.moves ? centerY - halfGapY - a.cy : 0.0;
+    const double cBx = b.moves ? centerX + halfGapX - b.cx : 0.0, cBy = b.moves ? centerY + halfGapY - b.cy : 0.0;
     pc.centerAx[lane] = cAx;
     pc.centerAy[lane] = cAy;
     pc.centerBx[lane] = cBx;

@@ -79,15 +79,17 @@ ANYPHYS_KERNEL FloatW normalVelocity(const PlanarBodyW& a, const PlanarBodyW& b,
     return nx * dvx + ny * dvy;
 }
 
-// Friction at the manifold's centre along the tangent (-ny, nx), in [-mu N, mu N].
-ANYPHYS_KERNEL void solveFriction(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b) {
+// Friction at the manifold's centre along the tangent (-ny, nx), in [-mu N, mu N] with N the sum
+// of the points' loads (each point's normal impulse as the pass sees it); lanes outside `lanes`
+// keep their impulse.
+ANYPHYS_KERNEL void solveFriction(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b, const FloatW* load, MaskW lanes) {
     FloatW totalNormal = zero();
-    for (int j = 0; j < c.pointCount; ++j) totalNormal += c.points[j].normalImpulse;
+    for (int j = 0; j < c.pointCount; ++j) totalNormal += load[j];
     const FloatW tx = -c.normalY, ty = c.normalX;
     const FloatW vt = normalVelocity(a, b, tx, ty, c.centerAx, c.centerAy, c.centerBx, c.centerBy);
     const FloatW maxImpulse = c.friction * totalNormal;
     const FloatW old = c.frictionImpulse;
-    c.frictionImpulse = clamp(old - c.tangentMass * vt, -maxImpulse, maxImpulse);
+    c.frictionImpulse = select(lanes, clamp(old - c.tangentMass * vt, -maxImpulse, maxImpulse), old);
     const FloatW P = c.frictionImpulse - old;
     applyImpulse(a, b, c, c.centerAx, c.centerAy, c.centerBx, c.centerBy, P * tx, P * ty);
 }
@@ -120,6 +122,14 @@ ANYPHYS_KERNEL void warmStartImpl(PlanarContact* contacts, int count, SolverStat
     }
 }
 
+// Current separation of a point from the bodies' motion since the step began.
+ANYPHYS_KERNEL FloatW separation(const PlanarContact& c, const PlanarContactPoint& cp, const PlanarBodyW& a,
+                                 const PlanarBodyW& b, FloatW dpx, FloatW dpy) {
+    const FloatW movedX = dpx + (b.c * cp.anchorBx - b.s * cp.anchorBy) - (a.c * cp.anchorAx - a.s * cp.anchorAy);
+    const FloatW movedY = dpy + (b.s * cp.anchorBx + b.c * cp.anchorBy) - (a.s * cp.anchorAx + a.c * cp.anchorAy);
+    return c.normalX * movedX + c.normalY * movedY + cp.baseSeparation;
+}
+
 ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
                               bool useBias, bool endOfSubstep) {
     const FloatW invH = splat(params.invH);
@@ -127,40 +137,67 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     const FloatW one = splat(1.0);
     const FloatW baumgarte = splat(params.baumgarte * params.invH);
     const FloatW slop = splat(params.linearSlop);
+    // Where a point's row is rigid (the relax pass; PGS), its friction is bounded by the impulse the
+    // row will leave (below); the solve pass's soft rows keep the last impulses.
+    const bool predictLoad = params.friction && (!useBias || !params.soft);
+    // A rigid row's velocity bias from the point's separation s: a speculative point closes its
+    // gap this substep; PGS pushes overlap beyond linearSlop out by a Baumgarte fraction.
+    const auto rigidBias = [&](FloatW s) {
+        const FloatW push = useBias ? max(baumgarte * min(zero(), s + slop), maxPush) : zero();
+        return select(s > zero(), s * invH, push);
+    };
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
         PlanarBodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
-        // Friction first; non-penetration has the last word in each pass.
-        if (params.friction) solveFriction(c, a, b);
+        const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
+        // Friction first; non-penetration has the last word in each pass. Bounded as in 3D: by the
+        // last normal impulses in the solve pass, by the impulses this pass's rows would leave in
+        // the relax pass (so an impact gets its friction).
+        FloatW rowBias[4];  // predictLoad: each point's rigidBias
+        if (params.friction) {
+            FloatW load[4];
+            for (int k = 0; k < c.pointCount; ++k) {
+                const PlanarContactPoint& cp = c.points[k];
+                load[k] = cp.normalImpulse;
+                if (predictLoad) {
+                    const FloatW s = separation(c, cp, a, b, dpx, dpy);
+                    rowBias[k] = rigidBias(s);
+                    const FloatW vn =
+                        normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
+                    load[k] = max(cp.normalImpulse - cp.normalMass * (vn + rowBias[k]), zero());
+                }
+            }
+            solveFriction(c, a, b, load, kAllLanes);
+        }
         FloatW biasRate = zero(), massScale = one, impulseScale = zero();
         if (useBias && params.soft) {
             biasRate = c.biasRate;
             massScale = c.massScale;
             impulseScale = c.impulseScale;
         }
-        const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
         // PGS alternates the order of the points from pass to pass, as the 3D path does.
         const bool reverse = !params.soft && c.reverse;
         c.reverse = !c.reverse;
         for (int n = 0; n < c.pointCount; ++n) {
             const int k = reverse ? c.pointCount - 1 - n : n;
             PlanarContactPoint& cp = c.points[k];
-            // Current separation from the bodies' motion since the step began.
-            const FloatW movedX = dpx + (b.c * cp.anchorBx - b.s * cp.anchorBy) - (a.c * cp.anchorAx - a.s * cp.anchorAy);
-            const FloatW movedY = dpy + (b.s * cp.anchorBx + b.c * cp.anchorBy) - (a.s * cp.anchorAx + a.c * cp.anchorAy);
-            const FloatW s = c.normalX * movedX + c.normalY * movedY + cp.baseSeparation;
-            const MaskW speculative = s > zero();
-            FloatW bias;
-            if (!useBias) {
-                bias = zero();
-            } else if (params.soft) {
-                bias = max(biasRate * s, maxPush);
+            FloatW bias = zero(), pointMassScale = one, pointImpulseScale = zero();
+            if (predictLoad) {
+                bias = rowBias[k];
             } else {
-                bias = max(baumgarte * min(zero(), s + slop), maxPush);
+                const FloatW s = separation(c, cp, a, b, dpx, dpy);
+                const MaskW speculative = s > zero();
+                if (!useBias) {
+                    bias = zero();
+                } else if (params.soft) {
+                    bias = max(biasRate * s, maxPush);
+                } else {
+                    bias = max(baumgarte * min(zero(), s + slop), maxPush);
+                }
+                bias = select(speculative, s * invH, bias);
+                pointMassScale = select(speculative, one, massScale);
+                pointImpulseScale = select(speculative, zero(), impulseScale);
             }
-            bias = select(speculative, s * invH, bias);
-            const FloatW pointMassScale = select(speculative, one, massScale);
-            const FloatW pointImpulseScale = select(speculative, zero(), impulseScale);
             const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
             const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
             const FloatW total = max(cp.normalImpulse + impulse, zero());
@@ -183,20 +220,26 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, int count, SolverSt
         PlanarContact& c = contacts[i];
         if (allZero(c.restitution)) continue;
         PlanarBodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        MaskW bounced = MaskW{};
+        FloatW load[4];
         for (int j = 0; j < c.pointCount; ++j) {
             PlanarContactPoint& cp = c.points[j];
             PlanarContactPointCold& cold = c.cold[j];
             const MaskW bounces =
                 (cold.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            bounced |= bounces;
             const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
             const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget), zero());
             const FloatW total = max(cp.normalImpulse + impulse, zero());
             const FloatW applied = total - cp.normalImpulse;
             cp.normalImpulse = total;
             cold.stepImpulse += applied;
+            load[j] = total;
             applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                          applied * c.normalY);
         }
+        // Friction through the whole impact, the bounce included (as in 3D).
+        if (params.friction) solveFriction(c, a, b, load, bounced);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }

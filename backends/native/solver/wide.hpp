@@ -17,6 +17,8 @@ inline constexpr int kLanes = 4;
 using FloatW = double __attribute__((vector_size(32), aligned(32)));
 using MaskW = std::int64_t __attribute__((vector_size(32), aligned(32)));  // all bits set where true
 
+inline constexpr MaskW kAllLanes = {-1, -1, -1, -1};
+
 // Every function here is always inlined: the kernels are built once per instruction set
 // (contact_solve.cpp), and an inlined body takes its caller's instructions.
 #define ANYPHYS_WIDE [[gnu::always_inline]] inline
