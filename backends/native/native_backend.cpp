@@ -53,9 +53,9 @@ Backend makeNativeBackend() {
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
         {"assemblies.ragdoll_rest",
-         "the pile of four ragdolls still moves at 0.20 m/s after 10 s (bound 0.1): a head rocks 2.3 cm each way on its neck joint with a period of 0.6 s, undamped, as nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.17 m/s and the bound is met in 23 of 72 (0.16 m/s and 33 of 72 before impacts got their friction)"},
-        {"assemblies.pinched_pile_gap",
-         "joints open 5.6 cm in the soak run's pinched pile (bound 5 cm) as its ragdolls land on each other at up to 9 m/s: the joint rows are soft at the default substeps and give under the impacts"},
+         "the pile of four ragdolls still moves at 0.20 m/s after 10 s (bound 0.1): a head rocks 3 cm each way on its neck joint with a period of 0.6 s, undamped, as nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.16 m/s and the bound is met in 27 of 72 (0.16 m/s and 33 of 72 before impacts got their friction)"},
+        {"assemblies.ragdoll_limits",
+         "an elbow goes 4.8 deg past its limit (bound 3 deg) as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst overshoot's median is 3.1 deg (4.1 before impacts got their friction) and 39 of 72 go past 3 deg"},
         {"planar.assemblies.ragdoll_limits",
          "an elbow goes 3.4 deg past its limit (bound 3 deg) as a ragdoll of the planar pile lands, at the default 8 substeps x 1 iteration: the limit rows are soft there and give under the landing"},
         {"stability.stack10.soft_step.s1",
@@ -67,7 +67,7 @@ Backend makeNativeBackend() {
         {"stability.pyramid20.soft_step.s1",
          "at 1 substep the 20-row pyramid's boxes drift up to 1.8 cm over 5 s (bound 1 cm); 5.9 mm at 4 substeps"},
         {"stability.pyramid20.pgs.s1",
-         "PGS at 1 substep: the 20-row pyramid's boxes drift 5.1 cm over 5 s and its top sinks 6.2 cm (as stability.stack10.pgs.s1)"},
+         "PGS at 1 substep: the 20-row pyramid's boxes drift 6.8 cm over 5 s and its top sinks 6.2 cm (as stability.stack10.pgs.s1)"},
         {"planar.stability.stack10.soft_step.s1",
          "as stability.stack10.soft_step.s1, planar: 1.5 cm"},
         {"planar.stability.stack10.pgs.s1",
@@ -82,7 +82,7 @@ Backend makeNativeBackend() {
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
         {"assemblies.ragdoll_rest", 0.3},
-        {"assemblies.pinched_pile_gap", 0.085},
+        {"assemblies.ragdoll_limits", 7.5},
         {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},
         {"stability.stack10.pgs.s1", 4},
@@ -100,13 +100,10 @@ Backend makeNativeBackend() {
          "each overlap is pushed apart at up to settings.contactPushMaxVelocity (3 m/s, Box2D v3's default); the upper box, pushed off the lower one while that rises off the ground, reaches 3.4 m/s. Verified by the setting: 2 m/s gives 2.27, 1.5 gives 1.70 (within the 2.2 bound)"},
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 3.2 m/s"},
-        {"planar.hard.ragdoll_pile.joint_gap",
-         "a joint opens 6.6 cm (bound 5) as the ragdolls of the planar pile land on each other: the joint rows are soft at the default substeps and give under the landings (16 substeps: 4.6 cm in an earlier course of the pile). The pile is chaotic: it gave 5.1, 4.4, 5.6 and now 6.6 cm as contact changes that left the contract's planar pile of four ragdolls the same over 72 shifted layouts (round shapes' anchors on their cores, balls' normals aimed at their impact, friction within impacts) sent it another way"},
     });
     caps.deviationCeilings.insert({
         {"hard.overlap25.speed", 4.5},
         {"planar.hard.overlap25.speed", 4.5},
-        {"planar.hard.ragdoll_pile.joint_gap", 0.1},
     });
     return backend;
 }

@@ -94,6 +94,17 @@ ANYPHYS_KERNEL void solveFriction(PlanarContact& c, PlanarBodyW& a, PlanarBodyW&
     applyImpulse(a, b, c, c.centerAx, c.centerAy, c.centerBx, c.centerBy, P * tx, P * ty);
 }
 
+// Takes back friction beyond mu times the normal impulses the pass left (as in 3D).
+ANYPHYS_KERNEL void clampFrictionToLoad(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b) {
+    FloatW totalNormal = zero();
+    for (int j = 0; j < c.pointCount; ++j) totalNormal += c.points[j].normalImpulse;
+    const FloatW maxImpulse = c.friction * totalNormal;
+    const FloatW old = c.frictionImpulse;
+    c.frictionImpulse = clamp(old, -maxImpulse, maxImpulse);
+    const FloatW P = c.frictionImpulse - old;
+    applyImpulse(a, b, c, c.centerAx, c.centerAy, c.centerBx, c.centerBy, -P * c.normalY, P * c.normalX);
+}
+
 ANYPHYS_KERNEL void warmStartImpl(PlanarContact* contacts, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
@@ -208,6 +219,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
             applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                          applied * c.normalY);
         }
+        if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
