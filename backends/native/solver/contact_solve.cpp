@@ -190,7 +190,6 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* sta
     const FloatW one = splat(1.0);
     const FloatW baumgarte = splat(params.baumgarte * params.invH);
     const FloatW slop = splat(params.linearSlop);
-    // The relax pass reads each point's separation before its friction row (below).
     // Where a point's row is rigid (the relax pass; PGS), its friction is bounded by the impulse the
     // row will leave (below); the solve pass's soft rows keep the last impulses.
     const bool predictLoad = params.friction && (!useBias || !params.soft);
@@ -204,11 +203,12 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* sta
         WideContact& c = contacts[i];
         BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
         const Vec3W dp = b.dp - a.dp;
-        // Friction first, so non-penetration has the last word in each pass. Its bound: in the
-        // solve pass the last normal impulses; in the relax pass each point's impulse as this
-        // pass's normal row would leave it. Against the last impulses alone, an impact (whose
-        // impulse comes in one relax pass, then leaves as the bodies part) got no friction at
-        // the default of one pass per substep: a ball landing obliquely kept sliding unspun.
+        // Friction first, so non-penetration has the last word in each pass. Its bound: through
+        // soft rows the last normal impulses; through rigid ones each point's impulse as its row
+        // will leave it, and what the rows then leave caps it (clampFrictionToLoad). Against the
+        // last impulses alone, an impact (whose impulse comes in one relax pass, then leaves as
+        // the bodies part) got no friction at the default of one pass per substep: a ball landing
+        // obliquely kept sliding unspun.
         FloatW rowBias[4];  // predictLoad: each point's rigidBias
         if (params.friction) {
             FloatW load[4];

@@ -162,8 +162,8 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
         PlanarBodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
         const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
         // Friction first; non-penetration has the last word in each pass. Bounded as in 3D: by the
-        // last normal impulses in the solve pass, by the impulses this pass's rows would leave in
-        // the relax pass (so an impact gets its friction).
+        // last normal impulses through soft rows, by the impulses rigid rows will leave (so an
+        // impact gets its friction), then capped by what they left.
         FloatW rowBias[4];  // predictLoad: each point's rigidBias
         if (params.friction) {
             FloatW load[4];
