@@ -250,7 +250,8 @@ TEST_P(ContactsTest, SlidingRoundBodiesSlowAtMuGUntilTheyRoll) {
 // default substep count (one pass per substep there: native's PGS at 8 x 1 took friction from a
 // bounce twice, and passed at 1 and 4 substeps).
 TEST_P(ContactsTest, ObliqueLandingGetsItsFrictionInTheImpact) {
-    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane},
+                                        Effect::Contacts | Effect::Friction | Effect::Restitution);
     ANYPHYS_REQUIRE(missing.empty(), missing);
     std::vector<WorldSettings> variants = everySolverAndSubstepCount(settings());
     if (caps().defaultSubsteps != 1 && caps().defaultSubsteps != 4)

@@ -82,7 +82,8 @@ TEST_P(PlanarTest, SlidingBallSlowsAtMuGUntilItRolls) {
 
 // The oblique landing of ContactsTest, in the plane: along +x and -x.
 TEST_P(PlanarTest, ObliqueLandingGetsItsFrictionInTheImpact) {
-    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane},
+                                        Effect::Contacts | Effect::Friction | Effect::Restitution);
     ANYPHYS_REQUIRE(missing.empty(), missing);
     const WorstCheck worst = obliqueLandings(settings(), {Vec3::UnitX(), -Vec3::UnitX()});
     report(backend() + " planar oblique landing: worst check as a multiple of its bound (" + worst.what + ")", worst.value);
