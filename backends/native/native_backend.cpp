@@ -53,7 +53,7 @@ Backend makeNativeBackend() {
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
         {"assemblies.ragdoll_rest",
-         "the pile of four ragdolls still moves at 0.20 m/s after 10 s (bound 0.1): a head rocks 3 cm each way on its neck joint with a period of 0.6 s, undamped, as nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.16 m/s and the bound is met in 27 of 72 (0.16 m/s and 33 of 72 before impacts got their friction)"},
+         "the pile of four ragdolls still moves at 0.33 m/s after 10 s (bound 0.1): a head rocks 3 cm each way on its neck joint with a period of 0.6 s, undamped, as nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.15 m/s, the slowest layout 0.77 m/s (0.16 and 0.72 before box faces stopped taking a neighbour's corner, 0.20 m/s in this layout)"},
         {"assemblies.ragdoll_limits",
          "an elbow goes 4.8 deg past its limit (bound 3 deg) as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst overshoot's median is 3.1 deg (4.1 before impacts got their friction) and 39 of 72 go past 3 deg"},
         {"planar.assemblies.ragdoll_limits",
@@ -65,15 +65,15 @@ Backend makeNativeBackend() {
         {"stability.stack10.pgs.s4",
          "PGS at 4 substeps x 2 iterations: the 10-box stack drifts 1.5 cm over 10 s (as stability.stack10.pgs.s1)"},
         {"stability.pyramid20.soft_step.s1",
-         "at 1 substep the 20-row pyramid's boxes drift up to 1.8 cm over 5 s (bound 1 cm); 5.9 mm at 4 substeps"},
+         "at 1 substep the 20-row pyramid's boxes drift up to 1.8 cm over 5 s (bound 1 cm); 3.8 mm at 4 substeps"},
         {"stability.pyramid20.pgs.s1",
-         "PGS at 1 substep: the 20-row pyramid's boxes drift 6.8 cm over 5 s and its top sinks 6.2 cm (as stability.stack10.pgs.s1)"},
+         "PGS at 1 substep: the 20-row pyramid's boxes drift 2.9 cm over 5 s and its top sinks 5.5 cm (as stability.stack10.pgs.s1)"},
+        {"stability.pyramid20.pgs.s4",
+         "PGS at 4 substeps x 2 iterations: the 20-row pyramid's boxes sway up to 1.1 cm (bound 1 cm) and back over 5 s; they end within 2 mm of where they started. The velocity solve of the rows' side-by-side contacts converges slowly (as stability.stack10.pgs.s1)"},
         {"planar.stability.stack10.soft_step.s1",
          "as stability.stack10.soft_step.s1, planar: 1.5 cm"},
         {"planar.stability.stack10.pgs.s1",
          "as stability.stack10.pgs.s1, planar: the stack drifts 9.4 cm"},
-        {"planar.stability.pyramid20.pgs.s1",
-         "as stability.pyramid20.pgs.s1, planar: 1.2 cm, top sinks 5.6 cm"},
     });
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
@@ -81,17 +81,17 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"assemblies.ragdoll_rest", 0.3},
+        {"assemblies.ragdoll_rest", 0.5},
         {"assemblies.ragdoll_limits", 7.5},
         {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},
         {"stability.stack10.pgs.s1", 4},
         {"stability.stack10.pgs.s4", 2.5},
         {"stability.pyramid20.soft_step.s1", 2.7},
-        {"stability.pyramid20.pgs.s1", 10.5},
+        {"stability.pyramid20.pgs.s1", 4.5},
+        {"stability.pyramid20.pgs.s4", 1.7},
         {"planar.stability.stack10.soft_step.s1", 2.2},
         {"planar.stability.stack10.pgs.s1", 14},
-        {"planar.stability.pyramid20.pgs.s1", 1.8},
     };
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.
@@ -100,10 +100,13 @@ Backend makeNativeBackend() {
          "each overlap is pushed apart at up to settings.contactPushMaxVelocity (3 m/s, Box2D v3's default); the upper box, pushed off the lower one while that rises off the ground, reaches 3.4 m/s. Verified by the setting: 2 m/s gives 2.27, 1.5 gives 1.70 (within the 2.2 bound)"},
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 3.2 m/s"},
+        {"hard.ragdoll_pile.joint_gap",
+         "a joint of the 10-ragdoll pile opens 5.4 cm (bound 5 cm), 4.1 cm before box faces stopped taking a neighbour's corner as a point on their plane extended (a box over a table's edge then stayed on the table). The pile is chaotic, but the change moved the whole spread: the contract's pile with ten ragdolls, over 36 layouts with the bodies shifted by up to 2 mm, now opens a joint 72 mm at the median (57 before; the four-ragdoll pile 25 against 24 over 72 layouts). Joint rows that hold against a torso tipping off another would meet it"},
     });
     caps.deviationCeilings.insert({
         {"hard.overlap25.speed", 4.5},
         {"planar.hard.overlap25.speed", 4.5},
+        {"hard.ragdoll_pile.joint_gap", 0.08},
     });
     return backend;
 }

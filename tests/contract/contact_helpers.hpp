@@ -66,6 +66,23 @@ inline BodyDef boxDef(const std::string& name, const Vec3& half, const Vec3& pos
     return def;
 }
 
+/// A unit box (half 0.5) resting on a static table whose top is y = 0 and whose edge runs through
+/// the origin across `outward` (a unit horizontal axis), its centre of mass 5 cm beyond that edge:
+/// with nothing under its centre it tips about the edge (an inverted pendulum, 0.1 rad off the
+/// vertical at the start: over 45 deg within 1 s) and falls off. Returns the centre's height
+/// after 2 s; a box the table still holds stays at 0.5.
+inline double heightAfterTippingOffAnEdge(const WorldSettings& s, const Vec3& outward) {
+    World world(s);
+    BodyDef table = boxDef("table", Vec3(5, 0.5, 5), -5.0 * outward - Vec3(0, 0.5, 0));
+    table.type = BodyType::Static;
+    world.createBody(table);
+    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), 0.05 * outward + Vec3(0, 0.5, 0));
+    def.allowSleep = false;
+    Body box = world.createBody(def);
+    for (int i = 0; i < 120; ++i) world.step();
+    return box.position().y();
+}
+
 /// How far a rebound height may be off when the bounce is computed from the speed at impact: the
 /// apex is sampled at step ends (at most g dt^2 / 8 low: 0.34 mm at 60 Hz) and the bounce starts
 /// from a contact that may overlap by up to linearSlop (5 mm). 5.3 mm at the defaults, 1 % of a

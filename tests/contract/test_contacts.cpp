@@ -343,6 +343,23 @@ void expectStands(const ContactsTest& test, const std::string& scene, const std:
                          std::abs(run.topSag));
 }
 
+// A box with its centre of mass 5 cm beyond a table's edge tips off and falls (in both
+// horizontal directions): after 2 s its centre is well below the table top (bound -0.5: it has
+// left the table; one held there stays at +0.5, falling it is metres down). Native held such a
+// box for ever: its box-box manifold took the box's far corner, beside the table, as a point
+// on the table's plane extended.
+TEST_P(ContactsTest, BoxOverATableEdgeTipsOff) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    for (const Vec3& outward : {Vec3(Vec3::UnitX()), Vec3(-Vec3::UnitZ())}) {
+        const double y = heightAfterTippingOffAnEdge(settings(), outward);
+        report(backend() + " box 5 cm over a table edge along (" + std::to_string(outward.x()) + ", " +
+                   std::to_string(outward.z()) + "): centre height after 2 s",
+               y, "m");
+        expectCriterion("contacts.tips_off_edge", y < -0.5, "centre at " + std::to_string(y) + " m after 2 s (bound < -0.5)");
+    }
+}
+
 // 10 unit boxes stacked with no gap stand for 10 s: the top box drifts less than 1 cm sideways
 // (the contract: nothing pushes a straight stack sideways, so drift is solver error), and the
 // stack sinks no more than its 10 contacts may overlap.

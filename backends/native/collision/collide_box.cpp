@@ -129,8 +129,8 @@ double cachedSeparation(const BoxGeom& a, const BoxGeom& b, const BoxPair& p, co
 
 // The face of `inc` most opposed to face (refAxis, sign) of `ref`, clipped to that face in ref's
 // frame. turn and shift place inc in ref's frame (x_ref = turn x_inc + shift). Points go to `out`
-// in ref's frame, with the manifold normal there. With keepDeepest, inc's deepest corner is
-// added when the clip does not reach its depth (it lies beside the face).
+// in ref's frame, with the manifold normal there. With keepDeepest, inc's deepest corner
+// stands in when the clip leaves no point.
 void boxFaceContact(const BoxGeom& ref, int refAxis, double sign, const BoxGeom& inc, const Mat3& turn, const Vec3& shift,
                     feature::Kind kind, double speculative, bool keepDeepest, ManifoldBuilder& out) {
     const int refFace = 2 * refAxis + (sign > 0 ? 0 : 1);
@@ -182,13 +182,15 @@ void boxFaceContact(const BoxGeom& ref, int refAxis, double sign, const BoxGeom&
     for (int i = 0; i < count; ++i) place(in[i].point, height(in[i].point), feature::combine(seed, in[i].feature));
     if (!keepDeepest) return;
 
-    // A deepest corner beside the reference face is clipped away: keep it all the same. It has
-    // the signs opposite to the normal in inc's frame (the lowest index on exact ties).
+    // Only when the clip left nothing does inc's deepest corner stand in. A corner beside the
+    // reference face is outside ref, whatever its height: kept beside a clipped patch, it held a
+    // box of a pyramid row up by the neighbouring box's corner, off this box's face, and twisted
+    // the box under it. The corner has the signs opposite to the normal in inc's frame (the
+    // lowest index on exact ties).
+    if (!out.empty()) return;
     const int deepest = (normalInInc.x() < 0 ? 1 : 0) | (normalInInc.y() < 0 ? 2 : 0) | (normalInInc.z() < 0 ? 4 : 0);
     const Vec3 corner = shift + turn * cornerOffset(inc.half, deepest);
-    const double depth = height(corner);
-    if (out.deepest() > depth + tolerance::kDistanceSwitch * std::min(ref.half.norm(), inc.half.norm()))
-        place(corner, depth, feature::combine(seed, kCornerTags[static_cast<std::size_t>(deepest)].vertex));
+    place(corner, height(corner), feature::combine(seed, kCornerTags[static_cast<std::size_t>(deepest)].vertex));
 }
 
 // Builds the face manifold in ref's frame and writes it in the world.

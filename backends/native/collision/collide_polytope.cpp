@@ -401,7 +401,7 @@ void addPatchCorners(const ReferenceFace& face, const Polytope& inc, int incFace
 }
 
 // Clips the face of `inc` most opposed to face `refFace` of `ref`. With keepDeepest, inc's
-// deepest vertex is added when the clip does not reach its depth (it lies beside the face).
+// deepest vertex stands in when the clip leaves no point.
 void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, feature::Kind kind, double speculative,
                          bool keepDeepest, ManifoldBuilder& out) {
     Scratch& s = scratch();
@@ -428,14 +428,12 @@ void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, 
     const std::uint32_t seed = feature::id(kind, refFace, incFace);
     addFacePoints(clipped, face, 0.0, speculative, seed, out);
     if (turnedToRef > 1) addPatchCorners(face, inc, incFace, against, speculative, seed, out);
-    if (!keepDeepest) return;
+    // Only when the clip left nothing does inc's deepest vertex stand in: one beside the face is
+    // outside ref (as for boxes, collide_box.cpp).
+    if (!keepDeepest || !out.empty()) return;
     const int v = inc.support(-face.normal);
-    const Vec3 deepest = inc.vertex(v);
-    const double depth = face.normal.dot(deepest) - face.offset;
-    if (out.deepest() > depth + tolerance::kDistanceSwitch * std::min(ref.size(), inc.size())) {
-        const ClipVertex corner{deepest, feature::vertexTag(static_cast<std::uint32_t>(v)), 0};
-        addFacePoints({&corner, 1}, face, 0.0, speculative, seed, out);
-    }
+    const ClipVertex corner{inc.vertex(v), feature::vertexTag(static_cast<std::uint32_t>(v)), 0};
+    addFacePoints({&corner, 1}, face, 0.0, speculative, seed, out);
 }
 
 // Index of the edge joining vertices v and w, or -1.

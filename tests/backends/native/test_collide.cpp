@@ -235,6 +235,32 @@ TEST(Collide, BoxRestingOnBoxFaceToFaceGivesFourPoints) {
     expectPoints(big, {Vec3(-0.5, 0.495, -0.5), Vec3(0.5, 0.495, -0.5), Vec3(-0.5, 0.495, 0.5), Vec3(0.5, 0.495, 0.5)});
 }
 
+TEST(Collide, BoxAcrossTwoBoxesTakesNoPointBesideTheFaceItRestsOn) {
+    // A pyramid row: b (half 0.5) straddles the edge of a's top face at x = 0.5, half over a, and
+    // is turned a little so that its corner beside a (at x = 1, over a's neighbour in a pyramid)
+    // is its deepest. That corner is outside a whatever its height: a point there held b up by
+    // a's plane extended and twisted a about its edge. The turn is small enough that a's face
+    // stays the reference (b's beats it by less than the axis bias), where the corner came in.
+    // Every point must lie over the overlap of the two faces: from b's lower left corner to a's
+    // edge (1e-9: rounding of the clip).
+    const double turn = -4e-4, centreY = 0.9995;
+    const double leftCorner = 0.5 - 0.5 * std::cos(turn) + 0.5 * std::sin(turn);
+    for (const bool hulls : {false, true}) {
+        const Shape a = hulls ? boxHull(Vec3(0.5, 0.5, 0.5)) : box(Vec3(0.5, 0.5, 0.5));
+        const Shape b = hulls ? boxHull(Vec3(0.5, 0.5, 0.5)) : box(Vec3(0.5, 0.5, 0.5));
+        const Manifold m = one(a, at(Vec3::Zero()), b, at(Vec3(0.5, centreY, 0), rotation(turn, Vec3::UnitZ())));
+        expectWellFormed(m);
+        EXPECT_TRUE(m.normal.isApprox(Vec3(0, 1, 0), kTol)) << "a's top face is the reference";
+        for (int i = 0; i < m.pointCount; ++i) {
+            EXPECT_GE(m.points[i].point.x(), leftCorner - 1e-9) << (hulls ? "hulls" : "boxes") << ", point " << i;
+            EXPECT_LE(m.points[i].point.x(), 0.5 + 1e-9) << (hulls ? "hulls" : "boxes") << ", point " << i;
+        }
+        // The overlap is deepest at a's edge (x = 0.5, under b's centre), where b's bottom face
+        // lies 0.5 / cos(turn) below b's centre.
+        EXPECT_NEAR(deepest(m), centreY - 0.5 / std::cos(turn) - 0.5, kTol) << (hulls ? "hulls" : "boxes");
+    }
+}
+
 TEST(Collide, BoxTurnedOnBoxKeepsFourOfTheOctagon) {
     // Turned 45 degrees about y, b's bottom square meets a's top square in an octagon.
     const Manifold m = one(box(Vec3(1, 1, 1)), at(Vec3::Zero()), box(Vec3(1, 1, 1)),
