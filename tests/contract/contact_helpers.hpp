@@ -67,16 +67,17 @@ inline BodyDef boxDef(const std::string& name, const Vec3& half, const Vec3& pos
 }
 
 /// A unit box (half 0.5) resting on a static table whose top is y = 0 and whose edge runs through
-/// the origin across `outward` (a unit horizontal axis), its centre of mass 5 cm beyond that edge:
-/// with nothing under its centre it tips about the edge (an inverted pendulum, 0.1 rad off the
-/// vertical at the start: over 45 deg within 1 s) and falls off. Returns the centre's height
-/// after 2 s; a box the table still holds stays at 0.5.
-inline double heightAfterTippingOffAnEdge(const WorldSettings& s, const Vec3& outward) {
+/// the origin across `outward` (a unit horizontal axis), its centre of mass `beyond` metres past
+/// that edge (negative: over the table). Beyond it, with nothing under its centre, the box tips
+/// about the edge (an inverted pendulum; 5 cm out it starts 0.1 rad off the vertical and passes
+/// 45 deg within 1 s) and falls off; over the table it rests. Returns the centre's height after
+/// 2 s: 0.5 for a box the table holds.
+inline double heightOverATableEdge(const WorldSettings& s, const Vec3& outward, double beyond) {
     World world(s);
     BodyDef table = boxDef("table", Vec3(5, 0.5, 5), -5.0 * outward - Vec3(0, 0.5, 0));
     table.type = BodyType::Static;
     world.createBody(table);
-    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), 0.05 * outward + Vec3(0, 0.5, 0));
+    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), beyond * outward + Vec3(0, 0.5, 0));
     def.allowSleep = false;
     Body box = world.createBody(def);
     for (int i = 0; i < 120; ++i) world.step();
