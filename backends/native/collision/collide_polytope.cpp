@@ -400,8 +400,18 @@ void addPatchCorners(const ReferenceFace& face, const Polytope& inc, int incFace
     }
 }
 
+// Whether world point x lies within the closed polytope p (behind every face plane).
+bool contains(const Polytope& p, const Vec3& x) {
+    for (int f = 0; f < p.faceCount(); ++f) {
+        const Vec3 n = p.normal(f);
+        if (n.dot(x) > p.offset(f, n)) return false;
+    }
+    return true;
+}
+
 // Clips the face of `inc` most opposed to face `refFace` of `ref`. With keepDeepest, inc's
-// deepest vertex stands in when the clip leaves no point.
+// deepest vertex is added when the clip does not reach its depth and the vertex lies inside
+// ref, or when the clip leaves no point.
 void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, feature::Kind kind, double speculative,
                          bool keepDeepest, ManifoldBuilder& out) {
     Scratch& s = scratch();
@@ -428,11 +438,17 @@ void polytopeFaceContact(const Polytope& ref, int refFace, const Polytope& inc, 
     const std::uint32_t seed = feature::id(kind, refFace, incFace);
     addFacePoints(clipped, face, 0.0, speculative, seed, out);
     if (turnedToRef > 1) addPatchCorners(face, inc, incFace, against, speculative, seed, out);
-    // Only when the clip left nothing does inc's deepest vertex stand in: one beside the face is
-    // outside ref (as for boxes, collide_box.cpp).
-    if (!keepDeepest || !out.empty()) return;
+    if (!keepDeepest) return;
+    // inc's deepest vertex, if the clip did not reach its depth, lies beside the face. It is a
+    // contact only inside ref (a hull may widen below the face; a box never does, see
+    // collide_box.cpp), or as a stand-in when the clip left nothing. Outside ref it would hold inc
+    // up by the face's plane extended (a box over a table's edge stayed on the table).
     const int v = inc.support(-face.normal);
-    const ClipVertex corner{inc.vertex(v), feature::vertexTag(static_cast<std::uint32_t>(v)), 0};
+    const Vec3 deepest = inc.vertex(v);
+    const double depth = face.normal.dot(deepest) - face.offset;
+    if (!(out.deepest() > depth + tolerance::kDistanceSwitch * std::min(ref.size(), inc.size()))) return;
+    if (!out.empty() && !(ref.closed() && contains(ref, deepest))) return;
+    const ClipVertex corner{deepest, feature::vertexTag(static_cast<std::uint32_t>(v)), 0};
     addFacePoints({&corner, 1}, face, 0.0, speculative, seed, out);
 }
 

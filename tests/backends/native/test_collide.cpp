@@ -261,6 +261,27 @@ TEST(Collide, BoxAcrossTwoBoxesTakesNoPointBesideTheFaceItRestsOn) {
     }
 }
 
+TEST(Collide, HullWideningBelowItsFaceKeepsTheCornerInsideIt) {
+    // The other side of the test above: a frustum (top half 0.5 at y = 0.5, bottom half 1 at
+    // y = -0.5) widens below its top face, so a corner beside that face can be inside it. A flat
+    // box lies on the top overhanging the +x edge, its far end dipped (turned 0.01 rad) so that
+    // its corner at x = 0.52 is 5 cm down, where the frustum reaches x = 0.525: inside. The top
+    // face stays the reference (the box's face beats it by less than the axis bias), the clip
+    // stops at the edge 0.2 mm shallower, and the corner, a true contact, must be kept: the
+    // deepest point is the corner's depth, exact up to rounding.
+    const Shape frustum = convex({Vec3(-0.5, 0.5, -0.5), Vec3(0.5, 0.5, -0.5), Vec3(-0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5),
+                                  Vec3(-1, -0.5, -1), Vec3(1, -0.5, -1), Vec3(-1, -0.5, 1), Vec3(1, -0.5, 1)});
+    const Vec3 half(0.5, 0.05, 0.3);
+    const Quat turn = rotation(-0.01, Vec3::UnitZ());
+    const Vec3 corner(0.52, 0.45, 0.0);  // the dipped end's bottom edge, at z = 0 (its mid-point)
+    const Vec3 centre = corner - turn * Vec3(half.x(), -half.y(), 0.0);
+    ASSERT_LT(corner.x(), 0.5 + 0.5 * (0.5 - corner.y()));  // inside the frustum's side
+    const Manifold m = one(frustum, at(Vec3::Zero()), boxHull(half), at(centre, turn));
+    expectWellFormed(m);
+    EXPECT_TRUE(m.normal.isApprox(Vec3(0, 1, 0), kTol)) << "the frustum's top is the reference";
+    EXPECT_NEAR(deepest(m), corner.y() - 0.5, kTol);
+}
+
 TEST(Collide, BoxTurnedOnBoxKeepsFourOfTheOctagon) {
     // Turned 45 degrees about y, b's bottom square meets a's top square in an octagon.
     const Manifold m = one(box(Vec3(1, 1, 1)), at(Vec3::Zero()), box(Vec3(1, 1, 1)),
