@@ -187,7 +187,7 @@ Backend makeBulletBackend() {
         {"planar.hard.heavy_plank.displacement",
          "as hard.heavy_plank.displacement, planar: 5.0 cm"},
         {"hard.mixed_pile_mesh.sink",
-         "a tumbling octahedron sinks 5.5 cm into the floor (5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size (6 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
+         "a tumbling octahedron sinks 9.0 cm into the floor (5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size (6 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
         {"hard.ragdoll_pile.joint_gap",
          "joints of a pile of 10 ragdolls open by up to 18.5 cm (as assemblies.ragdoll_gap)"},
         {"planar.hard.ragdoll_pile.joint_gap",
@@ -204,6 +204,9 @@ Backend makeBulletBackend() {
         {"friction.impact.pgs.s1", "as friction.impact.default: rebound 0.42 m/s"},
         {"friction.impact.direct.s1", "as friction.impact.default: rebound 0.42 m/s"},
         {"planar.friction.impact", "as friction.impact.default, planar: rebound 0.42 m/s"},
+        {"contacts.rests_short_of_edge.capsule",
+         "a capsule lying across a table's edge with its centre 5 cm over the table walks off it: 1.65 cm down after 2 s, fallen by 3 s (a box and a hull rest). Bullet's capsule-box pair gains one contact point per step; its convex-convex perturbation (setConvexConvexMultipointIterations) holds the capsule, but sets balls and capsules resting on boxes rocking at 0.1 to 0.7 m/s"},
+        {"planar.contacts.rests_short_of_edge.capsule", "as contacts.rests_short_of_edge.capsule, planar: 1.65 cm"},
     });
     caps.deviationCeilings.insert({
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
@@ -242,7 +245,9 @@ Backend makeBulletBackend() {
         {"planar.hard.arch.displacement", 0.025},
         {"hard.heavy_plank.displacement", 0.06},
         {"planar.hard.heavy_plank.displacement", 0.1},
-        {"hard.mixed_pile_mesh.sink", 0.1},
+        {"hard.mixed_pile_mesh.sink", 0.13},
+        {"contacts.rests_short_of_edge.capsule", 0.05},  // m below its resting height, measured 0.0165
+        {"planar.contacts.rests_short_of_edge.capsule", 0.05},
         {"hard.ragdoll_pile.joint_gap", 0.3},
         {"planar.hard.ragdoll_pile.joint_gap", 0.35},
     });

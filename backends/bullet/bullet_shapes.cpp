@@ -87,6 +87,9 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
         case ShapeType::Box: {
             shape = reachingBox(toBt(d.halfExtents),
                                 static_cast<btScalar>(std::min(kBoxMargin, 0.1 * d.halfExtents.minCoeff())));
+            // Face clipping against hulls (as hull-hull, below): through GJK's one point per
+            // step a hull cube resting 5 cm short of a box table's edge walked off it.
+            static_cast<btBoxShape*>(shape.get())->initializePolyhedralFeatures();
             coreExtent_ = std::min(coreExtent_, d.halfExtents.minCoeff());
             break;
         }

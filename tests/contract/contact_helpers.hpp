@@ -66,22 +66,39 @@ inline BodyDef boxDef(const std::string& name, const Vec3& half, const Vec3& pos
     return def;
 }
 
-/// A unit box (half 0.5) resting on a static table whose top is y = 0 and whose edge runs through
-/// the origin across `outward` (a unit horizontal axis), its centre of mass `beyond` metres past
-/// that edge (negative: over the table). Beyond it, with nothing under its centre, the box tips
-/// about the edge (an inverted pendulum; 5 cm out it starts 0.1 rad off the vertical and passes
-/// 45 deg within 1 s) and falls off; over the table it rests. Returns the centre's height after
-/// 2 s: 0.5 for a box the table holds.
-inline double heightOverATableEdge(const WorldSettings& s, const Vec3& outward, double beyond) {
+/// A body lying on a static table whose top is y = 0 and whose edge runs through the origin
+/// across `outward` (a unit horizontal axis), its centre of mass `beyond` metres past that edge
+/// (negative: over the table). Beyond it, with nothing under its centre, the body tips about the
+/// edge and falls off; over the table it rests. The shapes (`shape`): a unit box, the same cube
+/// as a convex hull, and a capsule (radius 0.2, core 1 m) lying along `outward`. A cube 5 cm out
+/// starts 0.1 rad off the vertical above the edge and passes 45 deg within 1 s.
+struct EdgeBody {
+    const char* name;
+    double restHeight;  // of the centre, resting on the table
+};
+inline constexpr EdgeBody kEdgeBodies[] = {{"box", 0.5}, {"hull", 0.5}, {"capsule", 0.2}};
+
+/// The centre's height after 2 s (restHeight for a body the table holds).
+inline double heightOverATableEdge(const WorldSettings& s, const EdgeBody& shape, const Vec3& outward, double beyond) {
     World world(s);
     BodyDef table = boxDef("table", Vec3(5, 0.5, 5), -5.0 * outward - Vec3(0, 0.5, 0));
     table.type = BodyType::Static;
     world.createBody(table);
-    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), beyond * outward + Vec3(0, 0.5, 0));
+    BodyDef def = boxDef(shape.name, Vec3(0.5, 0.5, 0.5), beyond * outward + Vec3(0, shape.restHeight, 0));
+    if (std::string(shape.name) == "hull") {
+        std::vector<Vec3> corners;
+        for (double x : {-0.5, 0.5})
+            for (double y : {-0.5, 0.5})
+                for (double z : {-0.5, 0.5}) corners.emplace_back(x, y, z);
+        def.shape = ShapeDef::convex(corners);
+    } else if (std::string(shape.name) == "capsule") {
+        def.shape = ShapeDef::capsule(0.2, 0.5);
+        def.orientation = Quat::FromTwoVectors(Vec3::UnitY(), outward);  // its axis (body Y) along outward
+    }
     def.allowSleep = false;
-    Body box = world.createBody(def);
+    Body body = world.createBody(def);
     for (int i = 0; i < 120; ++i) world.step();
-    return box.position().y();
+    return body.position().y();
 }
 
 /// How far a rebound height may be off when the bounce is computed from the speed at impact: the

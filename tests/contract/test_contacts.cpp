@@ -343,25 +343,33 @@ void expectStands(const ContactsTest& test, const std::string& scene, const std:
                          std::abs(run.topSag));
 }
 
-// A box with its centre of mass 5 cm beyond a table's edge tips off and falls (in both
-// horizontal directions): after 2 s its centre is well below the table top (bound -0.5: it has
-// left the table; one held there stays at +0.5, falling it is metres down); 5 cm short of the
-// edge it rests. Native held the box beyond the edge for ever: its box-box manifold took the
-// box's far corner, beside the table, as a point on the table's plane extended.
-TEST_P(ContactsTest, BoxOverATableEdgeTipsOff) {
-    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+// A body with its centre of mass 5 cm beyond a table's edge tips off and falls (a box, the
+// same cube as a hull, a capsule lying across the edge; in both horizontal directions): after 2 s
+// its centre is well below the table top (bound -0.5: it has left the table; one held there
+// stays at its resting height, falling it is metres down); 5 cm short of the edge it rests.
+// Native held the box beyond the edge for ever: its box-box manifold took the box's far corner,
+// beside the table, as a point on the table's plane extended.
+TEST_P(ContactsTest, BodyOverATableEdgeTipsOff) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Convex, ShapeType::Capsule},
+                                        Effect::Contacts | Effect::Friction);
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    for (const Vec3& outward : {Vec3(Vec3::UnitX()), Vec3(-Vec3::UnitZ())}) {
-        const std::string along = "(" + std::to_string(outward.x()) + ", " + std::to_string(outward.z()) + ")";
-        const double off = heightOverATableEdge(settings(), outward, 0.05);
-        report(backend() + " box 5 cm over a table edge along " + along + ": centre height after 2 s", off, "m");
-        expectCriterion("contacts.tips_off_edge", off < -0.5, "centre at " + std::to_string(off) + " m after 2 s (bound < -0.5)");
-        // 5 cm short of the edge the table holds it: the centre stays at 0.5, less the overlap a
-        // resting contact may keep (linearSlop, as the stacks' sink bound).
-        const double held = heightOverATableEdge(settings(), outward, -0.05);
-        expectCriterion("contacts.rests_short_of_edge", std::abs(held - 0.5) <= settings().linearSlop,
-                        "centre at " + std::to_string(held) + " m after 2 s (bound 0.5 +- linearSlop)");
-    }
+    for (const EdgeBody& shape : kEdgeBodies)
+        for (const Vec3& outward : {Vec3(Vec3::UnitX()), Vec3(-Vec3::UnitZ())}) {
+            const std::string what = std::string(shape.name) + " along (" + std::to_string(outward.x()) + ", " +
+                                     std::to_string(outward.z()) + ")";
+            const double off = heightOverATableEdge(settings(), shape, outward, 0.05);
+            report(backend() + " " + what + ", 5 cm over a table edge: centre height after 2 s", off, "m");
+            expectCriterion("contacts.tips_off_edge." + std::string(shape.name), off < -0.5,
+                            what + ": centre at " + std::to_string(off) + " m after 2 s (bound < -0.5)");
+            // 5 cm short of the edge the table holds it: the centre stays at its resting height,
+            // less the overlap a resting contact may keep (linearSlop, as the stacks' sink bound).
+            const double held = heightOverATableEdge(settings(), shape, outward, -0.05);
+            expectCriterion("contacts.rests_short_of_edge." + std::string(shape.name),
+                            std::abs(held - shape.restHeight) <= settings().linearSlop,
+                            what + ": centre at " + std::to_string(held) + " m after 2 s (bound " +
+                                std::to_string(shape.restHeight) + " +- linearSlop)",
+                            std::abs(held - shape.restHeight));
+        }
 }
 
 // 10 unit boxes stacked with no gap stand for 10 s: the top box drifts less than 1 cm sideways
