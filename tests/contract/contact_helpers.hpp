@@ -101,6 +101,40 @@ inline double heightOverATableEdge(const WorldSettings& s, const EdgeBody& shape
     return body.position().y();
 }
 
+/// The book-stacking problem with unit boxes: one box on a table, its right face at the table's
+/// edge, and three more, each overhanging the one below by `fraction` of the harmonic offsets
+/// (from the top: 1/2, 1/4, 1/6 of a box), at which every partial stack's centre of mass lies
+/// exactly over the edge it rests on. Below 1 the stack stands, above 1 its top topples. Returns
+/// the top box's largest move from where it was built over 3 s (m) and its final height.
+struct OverhangRun {
+    double topMove = 0.0;
+    double topHeight = 0.0;
+};
+inline OverhangRun overhangStack(const WorldSettings& s, double fraction) {
+    World world(s);
+    BodyDef table = boxDef("table", Vec3(5, 0.5, 2), Vec3(-4.5, -0.5, 0));
+    table.type = BodyType::Static;
+    world.createBody(table);
+    const double overhang[] = {1.0 / 6.0, 1.0 / 4.0, 1.0 / 2.0};  // of boxes 1, 2, 3 over the one below
+    double x = 0.0;
+    Body top;
+    Vec3 built = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) {
+        if (i > 0) x += fraction * overhang[i - 1];
+        BodyDef def = boxDef("box" + std::to_string(i), Vec3(0.5, 0.5, 0.5), Vec3(x, 0.5 + i, 0));
+        def.allowSleep = false;
+        top = world.createBody(def);
+        built = def.position;
+    }
+    OverhangRun run;
+    for (int i = 0; i < 180; ++i) {
+        world.step();
+        run.topMove = std::max(run.topMove, (top.position() - built).norm());
+    }
+    run.topHeight = top.position().y();
+    return run;
+}
+
 /// How far a rebound height may be off when the bounce is computed from the speed at impact: the
 /// apex is sampled at step ends (at most g dt^2 / 8 low: 0.34 mm at 60 Hz) and the bounce starts
 /// from a contact that may overlap by up to linearSlop (5 mm). 5.3 mm at the defaults, 1 % of a

@@ -372,6 +372,23 @@ TEST_P(ContactsTest, BodyOverATableEdgeTipsOff) {
         }
 }
 
+// The book-stacking problem (overhangStack): four boxes over a table's edge at 90 % of the
+// harmonic offsets stand (the top box moves under 1 cm over 3 s: each partial stack's centre of
+// mass is 5 cm inside its edge, and resting contacts may settle by linearSlop), and at 110 %
+// the top topples (it ends below the table top: fallen, it is metres down). Native held the
+// 110 % stack: its box manifolds took corners beside a face as points on the face's plane.
+TEST_P(ContactsTest, OverhangingStackStandsBelowTheHarmonicOffsetsAndTopplesAbove) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const OverhangRun stands = overhangStack(settings(), 0.9), topples = overhangStack(settings(), 1.1);
+    report(backend() + " stack at 90 % of the harmonic overhang: top box moved", stands.topMove, "m");
+    report(backend() + " stack at 110 %: top box's height after 3 s", topples.topHeight, "m");
+    expectCriterion("contacts.overhang_stands", stands.topMove < 0.01,
+                    "top moved " + std::to_string(stands.topMove) + " m (bound 0.01)", stands.topMove);
+    expectCriterion("contacts.overhang_topples", topples.topHeight < 0.0,
+                    "top at " + std::to_string(topples.topHeight) + " m after 3 s (bound < 0)");
+}
+
 // 10 unit boxes stacked with no gap stand for 10 s: the top box drifts less than 1 cm sideways
 // (the contract: nothing pushes a straight stack sideways, so drift is solver error), and the
 // stack sinks no more than its 10 contacts may overlap.

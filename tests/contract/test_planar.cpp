@@ -122,6 +122,19 @@ TEST_P(PlanarTest, BodyOverATableEdgeTipsOff) {
         }
 }
 
+// The book-stacking problem of ContactsTest, in the plane.
+TEST_P(PlanarTest, OverhangingStackStandsBelowTheHarmonicOffsetsAndTopplesAbove) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const OverhangRun stands = overhangStack(settings(), 0.9), topples = overhangStack(settings(), 1.1);
+    report(backend() + " planar stack at 90 % of the harmonic overhang: top box moved", stands.topMove, "m");
+    report(backend() + " planar stack at 110 %: top box's height after 3 s", topples.topHeight, "m");
+    expectCriterion("planar.contacts.overhang_stands", stands.topMove < 0.01,
+                    "top moved " + std::to_string(stands.topMove) + " m (bound 0.01)", stands.topMove);
+    expectCriterion("planar.contacts.overhang_topples", topples.topHeight < 0.0,
+                    "top at " + std::to_string(topples.topHeight) + " m after 3 s (bound < 0)");
+}
+
 // 10 unit boxes stand 10 s in the plane: the top box moves less than 1 cm sideways.
 TEST_P(PlanarTest, TenBoxStackStands) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
