@@ -3,6 +3,7 @@
 // constraint alike. Scenes come from the catalogue's *_planar entries, so the tool, the tests and
 // the benchmarks measure the same thing.
 #include <cmath>
+#include <limits>
 #include <iostream>
 #include <vector>
 #include <numbers>
@@ -120,6 +121,26 @@ TEST_P(PlanarTest, BodyOverATableEdgeTipsOff) {
                                 std::to_string(shape.restHeight) + " +- linearSlop)",
                             std::abs(held - shape.restHeight));
         }
+}
+
+// The tip about a table's edge of ContactsTest, in the plane.
+TEST_P(PlanarTest, BoxTipsAboutATableEdgeAsAPendulum) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const std::vector<double> degrees{5, 10, 15, 20};
+    for (const Vec3& outward : {Vec3(Vec3::UnitX()), Vec3(-Vec3::UnitX())}) {
+        const WorldSettings s = settings();
+        const TipTimes times = tipTimes(s, outward, degrees);
+        double worst = times.simulated.size() == degrees.size() ? 0.0 : std::numeric_limits<double>::infinity();
+        std::string what = "along (" + std::to_string(outward.x()) + ", " + std::to_string(outward.z()) + "):";
+        for (std::size_t i = 0; i < times.simulated.size(); ++i) {
+            worst = std::max(worst, std::abs(times.simulated[i] - times.exact[i]));
+            what += " " + std::to_string(static_cast<int>(degrees[i])) + " deg at " + std::to_string(times.simulated[i]) +
+                    " s (exact " + std::to_string(times.exact[i]) + ")";
+        }
+        report(backend() + " planar box tipping about a table edge " + what + ": worst timing error", worst, "s");
+        expectCriterion("planar.contacts.tip_about_edge", worst <= s.timeStep, what + " (bound: one step)", worst);
+    }
 }
 
 // The book-stacking problem of ContactsTest, in the plane.
