@@ -477,4 +477,76 @@ inline CheckRun runCatalogueCheck(const CatalogueScene& entry, const std::string
     return run;
 }
 
+/// One contract criterion's outcome, for a test to pass to expectCriterion (the 3D and planar
+/// suites check the same table-edge cases under their own prefixes).
+struct CriterionResult {
+    std::string id;
+    bool met = false;
+    std::string measured;
+    double value = 0.0;
+};
+
+inline std::string alongText(const Vec3& outward) {
+    return "along (" + std::to_string(outward.x()) + ", " + std::to_string(outward.z()) + ")";
+}
+
+/// kEdgeBodies 5 cm beyond and 5 cm short of the table's edge, along each of `outwards`: the one
+/// beyond ends below -0.5 after 2 s (it has left the table; held, it stays at its resting
+/// height; falling, it is metres down); the one short of it stays at its resting height, less the
+/// overlap a resting contact may keep (linearSlop, as the stacks' sink bound).
+inline std::vector<CriterionResult> tableEdgeResults(const WorldSettings& s, const std::vector<Vec3>& outwards,
+                                                     const std::string& label) {
+    std::vector<CriterionResult> out;
+    for (const EdgeBody& shape : kEdgeBodies)
+        for (const Vec3& outward : outwards) {
+            const std::string what = std::string(shape.name) + " " + alongText(outward);
+            const double off = heightOverATableEdge(s, shape, outward, 0.05);
+            report(label + " " + what + ", 5 cm over a table edge: centre height after 2 s", off, "m");
+            out.push_back({std::string("contacts.tips_off_edge.") + shape.name, off < -0.5,
+                           what + ": centre at " + std::to_string(off) + " m after 2 s (bound < -0.5)", off});
+            const double held = heightOverATableEdge(s, shape, outward, -0.05);
+            out.push_back({std::string("contacts.rests_short_of_edge.") + shape.name,
+                           std::abs(held - shape.restHeight) <= s.linearSlop,
+                           what + ": centre at " + std::to_string(held) + " m after 2 s (bound " +
+                               std::to_string(shape.restHeight) + " +- linearSlop)",
+                           std::abs(held - shape.restHeight)});
+        }
+    return out;
+}
+
+/// tipTimes along each of `outwards`: every angle within one step of its exact time (the contact
+/// carries the box from the first step, and an integrator's phase error stays under a step over
+/// these 40 steps). A box that never turns that far misses by an infinite time.
+inline std::vector<CriterionResult> tipResults(const WorldSettings& s, const std::vector<Vec3>& outwards,
+                                               const std::string& label) {
+    const std::vector<double> degrees{5, 10, 15, 20};
+    std::vector<CriterionResult> out;
+    for (const Vec3& outward : outwards) {
+        const TipTimes times = tipTimes(s, outward, degrees);
+        double worst = times.simulated.size() == degrees.size() ? 0.0 : std::numeric_limits<double>::infinity();
+        std::string what = alongText(outward) + ":";
+        for (std::size_t i = 0; i < times.simulated.size(); ++i) {
+            worst = std::max(worst, std::abs(times.simulated[i] - times.exact[i]));
+            what += " " + std::to_string(static_cast<int>(degrees[i])) + " deg at " + std::to_string(times.simulated[i]) +
+                    " s (exact " + std::to_string(times.exact[i]) + ")";
+        }
+        report(label + " box tipping about a table edge " + what + ": worst timing error", worst, "s");
+        out.push_back({"contacts.tip_about_edge", worst <= s.timeStep, what + " (bound: one step)", worst});
+    }
+    return out;
+}
+
+/// overhangStack at 90 % (the top box moves under 1 cm over 3 s: each partial stack's centre of
+/// mass is 5 cm inside its edge, and resting contacts may settle by linearSlop) and at 110 % (the
+/// top ends below the table top: fallen, it is metres down).
+inline std::vector<CriterionResult> overhangResults(const WorldSettings& s, const std::string& label) {
+    const OverhangRun stands = overhangStack(s, 0.9), topples = overhangStack(s, 1.1);
+    report(label + " stack at 90 % of the harmonic overhang: top box moved", stands.topMove, "m");
+    report(label + " stack at 110 %: top box's height after 3 s", topples.topHeight, "m");
+    return {{"contacts.overhang_stands", stands.topMove < 0.01, "top moved " + std::to_string(stands.topMove) + " m (bound 0.01)",
+             stands.topMove},
+            {"contacts.overhang_topples", topples.topHeight < 0.0,
+             "top at " + std::to_string(topples.topHeight) + " m after 3 s (bound < 0)", topples.topHeight}};
+}
+
 }  // namespace anyphys::test
