@@ -378,23 +378,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     }
 }
 
-void StepSolver::prefetchLanes(int w) const {
-    if (w >= wideCount_) return;
-    const WideSource& src = wideSource_[static_cast<std::size_t>(w)];
-    for (int k = 0; k < src.count; ++k) {
-        const ContactLane& lane = lanes_[graph_.lanes()[static_cast<std::size_t>(src.first + k)]];
-        const char* manifold = reinterpret_cast<const char*>(lane.manifold);
-        for (std::size_t offset = 0; offset < sizeof(ContactManifold); offset += 64) __builtin_prefetch(manifold + offset);
-        __builtin_prefetch(lane.shapeA);
-        __builtin_prefetch(lane.shapeB);
-    }
-}
-
 int StepSolver::gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const {
-    // The manifolds and shapes lie in the contacts' and bodies' storage, in no order the colours
-    // follow: fetched two constraints ahead, the planar pyramid's prepare stage took 1.95 ms per
-    // step instead of 2.9.
-    prefetchLanes(w + 2);
     const WideSource& src = wideSource_[static_cast<std::size_t>(w)];
     for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[static_cast<std::size_t>(src.first + k)]];
     return src.count;

@@ -92,8 +92,6 @@ private:
     bool runPlanarBlock(const StagePlan& p, int first, int begin, int end);
     /// The contact lanes that wide constraint `w` packs, copied into `lanes`; returns their count.
     int gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const;
-    /// Starts loading the manifolds and shapes constraint w will read (no effect past the end).
-    void prefetchLanes(int w) const;
     /// Writes solver poses and velocities back to the world's bodies.
     void finalizeBodies(int begin, int end);
     /// Solver-body forces from the user's callback at the current states.
