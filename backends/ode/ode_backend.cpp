@@ -163,7 +163,7 @@ Backend makeOdeBackend() {
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.
     caps.knownDeviations.insert({
         {"contacts.overhang_stands",
-         "four boxes over a table's edge at 90 % of the harmonic offsets (each partial stack's centre of mass 5 cm inside its edge) stand, but the top box shifts 4.3 cm sideways and down within 3 s before it settles: each box creeps toward the overhang (ODE also rests 2 to 4 mm low, and a single box 2 mm short of a table's edge creeps off it within 4 s)"},
+         "four boxes over a table's edge at 90 % of the harmonic offsets (each partial stack's centre of mass 5 cm inside its edge) stand, but the top box shifts 4.3 cm sideways and down within 3 s before it settles: each box creeps toward the overhang (ODE also rests 1 to 4 mm low, and a single box 2 mm short of a table's edge creeps off it within 4 s)"},
         {"planar.contacts.overhang_stands", "as contacts.overhang_stands, planar: 3.2 cm"},
         {"hard.stack20.drift",
          "the 20-box stack topples (the top 1.6 m sideways within 10 s): quickstep's 50 iterations at 1 substep do not converge for 20 stacked contacts. Verified: 200 iterations leave 1.8 cm, 4 substeps 3.2 mm (the direct solver topples too, 11.7 m, its Dantzig LCP reporting s <= 0)"},
