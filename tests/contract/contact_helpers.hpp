@@ -74,29 +74,41 @@ inline BodyDef boxDef(const std::string& name, const Vec3& half, const Vec3& pos
 /// starts 0.1 rad off the vertical above the edge and passes 45 deg within 1 s.
 struct EdgeBody {
     const char* name;
+    ShapeType type;     // Box, Convex (the cube as a hull) or Capsule
     double restHeight;  // of the centre, resting on the table
 };
-inline constexpr EdgeBody kEdgeBodies[] = {{"box", 0.5}, {"hull", 0.5}, {"capsule", 0.2}};
+inline constexpr EdgeBody kEdgeBodies[] = {
+    {"box", ShapeType::Box, 0.5}, {"hull", ShapeType::Convex, 0.5}, {"capsule", ShapeType::Capsule, 0.2}};
 
-/// The centre's height after 2 s (restHeight for a body the table holds).
-inline double heightOverATableEdge(const WorldSettings& s, const EdgeBody& shape, const Vec3& outward, double beyond) {
-    World world(s);
+/// The static table of the edge tests: top y = 0, its edge through the origin across `outward`.
+inline void addTable(World& world, const Vec3& outward) {
     BodyDef table = boxDef("table", Vec3(5, 0.5, 5), -5.0 * outward - Vec3(0, 0.5, 0));
     table.type = BodyType::Static;
     world.createBody(table);
+}
+
+/// The body of `shape`, its centre `beyond` metres past the edge, resting on the table.
+inline BodyDef edgeBodyDef(const EdgeBody& shape, const Vec3& outward, double beyond) {
     BodyDef def = boxDef(shape.name, Vec3(0.5, 0.5, 0.5), beyond * outward + Vec3(0, shape.restHeight, 0));
-    if (std::string(shape.name) == "hull") {
+    if (shape.type == ShapeType::Convex) {
         std::vector<Vec3> corners;
         for (double x : {-0.5, 0.5})
             for (double y : {-0.5, 0.5})
                 for (double z : {-0.5, 0.5}) corners.emplace_back(x, y, z);
         def.shape = ShapeDef::convex(corners);
-    } else if (std::string(shape.name) == "capsule") {
+    } else if (shape.type == ShapeType::Capsule) {
         def.shape = ShapeDef::capsule(0.2, 0.5);
         def.orientation = Quat::FromTwoVectors(Vec3::UnitY(), outward);  // its axis (body Y) along outward
     }
     def.allowSleep = false;
-    Body body = world.createBody(def);
+    return def;
+}
+
+/// The centre's height after 2 s (restHeight for a body the table holds).
+inline double heightOverATableEdge(const WorldSettings& s, const EdgeBody& shape, const Vec3& outward, double beyond) {
+    World world(s);
+    addTable(world, outward);
+    Body body = world.createBody(edgeBodyDef(shape, outward, beyond));
     for (int i = 0; i < 120; ++i) world.step();
     return body.position().y();
 }
@@ -113,12 +125,8 @@ struct TipTimes {
 };
 inline TipTimes tipTimes(const WorldSettings& s, const Vec3& outward, const std::vector<double>& degrees) {
     World world(s);
-    BodyDef table = boxDef("table", Vec3(5, 0.5, 5), -5.0 * outward - Vec3(0, 0.5, 0));
-    table.type = BodyType::Static;
-    world.createBody(table);
-    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), 0.05 * outward + Vec3(0, 0.5, 0));
-    def.allowSleep = false;
-    Body box = world.createBody(def);
+    addTable(world, outward);
+    Body box = world.createBody(edgeBodyDef(kEdgeBodies[0], outward, 0.05));
     TipTimes times;
     double lastTime = 0.0, lastAngle = 0.0;
     for (int step = 1; step <= 120 && times.simulated.size() < degrees.size(); ++step) {
