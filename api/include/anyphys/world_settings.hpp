@@ -70,7 +70,7 @@ struct WorldSettings {
     /// when some body has non-zero damping. Set: exactly these effects, nothing else.
     std::optional<Effects> effects;
     // ---- contacts (used when the contacts effect is on) ----
-    double contactHertz = 60.0;                     ///< Hz, soft-contact stiffness (soft step), > 0; default 60 (capped at the substep rate)
+    double contactHertz = 60.0;                     ///< Hz, soft-contact stiffness (soft step), > 0; default 60 (native caps it at a fifth of the substep rate)
     double contactDampingRatio = 10.0;              ///< soft-contact damping ratio, >= 0; default 10 (heavily damped: no bounce from overlap)
     double contactPushMaxVelocity = 3.0;            ///< m/s, fastest speed at which overlap is pushed apart, > 0; default 3
     double baumgarte = 0.2;                         ///< PGS: fraction of overlap corrected per step, in [0, 1]; default 0.2

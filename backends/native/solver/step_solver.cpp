@@ -296,12 +296,15 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     h_ = step.dt / substeps;
     workers_ = world.taskSystem() ? world.taskSystem()->workerCount() : 1;
 
-    // Stiffness capped: a spring stiffer than a substep resolves makes unconverged Gauss-Seidel
-    // ring. The cap is a quarter of the substep rate (Box2D v3's bound), but not below half the
-    // step rate, where a single substep would leave stacks too soft to stand. Contacts with
-    // static bodies are twice as stiff (as Box2D v3), so piles do not sink into the ground.
+    // Stiffness capped: a spring stiffer than the substeps resolve makes unconverged Gauss-Seidel
+    // ring. The cap gives each period of the contact spring at least five substeps, but is not
+    // below half the step rate, where a single substep would leave stacks too soft to stand.
+    // Box2D v3's bound, a quarter of the substep rate, let stacks ring for ever at 4 substeps of a
+    // 60 Hz step (60 Hz contacts): a dropped column of ten boxes kept six above 5 cm/s after 10 s;
+    // at 48 Hz it rests. Contacts with static bodies are twice as stiff (as Box2D v3), so piles
+    // do not sink into the ground.
     const double stepRate = 1.0 / step.dt;
-    const double maxHertz = std::max(0.25 * substeps * stepRate, 0.5 * stepRate);
+    const double maxHertz = std::max(0.2 * substeps * stepRate, 0.5 * stepRate);
     const double hertz = std::min(settings.contactHertz, maxHertz);
     prepareParams_.dynamicSoftness = makeSoftness(hertz, settings.contactDampingRatio, h_);
     prepareParams_.staticSoftness = makeSoftness(2.0 * hertz, settings.contactDampingRatio, h_);
