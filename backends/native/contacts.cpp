@@ -10,6 +10,10 @@
 namespace anyphys::native {
 namespace {
 
+// A pair is at rest for recycling while its relative motion per step moves no point of its shapes
+// by this fraction of linearSlop.
+constexpr double kRecycleRestFraction = 0.1;
+
 // Per shape pair: a compound's children may differ in filter and sensor flag.
 bool mayTouch(const NativeBody& a, const ShapeSurface& sa, const NativeBody& b, const ShapeSurface& sb) {
     if (!layersCollide(sa.layer, sa.mask, sb.layer, sb.mask)) return false;
@@ -206,6 +210,7 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
         c.touching = false;
         return;
     }
+    if (c.recyclable && recycle(c, a, b, linearSlop, dt)) return;
     collide(sa, xfA, sb, xfB, margin, scratch.found, &c.collideCache);
     if (sa.type == ShapeType::Sphere && sb.type == ShapeType::Sphere && scratch.found.size() == 1) {
         const auto velocityAt = [](const NativeBody& body, const Vec3& point) {
@@ -233,8 +238,59 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
             touching = touching || m.points[i].separation < linearSlop;
         }
         warmStartFrom(scratch.previous, cm, speculativeDistance);
+        for (int i = 0; i < cm.pointCount; ++i) {
+            ContactPointState& p = cm.points[i];
+            p.anchorA = p.geometry.point - a.state.position;
+            p.anchorB = p.geometry.point - b.state.position;
+            p.baseSeparation = p.geometry.separation;
+        }
     }
     c.touching = touching;
+    // Box and hull pairs may be recycled from here (recycle); round shapes anchor on their cores
+    // (contactAnchor), and meshes and planes are left to the narrow phase.
+    const auto flat = [](const Shape& s) { return s.type == ShapeType::Box || s.type == ShapeType::Convex || s.type == ShapeType::Plane; };
+    c.recyclable = flat(sa) && flat(sb);
+    c.cachedQA = a.state.orientation;
+    c.cachedQB = b.state.orientation;
+    c.cachedRelQ = a.state.orientation.conjugate() * b.state.orientation;
+    c.cachedRelP = a.state.orientation.conjugate() * (b.state.position - a.state.position);
+    const auto reach = [](const NativeBody& body, int shape) {
+        if (!body.moves()) return 0.0;
+        const Aabb& box = body.bounds[static_cast<std::size_t>(shape)];
+        return box.extents().norm() + (box.center() - body.state.position).norm();
+    };
+    c.extent = std::max(reach(a, c.shapeA), reach(b, c.shapeB));
+}
+
+bool ContactManager::recycle(Contact& c, const NativeBody& a, const NativeBody& b, double linearSlop, double dt) const {
+    // Resting: the bodies' relative speed at the shapes' farthest point moves it under a tenth of
+    // linearSlop per step (a rocking or tipping body gets a new manifold every step).
+    const double relativeSpeed = (b.state.linearVelocity - a.state.linearVelocity).norm() +
+                                 c.extent * (b.state.angularVelocity - a.state.angularVelocity).norm();
+    if (relativeSpeed * dt >= kRecycleRestFraction * linearSlop) return false;
+    // Nearly where the narrow phase left them: no point of the shapes has moved by linearSlop, by
+    // either body turning (the kept normal turns with neither) or by the pair's relative motion.
+    const auto turned = [](const Quat& now, const Quat& then) { return 2.0 * (now * then.conjugate()).vec().norm(); };
+    const Quat relativeQ = a.state.orientation.conjugate() * b.state.orientation;
+    const Vec3 relativeP = a.state.orientation.conjugate() * (b.state.position - a.state.position);
+    const double moved = std::max({c.extent * turned(a.state.orientation, c.cachedQA), c.extent * turned(b.state.orientation, c.cachedQB),
+                                   (relativeP - c.cachedRelP).norm() + c.extent * turned(relativeQ, c.cachedRelQ)});
+    if (moved >= linearSlop) return false;
+    const Quat turnA = a.state.orientation * c.cachedQA.conjugate(), turnB = b.state.orientation * c.cachedQB.conjugate();
+    const Vec3 centers = b.state.position - a.state.position;
+    bool touching = false;
+    for (ContactManifold& m : c.manifolds)
+        for (int i = 0; i < m.pointCount; ++i) {
+            ContactPointState& p = m.points[i];
+            // The anchors found (on a common point) turned with their bodies: the separation
+            // moves as the solver's does within a step; the anchors themselves stay as found.
+            const Vec3 rA = turnA * p.anchorA, rB = turnB * p.anchorB;
+            p.geometry.separation = p.baseSeparation + m.normal.dot(centers + rB - rA);
+            p.geometry.point = 0.5 * ((a.state.position + rA) + (b.state.position + rB));
+            touching = touching || p.geometry.separation < linearSlop;
+        }
+    c.touching = touching;
+    return true;
 }
 
 void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& broadPhase, double speculativeDistance,

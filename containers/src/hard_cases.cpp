@@ -140,6 +140,25 @@ CatalogueScene stack20() {
     return c;
 }
 
+CatalogueScene column40() {
+    constexpr int kBoxes = 40;
+    CatalogueScene c = hardCase("hard_column_40",
+                                "40 unit boxes stacked with no gap stand for 30 s; the top box's largest sideways drift", 30.0);
+    c.scene.bodies.push_back(groundPlane());
+    for (int i = 0; i < kBoxes; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "box_%02d", i);
+        c.scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
+    }
+    keepAwake(c.scene);
+    c.check = worstCheck("top drift", "m", 0.05,
+                         "5 cm at any time (a twentieth of a box, as the 100-row pyramid): a column of rigid blocks stands; "
+                         "soft contacts let it sway slowly by about a centimetre (Box3D: 3.4 cm over 30 s), and once "
+                         "their anchors turn with the bodies a column this tall buckles under its own weight and falls",
+                         "hard.column40.drift", maxHorizontalDrift({static_cast<std::size_t>(kBoxes)}));
+    return c;
+}
+
 CatalogueScene pyramid100Planar() {
     constexpr int kRows = 100;
     CatalogueScene c = hardCase("hard_pyramid_100_planar",
@@ -482,6 +501,8 @@ CatalogueScene ragdollPile(bool planar) {
 std::vector<CatalogueScene> hardCaseScenes() {
     std::vector<CatalogueScene> all;
     all.push_back(stack20());
+    all.push_back(column40());
+    all.push_back(planarCase(column40()));
     all.push_back(pyramid100Planar());
     all.push_back(cardHouse());
     all.push_back(arch());

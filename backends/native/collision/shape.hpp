@@ -64,16 +64,16 @@ struct Manifold {
 };
 
 /// Where a contact's anchor lies on a moving body with this shape, relative to the body's centre
-/// of mass `center` (world frame, the body turned by `orientation`), for a contact at `point`
-/// whose `inward` direction (unit) points from the contact into the shape. A round shape's anchor
-/// lies on its core, where turning the body does not move the surface: a sphere's at its centre
-/// whatever the point (a normal impulse through it does not turn the ball), a capsule's at the
-/// point moved in by its radius (onto its segment). Any other shape's is the point itself.
-inline Vec3 contactAnchor(const Shape& s, const Quat& orientation, const Vec3& center, const Vec3& point,
-                          const Vec3& inward) {
+/// of mass (world frame, the body turned by `orientation`), for a contact point at `offset` from
+/// that centre whose `inward` direction (unit) points from the contact into the shape. A round
+/// shape's anchor lies on its core, where turning the body does not move the surface: a sphere's
+/// at its centre whatever the point (a normal impulse through it does not turn the ball), a
+/// capsule's at the point moved in by its radius (onto its segment). Any other shape's is the
+/// point itself.
+inline Vec3 contactAnchor(const Shape& s, const Quat& orientation, const Vec3& offset, const Vec3& inward) {
     if (s.type == ShapeType::Sphere) return orientation * s.local.position;
     const double round = s.type == ShapeType::Capsule ? s.radius : 0.0;
-    return point + round * inward - center;
+    return offset + round * inward;
 }
 
 /// World pose of a shape of a body at `bodyPose`.

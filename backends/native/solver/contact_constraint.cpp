@@ -138,8 +138,10 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         // move the surface: a ball's surface point turned with the ball rose, so the contact
         // unloaded within each step, the ball sank and a sliding one lost speed 28 % faster than
         // mu g.
-        const Vec3 rA = a.moves ? contactAnchor(*in.shapeA, a.orientation, a.center, p, -n) : Vec3::Zero();
-        const Vec3 rB = b.moves ? contactAnchor(*in.shapeB, b.orientation, b.center, p, n) : Vec3::Zero();
+        // The point's offsets are those the narrow phase found, kept by a recycled manifold
+        // (ContactManager::recycle).
+        const Vec3 rA = a.moves ? contactAnchor(*in.shapeA, a.orientation, mp.anchorA, -n) : Vec3::Zero();
+        const Vec3 rB = b.moves ? contactAnchor(*in.shapeB, b.orientation, mp.anchorB, n) : Vec3::Zero();
         setLane(cp.anchorA, lane, rA);
         setLane(cp.anchorB, lane, rB);
         const double s = mp.geometry.separation;

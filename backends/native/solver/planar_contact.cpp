@@ -78,11 +78,9 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
         // A static body's anchor is the point itself (zero offset): it never moves or turns. A
         // round shape's anchor lies on its core, as in the 3D path (contact_constraint.cpp).
-        const Vec3 point(px, py, 0.0), normal(nx, ny, 0.0);
-        const Vec3 rA =
-            a.moves ? contactAnchor(*in.shapeA, a.orientation, Vec3(a.cx, a.cy, 0.0), point, -normal) : Vec3::Zero();
-        const Vec3 rB =
-            b.moves ? contactAnchor(*in.shapeB, b.orientation, Vec3(b.cx, b.cy, 0.0), point, normal) : Vec3::Zero();
+        const Vec3 normal(nx, ny, 0.0);
+        const Vec3 rA = a.moves ? contactAnchor(*in.shapeA, a.orientation, mp.anchorA, -normal) : Vec3::Zero();
+        const Vec3 rB = b.moves ? contactAnchor(*in.shapeB, b.orientation, mp.anchorB, normal) : Vec3::Zero();
         const double rAx = rA.x(), rAy = rA.y(), rBx = rB.x(), rBy = rB.y();
         cp.anchorAx[lane] = rAx;
         cp.anchorAy[lane] = rAy;
