@@ -246,9 +246,12 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
         }
     }
     c.touching = touching;
-    // Box and hull pairs may be recycled from here (recycle); round shapes anchor on their cores
-    // (contactAnchor), and meshes and planes are left to the narrow phase.
-    const auto flat = [](const Shape& s) { return s.type == ShapeType::Box || s.type == ShapeType::Convex || s.type == ShapeType::Plane; };
+    // Pairs of flat shapes (boxes, hulls, planes) may be recycled from here (recycle). Round
+    // shapes anchor on their cores (contactAnchor) and a mesh keeps a manifold per triangle: the
+    // narrow phase runs for them every step.
+    const auto flat = [](const Shape& s) {
+        return s.type == ShapeType::Box || s.type == ShapeType::Convex || s.type == ShapeType::Plane;
+    };
     c.recyclable = flat(sa) && flat(sb);
     c.cachedQA = a.state.orientation;
     c.cachedQB = b.state.orientation;
@@ -273,7 +276,8 @@ bool ContactManager::recycle(Contact& c, const NativeBody& a, const NativeBody& 
     const auto turned = [](const Quat& now, const Quat& then) { return 2.0 * (now * then.conjugate()).vec().norm(); };
     const Quat relativeQ = a.state.orientation.conjugate() * b.state.orientation;
     const Vec3 relativeP = a.state.orientation.conjugate() * (b.state.position - a.state.position);
-    const double moved = std::max({c.extent * turned(a.state.orientation, c.cachedQA), c.extent * turned(b.state.orientation, c.cachedQB),
+    const double moved = std::max({c.extent * turned(a.state.orientation, c.cachedQA),
+                                   c.extent * turned(b.state.orientation, c.cachedQB),
                                    (relativeP - c.cachedRelP).norm() + c.extent * turned(relativeQ, c.cachedRelQ)});
     if (moved >= linearSlop) return false;
     const Quat turnA = a.state.orientation * c.cachedQA.conjugate(), turnB = b.state.orientation * c.cachedQB.conjugate();

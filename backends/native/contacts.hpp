@@ -22,8 +22,8 @@ struct ContactPointState {
     double normalImpulse = 0.0;    // N s, accumulated in the last substep: the next step's warm start
     double stepImpulse = 0.0;      // N s, pushed through this point over the whole last step (events)
     // Where the narrow phase found the point: its offsets from each body's centre of mass (world
-    // axes; the solver's anchors for box and hull shapes) and the separation there. Recycling
-    // keeps them and moves only the separation (ContactManager::recycle).
+    // axes; the solver's anchors, but on round shapes' cores: contactAnchor) and the separation
+    // there. Recycling keeps them and moves only the separation (ContactManager::recycle).
     Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
     double baseSeparation = 0.0;
 };
@@ -49,7 +49,7 @@ struct Contact {
     std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
     CollideCache collideCache;      // the narrow phase's memory of this pair (last separating axis, ...)
     // The poses at the last narrow phase, against which recycle measures how far the pair moved.
-    bool recyclable = false;        // a box or hull pair whose manifolds the narrow phase filled
+    bool recyclable = false;        // a pair of flat shapes whose manifolds the narrow phase filled
     Quat cachedQA = Quat::Identity(), cachedQB = Quat::Identity(), cachedRelQ = Quat::Identity();
     Vec3 cachedRelP = Vec3::Zero();
     double extent = 0.0;            // farthest a point of either moving shape lies from its centre of mass
@@ -117,7 +117,7 @@ private:
     void destroy(std::uint32_t slot);
     void collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
                         double speculativeDistance, double linearSlop, double dt, bool planar, Scratch& scratch) const;
-    // Contact recycling (as Box2D v3 and Box3D): while a box or hull pair rests and has moved
+    // Contact recycling (as Box2D v3 and Box3D): while a pair of flat shapes rests and has moved
     // less than linearSlop since the narrow phase last ran on it, its manifolds are kept, the
     // normal and each body's anchors as found, and only the separations follow the bodies. True
     // when it did so; false (nothing changed) when the narrow phase must run. Kept anchors give a

@@ -123,16 +123,21 @@ CatalogueScene hardCase(const std::string& name, const std::string& description,
 
 // ---- stacks and pyramids -----------------------------------------------------------------------
 
+// `boxes` unit boxes stacked with no gap on a ground plane, kept awake; body k + 1 is box k.
+void addColumn(Scene& scene, int boxes) {
+    scene.bodies.push_back(groundPlane());
+    for (int i = 0; i < boxes; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "box_%02d", i);
+        scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
+    }
+    keepAwake(scene);
+}
+
 CatalogueScene stack20() {
     constexpr int kBoxes = 20;
     CatalogueScene c = hardCase("hard_stack_20", "20 unit boxes stacked with no gap stand for 10 s; the top box's largest sideways drift", 10.0);
-    c.scene.bodies.push_back(groundPlane());
-    for (int i = 0; i < kBoxes; ++i) {
-        char name[32];
-        std::snprintf(name, sizeof name, "box_%02d", i);
-        c.scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
-    }
-    keepAwake(c.scene);
+    addColumn(c.scene, kBoxes);
     c.check = worstCheck("top drift", "m", 0.01,
                          "1 cm at any time: nothing pushes a straight stack sideways, so any drift is solver error "
                          "(the same bound as the 10-box stack)",
@@ -144,13 +149,7 @@ CatalogueScene column40() {
     constexpr int kBoxes = 40;
     CatalogueScene c = hardCase("hard_column_40",
                                 "40 unit boxes stacked with no gap stand for 30 s; the top box's largest sideways drift", 30.0);
-    c.scene.bodies.push_back(groundPlane());
-    for (int i = 0; i < kBoxes; ++i) {
-        char name[32];
-        std::snprintf(name, sizeof name, "box_%02d", i);
-        c.scene.bodies.push_back(unitBox(name, Vec3(0, 0.5 + i, 0)));
-    }
-    keepAwake(c.scene);
+    addColumn(c.scene, kBoxes);
     c.check = worstCheck("top drift", "m", 0.05,
                          "5 cm at any time (a twentieth of a box, as the 100-row pyramid): a column of rigid blocks stands; "
                          "soft contacts let it sway slowly by about a centimetre (Box3D: 3.4 cm over 30 s), and once "
