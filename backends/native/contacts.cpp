@@ -13,6 +13,9 @@ namespace {
 // A pair is at rest for recycling while its relative motion per step moves no point of its shapes
 // by this fraction of linearSlop.
 constexpr double kRecycleRestFraction = 0.1;
+// Recycled manifolds keep their world normal: neither body may have turned by more than this
+// (rad, about 1 degree) since the narrow phase, however small the shapes.
+constexpr double kRecycleMaxTurn = 0.02;
 
 // Per shape pair: a compound's children may differ in filter and sensor flag.
 bool mayTouch(const NativeBody& a, const ShapeSurface& sa, const NativeBody& b, const ShapeSurface& sb) {
@@ -274,10 +277,11 @@ bool ContactManager::recycle(Contact& c, const NativeBody& a, const NativeBody& 
     // Nearly where the narrow phase left them: no point of the shapes has moved by linearSlop, by
     // either body turning (the kept normal turns with neither) or by the pair's relative motion.
     const auto turned = [](const Quat& now, const Quat& then) { return 2.0 * (now * then.conjugate()).vec().norm(); };
+    const double turnedA = turned(a.state.orientation, c.cachedQA), turnedB = turned(b.state.orientation, c.cachedQB);
+    if (std::max(turnedA, turnedB) >= kRecycleMaxTurn) return false;
     const Quat relativeQ = a.state.orientation.conjugate() * b.state.orientation;
     const Vec3 relativeP = a.state.orientation.conjugate() * (b.state.position - a.state.position);
-    const double moved = std::max({c.extent * turned(a.state.orientation, c.cachedQA),
-                                   c.extent * turned(b.state.orientation, c.cachedQB),
+    const double moved = std::max({c.extent * turnedA, c.extent * turnedB,
                                    (relativeP - c.cachedRelP).norm() + c.extent * turned(relativeQ, c.cachedRelQ)});
     if (moved >= linearSlop) return false;
     const Quat turnA = a.state.orientation * c.cachedQA.conjugate(), turnB = b.state.orientation * c.cachedQB.conjugate();
