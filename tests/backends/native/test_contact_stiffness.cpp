@@ -42,10 +42,10 @@ double fastestAfterDrop(int substeps, int iterations, double seconds) {
 }
 
 // Box3D's pass count (4 substeps x 1 iteration) and one substep fewer. Under Box2D v3's cap (a
-// quarter of the substep rate: 60 Hz at 4 substeps, 45 Hz at 3) the pile never came to rest: its
-// fastest box still moved at 0.12 and 0.17 m/s after 10 s, 42 and 45 of its 90 boxes above
-// 5 cm/s. Under the five-substep cap (48 and 36 Hz) the fastest moves at 0.0002 and 0.006 m/s.
-// Bound 2 cm/s: a tenth of the ringing, three times the slower settling.
+// quarter of the substep rate: 60 Hz at 4 substeps, 45 Hz at 3) the pile never comes to rest: its
+// fastest box still moves at 0.12 and 0.15 m/s after 10 s. Under the five-substep cap (48 and
+// 36 Hz) the fastest moves at 0.00015 and 0.0014 m/s. Bound 2 cm/s: a sixth of the ringing, over
+// ten times the slower settling.
 TEST(NativeContactStiffness, PileDroppedAtFewSubstepsComesToRest) {
     for (const int substeps : {3, 4}) {
         const double fastest = fastestAfterDrop(substeps, 1, 10.0);
