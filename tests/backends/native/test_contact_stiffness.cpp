@@ -8,31 +8,30 @@
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
+#include "contact_helpers.hpp"
 
 namespace anyphys {
 namespace {
 
+using test::backendSettings;
+using test::boxDef;
+
 // Fastest box after dropping a 3 x 3 x 10 grid of unit cubes (0.1 m gaps) on a box ground and
 // stepping it `seconds` at 60 Hz, sleeping off, with the default contactHertz (60).
 double fastestAfterDrop(int substeps, int iterations, double seconds) {
-    WorldSettings settings;
-    settings.backend = "native";
+    WorldSettings settings = backendSettings("native");
     settings.substeps = substeps;
     settings.iterations = iterations;
     World world(settings);
-    BodyDef ground;
+    BodyDef ground = boxDef("ground", {20, 1, 20}, {0, -1, 0});
     ground.type = BodyType::Static;
-    ground.shape = ShapeDef::box({20, 1, 20});
-    ground.position = {0, -1, 0};
     world.createBody(ground);
-    BodyDef box;
-    box.shape = ShapeDef::box({0.5, 0.5, 0.5});
-    box.allowSleep = false;
     std::vector<Body> boxes;
     for (int y = 0; y < 10; ++y)
         for (int x = 0; x < 3; ++x)
             for (int z = 0; z < 3; ++z) {
-                box.position = {(x - 1) * 1.1, 0.5 + y * 1.1, (z - 1) * 1.1};
+                BodyDef box = boxDef("box", {0.5, 0.5, 0.5}, {(x - 1) * 1.1, 0.5 + y * 1.1, (z - 1) * 1.1});
+                box.allowSleep = false;
                 boxes.push_back(world.createBody(box));
             }
     while (world.time() < seconds) world.step();
