@@ -327,6 +327,7 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
         s.previous.reserve(previous);
     }
 
+    touchCandidates_.clear();
     for (std::uint32_t slot = 0; slot < slots_.size(); ++slot) {
         Contact& c = slots_[slot];
         if (!c.alive) continue;
@@ -334,6 +335,7 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
             destroy(slot);
             continue;
         }
+        if (c.trigger || !c.manifolds.empty()) touchCandidates_.push_back(slot);
         // A moving body about to hit a sleeping one wakes it (and so its island) as soon as
         // their manifold has points, speculative ones included: otherwise the solver would
         // treat the sleeper as immovable for the step of the impact.
@@ -363,6 +365,7 @@ void ContactManager::removeBody(std::uint32_t body) {
 void ContactManager::clear() {
     for (std::uint32_t slot = 0; slot < slots_.size(); ++slot)
         if (slots_[slot].alive) destroy(slot);
+    touchCandidates_.clear();
 }
 
 }  // namespace anyphys::native

@@ -94,13 +94,25 @@ public:
         for (const Contact& c : slots_)
             if (c.alive) fn(c);
     }
-    /// The live contacts among slots [begin, end), in slot order (to split the slots among workers).
-    template <class Fn>
-    void forEachInSlots(std::size_t begin, std::size_t end, Fn&& fn) const {
-        for (std::size_t i = begin; i < end; ++i)
-            if (slots_[i].alive) fn(slots_[i]);
-    }
     std::size_t slotCount() const { return slots_.size(); }
+
+    /// Calls fn(contact) for the live contacts that may touch, in slot order: those whose last
+    /// narrow phase left manifolds (speculative points included), and triggers. These are all
+    /// the solver, the contact report and the islands read; in a pile most contacts are pairs of
+    /// neighbours whose fat bounds overlap with no point, and skipping them skips most of the
+    /// memory. Listed by update(); a contact destroyed since is skipped.
+    template <class Fn>
+    void forEachTouchCandidate(Fn&& fn) {
+        for (std::uint32_t slot : touchCandidates_)
+            if (slots_[slot].alive) fn(slots_[slot]);
+    }
+    /// Those among the candidates [begin, end) of the list (to split them among workers).
+    template <class Fn>
+    void forEachTouchCandidateIn(std::size_t begin, std::size_t end, Fn&& fn) const {
+        for (std::size_t i = begin; i < end; ++i)
+            if (const Contact& c = slots_[touchCandidates_[i]]; c.alive) fn(c);
+    }
+    std::size_t touchCandidateCount() const { return touchCandidates_.size(); }
     std::size_t size() const { return index_.size(); }
 
 private:
@@ -127,6 +139,7 @@ private:
 
     std::vector<Contact> slots_;
     std::vector<std::uint32_t> free_;
+    std::vector<std::uint32_t> touchCandidates_;  // slots, ascending (forEachTouchCandidate)
     // Finds a pair's slot. Only looked up, never iterated. Nodes of destroyed pairs are kept
     // and reused, so pairs that come and go cost no allocation once the pile is warm.
     using PairIndex = std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::uint32_t, PairHash>;

@@ -374,16 +374,16 @@ void NativeWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint6
 
 void NativeWorld::reportContacts(ContactReport& out) {
     if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
-    // In two passes over fixed chunks of the contact slots, each chunk on any worker: count
-    // each chunk's pairs and points, then write them at the chunk's offsets. The report is in
-    // slot order whatever the workers.
-    const std::size_t slots = contacts_.slotCount();
-    constexpr std::size_t kSlotsPerChunk = 512;
-    const std::size_t chunks = (slots + kSlotsPerChunk - 1) / kSlotsPerChunk;
+    // In two passes over fixed chunks of the contacts that may touch, each chunk on any worker:
+    // count each chunk's pairs and points, then write them at the chunk's offsets. The report is
+    // in slot order whatever the workers.
+    const std::size_t candidates = contacts_.touchCandidateCount();
+    constexpr std::size_t kContactsPerChunk = 512;
+    const std::size_t chunks = (candidates + kContactsPerChunk - 1) / kContactsPerChunk;
     reportChunks_.assign(chunks + 1, ReportChunk{out.pairs.size(), out.points.size()});
     const auto visitChunk = [&](std::size_t chunk, auto&& onPair) {
-        const std::size_t begin = chunk * kSlotsPerChunk;
-        contacts_.forEachInSlots(begin, std::min(slots, begin + kSlotsPerChunk), [&](const Contact& c) {
+        const std::size_t begin = chunk * kContactsPerChunk;
+        contacts_.forEachTouchCandidateIn(begin, std::min(candidates, begin + kContactsPerChunk), [&](const Contact& c) {
             const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
             if (!a.isActive() && !b.isActive()) return;  // both at rest: the layer keeps the pair
             if (c.trigger ? c.touching : !c.manifolds.empty()) onPair(c, a, b);
