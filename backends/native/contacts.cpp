@@ -174,6 +174,11 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     c.bodyB = ib;
     c.shapeA = proxyShape(keyA);
     c.shapeB = proxyShape(keyB);
+    c.proxyA = a.proxies[static_cast<std::size_t>(c.shapeA)];
+    c.proxyB = b.proxies[static_cast<std::size_t>(c.shapeB)];
+    // Planes and meshes have no useful box.
+    const auto boxable = [](const Shape& s) { return s.type != ShapeType::Plane && s.type != ShapeType::Mesh; };
+    c.boxed = boxable(a.shapes[static_cast<std::size_t>(c.shapeA)]) && boxable(b.shapes[static_cast<std::size_t>(c.shapeB)]);
     c.trigger = sa.trigger || sb.trigger;
     c.touching = false;
     c.separated = false;
@@ -189,31 +194,29 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
                                     Scratch& scratch) const {
     const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
     if (!a.isActive() && !b.isActive()) return;  // at rest (asleep or static): keep what we had
-    if (!broadPhase.testOverlap(a.proxies[c.shapeA], b.proxies[c.shapeB])) {
+    if (!broadPhase.testOverlap(c.proxyA, c.proxyB)) {
         c.separated = true;
         return;
     }
-    const Shape &sa = a.shapes[c.shapeA], &sb = b.shapes[c.shapeB];
-    const Transform xfA = shapeWorldPose(sa, a.pose()), xfB = shapeWorldPose(sb, b.pose());
+    const Shape &sa = a.shapes[c.shapeA], &sb = b.shapes[c.shapeB];  // read only past the early-outs
     if (c.trigger) {
-        c.touching = overlap(sa, xfA, sb, xfB);
+        c.touching = overlap(sa, shapeWorldPose(sa, a.pose()), sb, shapeWorldPose(sb, b.pose()));
         c.manifolds.clear();
         return;
     }
-    scratch.found.clear();
     const double closing = (b.state.linearVelocity - a.state.linearVelocity).norm() * dt;
     const double margin = speculativeDistance + closing;
     // Neighbours whose fat bounds overlap but whose tight bounds are farther apart than the
-    // margin cannot have a point: skip the narrow phase (planes and meshes have no useful box).
-    const bool boxed = sa.type != ShapeType::Plane && sb.type != ShapeType::Plane && sa.type != ShapeType::Mesh &&
-                       sb.type != ShapeType::Mesh;
-    // The bodies' tight bounds were computed at these poses by the broad-phase update this step.
-    if (boxed && !a.bounds[c.shapeA].fattened(margin).overlaps(b.bounds[c.shapeB])) {
+    // margin cannot have a point: skip the narrow phase. The bodies' tight bounds were computed
+    // at these poses by the broad-phase update this step.
+    if (c.boxed && !a.bounds[c.shapeA].fattened(margin).overlaps(b.bounds[c.shapeB])) {
         c.manifolds.clear();
         c.touching = false;
         return;
     }
     if (c.recyclable && recycle(c, a, b, linearSlop, dt)) return;
+    const Transform xfA = shapeWorldPose(sa, a.pose()), xfB = shapeWorldPose(sb, b.pose());
+    scratch.found.clear();
     collide(sa, xfA, sb, xfB, margin, scratch.found, &c.collideCache);
     if (sa.type == ShapeType::Sphere && sb.type == ShapeType::Sphere && scratch.found.size() == 1) {
         const auto velocityAt = [](const NativeBody& body, const Vec3& point) {

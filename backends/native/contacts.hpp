@@ -37,16 +37,21 @@ struct ContactManifold {
     double twistImpulse = 0.0;            // N m s, about the normal (warm start)
 };
 
+// The first 64 bytes hold what the narrow phase reads of every contact, most of which (in a
+// pile, neighbours whose fat bounds overlap) it leaves at once: the bodies, their proxies, whether
+// tight bounds can tell, and the flags.
 struct Contact {
     std::uint32_t bodyA = 0, bodyB = 0;
     int shapeA = 0, shapeB = 0;
+    int proxyA = 0, proxyB = 0;     // the shapes' broad-phase proxies (fixed while the bodies live)
     bool alive = false;             // false while the slot is free
     bool trigger = false;
     bool touching = false;          // some point within linearSlop (or overlapping, for triggers)
     bool separated = false;         // set by the narrow phase: fat bounds apart, destroy the contact
+    bool boxed = false;             // neither shape is a plane or mesh: tight bounds may rule the pair out
+    std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
     double friction = 0.0;
     double restitution = 0.0;
-    std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
     CollideCache collideCache;      // the narrow phase's memory of this pair (last separating axis, ...)
     // The poses at the last narrow phase, against which recycle measures how far the pair moved.
     bool recyclable = false;        // a pair of flat shapes whose manifolds the narrow phase filled
