@@ -309,15 +309,30 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
                             TaskSystem* tasks) {
     const int workers = tasks ? tasks->workerCount() : 1;
     if (static_cast<int>(scratch_.size()) < workers) scratch_.resize(static_cast<std::size_t>(workers));
+    // Fixed chunks of slots, each on any worker, each sorting its contacts into its own lists
+    // while their slots are in cache; the lists are then taken in chunk order, so everything
+    // comes out in slot order whatever the workers.
+    constexpr std::size_t kSlotsPerChunk = 128;
+    const std::size_t chunkCount = (slots_.size() + kSlotsPerChunk - 1) / kSlotsPerChunk;
+    if (chunks_.size() < chunkCount) chunks_.resize(chunkCount);
     auto narrowPhase = [&](int begin, int end, int worker) {
         Scratch& scratch = scratch_[static_cast<std::size_t>(worker)];
-        for (int i = begin; i < end; ++i) {
-            Contact& c = slots_[static_cast<std::size_t>(i)];
-            if (c.alive) collideContact(c, bodies, broadPhase, speculativeDistance, linearSlop, dt, planar, scratch);
+        for (int chunk = begin; chunk < end; ++chunk) {
+            ChunkLists& lists = chunks_[static_cast<std::size_t>(chunk)];
+            lists.separated.clear();
+            lists.candidates.clear();
+            lists.wake.clear();
+            const std::size_t first = static_cast<std::size_t>(chunk) * kSlotsPerChunk;
+            const std::size_t last = std::min(slots_.size(), first + kSlotsPerChunk);
+            for (std::size_t slot = first; slot < last; ++slot) {
+                Contact& c = slots_[slot];
+                if (!c.alive) continue;
+                collideContact(c, bodies, broadPhase, speculativeDistance, linearSlop, dt, planar, scratch);
+                classify(c, static_cast<std::uint32_t>(slot), bodies, lists);
+            }
         }
     };
-    constexpr int kMinContactsPerRange = 64;
-    parallelFor(tasks, static_cast<int>(slots_.size()), kMinContactsPerRange, narrowPhase);
+    parallelFor(tasks, static_cast<int>(chunkCount), 1, narrowPhase);
     // Any worker may meet the largest pair next step: every worker's scratch keeps the largest
     // capacity any needed, so a steady world never allocates here.
     std::size_t found = 0, previous = 0;
@@ -331,23 +346,29 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
     }
 
     touchCandidates_.clear();
-    for (std::uint32_t slot = 0; slot < slots_.size(); ++slot) {
-        Contact& c = slots_[slot];
-        if (!c.alive) continue;
-        if (c.separated) {
-            destroy(slot);
-            continue;
-        }
-        if (c.trigger || !c.manifolds.empty()) touchCandidates_.push_back(slot);
-        // A moving body about to hit a sleeping one wakes it (and so its island) as soon as
-        // their manifold has points, speculative ones included: otherwise the solver would
-        // treat the sleeper as immovable for the step of the impact.
-        if (c.trigger || c.manifolds.empty()) continue;
-        const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
-        if (!a.isActive() && !b.isActive()) continue;
-        if (!a.awake && a.moves()) toWake.push_back(c.bodyA);
-        if (!b.awake && b.moves()) toWake.push_back(c.bodyB);
+    for (std::size_t chunk = 0; chunk < chunkCount; ++chunk) {
+        const ChunkLists& lists = chunks_[chunk];
+        for (std::uint32_t slot : lists.separated) destroy(slot);
+        touchCandidates_.insert(touchCandidates_.end(), lists.candidates.begin(), lists.candidates.end());
+        toWake.insert(toWake.end(), lists.wake.begin(), lists.wake.end());
     }
+}
+
+void ContactManager::classify(const Contact& c, std::uint32_t slot, const std::vector<NativeBody>& bodies,
+                              ChunkLists& lists) {
+    if (c.separated) {
+        lists.separated.push_back(slot);
+        return;
+    }
+    if (c.trigger || !c.manifolds.empty()) lists.candidates.push_back(slot);
+    // A moving body about to hit a sleeping one wakes it (and so its island) as soon as their
+    // manifold has points, speculative ones included: otherwise the solver would treat the
+    // sleeper as immovable for the step of the impact.
+    if (c.trigger || c.manifolds.empty()) return;
+    const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
+    if (!a.isActive() && !b.isActive()) return;
+    if (!a.awake && a.moves()) lists.wake.push_back(c.bodyA);
+    if (!b.awake && b.moves()) lists.wake.push_back(c.bodyB);
 }
 
 void ContactManager::destroy(std::uint32_t slot) {

@@ -73,8 +73,9 @@ public:
     /// A broad-phase pair: creates the contact if the bodies may touch at all.
     void addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies, const MaterialTable& materials);
     /// Runs the narrow phase on every contact with an awake moving body (on the workers of
-    /// `tasks`, if any), then, in slot order, destroys contacts whose fat bounds separated and
-    /// appends to `toWake` the sleeping bodies that an awake body is about to touch. The
+    /// `tasks`, if any), then, in slot order, destroys contacts whose fat bounds separated, lists
+    /// the contacts that may touch (forEachTouchCandidate) and appends to `toWake` the sleeping
+    /// bodies that an awake body is about to touch. The
     /// speculative margin of a pair grows with how fast the bodies approach (relative speed x
     /// dt), so an impact in the next step always has a contact to stop it.
     /// In a planar world (`planar`) points that differ only in Z are merged: the plane holds the
@@ -130,8 +131,15 @@ private:
         std::vector<Manifold> found;
         std::vector<ContactManifold> previous;
     };
+    struct ChunkLists {  // what the narrow phase found in one chunk of slots (update), in slot order
+        std::vector<std::uint32_t> separated;   // contacts to destroy
+        std::vector<std::uint32_t> candidates;  // contacts that may touch (forEachTouchCandidate)
+        std::vector<std::uint32_t> wake;        // sleeping bodies an awake one is about to touch
+    };
 
     void destroy(std::uint32_t slot);
+    /// Sorts a contact the narrow phase has just updated into its chunk's lists.
+    static void classify(const Contact& c, std::uint32_t slot, const std::vector<NativeBody>& bodies, ChunkLists& lists);
     void collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
                         double speculativeDistance, double linearSlop, double dt, bool planar, Scratch& scratch) const;
     // Contact recycling (as Box2D v3 and Box3D): while a pair of flat shapes rests and has moved
@@ -145,6 +153,7 @@ private:
     std::vector<Contact> slots_;
     std::vector<std::uint32_t> free_;
     std::vector<std::uint32_t> touchCandidates_;  // slots, ascending (forEachTouchCandidate)
+    std::vector<ChunkLists> chunks_;              // per chunk of slots (update); capacity kept
     // Finds a pair's slot. Only looked up, never iterated. Nodes of destroyed pairs are kept
     // and reused, so pairs that come and go cost no allocation once the pile is warm.
     using PairIndex = std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::uint32_t, PairHash>;
