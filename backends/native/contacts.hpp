@@ -100,8 +100,6 @@ public:
         for (const Contact& c : slots_)
             if (c.alive) fn(c);
     }
-    std::size_t slotCount() const { return slots_.size(); }
-
     /// Calls fn(contact) for the live contacts that may touch, in slot order: those whose last
     /// narrow phase left manifolds (speculative points included), and triggers. These are all
     /// the solver, the contact report and the islands read; in a pile most contacts are pairs of

@@ -301,8 +301,8 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     // below half the step rate, where a single substep would leave stacks too soft to stand.
     // Box2D v3's bound, a quarter of the substep rate, let piles ring for ever at 4 substeps of a
     // 60 Hz step (60 Hz contacts): a dropped 3 x 3 x 10 grid kept its fastest box at 0.12 m/s
-    // after 10 s; at 48 Hz it rests (NativeContactStiffness). Contacts with static bodies are twice as stiff (as Box2D v3), so piles
-    // do not sink into the ground.
+    // after 10 s; at 48 Hz it rests (NativeContactStiffness). Contacts with static bodies are
+    // twice as stiff (as Box2D v3), so piles do not sink into the ground.
     const double stepRate = 1.0 / step.dt;
     const double maxHertz = std::max(0.2 * substeps * stepRate, 0.5 * stepRate);
     const double hertz = std::min(settings.contactHertz, maxHertz);
