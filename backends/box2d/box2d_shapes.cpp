@@ -88,17 +88,68 @@ std::optional<std::vector<Vec2>> inset(const std::vector<Vec2>& v, double by) {
     return out;
 }
 
+float cross(const b2Vec2& o, const b2Vec2& a, const b2Vec2& b) { return b2Cross(a - o, b - o); }
+
+// Whether Box2D 2.4.1's b2PolygonShape::Set takes these float vertices without tripping one of
+// its assertions. It welds vertices closer than kWeld, wraps the rest in a hull with float cross
+// products (gift wrapping from the rightmost vertex, the farther of two collinear candidates),
+// and needs three hull vertices, edges longer than b2_epsilon and an area above b2_epsilon. An
+// outline that passes the checks in double can still fail them in float: a sliver 1e7 m long
+// whose far vertex rounds the near ones onto one line (the API fuzzer found one).
+bool box2dAcceptsPolygon(const std::vector<b2Vec2>& vertices) {
+    std::vector<b2Vec2> p;
+    for (const b2Vec2& v : vertices)
+        if (std::none_of(p.begin(), p.end(), [&](const b2Vec2& q) { return b2DistanceSquared(v, q) < float(kWeld * kWeld); }))
+            p.push_back(v);
+    if (p.size() < 3) return false;
+    std::size_t start = 0;
+    for (std::size_t i = 1; i < p.size(); ++i)
+        if (p[i].x > p[start].x || (p[i].x == p[start].x && p[i].y < p[start].y)) start = i;
+    std::vector<b2Vec2> hull;
+    for (std::size_t at = start;;) {
+        if (hull.size() == b2_maxPolygonVertices) return false;
+        hull.push_back(p[at]);
+        std::size_t best = at == 0 ? 1 : 0;
+        for (std::size_t j = 0; j < p.size(); ++j) {
+            if (j == at || j == best) continue;
+            const float c = cross(p[at], p[best], p[j]);
+            if (c < 0.0f || (c == 0.0f && (p[j] - p[at]).LengthSquared() > (p[best] - p[at]).LengthSquared())) best = j;
+        }
+        at = best;
+        if (at == start) break;
+    }
+    if (hull.size() < 3) return false;
+    float area = 0.0f;
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+        const b2Vec2 edge = hull[(i + 1) % hull.size()] - hull[i];
+        if (edge.LengthSquared() <= b2_epsilon * b2_epsilon) return false;
+        area += 0.5f * cross(hull[0], hull[i], hull[(i + 1) % hull.size()]);
+    }
+    return area > b2_epsilon;
+}
+
+// Box2D's polygon of these vertices, or nullptr where Box2D would refuse it in float.
 std::unique_ptr<b2PolygonShape> polygon(const std::vector<Vec2>& v, double radius) {
-    b2Vec2 points[b2_maxPolygonVertices];
-    for (std::size_t i = 0; i < v.size(); ++i) points[i].Set(static_cast<float>(v[i].x()), static_cast<float>(v[i].y()));
+    std::vector<b2Vec2> points;
+    for (const Vec2& q : v) points.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()));
+    if (v.size() > b2_maxPolygonVertices || !box2dAcceptsPolygon(points)) return nullptr;
     auto shape = std::make_unique<b2PolygonShape>();
-    shape->Set(points, static_cast<int32>(v.size()));
+    shape->Set(points.data(), static_cast<int32>(points.size()));
     shape->m_radius = static_cast<float>(radius);
     return shape;
 }
 
-// A polygon piece from its true outline (counter-clockwise, convex, at most 8 vertices).
-Piece polygonPiece(const std::vector<Vec2>& outline) {
+// A polygon piece from its true outline (counter-clockwise, convex, at most 8 vertices); `path`
+// and `what` name the shape in the error if Box2D cannot hold the outline in float.
+Piece polygonPiece(const std::vector<Vec2>& outline, const std::string& path, const char* what) {
+    Piece piece;
+    piece.exact = polygon(outline, 0.0);
+    if (!piece.exact)
+        throw Error::invalid(path, std::to_string(outline.size()) + " vertices",
+                             std::string("the outline of a ") + what +
+                                 " in the XY plane is too thin for its size in Box2D's float coordinates (it rounds "
+                                 "to fewer than 3 vertices on a hull, or no area)",
+                             ErrorKind::Unsupported);
     // Box2D's rounding radius stays (its time of impact aims for a separation inside it); the core
     // shrinks so core + radius = outline + kSkin. Small polygons get a smaller radius: at most a
     // quarter of their inner radius, so the core keeps its shape.
@@ -111,18 +162,9 @@ Piece polygonPiece(const std::vector<Vec2>& outline) {
         inner = std::min(inner, Vec2(e.y(), -e.x()).dot(outline[i] - centre));
     }
     double shrink = std::min<double>(b2_polygonRadius - kSkin, 0.25 * inner);
-    std::optional<std::vector<Vec2>> core;
-    for (int attempt = 0; attempt < 8; ++attempt) {
-        if ((core = inset(outline, shrink))) break;
-        shrink *= 0.5;
-    }
-    if (!core) {
-        core = outline;
-        shrink = 0.0;
-    }
-    Piece piece;
-    piece.collision = polygon(*core, shrink + kSkin);
-    piece.exact = polygon(outline, 0.0);
+    for (int attempt = 0; attempt < 8 && !piece.collision; ++attempt, shrink *= 0.5)
+        if (const std::optional<std::vector<Vec2>> core = inset(outline, shrink)) piece.collision = polygon(*core, shrink + kSkin);
+    if (!piece.collision) piece.collision = polygon(outline, kSkin);  // no core: the outline itself, with the skin
     return piece;
 }
 
@@ -176,13 +218,13 @@ std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, con
             for (int i = 0; i < 8; ++i)
                 corners.push_back(at(Vec3((i & 1 ? 1 : -1) * s.halfExtents.x(), (i & 2 ? 1 : -1) * s.halfExtents.y(),
                                           (i & 4 ? 1 : -1) * s.halfExtents.z())));
-            pieces.push_back(polygonPiece(projectedOutline(corners, path, "box")));
+            pieces.push_back(polygonPiece(projectedOutline(corners, path, "box"), path, "box"));
             break;
         }
         case ShapeType::Convex: {
             std::vector<Vec3> points;
             for (const Vec3& v : shape.hull->vertices) points.push_back(at(v));
-            pieces.push_back(polygonPiece(projectedOutline(points, path + ".points", "convex hull")));
+            pieces.push_back(polygonPiece(projectedOutline(points, path + ".points", "convex hull"), path + ".points", "convex hull"));
             break;
         }
         case ShapeType::Capsule: {
@@ -194,7 +236,7 @@ std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, con
             if ((a - b).norm() < kWeld) break;  // seen end on, or a sphere: one circle is the shape
             pieces.push_back(circlePiece(b, s.radius));
             const Vec2 side = Vec2(b.y() - a.y(), a.x() - b.x()).normalized() * s.radius;
-            pieces.push_back(polygonPiece(convexOutline({a + side, a - side, b + side, b - side})));
+            pieces.push_back(polygonPiece(convexOutline({a + side, a - side, b + side, b - side}), path, "capsule"));
             break;
         }
         case ShapeType::Plane: {

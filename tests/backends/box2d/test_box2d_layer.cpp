@@ -78,6 +78,32 @@ TEST(Box2dLayer, ConvexHullOfNineOutlineVerticesIsRefusedNamingTheLimit) {
     EXPECT_NEAR(b.position().y(), 0.5 * std::cos(std::numbers::pi / 8), 2e-3);  // resting on a flat side
 }
 
+// A hull spanning 1e7 m with its other corners within a metre of each other: in double its XY
+// outline has four vertices and area, but in Box2D's floats the far corner rounds the near ones
+// onto one line, and b2PolygonShape::Set aborted the process (found by the API fuzzer). Refused
+// with an error naming the points; the world goes on.
+TEST(Box2dLayer, HullTooThinForFloatIsRefusedNotAborted) {
+    World world(planarSettings());
+    BodyDef def;
+    def.name = "sliver";
+    def.type = BodyType::Static;
+    def.shape = ShapeDef::convex({{-0.5605, -0.5247, -0.5247}, {-0.5247, -0.5605, -0.5247}, {-0.9283, -1.0, -1.0},
+                                  {-1.0, -1.0, -1.0}, {-1.0, -1.0, -0.5874}, {-0.5874, -0.5874, -0.7130},
+                                  {-1.0, -1.0, 1e5}, {1e7, 1e7, 1e7}});
+    def.position = Vec3(1e7, 1e7, 0);
+    const std::string message = errorOf([&] { world.createBody(def); });
+    EXPECT_NE(message.find("BodyDef.shape.points"), std::string::npos) << message;
+    EXPECT_NE(message.find("float"), std::string::npos) << message;
+    EXPECT_NE(message.find("sliver"), std::string::npos) << message;
+    EXPECT_EQ(world.bodyCount(), 0u);
+    // The same corners without the far one make an ordinary body.
+    def.shape.points.resize(6);
+    def.position = Vec3(0, 0, 0);
+    Body b = world.createBody(def);
+    for (int i = 0; i < 10; ++i) world.step();
+    EXPECT_TRUE(b.position().allFinite());
+}
+
 // The layer's mass, not Box2D's area density: a 1 m cube at 1000 kg/m^3 weighs 1000 kg and turns
 // about Z with Izz = m (1 + 1) / 12. Float storage: 1e-6 relative.
 TEST(Box2dLayer, MassesAreTheLayers) {
