@@ -134,9 +134,9 @@ Backend makeBulletBackend() {
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
         {"stability.stack10.pgs.s1",
-         "at 1 substep the 10-box stack drifts 7.8 cm over 10 s (bound 1 cm); 6 mm at 4 substeps"},
+         "at 1 substep the 10-box stack drifts 7.1 cm over 10 s (bound 1 cm); 7 mm at 4 substeps"},
         {"stability.stack10.direct.s1",
-         "the MLCP solver at 1 substep: the stack drifts 3.7 cm; 6 mm at 4 substeps"},
+         "the MLCP solver at 1 substep: the stack drifts 9.1 cm and its top lifts 6.6 mm; 5 mm at 4 substeps"},
         {"stability.pyramid20.pgs.s1",
          "the 20-row pyramid comes apart: boxes drift 27 cm and the top box lifts 15 cm over 5 s"},
         {"stability.pyramid20.pgs.s4",
@@ -163,7 +163,7 @@ Backend makeBulletBackend() {
         {"planar.stack10.top_drift", 0.03},
         {"stack10.top_drift", 0.16},
         {"stability.stack10.pgs.s1", 16},
-        {"stability.stack10.direct.s1", 7.5},
+        {"stability.stack10.direct.s1", 13.5},
         {"stability.pyramid20.pgs.s1", 310},
         {"stability.pyramid20.pgs.s4", 110},
         {"planar.stability.stack10.pgs.s1", 3},
@@ -206,8 +206,6 @@ Backend makeBulletBackend() {
         {"friction.impact.pgs.s1", "as friction.impact.default: rebound 0.42 m/s"},
         {"friction.impact.direct.s1", "as friction.impact.default: rebound 0.42 m/s"},
         {"planar.friction.impact", "as friction.impact.default, planar: rebound 0.42 m/s"},
-        {"contacts.overhang_stands",
-         "four boxes over a table's edge at 90 % of the harmonic offsets (each partial stack's centre of mass 5 cm inside its edge) stand, but the top box creeps 1.7 cm within 3 s and is still moving toward the overhang (planar: 4.7 mm, within the bound)"},
         {"contacts.rests_short_of_edge.capsule",
          "a capsule lying across a table's edge with its centre 5 cm over the table walks off it: 1.65 cm down after 2 s, fallen by 3 s (a box and a hull rest). Bullet's capsule-box pair gains one contact point per step; its convex-convex perturbation (setConvexConvexMultipointIterations) holds the capsule, but sets balls and capsules resting on boxes rocking at 0.1 to 0.7 m/s"},
         {"planar.contacts.rests_short_of_edge.capsule", "as contacts.rests_short_of_edge.capsule, planar: 1.65 cm"},
@@ -252,7 +250,6 @@ Backend makeBulletBackend() {
         {"hard.heavy_plank.displacement", 0.06},
         {"planar.hard.heavy_plank.displacement", 0.1},
         {"hard.mixed_pile_mesh.sink", 0.13},
-        {"contacts.overhang_stands", 0.03},  // m, measured 0.0168
         {"contacts.rests_short_of_edge.capsule", 0.05},  // m below its resting height, measured 0.0165
         {"planar.contacts.rests_short_of_edge.capsule", 0.05},
         {"hard.ragdoll_pile.joint_gap", 0.3},

@@ -89,6 +89,10 @@ public:
 
     /// Applies the world's effects to this body (gravity, damping, gyroscopic, CCD, sleeping).
     void applyEffects();
+    /// Whether the world turns this body's spin by the layer's implicit gyroscopic step
+    /// (anyphys/peers/gyroscopic.hpp) before each Bullet step: a dynamic body in implicit mode
+    /// whose moments differ, in a 3D world with the gyroscopic effect.
+    bool implicitGyroscopic() const { return implicitGyroscopic_; }
     /// Hands this step's accumulated force and torque to Bullet (again before every substep:
     /// Bullet clears its forces after each stepSimulation).
     void pushForces();
@@ -112,6 +116,7 @@ private:
     MassProperties mass_;
     double linearDamping_, angularDamping_, gravityScale_;
     GyroscopicMode gyroscopic_;
+    bool implicitGyroscopic_ = false;  // set by applyEffects
     double coreExtent_;
 
     Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();  // this step, world frame

@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "anyphys/peers/gyroscopic.hpp"
 #include "bullet_body.hpp"
+#include "bullet_convert.hpp"
 #include "bullet_world.hpp"
 
 namespace anyphys::bullet {
@@ -21,6 +23,20 @@ void AnyphysDynamicsWorld::predictUnconstraintMotion(btScalar timeStep) {
             body->setLinearVelocity(body->getLinearVelocity() * static_cast<btScalar>(std::exp(-peer->linearDamping() * h)));
             body->setAngularVelocity(body->getAngularVelocity() *
                                      static_cast<btScalar>(std::exp(-peer->angularDamping() * h)));
+        }
+    // The implicit gyroscopic term, torque-free, on the spin at the start of the step: where
+    // Bullet would add its own (bullet_body.cpp, gyroscopicFlags), before forces and contacts.
+    if (effects_.has(Effect::Gyroscopic))
+        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
+            btRigidBody* body = m_nonStaticRigidBodies[i];
+            if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
+            const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
+            if (!peer->implicitGyroscopic()) continue;
+            btQuaternion q;
+            body->getWorldTransform().getBasis().getRotation(q);
+            const Vec3 w = gyroscopic::solveImplicit(fromBt(body->getAngularVelocity()), fromBt(q).normalized(),
+                                                   peer->massProperties().inertia, timeStep);
+            body->setAngularVelocity(toBt(w));
         }
     btDiscreteDynamicsWorld::predictUnconstraintMotion(timeStep);
 }

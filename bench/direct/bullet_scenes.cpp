@@ -76,7 +76,8 @@ public:
         add(plan.groundHalf, 0.0, Vec3(0, -1, 0), friction);
         for (const Vec3& start : plan.starts) {
             btRigidBody& body = add(Vec3::Constant(kHalf), plan.mass(), start, friction, plan.inertia());
-            body.setFlags(BT_DISABLE_WORLD_GRAVITY | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+            // Cubes: the gyroscopic term vanishes, and the backend applies none (bullet_body.cpp).
+            body.setFlags(BT_DISABLE_WORLD_GRAVITY);
             body.setGravity(btVector3(0, kGravity, 0));
             body.setCcdMotionThreshold(kCcdMotionPerCore * kHalf);
             body.setCcdSweptSphereRadius(kCcdSpherePerCore * kHalf);

@@ -1,4 +1,5 @@
 // Torque-free rotation of an asymmetric body (Euler's equations).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -66,6 +67,44 @@ TEST_P(RotationTest, ImplicitGyroscopicIsStableAndNearlyConservative) {
     EXPECT_LT((L - L0).norm() / L0.norm(), 0.02);
     EXPECT_LE(kineticEnergy(body), E0 * (1 + 1e-12));
     EXPECT_LE(L.norm(), L0.norm() * (1 + 1e-12));
+}
+
+// A step that turns the body far about unequal moments: 27 rad/s at 60 Hz is 0.45 rad per step,
+// moments 0.3, 5.5 and 9.2 kg m^2. Newton's method from the old spin landed on the wrong root of
+// backward Euler's quadratic equation and the energy grew 230-fold within 10 s (native and ODE,
+// which share the layer's solve); split into parts when it must, the step never adds energy.
+TEST_P(RotationTest, FastSpinAboutUnequalMomentsNeverGainsEnergy) {
+    ANYPHYS_REQUIRE(caps().gyroscopicModes.count(GyroscopicMode::Implicit), "gyroscopic mode implicit");
+    World world(weightless(Integrator::SemiImplicitEuler));
+    Body body = spinningBody(world, Vec3(0.3, 5.5, 9.2), 27.0 * Vec3(1, 4, 1).normalized(), GyroscopicMode::Implicit);
+    const double E0 = kineticEnergy(body);
+    const double L0 = body.angularMomentum().norm();
+    double mostEnergy = 0.0, mostMomentum = 0.0;
+    for (int i = 0; i < 600; ++i) {
+        world.step();
+        mostEnergy = std::max(mostEnergy, kineticEnergy(body) / E0);
+        mostMomentum = std::max(mostMomentum, body.angularMomentum().norm() / L0);
+    }
+    std::cout << "  27 rad/s at 60 Hz about moments 0.3, 5.5, 9.2: most energy " << mostEnergy << " x, most |L| "
+              << mostMomentum << " x the start\n";
+    // 1e-6: backward Euler only dissipates; this leaves room for float engines' rounding.
+    EXPECT_LE(mostEnergy, 1 + 1e-6);
+    EXPECT_LE(mostMomentum, 1 + 1e-6);
+}
+
+// Moments 22 orders apart (a needle: 0.01 kg m^2 about its axis, 1e20 across it) spinning across
+// its axis: with equal cross moments and no spin about the axis, Euler's equations keep w fixed.
+// In doubles w x (I w) loses its axial component to cancellation (1e21 +- 1e5), and the implicit
+// solve ran off to inf: ODE aborted the process (the API fuzzer found it). The step keeps w.
+TEST_P(RotationTest, NeedleWithFarApartMomentsKeepsItsSpin) {
+    ANYPHYS_REQUIRE(caps().gyroscopicModes.count(GyroscopicMode::Implicit), "gyroscopic mode implicit");
+    World world(weightless(Integrator::SemiImplicitEuler));
+    const Vec3 spin(0, -10, -8.565);
+    Body body = spinningBody(world, Vec3(0.01, 1e20, 1e20), spin, GyroscopicMode::Implicit);
+    for (int i = 0; i < 60; ++i) world.step();
+    ASSERT_TRUE(body.angularVelocity().allFinite());
+    // 1e-6 relative: the exact w is the initial one; float engines round it.
+    EXPECT_LT((body.angularVelocity() - spin).norm(), 1e-6 * spin.norm()) << body.angularVelocity().transpose();
 }
 
 // Spin about the intermediate axis is unstable (the "tennis racket" or Dzhanibekov effect):
