@@ -17,8 +17,8 @@ int gyroscopicFlags(GyroscopicMode mode) {
         case GyroscopicMode::Explicit: return BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT;
         // Not Bullet's own implicit term: its one Newton step of backward Euler lands on the wrong
         // root when a step turns the body far (the energy of a body spun at 27 rad/s grew 12-fold
-        // in 10 s at 60 Hz) and its floats overflow on far-apart moments. The world applies the
-        // layer's solve instead (AnyphysDynamicsWorld::predictUnconstraintMotion).
+        // in 10 s at 60 Hz) and diverges on moments 22 orders apart (tests/contract/test_rotation.cpp).
+        // The world applies the layer's solve instead (AnyphysDynamicsWorld::predictUnconstraintMotion).
         case GyroscopicMode::Implicit: return 0;
     }
     return 0;

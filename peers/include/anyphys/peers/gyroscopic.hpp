@@ -1,7 +1,8 @@
 #pragma once
 // The gyroscopic term of Euler's rigid-body equations, I dw/dt = tau - w x (I w) (body frame),
 // as the layer defines GyroscopicMode: shared by every backend that applies it itself rather than
-// through its engine (native always; ODE, whose own implicit step can let |L| grow).
+// through its engine (native always; ODE, whose own implicit step can let |L| grow; Bullet, whose
+// one Newton step can add energy).
 #include <Eigen/LU>
 #include <optional>
 
