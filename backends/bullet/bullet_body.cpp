@@ -9,20 +9,6 @@
 namespace anyphys::bullet {
 namespace {
 
-int gyroscopicFlags(GyroscopicMode mode) {
-    switch (mode) {
-        case GyroscopicMode::None: return 0;
-        // Bullet adds -w x Iw as a torque to the step's velocity update (capped at the solver
-        // info's m_maxGyroscopicForce, raised to "no cap" by the world).
-        case GyroscopicMode::Explicit: return BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT;
-        // Not Bullet's own implicit term: its one Newton step of backward Euler lands on the wrong
-        // root when a step turns the body far (the energy of a body spun at 27 rad/s grew 12-fold
-        // in 10 s at 60 Hz) and diverges on moments 22 orders apart (tests/contract/test_rotation.cpp).
-        // The world applies the layer's solve instead (AnyphysDynamicsWorld::predictUnconstraintMotion).
-        case GyroscopicMode::Implicit: return 0;
-    }
-    return 0;
-}
 
 
 }  // namespace
@@ -120,10 +106,15 @@ void BulletBodyPeer::applyEffects() {
     const Vec3 g = e.has(Effect::Gravity) ? Vec3(gravityScale_ * world_.settings().gravity) : Vec3(Vec3::Zero());
     body_->setGravity(toBt(g));
     body_->setDamping(0, 0);  // the world applies the exact decay: AnyphysDynamicsWorld::predictUnconstraintMotion
+    // Not Bullet's own gyroscopic flags: its implicit mode (one Newton step of backward Euler)
+    // lands on the wrong root when a step turns the body far (the energy of a body spun at
+    // 27 rad/s grew 12-fold in 10 s at 60 Hz), and both modes expand w x (I w), which on moments
+    // 22 orders apart leaves rounding larger than the term (tests/contract/test_rotation.cpp).
+    // The world applies the layer's terms instead (AnyphysDynamicsWorld::predictUnconstraintMotion).
+    body_->setFlags(BT_DISABLE_WORLD_GRAVITY);
     // In a plane the gyroscopic term w x Iw has no part about Z: the plane absorbs it.
-    const bool gyroscopic = e.has(Effect::Gyroscopic) && !world_.settings().planar;
-    body_->setFlags(BT_DISABLE_WORLD_GRAVITY | (gyroscopic ? gyroscopicFlags(gyroscopic_) : 0));
-    implicitGyroscopic_ = gyroscopic && gyroscopic_ == GyroscopicMode::Implicit && gyroscopic::isAnisotropic(mass_.inertia);
+    const bool gyroscopic = e.has(Effect::Gyroscopic) && !world_.settings().planar && gyroscopic::isAnisotropic(mass_.inertia);
+    appliedGyroscopic_ = gyroscopic ? gyroscopic_ : GyroscopicMode::None;
     if (e.has(Effect::ContinuousCollision) && std::isfinite(coreExtent_) && !trigger_) {
         // Moving more than half its inner radius in a step may tunnel: sweep a sphere a little
         // smaller than the body's core along the motion (Bullet's CCD and predictive contacts).

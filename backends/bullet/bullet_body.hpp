@@ -89,10 +89,10 @@ public:
 
     /// Applies the world's effects to this body (gravity, damping, gyroscopic, CCD, sleeping).
     void applyEffects();
-    /// Whether the world turns this body's spin by the layer's implicit gyroscopic step
-    /// (anyphys/peers/gyroscopic.hpp) before each Bullet step: a dynamic body in implicit mode
-    /// whose moments differ, in a 3D world with the gyroscopic effect.
-    bool implicitGyroscopic() const { return implicitGyroscopic_; }
+    /// How the world applies the layer's gyroscopic term (anyphys/peers/gyroscopic.hpp) to this
+    /// body before each Bullet step: its mode if it is dynamic with unequal moments in a 3D world
+    /// with the gyroscopic effect, else none.
+    GyroscopicMode appliedGyroscopic() const { return appliedGyroscopic_; }
     /// Hands this step's accumulated force and torque to Bullet (again before every substep:
     /// Bullet clears its forces after each stepSimulation).
     void pushForces();
@@ -116,7 +116,7 @@ private:
     MassProperties mass_;
     double linearDamping_, angularDamping_, gravityScale_;
     GyroscopicMode gyroscopic_;
-    bool implicitGyroscopic_ = false;  // set by applyEffects
+    GyroscopicMode appliedGyroscopic_ = GyroscopicMode::None;  // set by applyEffects
     double coreExtent_;
 
     Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();  // this step, world frame

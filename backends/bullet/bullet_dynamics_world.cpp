@@ -24,19 +24,27 @@ void AnyphysDynamicsWorld::predictUnconstraintMotion(btScalar timeStep) {
             body->setAngularVelocity(body->getAngularVelocity() *
                                      static_cast<btScalar>(std::exp(-peer->angularDamping() * h)));
         }
-    // The implicit gyroscopic term, torque-free, on the spin at the start of the step: where
-    // Bullet would add its own (bullet_body.cpp, gyroscopicFlags), before forces and contacts.
+    // The layer's gyroscopic term on the spin at the start of the step, before forces and
+    // contacts, where Bullet would add its own: implicit, the torque-free backward-Euler turn of
+    // w; explicit, w += h I^-1 (-w x I w), the body frame's acceleration (as a torque, Bullet's
+    // world-frame inverse inertia would leak rounding of the large moments' terms into the small
+    // one: the needle of RotationTest diverged within 6 steps).
     if (effects_.has(Effect::Gyroscopic))
         for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
             btRigidBody* body = m_nonStaticRigidBodies[i];
             if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
             const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
-            if (!peer->implicitGyroscopic()) continue;
-            btQuaternion q;
-            body->getWorldTransform().getBasis().getRotation(q);
-            const Vec3 w = gyroscopic::solveImplicit(fromBt(body->getAngularVelocity()), fromBt(q).normalized(),
-                                                   peer->massProperties().inertia, timeStep);
-            body->setAngularVelocity(toBt(w));
+            const GyroscopicMode mode = peer->appliedGyroscopic();
+            if (mode == GyroscopicMode::None) continue;
+            btQuaternion bq;
+            body->getWorldTransform().getBasis().getRotation(bq);
+            const Quat q = fromBt(bq).normalized();
+            const Vec3 w = fromBt(body->getAngularVelocity());
+            const Vec3& inertia = peer->massProperties().inertia;
+            if (mode == GyroscopicMode::Implicit)
+                body->setAngularVelocity(toBt(gyroscopic::solveImplicit(w, q, inertia, timeStep)));
+            else
+                body->setAngularVelocity(toBt(w + timeStep * gyroscopic::acceleration(w, q, inertia)));
         }
     btDiscreteDynamicsWorld::predictUnconstraintMotion(timeStep);
 }

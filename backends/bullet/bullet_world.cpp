@@ -107,7 +107,6 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     if (option("fixedFrictionDirections", 0) != 0) info.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
     info.m_linearSlop = static_cast<btScalar>(option("linearSlop", 0.0));
     info.m_warmstartingFactor = static_cast<btScalar>(option("warmstarting", info.m_warmstartingFactor));
-    info.m_maxGyroscopicForce = BT_LARGE_FLOAT;  // explicit gyroscopic torque uncapped: the exact term
     info.m_restitutionVelocityThreshold = static_cast<btScalar>(settings.restitutionThreshold);
     info.m_globalCfm = static_cast<btScalar>(option("cfm", info.m_globalCfm));
     // Bullet starts every joint row from zero impulse each step (no warm starting, unlike

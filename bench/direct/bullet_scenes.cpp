@@ -67,7 +67,6 @@ public:
         info.m_splitImpulsePenetrationThreshold = -kSplitImpulseDepth;
         info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
         info.m_linearSlop = 0;
-        info.m_maxGyroscopicForce = BT_LARGE_FLOAT;
         info.m_restitutionVelocityThreshold = defaults.restitutionThreshold;
 
         previousFrictionRule_ = gCalculateCombinedFrictionCallback;  // a process global: restored on exit
