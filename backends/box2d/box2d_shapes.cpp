@@ -97,9 +97,10 @@ float cross(const b2Vec2& o, const b2Vec2& a, const b2Vec2& b) { return b2Cross(
 // outline that passes the checks in double can still fail them in float: a sliver 1e7 m long
 // whose far vertex rounds the near ones onto one line (the API fuzzer found one).
 bool box2dAcceptsPolygon(const std::vector<b2Vec2>& vertices) {
+    constexpr float weld = 0.5f * b2_linearSlop;  // in float, as Box2D computes it
     std::vector<b2Vec2> p;
     for (const b2Vec2& v : vertices)
-        if (std::none_of(p.begin(), p.end(), [&](const b2Vec2& q) { return b2DistanceSquared(v, q) < float(kWeld * kWeld); }))
+        if (std::none_of(p.begin(), p.end(), [&](const b2Vec2& q) { return b2DistanceSquared(v, q) < weld * weld; }))
             p.push_back(v);
     if (p.size() < 3) return false;
     std::size_t start = 0;
