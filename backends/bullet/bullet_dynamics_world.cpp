@@ -10,42 +10,39 @@
 namespace anyphys::bullet {
 
 void AnyphysDynamicsWorld::predictUnconstraintMotion(btScalar timeStep) {
-    // Bullet damps by v *= (1 - d)^h with d clamped to [0, 1]. The d giving exp(-c h),
-    // 1 - exp(-c), rounds to exactly 1 above c = 37 1/s and freezes the body; so Bullet's damping
-    // stays 0 and the exact decay of dv/dt = -c v is applied here, where Bullet would apply its
+    // One pass over the bodies applies both of the layer's terms, where Bullet would apply its
     // own: to the velocity at the start of the step, before forces and contacts.
-    if (effects_.has(Effect::Damping))
-        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
-            btRigidBody* body = m_nonStaticRigidBodies[i];
-            if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
-            const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
+    //  - Damping: Bullet damps by v *= (1 - d)^h with d clamped to [0, 1]. The d giving
+    //    exp(-c h), 1 - exp(-c), rounds to exactly 1 above c = 37 1/s and freezes the body; so
+    //    Bullet's damping stays 0 and the exact decay of dv/dt = -c v is applied here.
+    //  - Gyroscopic: implicit, the torque-free backward-Euler turn of w; explicit,
+    //    w += h I^-1 (-w x I w), the body frame's acceleration (as a torque, Bullet's world-frame
+    //    inverse inertia would leak rounding of the large moments' terms into the small one: the
+    //    needle of RotationTest diverged within 6 steps).
+    const bool damping = effects_.has(Effect::Damping);
+    const bool gyroscopic = effects_.has(Effect::Gyroscopic);
+    for (int i = 0; (damping || gyroscopic) && i < m_nonStaticRigidBodies.size(); ++i) {
+        btRigidBody* body = m_nonStaticRigidBodies[i];
+        if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
+        const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
+        if (damping) {
             const double h = timeStep;
             body->setLinearVelocity(body->getLinearVelocity() * static_cast<btScalar>(std::exp(-peer->linearDamping() * h)));
             body->setAngularVelocity(body->getAngularVelocity() *
                                      static_cast<btScalar>(std::exp(-peer->angularDamping() * h)));
         }
-    // The layer's gyroscopic term on the spin at the start of the step, before forces and
-    // contacts, where Bullet would add its own: implicit, the torque-free backward-Euler turn of
-    // w; explicit, w += h I^-1 (-w x I w), the body frame's acceleration (as a torque, Bullet's
-    // world-frame inverse inertia would leak rounding of the large moments' terms into the small
-    // one: the needle of RotationTest diverged within 6 steps).
-    if (effects_.has(Effect::Gyroscopic))
-        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
-            btRigidBody* body = m_nonStaticRigidBodies[i];
-            if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
-            const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
-            const GyroscopicMode mode = peer->appliedGyroscopic();
-            if (mode == GyroscopicMode::None) continue;
-            btQuaternion bq;
-            body->getWorldTransform().getBasis().getRotation(bq);
-            const Quat q = fromBt(bq).normalized();
-            const Vec3 w = fromBt(body->getAngularVelocity());
-            const Vec3& inertia = peer->massProperties().inertia;
-            if (mode == GyroscopicMode::Implicit)
-                body->setAngularVelocity(toBt(gyroscopic::solveImplicit(w, q, inertia, timeStep)));
-            else
-                body->setAngularVelocity(toBt(w + timeStep * gyroscopic::acceleration(w, q, inertia)));
-        }
+        const GyroscopicMode mode = gyroscopic ? peer->appliedGyroscopic() : GyroscopicMode::None;
+        if (mode == GyroscopicMode::None) continue;
+        btQuaternion bq;
+        body->getWorldTransform().getBasis().getRotation(bq);
+        const Quat q = fromBt(bq).normalized();
+        const Vec3 w = fromBt(body->getAngularVelocity());
+        const Vec3& inertia = peer->massProperties().inertia;
+        if (mode == GyroscopicMode::Implicit)
+            body->setAngularVelocity(toBt(gyroscopic::solveImplicit(w, q, inertia, timeStep)));
+        else
+            body->setAngularVelocity(toBt(w + timeStep * gyroscopic::acceleration(w, q, inertia)));
+    }
     btDiscreteDynamicsWorld::predictUnconstraintMotion(timeStep);
 }
 

@@ -10,7 +10,8 @@
 //    every point is written again after the table or the effects change, and every step while
 //    some material bounces (restitution depends on the closing speed);
 //  - updateActivationState: sleeping with this world's timeToSleep, or never.
-//  - predictUnconstraintMotion: damping by the exact factor exp(-c h) per Bullet step;
+//  - predictUnconstraintMotion: damping by the exact factor exp(-c h) per Bullet step, and the
+//    layer's gyroscopic term (implicit or explicit), in one pass over the bodies;
 //  - performDiscreteCollisionDetection: stale convex-plane points dropped before the narrow
 //    phase, so a sliding box keeps its face of points; after it, the points of compound children
 //    that the layer's filter keeps apart are dropped and those of sensor children taken out as
