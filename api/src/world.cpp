@@ -667,6 +667,7 @@ void World::dispatchEvents() {
     Impl& i = *impl_;
     // A listener of the last step's events stepped the world: its loop still reads them.
     if (i.dispatching > 0) i.retiredEvents.push_back(std::move(i.lastEvents));
+    i.eventsUnwritten = false;  // a diff not read by now never will be
     if (!i.peer->hasAwakeBodies()) {  // every contact has a sleeping body: none begins, stays or ends
         i.tracker.recycle(i.lastEvents);
         return;
@@ -690,8 +691,12 @@ void World::dispatchEvents() {
         const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);
         i.touching.push_back({a, b, c.trigger, impulses, asleep, c.normal, c.firstPoint, c.pointCount});
     }
-    i.tracker.update(i.touching, i.contacts.points, i.lastEvents, i.asleep);
-    if (!i.listeners.empty()) deliverEvents();
+    i.tracker.diff(i.touching, i.asleep);
+    i.eventsUnwritten = true;
+    if (!i.listeners.empty())
+        deliverEvents();
+    else if (i.eventsRead)
+        i.writtenEvents();
 }
 
 void World::deliverEvents() {
@@ -699,8 +704,9 @@ void World::deliverEvents() {
     // Listeners may create and destroy bodies, add and remove listeners, even step: the events
     // are read from their own storage (a step inside a callback retires it rather than reuse it),
     // and go to the listeners registered when delivery began.
-    const ContactEvent* const events = i.lastEvents.data();
-    const std::size_t count = i.lastEvents.size();
+    const std::vector<ContactEvent>& written = i.writtenEvents();
+    const ContactEvent* const events = written.data();
+    const std::size_t count = written.size();
     std::vector<ContactListener*> nestedListeners;
     std::vector<ContactListener*>& listeners = i.dispatching == 0 ? i.listenersNow : nestedListeners;
     listeners.assign(i.listeners.begin(), i.listeners.end());
@@ -732,7 +738,10 @@ void World::deliverEvents() {
     }
 }
 
-const std::vector<ContactEvent>& World::lastEvents() const { return impl_->lastEvents; }
+const std::vector<ContactEvent>& World::lastEvents() const {
+    impl_->eventsRead = true;
+    return impl_->writtenEvents();
+}
 
 // ---- queries --------------------------------------------------------------------------------
 

@@ -131,11 +131,26 @@ struct World::Impl {
     // Events: buffers reused every step, so a steady step allocates nothing.
     ContactReport contacts;                  // what the peer reported after the last step
     std::vector<TouchingRange> touching;     // the pairs of it that touch
-    std::vector<ContactEvent> lastEvents;
+    std::vector<ContactEvent> lastEvents;   // written from the tracker's diff when first read
+    bool eventsUnwritten = false;            // the last diff is not in lastEvents yet
+    bool eventsRead = false;                 // lastEvents() was called: write every step from now on
     ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
     std::vector<ContactListener*> listenersNow;  // the listeners one dispatch delivers to
     int dispatching = 0;                     // listener callbacks running (a callback may step)
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch
+
+    /// The last step's events. Until someone reads events, a step only diffs the touching pairs;
+    /// the events (a copy of every staying pair's points) are written here, the first time a
+    /// listener or World::lastEvents reads them, from the report and pairs the step kept. Once
+    /// World::lastEvents has been called, every step writes them (the reference it returned
+    /// follows every step).
+    std::vector<ContactEvent>& writtenEvents() {
+        if (eventsUnwritten) {
+            tracker.writeEvents(touching, contacts.points, lastEvents);
+            eventsUnwritten = false;
+        }
+        return lastEvents;
+    }
 
     ForceCallback forceCallback;
     // PerStep backends: the layer evaluates the fields and the callback itself before each step

@@ -44,6 +44,11 @@ std::vector<ContactEvent> ContactTracker::update(std::vector<TouchingPair> touch
 
 void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
                             std::vector<ContactEvent>& events, const AsleepQuery& asleep) {
+    diff(touching, asleep);
+    writeEvents(touching, points, events);
+}
+
+void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
     // Normalise order (A < B, normal from A to B), sort by pair then listing order, and keep the
     // first listing of each pair.
     listed_.clear();
@@ -60,8 +65,8 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
     const std::vector<Listed>& sorted = sortedListing(sameListing);
 
     decisions_.clear();
-    const bool unchanged = sameListing && activeIsLastListing_;
-    if (unchanged) {
+    exits_.clear();
+    if (sameListing && activeIsLastListing_) {
         // The pairs of the last step and no others: every pair stays (a resting pile, step
         // after step), and the touching set is the same.
         for (std::size_t k = 0; k < sorted.size(); ++k) {
@@ -71,8 +76,13 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
         }
     } else {
         walk(touching, sorted, asleep);
+        active_.swap(next_);
     }
+    matchSwappedCapacities();
+}
 
+void ContactTracker::writeEvents(const std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
+                                 std::vector<ContactEvent>& events) {
     // Exits, then enters, then stays, each in pair order (the walk's), written over the last
     // step's events so their point storage is reused.
     std::size_t used = 0;
@@ -81,9 +91,7 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
         ++used;
         return events.emplace_back();
     };
-    for (const Decision& d : decisions_) {
-        if (d.outcome != Outcome::Exit) continue;
-        const Active& old = active_[d.ref];
+    for (const Active& old : exits_) {
         ContactEvent& e = nextEvent();
         e.bodyA = idOf(old.a);
         e.bodyB = idOf(old.b);
@@ -116,8 +124,6 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
     for (std::size_t k = used; k < events.size(); ++k)
         if (events[k].points.capacity() > 0) spare_.push_back(std::move(events[k].points));
     events.resize(used);
-    if (!unchanged) active_.swap(next_);  // exits above read the old list
-    matchSwappedCapacities();
 }
 
 void ContactTracker::matchSwappedCapacities() {
@@ -125,7 +131,7 @@ void ContactTracker::matchSwappedCapacities() {
         const std::size_t most = std::max({buffers.capacity()...});
         (buffers.reserve(most), ...);  // a no-op on the one that has it, and once the others do
     };
-    match(active_, next_);
+    match(active_, next_, exits_);
     match(listed_, sorting_, lastSorted_);
 }
 
@@ -145,7 +151,7 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
             if (asleep && (asleep(idOf(old.a)) || asleep(idOf(old.b))))
                 next_.push_back(old);
             else
-                decisions_.push_back({Outcome::Exit, static_cast<std::uint32_t>(i)});
+                exits_.push_back(old);
             ++i;
             continue;
         }

@@ -94,5 +94,102 @@ TEST(EventDispatch, ReferenceToLastEventsFollowsEveryStep) {
     EXPECT_EQ(&events, &world.lastEvents());
 }
 
+/// Balls of restitution 0.6 dropped from several heights: they land, bounce off and land again
+/// at different steps, so the steps have enters, stays and exits.
+MaterialLibrary bouncyMaterial() {
+    Material bouncy;
+    bouncy.restitution = 0.6;
+    MaterialLibrary library;
+    library.add("bouncy", bouncy);
+    return library;
+}
+
+World& bouncingBalls(World& world) {
+    BodyDef ground;
+    ground.type = BodyType::Static;
+    ground.shape = ShapeDef::plane({0, 1, 0}, 0.0);
+    ground.material = "bouncy";
+    world.createBody(ground);
+    for (int i = 0; i < 4; ++i) {
+        BodyDef ball;
+        ball.shape = ShapeDef::sphere(0.25);
+        ball.position = {1.0 * i, 0.6 + 0.3 * i, 0};
+        ball.material = "bouncy";
+        world.createBody(ball);
+    }
+    return world;
+}
+
+bool sameEvent(const ContactEvent& x, const ContactEvent& y) {
+    if (x.bodyA != y.bodyA || x.bodyB != y.bodyB || x.phase != y.phase || x.trigger != y.trigger ||
+        x.removal != y.removal || x.hasImpulses != y.hasImpulses || x.normal != y.normal || x.points.size() != y.points.size())
+        return false;
+    for (std::size_t k = 0; k < x.points.size(); ++k)
+        if (x.points[k].position != y.points[k].position || x.points[k].depth != y.points[k].depth ||
+            x.points[k].normalImpulse != y.points[k].normalImpulse)
+            return false;
+    return true;
+}
+
+TEST(EventDispatch, EventsFirstReadLateAreTheLastStepsEvents) {
+    // A world whose events nobody reads only diffs its touching pairs each step and writes the
+    // events when first asked. What it then returns must be exactly the last step's events, as a
+    // world that read them every step has them (same backend, same scene: bit-identical), on
+    // every backend with the capabilities.
+    int backends = 0;
+    for (const BackendInfo& info : availableBackends()) {
+        const Capabilities& c = info.capabilities;
+        if (!c.effects.has(Effect::Contacts) || !c.effects.has(Effect::Events) || !c.effects.has(Effect::Restitution) ||
+            !c.shapes.contains(ShapeType::Sphere) || !c.shapes.contains(ShapeType::Plane))
+            continue;
+        ++backends;
+        SCOPED_TRACE(info.name);
+        constexpr int kSteps = 150;
+        World reading(settingsFor(info.name), bouncyMaterial());
+        bouncingBalls(reading);
+        std::vector<std::vector<ContactEvent>> everyStep;  // [n]: the events of step n + 1
+        for (int n = 0; n <= kSteps; ++n) {
+            reading.step();
+            everyStep.push_back(reading.lastEvents());
+        }
+        int exits = 0, enters = 0;
+        for (const auto& events : everyStep)
+            for (const ContactEvent& e : events) {
+                exits += e.phase == ContactPhase::Exit;
+                enters += e.phase == ContactPhase::Enter;
+            }
+        ASSERT_GE(enters, 8) << "each ball lands at least twice";
+        ASSERT_GE(exits, 4) << "each ball bounces off at least once";
+        // First reads after the first step, the first step with an exit (a bounce), the first
+        // landing after it, and the last step.
+        const auto firstStepWith = [&](ContactPhase phase, int after) {
+            for (int n = after; n < kSteps; ++n)
+                for (const ContactEvent& e : everyStep[static_cast<std::size_t>(n)])
+                    if (e.phase == phase) return n + 1;
+            return kSteps;
+        };
+        const int bounce = firstStepWith(ContactPhase::Exit, 0);
+        const int landing = firstStepWith(ContactPhase::Enter, bounce);
+        ASSERT_LT(landing, kSteps) << "a ball lands again after the first bounce";
+        for (const int firstRead : {1, bounce, landing, kSteps}) {
+            World late(settingsFor(info.name), bouncyMaterial());
+            bouncingBalls(late);
+            for (int n = 0; n < firstRead; ++n) late.step();
+            const std::vector<ContactEvent>& events = late.lastEvents();
+            const std::vector<ContactEvent>& expected = everyStep[static_cast<std::size_t>(firstRead - 1)];
+            ASSERT_EQ(events.size(), expected.size()) << "first read after step " << firstRead;
+            for (std::size_t k = 0; k < events.size(); ++k)
+                EXPECT_TRUE(sameEvent(events[k], expected[k])) << "event " << k << " after step " << firstRead;
+            // Read once, the reference follows every later step as well.
+            late.step();
+            const std::vector<ContactEvent>& next = everyStep[static_cast<std::size_t>(firstRead)];
+            ASSERT_EQ(events.size(), next.size()) << "the step after the first read, " << firstRead + 1;
+            for (std::size_t k = 0; k < events.size(); ++k)
+                EXPECT_TRUE(sameEvent(events[k], next[k])) << "event " << k << " after step " << firstRead + 1;
+        }
+    }
+    if (backends == 0) GTEST_SKIP() << "no backend with contacts, events, restitution, spheres and planes";
+}
+
 }  // namespace
 }  // namespace anyphys

@@ -127,7 +127,7 @@ void World::debugDraw(DebugDraw& drawer, const DebugDrawOptions& options) const 
 
     // Contact points of the last step's collisions; events of bodies destroyed since are skipped.
     if (options.contacts) {
-        for (const ContactEvent& event : i.lastEvents) {
+        for (const ContactEvent& event : impl_->writtenEvents()) {
             if (event.trigger || event.phase == ContactPhase::Exit) continue;
             if (!isValid(event.bodyA) || !isValid(event.bodyB)) continue;
             for (const ContactPoint& p : event.points) {

@@ -27,13 +27,23 @@ public:
     /// exits first, then enters, then stays.
     std::vector<ContactEvent> update(std::vector<TouchingPair> touching, const AsleepQuery& asleep = {});
 
-    /// The same diff without allocating once the buffers have grown (what World runs every
-    /// step). `touching` lists the step's pairs, their points ranges of `points`, each flagged
-    /// `asleep` where a body sleeps. `events` receives the events, overwriting the events it held
-    /// and reusing their storage (pass the last step's events back in). `asleep` is asked only
-    /// about pairs that touched before and are not listed now.
+    /// The same diff without allocating once the buffers have grown: diff() then writeEvents().
+    /// `touching` lists the step's pairs, their points ranges of `points`, each flagged `asleep`
+    /// where a body sleeps. `events` receives the events, overwriting the events it held and
+    /// reusing their storage (pass the last step's events back in). `asleep` is asked only about
+    /// pairs that touched before and are not listed now.
     void update(std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
                 std::vector<ContactEvent>& events, const AsleepQuery& asleep = {});
+
+    /// The step's diff alone: decides every pair's event and moves the tracker to this step's
+    /// pairs (normalising `touching`'s order in place). What World runs every step; it writes the
+    /// events only when someone reads them (a listener, World::lastEvents), since copying every
+    /// staying pair's points is most of the tracker's cost.
+    void diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep = {});
+    /// Writes the last diff's events into `events` as update() does. `touching` and `points` must
+    /// be what that diff was given (unchanged since); another diff in between replaces the events.
+    void writeEvents(const std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
+                     std::vector<ContactEvent>& events);
 
     /// Empties `events`, keeping their point storage for the next update (a step without events).
     void recycle(std::vector<ContactEvent>& events);
@@ -60,21 +70,22 @@ private:
         bool trigger;
         std::uint32_t index;  // into `touching`
     };
-    enum class Outcome : std::uint8_t { Exit, Enter, Stay };
+    enum class Outcome : std::uint8_t { Enter, Stay };
     struct Decision {
         Outcome outcome;
-        std::uint32_t ref;  // exits: into active_; enters and stays: into `touching`
+        std::uint32_t ref;  // into `touching`
     };
 
     /// listed_ in pair order, deduplicated: the last sort's result when the listing is the same
     /// (`same`; a resting pile lists the same pairs in the same order every step), else sorted anew.
     const std::vector<Listed>& sortedListing(bool& same);
-    /// Merges the sorted listing with active_ into decisions_ and next_.
+    /// Merges the sorted listing with active_ into decisions_, exits_ and next_.
     void walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted, const AsleepQuery& asleep);
     void sortListed();
     std::vector<ContactPoint> takePointStorage();
     /// Gives every buffer that trades places with another (by swap) the larger capacity of the
-    /// two, so a later step that lists fewer pairs than some earlier one never allocates.
+    /// two, so a later step that lists fewer pairs than some earlier one never allocates; exits_
+    /// too, which may have to hold every active pair.
     void matchSwappedCapacities();
 
     // Sorted by (a, b): a step is one sort of the listed pairs and one merge walk. The other
@@ -85,7 +96,8 @@ private:
     std::vector<Listed> sorting_;  // radix sort's second buffer
     std::vector<Listed> lastListing_, lastSorted_;  // the last sort's input and output
     bool activeIsLastListing_ = false;  // active_ holds exactly lastSorted_'s pairs
-    std::vector<Decision> decisions_;
+    std::vector<Decision> decisions_;  // the last diff's enters and stays, in pair order
+    std::vector<Active> exits_;        // the last diff's exits, in pair order
     std::vector<std::vector<ContactPoint>> spare_;  // point storage of past events, for reuse
     std::size_t storagesMade_ = 0;  // point storages ever made: spare_ never needs to hold more
 };
