@@ -10,6 +10,7 @@
 
 #include "ode_contact_completion.hpp"
 #include "ode_math.hpp"
+#include "ode_slip_friction.hpp"
 #include "ode_tuning.hpp"
 #include "ode_world.hpp"
 
@@ -107,7 +108,10 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
     const bool events = effects_.has(Effect::Events);
     for (int i = 0; i < count; ++i) {
         contacts[i].surface = surface;
-        if (surface.mode & dContactApprox1) alignFrictionWithSlip(a, b, contacts[i]);
+        if (surface.mode & dContactApprox1) {
+            const Vec3 point = toVec3(contacts[i].geom.pos);
+            alignFrictionWithSlip(contacts[i], predictedVelocity(a, point) - predictedVelocity(b, point));
+        }
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
         if (events) joints_.push_back(joint);  // its feedback is wired once the pass is done
@@ -115,32 +119,9 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
 }
 
 Vec3 OdeWorld::predictedVelocity(const OdeBody& body, const Vec3& point) const {
-    if (!body.id()) return Vec3::Zero();  // static: no ODE body
-    dVector3 v;
-    dBodyGetPointVel(body.id(), point.x(), point.y(), point.z(), v);
-    Vec3 velocity = toVec3(v);
-    if (body.isDynamic() && effects_.has(Effect::Gravity) && dBodyGetGravityMode(body.id()))
-        velocity += body.gravityScale() * settings_.gravity * odeStep();
-    return velocity;
-}
-
-void OdeWorld::alignFrictionWithSlip(const OdeBody& a, const OdeBody& b, dContact& contact) const {
-    // Approx1 bounds each of its two tangent directions by mu N on its own: a pyramid, not a
-    // cone. With ODE's directions (chosen from the normal alone) a box sliding diagonally feels
-    // up to sqrt(2) mu N and a slope tilted diagonally holds a box it should release. The first
-    // direction along the slip the step would produce (the relative velocity at the point plus
-    // what gravity adds over the step) makes the bound on the slip exactly mu N, in any direction.
-    const Vec3 point = toVec3(contact.geom.pos);
-    const Vec3 normal = toVec3(contact.geom.normal);
-    const Vec3 relative = predictedVelocity(a, point) - predictedVelocity(b, point);
-    const Vec3 slip = relative - normal.dot(relative) * normal;
-    const double speed = slip.norm();
-    if (!(speed > kSlipDirectionSpeed)) return;  // no slip to align with: ODE's directions serve
-    const Vec3 direction = slip / speed;
-    contact.fdir1[0] = direction.x();
-    contact.fdir1[1] = direction.y();
-    contact.fdir1[2] = direction.z();
-    contact.surface.mode |= dContactFDir1;
+    const bool falls = body.isDynamic() && effects_.has(Effect::Gravity) && body.id() && dBodyGetGravityMode(body.id());
+    return predictedPointVelocity(body.id(), point, falls ? Vec3(body.gravityScale() * settings_.gravity) : Vec3::Zero(),
+                                  odeStep());
 }
 
 void OdeWorld::collide() {

@@ -80,7 +80,6 @@ private:
     void collidePair(dGeomID o1, dGeomID o2);
     void collide();
     void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count);
-    void alignFrictionWithSlip(const OdeBody& a, const OdeBody& b, dContact& contact) const;
     Vec3 predictedVelocity(const OdeBody& body, const Vec3& point) const;  // m/s, at the ODE step's end
     void continuousCollision(const std::vector<Vec3>& before);
     /// A joint with collideConnected false joins a and b (either order).

@@ -3,7 +3,9 @@
 // the layer alone:
 //   raw/<scene>/bullet        drop1000, drop10000, pyramid20, pyramid3d
 //   overhead/<scene>/bullet   drop1000, pyramid20 (see raw_benchmarks.hpp)
-// A plain btDiscreteDynamicsWorld, no contact events, one internal step per step. Friction 0.6 on
+// A plain btDiscreteDynamicsWorld with the backend's solver subclass (bullet_solver.hpp: it changes
+// the physics, so both sides must run it to simulate the same pile), no contact events, one
+// internal step per step. Friction 0.6 on
 // every body, mixed by Bullet's friction callback set to the minimum: exactly the 0.6 the backend
 // writes into each contact point (Bullet's default product of sqrt(0.6) twice is one ulp off, and
 // a pile is chaotic enough for one ulp to give another pile).
@@ -17,6 +19,7 @@
 
 #include "../bench_main.hpp"
 #include "anyphys/world_settings.hpp"
+#include "bullet_solver.hpp"  // backends/bullet: the backend's solver, part of the physics
 #include "raw_benchmarks.hpp"
 
 namespace anyphys::bench {
@@ -53,7 +56,7 @@ public:
         : configuration_(makeConfiguration()),
           dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
           broadphase_(std::make_unique<btDbvtBroadphase>()),
-          solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
+          solver_(std::make_unique<bullet::AnyphysSequentialImpulseSolver>()),
           world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                            configuration_.get())) {
         const WorldSettings defaults;  // what the backend reads from the settings

@@ -2,9 +2,11 @@
 // configures its world, so that anyphys on "ode" and this program differ by the layer alone:
 //   raw/<scene>/ode        drop1000, drop10000, pyramid20, pyramid3d
 //   overhead/<scene>/ode   drop1000, pyramid20 (see raw_benchmarks.hpp)
-// What a plain ODE user does and nothing more: a hash space, contact joints made in the near
-// callback, quickstep, no contact events (so no joint feedback) and no continuous sweep (the
-// backend's own ray sweep, ode_continuous.cpp, is part of what the layer costs).
+// What a plain ODE user does: a hash space, contact joints made in the near callback, quickstep,
+// no contact events (so no joint feedback) and no continuous sweep (the backend's own ray sweep,
+// ode_continuous.cpp, is part of what the layer costs). One change to ODE's physics is repeated,
+// so both sides simulate the same pile: the first friction direction along the slip
+// (backends/ode/ode_slip_friction.hpp).
 #include <ode/ode.h>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 
 #include "../bench_main.hpp"
 #include "anyphys/world_settings.hpp"
+#include "ode_slip_friction.hpp"  // backends/ode: part of the physics
 #include "raw_benchmarks.hpp"
 
 namespace anyphys::bench {
@@ -111,6 +114,10 @@ private:
             contact[i].surface = {};
             contact[i].surface.mode = dContactApprox1;  // Coulomb friction on two tangents
             contact[i].surface.mu = kFriction;
+            const Vec3 point(contact[i].geom.pos[0], contact[i].geom.pos[1], contact[i].geom.pos[2]);
+            const Vec3 gravity(0, kGravity, 0);
+            ode::alignFrictionWithSlip(contact[i], ode::predictedPointVelocity(b1, point, gravity, kTimeStep) -
+                                                       ode::predictedPointVelocity(b2, point, gravity, kTimeStep));
             const dJointID joint = dJointCreateContact(world_, contacts_, &contact[i]);
             dJointAttach(joint, b1, b2);
         }

@@ -193,7 +193,10 @@ public:
     /// order (exits, enters, stays). A listener may create and destroy bodies in a callback.
     void addListener(ContactListener* listener);
     void removeListener(ContactListener* listener);
-    /// The events of the last step (also what listeners received).
+    /// The events of the last step (also what listeners received). Until the first call (and
+    /// while no listener is added) steps do not write them, only track which pairs touch; the
+    /// call writes the last step's, and from then on every step does, so the reference follows
+    /// every step.
     const std::vector<ContactEvent>& lastEvents() const;
     /// The joints that broke in the last step (also what listeners received through
     /// onJointBreak). Breaking is the layer's, the same on every backend: after each step, a
