@@ -57,9 +57,11 @@ std::string describeSolver(const World& world) {
     return text;
 }
 
-LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers)
+LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers, bool listen)
     // the default material: friction 0.6, restitution 0
-    : world_(std::make_unique<World>(pileSettings(plan, backend, workers))), boxes_(createPile(*world_, plan)) {}
+    : world_(std::make_unique<World>(pileSettings(plan, backend, workers))), boxes_(createPile(*world_, plan)) {
+    if (listen) world_->addListener(&events_);
+}
 
 void LayerSimulation::readBoxes(std::vector<BoxState>& out) const { readStates(boxes_, out); }
 

@@ -25,16 +25,38 @@ void readStates(const std::vector<Body>& boxes, std::vector<BoxState>& out);
 /// "soft_step, 8 substeps x 1 it": the solver configuration that runs.
 std::string describeSolver(const World& world);
 
+/// Reads every contact event a world delivers, as a game's listener would: counts them and the
+/// points of each (so the events must be written, point by point).
+class EventCounter final : public ContactListener {
+public:
+    void onCollisionEnter(const ContactEvent& e) override { count(e); }
+    void onCollisionStay(const ContactEvent& e) override { count(e); }
+    void onCollisionExit(const ContactEvent& e) override { count(e); }
+    void onTriggerEnter(const ContactEvent& e) override { count(e); }
+    void onTriggerExit(const ContactEvent& e) override { count(e); }
+    std::size_t events = 0, points = 0;
+
+private:
+    void count(const ContactEvent& e) {
+        ++events;
+        points += e.points.size();
+    }
+};
+
 class LayerSimulation final : public Simulation {
 public:
-    LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers = 1);
+    /// `listen`: an EventCounter listens to the world, so every step writes and delivers its events
+    /// (without one, a step only tracks which pairs touch: World::lastEvents).
+    LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers = 1, bool listen = false);
     void step() override { world_->step(); }
     void readBoxes(std::vector<BoxState>& out) const override;
     std::string describe() const override;
+    const EventCounter& events() const { return events_; }
 
 private:
     std::unique_ptr<World> world_;
     std::vector<Body> boxes_;
+    EventCounter events_;
 };
 
 }  // namespace anyphys::bench

@@ -35,18 +35,29 @@ void overhead(benchmark::State& state, const std::string& scene, const std::stri
     const RunPlan run = tableRun(plan);
     const int rounds = comparisonRounds();
     for (auto _ : state) {
-        Best layer, raw;
+        Best layer, listening, raw;
         std::string described;
+        std::size_t eventsPerStep = 0;
         for (int round = 0; round < rounds; ++round) {
-            // Alternate which goes first, so neither always meets a warm or a cold cache.
-            for (int k = 0; k < 2; ++k) {
-                if ((k == 0) == (round % 2 == 0)) {
-                    LayerSimulation simulation(plan, backend);
-                    layer.add(measure(simulation, plan, run));
-                } else {
-                    const std::unique_ptr<Simulation> simulation = make(plan);
-                    raw.add(measure(*simulation, plan, run));
-                    described = simulation->describe();
+            // Rotate which goes first, so none always meets a warm or a cold cache.
+            for (int k = 0; k < 3; ++k) {
+                switch ((k + round) % 3) {
+                    case 0: {
+                        LayerSimulation simulation(plan, backend);
+                        layer.add(measure(simulation, plan, run));
+                        break;
+                    }
+                    case 1: {
+                        LayerSimulation simulation(plan, backend, 1, /*listen=*/true);
+                        listening.add(measure(simulation, plan, run));
+                        eventsPerStep = simulation.events().events / static_cast<std::size_t>(run.steps);
+                        break;
+                    }
+                    default: {
+                        const std::unique_ptr<Simulation> simulation = make(plan);
+                        raw.add(measure(*simulation, plan, run));
+                        described = simulation->describe();
+                    }
                 }
             }
         }
@@ -61,6 +72,9 @@ void overhead(benchmark::State& state, const std::string& scene, const std::stri
         c["anyphys_wall_ms"] = layer.wallMs;
         c["raw_wall_ms"] = raw.wallMs;
         c["overhead_wall_pct"] = 100.0 * (layer.wallMs / raw.wallMs - 1.0);
+        c["listening_cpu_ms"] = listening.cpuMs;
+        c["listening_overhead_pct"] = 100.0 * (listening.cpuMs / raw.cpuMs - 1.0);
+        c["listening_events_per_step"] = static_cast<double>(eventsPerStep);
         c["anyphys_penetration_mm"] = 1e3 * layer.last.outcome.penetration;
         c["raw_penetration_mm"] = 1e3 * raw.last.outcome.penetration;
         c["anyphys_settled"] = layer.last.outcome.settled ? 1 : 0;

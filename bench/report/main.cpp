@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
     printScaling(results, out);
     out << "\n### Two workers\n\n";
     printWorkers(results, out);
-    out << "\n### Wrapper overhead (anyphys with events on against the raw engine, same process)\n\n";
+    out << "\n### Wrapper overhead (anyphys with events on against the raw engine, same process; \"with a listener\": "
+           "a listener reads every event)\n\n";
     printOverhead(results, out);
     out << "\n";
     effects();
