@@ -92,7 +92,30 @@ ShapeDef shapeFrom(Decoder& d, int depth) {
     return s;
 }
 
+/// Checks what the layer promises of every event, delivered or read: bodies in pair order, a
+/// pair never with itself, no points on exits and trigger events. A broken promise aborts.
+void checkEvent(const ContactEvent& e) {
+    const bool pointless = e.phase == ContactPhase::Exit || e.trigger;
+    if (!(e.bodyA < e.bodyB) || (pointless && !e.points.empty())) {
+        std::fprintf(stderr, "fuzz: event breaks the tracker's rules (bodies %u < %u, phase %d, trigger %d, %zu points)\n",
+                     e.bodyA.index, e.bodyB.index, int(e.phase), int(e.trigger), e.points.size());
+        std::abort();
+    }
+}
+
+/// A listener that checks every event it receives.
+class CheckingListener final : public ContactListener {
+public:
+    void onCollisionEnter(const ContactEvent& e) override { checkEvent(e); }
+    void onCollisionStay(const ContactEvent& e) override { checkEvent(e); }
+    void onCollisionExit(const ContactEvent& e) override { checkEvent(e); }
+    void onTriggerEnter(const ContactEvent& e) override { checkEvent(e); }
+    void onTriggerExit(const ContactEvent& e) override { checkEvent(e); }
+};
+
 struct Session {
+    CheckingListener listener;  // before the world: it outlives the world's use of it
+    bool listening = false;
     std::unique_ptr<World> world;
     std::vector<Body> bodies;    // live and stale alike: stale handles must be refused
     std::vector<Joint> joints;
@@ -299,7 +322,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // ANYPHYS_FUZZ_TRACE=1: print each call's kind, to read what a crashing input does.
     static const bool trace = std::getenv("ANYPHYS_FUZZ_TRACE") != nullptr;
     static const char* const kCalls[] = {"createBody", "createBody", "destroyBody", "createJoint", "destroyJoint", "touchBody",
-                                         "touchJoint", "step", "query", "misc", "update", "maybe new world"};
+                                         "touchJoint", "step", "query", "misc", "update", "new world or events"};
     if (trace) std::fprintf(stderr, "world on %s\n", s.world->backendName().c_str());
     for (int call = 0; call < kMaxCalls && d.more(); ++call) {
         const int kind = d.byte() % 12;
@@ -329,15 +352,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                     fuzz::refusedOrDone([&] { (void)s.world->update(elapsed); });
                 }
                 break;
-            default:
+            default: {
                 // The world goes away while its handles stay: every later use must be refused.
-                if (d.byte() < 32) {
+                const std::uint8_t choice = d.byte();
+                if (choice < 32) {
                     s.world.reset();
+                    s.listening = false;
                     for (const Body& b : s.bodies) if (b.isValid()) std::abort();
                     for (const Joint& j : s.joints) if (j.isValid()) std::abort();
                     newWorld(d, s);
                     if (!s.world) return 0;
+                } else if (choice < 64) {
+                    // Events: a listener comes or goes, or the last step's events are read (the
+                    // first read writes them). No further byte is read, so the inputs of older
+                    // corpora decode to the calls they always made.
+                    s.listening ? s.world->removeListener(&s.listener) : s.world->addListener(&s.listener);
+                    s.listening = !s.listening;
+                } else {
+                    for (const ContactEvent& e : s.world->lastEvents()) checkEvent(e);
                 }
+            }
         }
     }
     return 0;
