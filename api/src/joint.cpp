@@ -58,7 +58,11 @@ void Joint::setMotor(const std::optional<JointMotor>& motor) {
     constexpr const char* op = "Joint.setMotor";
     auto& j = ANYPHYS_JOINT(op);
     requireField(j.def, &JointFields::motor, op, "a motor");
-    if (motor) validateJointMotor(*motor, op);
+    if (motor) {
+        validateJointMotor(*motor, op);
+        const WorldSettings& w = world()->settings();
+        validateJointMotorSpeed(*motor, j.def.type, w.maxSpeed, w.maxAngularSpeed, op);
+    }
     j.def.motor = motor;
     if (j.peer && world()->honoursJointField(j, "motor", op)) j.peer->setMotor(motor);
 }

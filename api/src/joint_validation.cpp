@@ -106,6 +106,17 @@ void validateJointMotor(const JointMotor& m, const std::string& field) {
     schema::checkFields(schema::jointMotorFields(), m, field, [](const auto&) { return true; });
 }
 
+void validateJointMotorSpeed(const JointMotor& m, JointType type, double maxSpeed, double maxAngularSpeed,
+                             const std::string& field) {
+    const bool angular = jointFields(type).angular || type == JointType::Wheel;  // a wheel's motor spins it
+    const double ceiling = angular ? maxAngularSpeed : maxSpeed;
+    if (std::abs(m.speed) <= ceiling) return;
+    throw Error::invalid(field + ".speed", m.speed,
+                         std::string("must lie within the world's ") + (angular ? "maxAngularSpeed" : "maxSpeed") + ", +-" +
+                             detail::formatNumber(ceiling) + (angular ? " rad/s" : " m/s") +
+                             " (the motor drives body B at this speed; faster, the body has diverged)");
+}
+
 void validateJointSpring(const JointSpring& s, const std::string& field) {
     schema::checkFields(schema::jointSpringFields(), s, field, [](const auto&) { return true; });
     const auto both = [](double a, double b) { return detail::formatNumber(a) + " and " + detail::formatNumber(b); };

@@ -558,7 +558,8 @@ void writeUserData(ojson& j, const std::string& text, std::uint64_t value) {
 
 /// One joint; its bodies must name bodies of the scene (`bodies`: name -> def).
 SceneJoint readJoint(const json& v, const std::string& path, const std::map<std::string, const BodyDef*>& bodies,
-                     bool planar) {
+                     const WorldSettings& settings) {
+    const bool planar = settings.planar;
     requireObject(v, path);
     const auto& rows = schema::jointDefFields();
     checkKeys(v, path, rowKeys(rows));
@@ -600,6 +601,7 @@ SceneJoint readJoint(const json& v, const std::string& path, const std::map<std:
     // The same rules, in the same words, as World::createJoint.
     validate(d, path);
     if (planar) validatePlanar(d, path);
+    if (d.motor) validateJointMotorSpeed(*d.motor, d.type, settings.maxSpeed, settings.maxAngularSpeed, join(path, "motor"));
     const auto view = [&bodies](const std::string& name) {
         const BodyDef& b = *bodies.at(name);
         return JointBodyView{b.name, b.type};
@@ -1039,7 +1041,7 @@ Scene parseSceneIn(const std::string& jsonText, const LoadContext& context) {
         for (const SceneJoint& j : scene.joints)
             if (!j.def.name.empty()) names.emplace(j.def.name, std::numeric_limits<std::size_t>::max());
         for (std::size_t i = 0; i < v->size(); ++i) {
-            SceneJoint j = readJoint((*v)[i], at("joints", i), bodies, scene.settings.planar);
+            SceneJoint j = readJoint((*v)[i], at("joints", i), bodies, scene.settings);
             if (auto* x = find((*v)[i], "userData")) j.def.userData = readUserData(*x, j.userData);
             if (!j.def.name.empty()) {
                 if (const auto it = names.find(j.def.name); it != names.end())

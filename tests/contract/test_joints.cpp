@@ -595,6 +595,51 @@ protected:
         }
     }
 
+    void MotorFasterThanTheWorldIsRefusedCase() {
+        // A motor drives body B at its speed, so one faster than the world's ceiling makes a
+        // diverged body (ODE aborted inside its step on a slider motor of 1e20 m/s: the body left
+        // the collision grid within one substep). Refused at creation and by setMotor, naming the
+        // field; the world and the joint keep what they had. At the ceiling itself it is accepted.
+        int types = 0;
+        for (const JointType type : {JointType::Slider, JointType::Hinge}) {
+            const std::string name(toString(type));
+            if (!hasJoint(name.c_str()) || !hasParameter(("joint." + name + ".motor").c_str())) continue;
+            ++types;
+            SCOPED_TRACE(name);
+            WorldSettings settings = jointSettings(false);
+            settings.maxSpeed = 50.0;         // m/s: a slider's motor speed
+            settings.maxAngularSpeed = 40.0;  // rad/s: a hinge's
+            const double ceiling = type == JointType::Slider ? settings.maxSpeed : settings.maxAngularSpeed;
+            World world(settings);
+            JointDef d;
+            d.type = type;
+            d.bodyB = ball(world, Vec3::Zero(), 1.0, 0.1);
+            d.axis = type == JointType::Slider ? Vec3(1, 0, 0) : Vec3(0, 0, 1);  // in the plane / about Z
+            d.motor = JointMotor{1.5 * ceiling, 10.0};
+            try {
+                world.createJoint(d);
+                ADD_FAILURE() << "a motor at 1.5x the world's ceiling was accepted";
+            } catch (const Error& e) {
+                EXPECT_NE(std::string(e.what()).find("JointDef.motor.speed"), std::string::npos) << e.what();
+            }
+            EXPECT_EQ(world.jointCount(), 0u);
+            d.motor = JointMotor{-ceiling, 10.0};
+            Joint joint = world.createJoint(d);
+            try {
+                joint.setMotor(JointMotor{2.0 * ceiling, 10.0});
+                ADD_FAILURE() << "setMotor at 2x the world's ceiling was accepted";
+            } catch (const Error& e) {
+                EXPECT_NE(std::string(e.what()).find("Joint.setMotor.speed"), std::string::npos) << e.what();
+            }
+            ASSERT_TRUE(joint.def().motor.has_value());
+            EXPECT_EQ(joint.def().motor->speed, -ceiling) << "the refused motor replaced the old one";
+            for (int i = 0; i < 30; ++i) world.step();
+            // 10 N (or N m) on a 1 kg ball of 0.1 m for 0.5 s: it speeds up towards -ceiling.
+            EXPECT_LT(joint.speed(), 0.0);
+        }
+        if (types == 0) GTEST_SKIP() << "no slider or hinge motor on this backend";
+    }
+
     void HandlesAndValidationCase() {
         ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
         World world(jointSettings());
@@ -960,6 +1005,7 @@ TEST_P(JointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesCont
 // The layer's rules, the same on every backend: stale handles, a body's joints die with it,
 // bad defs are refused naming the field, and the world stays usable.
 TEST_P(JointTest, HandlesAndValidation) { HandlesAndValidationCase(); }
+TEST_P(JointTest, MotorFasterThanTheWorldIsRefused) { MotorFasterThanTheWorldIsRefusedCase(); }
 
 // What a backend declares of joints is spelled as the layer names it, so the layer's checks
 // (and `anyphys backends`) mean what they say.
@@ -1044,6 +1090,7 @@ TEST_P(PlanarJointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase()
 TEST_P(PlanarJointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
 TEST_P(PlanarJointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
 TEST_P(PlanarJointTest, HandlesAndValidation) { HandlesAndValidationCase(); }
+TEST_P(PlanarJointTest, MotorFasterThanTheWorldIsRefused) { MotorFasterThanTheWorldIsRefusedCase(); }
 
 ANYPHYS_CONTRACT_SUITE(PlanarJointTest);
 

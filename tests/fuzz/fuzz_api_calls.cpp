@@ -70,6 +70,8 @@ ShapeDef shapeFrom(Decoder& d, int depth) {
         case 4: {
             std::vector<Vec3> points(4 + d.byte() % 9);
             for (Vec3& p : points) p = d.vec(-1, 1);
+            if (std::getenv("ANYPHYS_FUZZ_TRACE"))
+                for (const Vec3& p : points) std::fprintf(stderr, "  convex point %g %g %g\n", p.x(), p.y(), p.z());
             s = ShapeDef::convex(std::move(points));
             break;
         }
@@ -212,6 +214,10 @@ void createJoint(Decoder& d, Session& s) {
     if (d.flag()) j.breakForce = d.number(0, 1000);
     if (d.flag()) j.breakTorque = d.number(0, 1000);
     j.collideConnected = d.flag();
+    if (std::getenv("ANYPHYS_FUZZ_TRACE"))
+        std::fprintf(stderr, "  joint type %d bodies %u %u anchor %g %g %g axis %g %g %g anchorA %g %g %g anchorB %g %g %g\n",
+                     int(j.type), j.bodyA.id().index, j.bodyB.id().index, j.anchor.x(), j.anchor.y(), j.anchor.z(), j.axis.x(),
+                     j.axis.y(), j.axis.z(), j.anchorA.x(), j.anchorA.y(), j.anchorA.z(), j.anchorB.x(), j.anchorB.y(), j.anchorB.z());
     fuzz::refusedOrDone([&] { s.joints.push_back(s.world->createJoint(j)); });
 }
 
@@ -238,12 +244,28 @@ void touchBody(Decoder& d, Session& s) {
 }
 
 void touchJoint(Decoder& d, Session& s) {
+    static const bool trace = std::getenv("ANYPHYS_FUZZ_TRACE") != nullptr;
     Joint j = anyJoint(d, s);
     fuzz::refusedOrDone([&] {
         switch (d.byte() % 6) {
-            case 0: j.setMotor(d.flag() ? std::optional<JointMotor>(JointMotor{d.number(-10, 10), d.number(0, 100)}) : std::nullopt); break;
-            case 1: j.setLimits(d.flag() ? std::optional<JointLimits>(JointLimits{d.number(-2, 0), d.number(0, 2)}) : std::nullopt); break;
-            case 2: j.setSpring(d.flag() ? std::optional<JointSpring>(JointSpring{d.number(0, 100), d.number(0, 10), 0, 0}) : std::nullopt); break;
+            case 0: {
+                const auto motor = d.flag() ? std::optional<JointMotor>(JointMotor{d.number(-10, 10), d.number(0, 100)}) : std::nullopt;
+                if (trace && motor) std::fprintf(stderr, "  motor speed %g maxForce %g\n", motor->speed, motor->maxForce);
+                j.setMotor(motor);
+                break;
+            }
+            case 1: {
+                const auto limits = d.flag() ? std::optional<JointLimits>(JointLimits{d.number(-2, 0), d.number(0, 2)}) : std::nullopt;
+                if (trace && limits) std::fprintf(stderr, "  limits %g %g\n", limits->lower, limits->upper);
+                j.setLimits(limits);
+                break;
+            }
+            case 2: {
+                const auto spring = d.flag() ? std::optional<JointSpring>(JointSpring{d.number(0, 100), d.number(0, 10), 0, 0}) : std::nullopt;
+                if (trace && spring) std::fprintf(stderr, "  spring stiffness %g damping %g\n", spring->stiffness, spring->damping);
+                j.setSpring(spring);
+                break;
+            }
             case 3: j.setSteeringAngle(d.number(-1, 1)); break;
             case 4: (void)j.position(); (void)j.speed(); (void)j.reactionForce(); (void)j.reactionTorque(); break;
             default: (void)j.def(); (void)j.bodyA(); (void)j.bodyB(); (void)j.isBroken(); (void)j.type(); break;
@@ -274,7 +296,9 @@ public:
 
 void misc(Decoder& d, Session& s) {
     fuzz::refusedOrDone([&] {
-        switch (d.byte() % 5) {
+        const int op = d.byte() % 5;
+        if (std::getenv("ANYPHYS_FUZZ_TRACE")) std::fprintf(stderr, "  misc %d\n", op);
+        switch (op) {
             case 0: {
                 const Vec3 push = d.vec(-50, 50);
                 const Body target = anyBody(d, s);

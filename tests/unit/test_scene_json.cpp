@@ -490,6 +490,12 @@ TEST(SceneJson, JointErrorsNameTheJsonPath) {
     expectParseError(scene(R"({"name": "j", "type": "ball", "bodyB": "a"}, {"name": "j", "type": "ball", "bodyB": "b"})"),
                      {"joints[1].name", "must be unique"});
     expectParseError(R"({"joints": {}})", {"joints: must be an array"});
+    // A motor faster than the scene's ceilings (its settings' or the defaults, 1e5 m/s and rad/s).
+    expectParseError(scene(R"({"type": "slider", "bodyB": "a", "motor": {"speed": 1e20, "maxForce": 1e20}})"),
+                     {"joints[0].motor.speed", "maxSpeed", "1e+20"});
+    expectParseError("{" + bodies + R"(, "settings": {"maxAngularSpeed": 30},
+                     "joints": [{"type": "hinge", "bodyB": "a", "motor": {"speed": -31, "maxForce": 1}}]})",
+                     {"joints[0].motor.speed", "maxAngularSpeed", "-31"});
 }
 
 TEST(SceneJson, SyntaxErrorsGiveLineAndColumn) {

@@ -44,6 +44,14 @@ void validateJointLimits(const JointLimits& l, JointType type, const std::string
 
 void validateJointMotor(const JointMotor& m, const std::string& field);
 
+/// A motor of a joint of `type` no faster than the world's ceilings: a slider's speed within
+/// `maxSpeed` (m/s), a hinge's or wheel's within `maxAngularSpeed` (rad/s), the
+/// WorldSettings fields. The motor drives body B at its speed, and a body past the ceiling has
+/// diverged: ODE aborted inside its step on a slider motor of 1e20 m/s, whose body left the
+/// collision grid within one substep.
+void validateJointMotorSpeed(const JointMotor& m, JointType type, double maxSpeed, double maxAngularSpeed,
+                             const std::string& field);
+
 /// Either stiffness and damping, or hertz and dampingRatio; not all zero.
 void validateJointSpring(const JointSpring& s, const std::string& field);
 

@@ -68,6 +68,8 @@ Joint World::createJoint(const JointDef& input) {
     const auto view = [](const Slot& s) { return JointBodyView{s.def.name, s.def.type}; };
     validateJointBodies(a ? std::optional<JointBodyView>(view(*a)) : std::nullopt, view(*b), a == b, "JointDef");
     if (settings_.planar) validatePlanar(input, "JointDef");
+    if (input.motor)
+        validateJointMotorSpeed(*input.motor, input.type, settings_.maxSpeed, settings_.maxAngularSpeed, "JointDef.motor");
     if (settings_.effects && !settings_.effects->has(Effect::Joints))
         throw Error(ErrorKind::Unsupported, "WorldSettings.effects",
                     "World.createJoint: the world's declared effects exclude \"joints\"; add it to WorldSettings.effects");
