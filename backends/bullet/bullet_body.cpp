@@ -7,11 +7,6 @@
 #include "bullet_world.hpp"
 
 namespace anyphys::bullet {
-namespace {
-
-
-
-}  // namespace
 
 BulletBodyPeer::BulletBodyPeer(BulletWorld& world, const BodyPeerDef& def)
     : world_(world),
