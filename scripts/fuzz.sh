@@ -34,7 +34,7 @@ cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" -DANYPHYS_BUILD_FUZZERS=ON \
   -DANYPHYS_BUILD_TESTS=OFF -DANYPHYS_BUILD_TOOLS=OFF -DANYPHYS_BUILD_BENCH=OFF \
-  -DANYPHYS_BUILD_DEMOS=OFF -DANYPHYS_BUILD_TESTBED=OFF >/dev/null
+  -DANYPHYS_BUILD_DEMOS=OFF -DANYPHYS_BUILD_TESTBED=OFF -DANYPHYS_UNITY_BUILD_LIBRARY=ON >/dev/null
 cmake --build "$build_dir" --target anyphys_fuzz_scene_json anyphys_fuzz_api_calls
 
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"

@@ -96,7 +96,7 @@ stage "sanitizer build (build-asan/)"
 bash scripts/build.sh build-asan \
   -DANYPHYS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DANYPHYS_TEST_COMPILE_OPTIONS=-O0 -DANYPHYS_TOOL_COMPILE_OPTIONS=-O0 \
-  -DANYPHYS_BUILD_BENCH=OFF -DANYPHYS_BUILD_DEMOS=OFF
+  -DANYPHYS_BUILD_BENCH=OFF -DANYPHYS_BUILD_DEMOS=OFF -DANYPHYS_UNITY_BUILD_LIBRARY=ON
 done_stage asan-build
 
 stage "sanitizer tests (build-asan/, detect_leaks=$detect_leaks)"

@@ -15,7 +15,7 @@ cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   "-DCMAKE_CXX_FLAGS=-fsanitize=thread" "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread" \
   "${launcher[@]}" -DANYPHYS_BUILD_TESTS=ON -DANYPHYS_BUILD_TOOLS=OFF -DANYPHYS_BUILD_BENCH=OFF \
-  -DANYPHYS_BUILD_DEMOS=OFF -DANYPHYS_BUILD_TESTBED=OFF >/dev/null
+  -DANYPHYS_BUILD_DEMOS=OFF -DANYPHYS_BUILD_TESTBED=OFF -DANYPHYS_UNITY_BUILD_LIBRARY=ON >/dev/null
 cmake --build "$build_dir" --target anyphys_thread_tests
 # halt_on_error: the first race fails the stage; second_deadlock_stack: full lock-order reports.
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" "$build_dir/tests/anyphys_thread_tests"

@@ -21,12 +21,6 @@ std::set<ShapeType> primitiveTypes(const ShapeDef& shape) {
     return out;
 }
 
-std::string join(const std::vector<std::string>& items) {
-    std::string out;
-    for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-    return out;
-}
-
 /// The material name a piece of the body's shape uses: a compound child's own, else the body's.
 const std::string& pieceMaterial(const BodyDef& def, const ShapeDef& piece) {
     return piece.material ? *piece.material : def.material;
@@ -177,7 +171,7 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
     const Effects requested = settings_.effects.value_or(Effects::none());
     const auto missing = missingCapabilities(caps, settings_, requested);
     if (!missing.empty()) {
-        const std::string what = "backend \"" + settings_.backend + "\" does not support: " + join(missing);
+        const std::string what = "backend \"" + settings_.backend + "\" does not support: " + detail::commaList(missing);
         if (settings_.capabilityPolicy == CapabilityPolicy::Strict)
             throw Error(ErrorKind::Unsupported, "WorldSettings",
                         "WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
@@ -335,7 +329,7 @@ Body World::createBody(const BodyDef& input) {
                 missing.push_back("collision between " + std::string(toString(std::min(mine, present))) + " and " +
                                   std::string(toString(std::max(mine, present))) + " shapes");
     if (!missing.empty()) {
-        const std::string what = "backend \"" + settings_.backend + "\" does not support: " + join(missing);
+        const std::string what = "backend \"" + settings_.backend + "\" does not support: " + detail::commaList(missing);
         if (settings_.capabilityPolicy == CapabilityPolicy::Strict) throw Error(ErrorKind::Unsupported, "BodyDef", "BodyDef: " + what);
         warn("BodyDef: " + what + "; ignored");
     }
@@ -383,7 +377,7 @@ void World::requireKnownMaterials(const BodyDef& def) const {
     const auto require = [&](const std::string& name, const std::string& field) {
         if (!materials_.contains(name))
             throw Error::invalid(field, "\"" + name + "\"",
-                                 "must name a material of the world's library (" + join(materials_.names()) + ")");
+                                 "must name a material of the world's library (" + detail::commaList(materials_.names()) + ")");
     };
     require(def.material, "BodyDef.material");
     for (std::size_t i = 0; i < def.shape.shapes.size(); ++i)

@@ -17,6 +17,13 @@ namespace anyphys {
 
 namespace detail {
 
+/// "a, b, c": the names an error message lists (missing capabilities, a library's materials).
+inline std::string commaList(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+    return out;
+}
+
 /// One evaluation of the forces the layer computes (buoyancy, drag and wind, then the game's
 /// callback), as World::evaluateForces sees it. On a ForceEvaluation::PerStage backend it is the
 /// backend's ForceStage (intermediate states, forces straight to the stage); on a PerStep backend

@@ -848,7 +848,7 @@ ojson materialJson(const Material& m) {
     return j;
 }
 
-bool sameMaterial(const Material& a, const Material& b) {
+bool sameMaterialBits(const Material& a, const Material& b) {
     for (const auto& f : schema::materialFields())
         if (!sameBits(f.get(a), f.get(b))) return false;
     return true;
@@ -1115,7 +1115,7 @@ std::string sceneToJson(const Scene& scene) {
     doc["materials"] = ojson::object();
     // The default material is written only when changed, under the key "".
     const Material& fallback = scene.materials.get(MaterialLibrary::kDefaultName);
-    if (!sameMaterial(fallback, Material{})) doc["materials"][""] = materialJson(fallback);
+    if (!sameMaterialBits(fallback, Material{})) doc["materials"][""] = materialJson(fallback);
     for (const auto& name : scene.materials.names()) doc["materials"][name] = materialJson(scene.materials.get(name));
     doc["materialRules"] = ojson{{"friction", std::string(toString(scene.materials.frictionRule()))},
                                  {"restitution", std::string(toString(scene.materials.restitutionRule()))}};

@@ -3,18 +3,11 @@
 #include <limits>
 
 #include "anyphys/fields/field_forces.hpp"
+#include "nearest_on_segment.hpp"
 
 namespace anyphys {
 
 namespace {
-
-// Nearest point of segment [a, b] to p.
-Vec3 nearestOnSegment(const Vec3& a, const Vec3& b, const Vec3& p) {
-    const Vec3 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return a + t * ab;
-}
 
 // In the shape frame: the nearest surface point of a primitive to p, or p when inside.
 Vec3 nearestLocal(const FieldShape& s, const Vec3& p) {

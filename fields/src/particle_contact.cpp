@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anyphys/fields/particles.hpp"
+#include "nearest_on_segment.hpp"
 
 namespace anyphys {
 
@@ -96,12 +97,6 @@ bool inTriangle(const Triangle& t, const Vec3& q) {
         if (t.normal.dot((v - u).cross(q - u)) < -1e-9 * (v - u).squaredNorm()) return false;
     }
     return true;
-}
-
-Vec3 nearestOnSegment(const Vec3& u, const Vec3& v, const Vec3& p) {
-    const Vec3 e = v - u;
-    const double f = std::clamp(e.dot(p - u) / e.squaredNorm(), 0.0, 1.0);
-    return u + f * e;
 }
 
 // The point of the triangle nearest p, and whether it is inside the face (not on an edge or a

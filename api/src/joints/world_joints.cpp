@@ -12,12 +12,6 @@
 namespace anyphys {
 namespace {
 
-std::string join(const std::vector<std::string>& items) {
-    std::string out;
-    for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-    return out;
-}
-
 /// What joint resolution needs of a body slot: its peer frame now and, if the joint can move
 /// it, its mass.
 template <class Slot>
@@ -83,7 +77,7 @@ Joint World::createJoint(const JointDef& input) {
     bool simulated = true;
     if (const auto missing = missingJointCapabilities(caps, input, planar); !missing.empty()) {
         const std::string what = "JointDef" + quotedName(input) + ": backend \"" + settings_.backend +
-                                 "\" does not support: " + join(missing);
+                                 "\" does not support: " + detail::commaList(missing);
         if (settings_.capabilityPolicy == CapabilityPolicy::Strict)
             throw Error(ErrorKind::Unsupported, "JointDef", what + " (capabilityPolicy strict; choose lenient to run without them)");
         simulated = caps.effects.has(Effect::Joints) &&

@@ -5,12 +5,11 @@
 #include <stdexcept>
 
 #include "collision/mesh_data.hpp"
-#include "collision/queries.hpp"
+#include "collision/query_helpers.hpp"
 
 namespace anyphys::native {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 // Half size of the box standing in for an infinite plane: large, but finite so that tree
 // arithmetic (perimeters, merges) stays finite.
 constexpr double kPlaneExtent = 1e6;

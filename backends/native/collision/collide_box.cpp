@@ -39,7 +39,7 @@ constexpr std::array<int, 3> kNext{1, 2, 0}, kPrev{2, 0, 1};
 
 // Side plane k of a box face (through the face's corners k and k + 1) in the box's frame: the
 // plane sign * x[axis] = half[axis], i.e. the neighbouring face across that edge.
-struct SidePlane {
+struct BoxSidePlane {
     int axis;
     double sign;
 };
@@ -47,7 +47,7 @@ struct SidePlane {
 // A box face as clipping sees it: its corners (boxFaces() order) and side planes.
 struct BoxFace {
     std::array<int, 4> corners;
-    std::array<SidePlane, 4> sides;
+    std::array<BoxSidePlane, 4> sides;
 };
 
 const std::array<BoxFace, 6>& boxFaceTable() {
@@ -160,7 +160,7 @@ void boxFaceContact(const BoxGeom& ref, int refAxis, double sign, const BoxGeom&
     // Sutherland-Hodgman against the four side planes, in boxFaces() order (see clipToFace).
     const auto& sides = faces[static_cast<std::size_t>(refFace)].sides;
     for (std::size_t s = 0; s < 4 && count > 0; ++s) {
-        const SidePlane side = sides[s];
+        const BoxSidePlane side = sides[s];
         const std::uint32_t tag = kPlaneTags[s];
         const double limit = ref.half[side.axis];
         int written = 0;

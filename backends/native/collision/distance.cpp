@@ -29,8 +29,6 @@ DistanceResult convexDistance(const ConvexCore& a, const ConvexCore& b, const Ve
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // Closed form: the deepest point of A along -n decides.
 DistanceResult planeDistance(const ConvexCore& a, const Shape& plane) {
     const Vec3& n = plane.normal;

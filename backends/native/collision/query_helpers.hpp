@@ -1,9 +1,13 @@
 #pragma once
 // Pieces the query files (bounds, distance, time_of_impact, raycast) share.
+#include <limits>
+
 #include "collision/gjk.hpp"
 #include "collision/queries.hpp"
 
 namespace anyphys::native {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 inline bool isConvex(ShapeType t) {
     return t == ShapeType::Sphere || t == ShapeType::Capsule || t == ShapeType::Box || t == ShapeType::Convex;

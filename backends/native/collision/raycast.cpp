@@ -10,8 +10,6 @@
 namespace anyphys::native {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // Each routine works in the shape's local frame (dir unit); results are local too.
 
 std::optional<RayHit> raySphere(const Vec3& center, double radius, const Vec3& o, const Vec3& d, double maxT) {

@@ -20,7 +20,7 @@ struct PlanarView {
     bool moves = false;
 };
 
-PlanarView viewOf(std::int32_t index, const SolverBody* bodies, const SolverState* states) {
+PlanarView planarViewOf(std::int32_t index, const SolverBody* bodies, const SolverState* states) {
     PlanarView view;
     if (index == kStaticBody) return view;
     const SolverBody& b = bodies[index];
@@ -44,7 +44,7 @@ double cross2(double ax, double ay, double bx, double by) { return ax * by - ay 
 void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
                  const ContactPrepareParams& params) {
     ContactManifold& m = *in.manifold;
-    const PlanarView a = viewOf(in.bodyA, bodies, states), b = viewOf(in.bodyB, bodies, states);
+    const PlanarView a = planarViewOf(in.bodyA, bodies, states), b = planarViewOf(in.bodyB, bodies, states);
     pc.bodyA[lane] = in.bodyA;
     pc.bodyB[lane] = in.bodyB;
     pc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;

@@ -21,7 +21,7 @@ struct PlanarBodyW {
     FloatW c, s;      // cosine and sine of the turn since the step began
 };
 
-ANYPHYS_KERNEL PlanarBodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
+ANYPHYS_KERNEL PlanarBodyW gatherPlanarVelocities(const SolverState* states, const std::int32_t* index) {
     PlanarBodyW b{};
     for (int lane = 0; lane < kLanes; ++lane) {
         if (index[lane] == kStaticBody) continue;
@@ -33,8 +33,8 @@ ANYPHYS_KERNEL PlanarBodyW gatherVelocities(const SolverState* states, const std
     return b;
 }
 
-ANYPHYS_KERNEL PlanarBodyW gatherMotion(const SolverState* states, const std::int32_t* index) {
-    PlanarBodyW b = gatherVelocities(states, index);
+ANYPHYS_KERNEL PlanarBodyW gatherPlanarMotion(const SolverState* states, const std::int32_t* index) {
+    PlanarBodyW b = gatherPlanarVelocities(states, index);
     b.c = splat(1.0);
     for (int lane = 0; lane < kLanes; ++lane) {
         if (index[lane] == kStaticBody) continue;
@@ -108,7 +108,7 @@ ANYPHYS_KERNEL void clampFrictionToLoad(PlanarContact& c, PlanarBodyW& a, Planar
 ANYPHYS_KERNEL void warmStartImpl(PlanarContact* contacts, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
-        PlanarBodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         // The accumulated impulses summed into one impulse and one moment per body, applied once.
         const FloatW nx = c.normalX, ny = c.normalY;
         const FloatW f = c.frictionImpulse;
@@ -159,7 +159,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     };
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
-        PlanarBodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
+        PlanarBodyW a = gatherPlanarMotion(states, c.bodyA), b = gatherPlanarMotion(states, c.bodyB);
         const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
         // Friction first; non-penetration has the last word in each pass. Bounded as in 3D: by the
         // last normal impulses through soft rows, by the impulses rigid rows will leave (so an
@@ -231,7 +231,7 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, int count, SolverSt
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
         if (allZero(c.restitution)) continue;
-        PlanarBodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         MaskW bounced = MaskW{};
         FloatW load[4];
         for (int j = 0; j < c.pointCount; ++j) {
