@@ -27,20 +27,13 @@ std::string describeSolver(const World& world);
 
 /// Reads every contact event a world delivers, as a game's listener would: counts them and the
 /// points of each (so the events must be written, point by point).
-class EventCounter final : public ContactListener {
+class EventCounter final : public ContactEventListener {
 public:
-    void onCollisionEnter(const ContactEvent& e) override { count(e); }
-    void onCollisionStay(const ContactEvent& e) override { count(e); }
-    void onCollisionExit(const ContactEvent& e) override { count(e); }
-    void onTriggerEnter(const ContactEvent& e) override { count(e); }
-    void onTriggerExit(const ContactEvent& e) override { count(e); }
-    std::size_t events = 0, points = 0;
-
-private:
-    void count(const ContactEvent& e) {
+    void onContactEvent(const ContactEvent& e) override {
         ++events;
         points += e.points.size();
     }
+    std::size_t events = 0, points = 0;
 };
 
 class LayerSimulation final : public Simulation {

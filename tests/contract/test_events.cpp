@@ -48,11 +48,12 @@ public:
     };
     explicit CheckingListener(const World& world) : world_(world) {}
 
-    void onCollisionEnter(const ContactEvent& e) override { take(e); }
-    void onCollisionStay(const ContactEvent& e) override { take(e); }
-    void onCollisionExit(const ContactEvent& e) override { take(e); }
-    void onTriggerEnter(const ContactEvent& e) override { take(e); }
-    void onTriggerExit(const ContactEvent& e) override { take(e); }
+    // Each callback names what it must receive: the dispatch routes events by phase and kind.
+    void onCollisionEnter(const ContactEvent& e) override { take(e, ContactPhase::Enter, false); }
+    void onCollisionStay(const ContactEvent& e) override { take(e, ContactPhase::Stay, false); }
+    void onCollisionExit(const ContactEvent& e) override { take(e, ContactPhase::Exit, false); }
+    void onTriggerEnter(const ContactEvent& e) override { take(e, ContactPhase::Enter, true); }
+    void onTriggerExit(const ContactEvent& e) override { take(e, ContactPhase::Exit, true); }
 
     std::function<void(const ContactEvent&)> then;  ///< runs after each event is checked
     std::vector<Record> records;
@@ -71,12 +72,13 @@ public:
     }
 
 private:
-    void take(const ContactEvent& e) {
+    void take(const ContactEvent& e, ContactPhase callbackPhase, bool callbackTrigger) {
         const std::uint64_t step = world_.stepCount();
         const auto key = std::make_pair(e.bodyA, e.bodyB);
         const auto fail = [&](const std::string& what) {
             violations.push_back("step " + std::to_string(step) + ": " + phaseName(e) + " " + what);
         };
+        if (e.phase != callbackPhase || e.trigger != callbackTrigger) fail("arrived in another kind's callback");
         if (!(e.bodyA < e.bodyB)) fail("pair order: bodyA is not < bodyB");
         if (e.trigger && e.phase == ContactPhase::Stay) fail("triggers never stay");
         const bool active = active_.contains(key);

@@ -106,13 +106,9 @@ void checkEvent(const ContactEvent& e) {
 }
 
 /// A listener that checks every event it receives.
-class CheckingListener final : public ContactListener {
+class CheckingListener final : public ContactEventListener {
 public:
-    void onCollisionEnter(const ContactEvent& e) override { checkEvent(e); }
-    void onCollisionStay(const ContactEvent& e) override { checkEvent(e); }
-    void onCollisionExit(const ContactEvent& e) override { checkEvent(e); }
-    void onTriggerEnter(const ContactEvent& e) override { checkEvent(e); }
-    void onTriggerExit(const ContactEvent& e) override { checkEvent(e); }
+    void onContactEvent(const ContactEvent& e) override { checkEvent(e); }
 };
 
 struct Session {

@@ -191,5 +191,33 @@ TEST(EventDispatch, EventsFirstReadLateAreTheLastStepsEvents) {
     if (backends == 0) GTEST_SKIP() << "no backend with contacts, events, restitution, spheres and planes";
 }
 
+TEST(EventDispatch, ContactEventListenerTakesEveryEventInOrder) {
+    // The one-function listener receives what the five callbacks would: every contact event of
+    // each step, in the order of lastEvents(). Bouncing balls give enters, stays and exits.
+    const std::string backend = eventBackend();
+    if (backend.empty()) GTEST_SKIP() << "no backend with contacts, events, spheres and planes";
+    struct Recorder final : ContactEventListener {
+        std::vector<ContactEvent> received;
+        void onContactEvent(const ContactEvent& e) override { received.push_back(e); }
+    } recorder;
+    World world(settingsFor(backend), bouncyMaterial());
+    bouncingBalls(world);
+    world.addListener(&recorder);
+    int phases[3] = {0, 0, 0};
+    for (int n = 0; n < 150; ++n) {
+        recorder.received.clear();
+        world.step();
+        const std::vector<ContactEvent>& expected = world.lastEvents();
+        ASSERT_EQ(recorder.received.size(), expected.size()) << "step " << n + 1;
+        for (std::size_t k = 0; k < expected.size(); ++k) {
+            EXPECT_TRUE(sameEvent(recorder.received[k], expected[k])) << "event " << k << " of step " << n + 1;
+            ++phases[static_cast<int>(expected[k].phase)];
+        }
+    }
+    EXPECT_GT(phases[static_cast<int>(ContactPhase::Enter)], 0) << "the balls land";
+    EXPECT_GT(phases[static_cast<int>(ContactPhase::Stay)], 0) << "and stay in contact for a while";
+    EXPECT_GT(phases[static_cast<int>(ContactPhase::Exit)], 0) << "and bounce off";
+}
+
 }  // namespace
 }  // namespace anyphys

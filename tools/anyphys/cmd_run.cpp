@@ -65,13 +65,9 @@ std::string phaseName(const ContactEvent& event) {
 }
 
 /// Collects the events each step delivers, so they are written with that step's number and time.
-class EventRecorder : public ContactListener {
+class EventRecorder : public ContactEventListener {
 public:
-    void onCollisionEnter(const ContactEvent& e) override { events_.push_back(e); }
-    void onCollisionStay(const ContactEvent& e) override { events_.push_back(e); }
-    void onCollisionExit(const ContactEvent& e) override { events_.push_back(e); }
-    void onTriggerEnter(const ContactEvent& e) override { events_.push_back(e); }
-    void onTriggerExit(const ContactEvent& e) override { events_.push_back(e); }
+    void onContactEvent(const ContactEvent& e) override { events_.push_back(e); }
 
     /// One row per event received since the last call, in delivery order.
     void writeRows(std::ostream& out, long long step, double time, const std::map<BodyId, std::string>& names) {

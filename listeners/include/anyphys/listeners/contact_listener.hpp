@@ -18,4 +18,18 @@ public:
     virtual void onJointBreak(const JointEvent&) {}
 };
 
+/// A listener that takes every contact and trigger event in one function, for code that treats
+/// them alike (recorders, counters, checks): the event's `phase` and `trigger` say which it is.
+/// Joint breaks still arrive in onJointBreak.
+class ContactEventListener : public ContactListener {
+public:
+    virtual void onContactEvent(const ContactEvent& event) = 0;
+
+    void onCollisionEnter(const ContactEvent& e) final { onContactEvent(e); }
+    void onCollisionStay(const ContactEvent& e) final { onContactEvent(e); }
+    void onCollisionExit(const ContactEvent& e) final { onContactEvent(e); }
+    void onTriggerEnter(const ContactEvent& e) final { onContactEvent(e); }
+    void onTriggerExit(const ContactEvent& e) final { onContactEvent(e); }
+};
+
 }  // namespace anyphys
