@@ -5,6 +5,7 @@
 #include <ctime>
 
 #include "alloc_counter.hpp"
+#include "instruction_count.hpp"
 
 namespace anyphys::bench {
 namespace {
@@ -34,12 +35,14 @@ RunResult measure(Simulation& simulation, const ScenePlan& plan, const RunPlan& 
     std::vector<double> stepMs(static_cast<std::size_t>(steps));  // allocated before the window opens
     std::uint64_t allocsAtWindow = 0;
     const double cpuStart = processCpuMs();
+    startCountingInstructions();
     for (int i = 0; i < steps; ++i) {
         if (i == windowStart) allocsAtWindow = heapAllocations();
         const double t0 = wallMs();
         simulation.step();
         stepMs[static_cast<std::size_t>(i)] = wallMs() - t0;
     }
+    stopCountingInstructions();
     const std::uint64_t allocsAtEnd = heapAllocations();
     const double cpuMs = processCpuMs() - cpuStart;
 
