@@ -2,9 +2,8 @@
 # The wrapper overhead in instructions: runs the overhead/ rows of the raw-engine programs
 # (anyphys_bench_direct_{ode,bullet,box2d}) under valgrind's callgrind and prints, per row, the
 # instructions of the last fifth of the scene's steps (the pile landed; the rest of the run goes
-# uncounted) on each side (anyphys with no one reading the events,
-# anyphys with a listener reading every event, the engine called directly) and the overhead
-# 100 (anyphys / raw - 1). Then, for each row, the layer's own functions (anyphys::) that cost the
+# uncounted) on each side (anyphys with no one reading the events, anyphys with a listener
+# reading every event, the engine called directly) and the overhead 100 (anyphys / raw - 1). Then, for each row, the layer's own functions (anyphys::) that cost the
 # most instructions on the anyphys side.
 #
 # Why: on a shared virtual machine a side's time moves by up to 10 % between rounds, more than the
