@@ -67,38 +67,60 @@ echo "- finished $(date -u +%FT%TZ)"
 echo
 
 # Each dump file names its row and side in its "desc: Trigger: Client Request:" line and holds
-# the instructions in its "totals:" line.
+# the instructions in its "totals:" line; callgrind_annotate lists its functions.
 shopt -s nullglob
 dumps=("$out"/cg.*.*)
 if [[ ${#dumps[@]} -eq 0 ]]; then
   echo "no overhead row matched $filter" >&2
   exit 1
 fi
-echo "| row | anyphys Ir | listening Ir | raw Ir | overhead | with a listener |"
-echo "|---|---:|---:|---:|---:|---:|"
-awk '/^desc: Trigger: Client Request:/ { sub(/^desc: Trigger: Client Request: /, ""); label = $0 }
-     /^totals:/ { print label, $2 }' "${dumps[@]}" |
-  awk '{ ir[$1, $2] = $3; rows[$1] = 1 }
-       END {
-         for (row in rows) {
-           raw = ir[row, "raw"]; any = ir[row, "anyphys"]; lis = ir[row, "listening"]
-           printf "| %s | %d | %d | %d | %.2f %% | %.2f %% |\n", row, any, lis, raw,
-                  100 * (any / raw - 1), 100 * (lis / raw - 1)
-         }
-       }' | sort
+python3 - "${dumps[@]}" <<'PY'
+import collections, re, subprocess, sys
 
-# The layer's own functions on the anyphys side, most instructions first (self cost).
-for dump in "${dumps[@]}"; do
-  label=$(awk '/^desc: Trigger: Client Request:/ { sub(/^desc: Trigger: Client Request: /, ""); print; exit }' "$dump")
-  [[ "$label" == *" anyphys" ]] || continue
-  echo
-  echo "## ${label% anyphys}: the layer's functions, instructions (self) and share of the side"
-  echo
-  total=$(awk '/^totals:/ { print $2 }' "$dump")
-  callgrind_annotate --inclusive=no --threshold=100 "$dump" 2>/dev/null |
-    awk -v total="$total" '$1 ~ /^[0-9,]+$/ && /anyphys::/ {
-        ir = $1; gsub(/,/, "", ir); sum += ir
-        if (shown < 12) { name = $0; sub(/^ *[0-9,]+ *(\([^)]*\))? */, "", name); sub(/^[^:]*:/, "", name); sub(/ \[[^]]*\]$/, "", name); printf "- %.2f %%  %s\n", 100 * ir / total, name; ++shown }
-      }
-      END { printf "- all anyphys:: functions together: %.2f %% of the side\n", 100 * sum / total }'
-done
+sides = collections.defaultdict(dict)  # row -> side -> dump file
+totals = {}
+for dump in sys.argv[1:]:
+    label = total = None
+    with open(dump) as f:
+        for line in f:
+            if line.startswith("desc: Trigger: Client Request: "):
+                label = line.removeprefix("desc: Trigger: Client Request: ").strip()
+            elif line.startswith("totals:"):
+                total = int(line.split()[1])
+    row, side = label.rsplit(" ", 1)
+    sides[row][side] = dump
+    totals[dump] = total
+
+def functions(dump):
+    """Instructions (self) per function of one dump."""
+    out = subprocess.run(["callgrind_annotate", "--inclusive=no", "--threshold=100", dump],
+                         capture_output=True, text=True, check=True).stdout
+    cost = collections.Counter()
+    for line in out.splitlines():
+        m = re.match(r"\s*([\d,]+)\s+(?:\([^)]*\)\s+)?(\S.*)$", line)
+        if not m or "PROGRAM TOTALS" in line:
+            continue
+        name = re.sub(r" \[[^\]]*\]$", "", m.group(2))   # the object file
+        name = re.sub(r"^[^:]*:(?!:)", "", name, count=1)  # the source file ("???:")
+        cost[name] += int(m.group(1).replace(",", ""))
+    return cost
+
+print("| row | anyphys Ir | listening Ir | raw Ir | overhead | with a listener |")
+print("|---|---:|---:|---:|---:|---:|")
+for row in sorted(sides):
+    ir = {side: totals[dump] for side, dump in sides[row].items()}
+    raw = ir["raw"]
+    print(f"| {row} | {ir['anyphys']:,} | {ir['listening']:,} | {raw:,} | "
+          f"{100 * (ir['anyphys'] / raw - 1):.2f} % | {100 * (ir['listening'] / raw - 1):.2f} % |")
+
+# Where the difference lies: per function, the anyphys side's instructions less the raw side's,
+# as a share of the raw side. Code both sides run (the engine, physics the raw program mirrors)
+# cancels; what remains is the layer's own work and the engine work it asks for.
+for row in sorted(sides):
+    layer, raw = functions(sides[row]["anyphys"]), functions(sides[row]["raw"])
+    base = totals[sides[row]["raw"]]
+    diff = {name: layer[name] - raw[name] for name in set(layer) | set(raw)}
+    print(f"\n## {row}: where the anyphys side executes more (or fewer) instructions than raw\n")
+    for name, d in sorted(diff.items(), key=lambda kv: -abs(kv[1]))[:12]:
+        print(f"- {100 * d / base:+.2f} %  {name[:160]}")
+PY
