@@ -1,10 +1,10 @@
 #include "bench_main.hpp"
 
-#include "instruction_count.hpp"
-
 #include <algorithm>
 #include <cstring>
 #include <vector>
+
+#include "instruction_count.hpp"
 
 namespace anyphys::bench {
 namespace {
