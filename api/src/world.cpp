@@ -683,8 +683,13 @@ void World::dispatchEvents() {
         if (!touches) continue;
         const BodyId a = unpackId(c.bodyA), b = unpackId(c.bodyB);
         const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);
-        i.touching.push_back({a, b, c.trigger, impulses, asleep, c.normal, c.firstPoint, c.pointCount});
+        i.touching.push_back({a, b, c.trigger, impulses && settings_.contactImpulses, asleep, c.normal, c.firstPoint,
+                              c.pointCount});
     }
+    // Events without impulses (settings.contactImpulses false) carry none, whatever the engine
+    // measured; the impulses above still decided what touches, so the events are the same.
+    if (!settings_.contactImpulses)
+        for (ContactPoint& p : i.contacts.points) p.normalImpulse = 0.0;
     i.tracker.diff(i.touching, i.asleep);
     i.eventsUnwritten = true;
     if (!i.listeners.empty())

@@ -105,7 +105,7 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
         surface.mode |= dContactSoftCFM;  // rigid, so softness does not absorb the rebound
         surface.soft_cfm = std::min(cfm_, kBounceCfm);
     }
-    const bool events = effects_.has(Effect::Events);
+    const bool feedback = wantsFeedback();
     for (int i = 0; i < count; ++i) {
         contacts[i].surface = surface;
         if (surface.mode & dContactApprox1) {
@@ -114,7 +114,7 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
         }
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
-        if (events) joints_.push_back(joint);  // its feedback is wired once the pass is done
+        if (feedback) joints_.push_back(joint);  // its feedback is wired once the pass is done
     }
 }
 
@@ -151,7 +151,7 @@ void OdeWorld::collide() {
     }
     // Joint feedback (the joints' forces) when events report impulses; wired after the pass, so
     // the array no longer moves while ODE writes into it.
-    if (!effects_.has(Effect::Events)) return;
+    if (!wantsFeedback()) return;
     feedback_.resize(joints_.size());
     for (std::size_t i = 0; i < joints_.size(); ++i) dJointSetFeedback(joints_[i], &feedback_[i]);
     feedbackValid_ = true;

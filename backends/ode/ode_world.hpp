@@ -122,6 +122,10 @@ private:
     std::vector<dJointID> joints_;
     std::vector<dJointFeedback> feedback_;
     bool feedbackValid_ = false;    // feedback_ holds the last ODE step's joint forces
+    // Events report impulses: every contact joint keeps its force (ODE then copies each joint's
+    // Jacobian and multiplies it out after the solve). Without them nothing is lost to the layer's
+    // touching rule: ODE makes contacts only where geoms overlap, so every point touches by depth.
+    bool wantsFeedback() const { return effects_.has(Effect::Events) && settings_.contactImpulses; }
     double lastDt_ = 0.0;           // s, the last anyphys step (impulse = force x dt)
     std::vector<Vec3> before_;      // positions before the ODE step (continuous collision)
 

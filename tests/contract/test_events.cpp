@@ -26,6 +26,7 @@ protected:
     void BodyPassingThroughSensorGetsTriggerEnterAndExit();
     void DestroyingAndCreatingBodiesInsideCallbackIsSafe();
     void RestingBoxImpulseCarriesItsWeightOverTheWholeStep();
+    void EventsWithoutImpulsesAreTheSameEventsAndMotion();
 
     std::string missingFor(std::initializer_list<ShapeType> shapes) const {
         return lacking(caps(), shapes, Effect::Contacts | Effect::Events);
@@ -411,6 +412,74 @@ void EventsTest::RestingBoxImpulseCarriesItsWeightOverTheWholeStep() {
     }
 }
 
+// settings.contactImpulses false changes what events carry, nothing else: the same events (pairs,
+// phases, normals, points and depths, bit for bit) without impulses, and the same motion. The
+// touching rule still sees the engine's impulses where it measures them anyway, so a ball turned
+// around on a speculative contact still enters (ODE, which measures them only for the events,
+// makes contacts only where geoms overlap). A ball bouncing to rest from impacts of 2.5 to 7 m/s,
+// beside a box resting on the ground.
+void EventsTest::EventsWithoutImpulsesAreTheSameEventsAndMotion() {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Box, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    ANYPHYS_REQUIRE(caps().effects.has(Effect::Restitution), "effect restitution");
+    constexpr double kE = 0.5, kThreshold = 2.0, kRadius = 0.25;
+    MaterialLibrary materials;
+    materials.add("ball", Material{0.6, kE, 1000.0});
+    WorldSettings with = settings();
+    with.restitutionThreshold = kThreshold;
+    WorldSettings without = with;
+    without.contactImpulses = false;
+    int runs = 0, enters = 0, impulsesSeen = 0;
+    for (double impact = 2.5; impact <= 7.0 + 1e-9; impact += 0.25) {
+        SCOPED_TRACE("impact " + std::to_string(impact) + " m/s");
+        const double h = impact * impact / (2 * kG);
+        World a(with, materials), b(without, materials);
+        std::vector<Body> bodiesA, bodiesB;
+        for (auto [world, bodies] : {std::pair{&a, &bodiesA}, std::pair{&b, &bodiesB}}) {
+            world->createBody(groundDef());
+            bodies->push_back(world->createBody(ballDef("ball", kRadius, Vec3(0, kRadius + h, 0), "ball")));
+            BodyDef box = boxDef("box", Vec3(0.5, 0.5, 0.5), Vec3(2, 0.5, 0));
+            box.allowSleep = false;  // its contact reports points every step
+            bodies->push_back(world->createBody(box));
+        }
+        ++runs;
+        for (int step = 0; step < 240 && !HasFailure(); ++step) {
+            a.step();
+            b.step();
+            for (std::size_t k = 0; k < bodiesA.size(); ++k) {
+                const BodyState sa = bodiesA[k].state(), sb = bodiesB[k].state();
+                ASSERT_TRUE(sa.position == sb.position && sa.orientation.coeffs() == sb.orientation.coeffs() &&
+                            sa.linearVelocity == sb.linearVelocity && sa.angularVelocity == sb.angularVelocity)
+                    << "step " << step << ": body " << k << " moved differently";
+            }
+            const std::vector<ContactEvent>&ea = a.lastEvents(), &eb = b.lastEvents();
+            ASSERT_EQ(ea.size(), eb.size()) << "step " << step;
+            for (std::size_t k = 0; k < ea.size(); ++k) {
+                const ContactEvent &x = ea[k], &y = eb[k];
+                ASSERT_TRUE(x.bodyA == y.bodyA && x.bodyB == y.bodyB && x.phase == y.phase && x.trigger == y.trigger &&
+                            x.normal == y.normal && x.points.size() == y.points.size())
+                    << "step " << step << ": event " << k << " differs";
+                const bool measured = caps().contactImpulses && x.phase != ContactPhase::Exit;  // exits have no points
+                EXPECT_EQ(x.hasImpulses, measured);
+                EXPECT_FALSE(y.hasImpulses);
+                for (std::size_t p = 0; p < x.points.size(); ++p) {
+                    EXPECT_TRUE(x.points[p].position == y.points[p].position && x.points[p].depth == y.points[p].depth);
+                    EXPECT_EQ(y.points[p].normalImpulse, 0.0);
+                    impulsesSeen += x.points[p].normalImpulse > 0.0;
+                }
+                enters += y.phase == ContactPhase::Enter;
+            }
+        }
+    }
+    report(backend() + " events without impulses: drops compared step by step", runs);
+    EXPECT_GE(enters, 3 * runs);  // each drop: the box's enter and at least two of the ball's
+    // Where the engine reports impulses, the events compared did carry some: the zeros above are
+    // the setting's, not an engine's silence.
+    if (caps().contactImpulses) {
+        EXPECT_GT(impulsesSeen, 0);
+    }
+}
+
 class PlanarEventsTest : public EventsTest {
 protected:
     bool planarTest() const override { return true; }
@@ -434,6 +503,11 @@ TEST_P(PlanarEventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { Dest
 TEST_P(EventsTest, RestingBoxImpulseCarriesItsWeightOverTheWholeStep) { RestingBoxImpulseCarriesItsWeightOverTheWholeStep(); }
 TEST_P(PlanarEventsTest, RestingBoxImpulseCarriesItsWeightOverTheWholeStep) {
     RestingBoxImpulseCarriesItsWeightOverTheWholeStep();
+}
+
+TEST_P(EventsTest, EventsWithoutImpulsesAreTheSameEventsAndMotion) { EventsWithoutImpulsesAreTheSameEventsAndMotion(); }
+TEST_P(PlanarEventsTest, EventsWithoutImpulsesAreTheSameEventsAndMotion) {
+    EventsWithoutImpulsesAreTheSameEventsAndMotion();
 }
 
 ANYPHYS_CONTRACT_SUITE(EventsTest);

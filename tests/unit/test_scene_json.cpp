@@ -314,6 +314,7 @@ TEST(SceneJson, RoundTripOfDefaultsAndUnsetEffects) {
     s.bodies.push_back(b);
     const std::string text = sceneToJson(s);
     EXPECT_EQ(text.find("\"effects\""), std::string::npos);  // unset: derived, so not written
+    EXPECT_EQ(text.find("\"contactImpulses\""), std::string::npos);  // the default is not written
     EXPECT_EQ(text.find("\"mass\""), std::string::npos);
     EXPECT_NE(text.find("\"position\": [0.0, 0.0, 0.0]"), std::string::npos) << text;  // vectors stay on one line
     expectSameScene(s, parseScene(text));
@@ -648,6 +649,7 @@ TEST(SceneJson, RoundTripOfContactFieldsIsExact) {
     Scene s = parseScene(kContactScene);
     s.settings.contactHertz = 1.0 / 3.0;
     s.settings.speculativeDistance = std::nextafter(0.02, 1.0);
+    s.settings.contactImpulses = false;  // written only when not the default
     s.bodies[1].shape.points[0] = Vec3(0.1 + 0.2, -0.0, 1e-300);
     s.bodies[2].shape.shapes[0].density = 1.0 / 7.0;
     s.bodies[2].shape.shapes[2].orientation = Quat(1, -0.0, 0, 0);  // not bitwise identity: written
@@ -664,6 +666,8 @@ TEST(SceneJson, RoundTripOfContactFieldsIsExact) {
     EXPECT_NE(text.find("\"indices\": [0, 1, 2, 2, 1, 3]"), std::string::npos) << text;
     EXPECT_NE(text.find("\"mask\": 4294967295"), std::string::npos) << text;
     EXPECT_NE(text.find("\"contactHertz\": "), std::string::npos) << text;
+    EXPECT_NE(text.find("\"contactImpulses\": false"), std::string::npos) << text;
+    EXPECT_FALSE(back.settings.contactImpulses);
 }
 
 TEST(SceneJson, DefaultShapePlacementIsNotWritten) {

@@ -50,7 +50,7 @@ struct DebugContact {
     Vec3 normalEnd = Vec3::Zero(); ///< m, world: point + normal * contactNormalLength, where to draw the normal to
     double depth = 0.0;            ///< m, penetration (> 0 when overlapping)
     double normalImpulse = 0.0;    ///< N s over the last step; 0 unless hasImpulse
-    bool hasImpulse = false;       ///< the backend reports impulses
+    bool hasImpulse = false;       ///< the backend reports impulses, and settings.contactImpulses is on
 };
 
 /// One limit of a joint, measured in `frame`: the joint frame fixed in A (the world when A is the

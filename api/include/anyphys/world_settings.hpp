@@ -77,6 +77,12 @@ struct WorldSettings {
     double restitutionThreshold = 1.0;              ///< m/s, slower impacts do not bounce, >= 0; default 1
     double linearSlop = 0.005;                      ///< m, allowed overlap and touching tolerance, > 0; default 0.005
     double speculativeDistance = 0.02;              ///< m, contacts are created this far before touching, >= 0; default 4 x linearSlop
+    /// Contact events carry each point's normal impulse (ContactPoint::normalImpulse, the events'
+    /// hasImpulses) on backends whose capabilities say contactImpulses; default true. false: the
+    /// same events with no impulses (hasImpulses false, every normalImpulse 0), for a game that
+    /// reads which pairs touch but not how hard; an engine that measures impulses only for the
+    /// events then skips that work (ODE: the contact joints' feedback).
+    bool contactImpulses = true;
     // ---- sleeping (used when the sleeping effect is on) ----
     double sleepLinearVelocity = 0.05;              ///< m/s, slower bodies may sleep, >= 0; default 0.05
     double sleepAngularVelocity = 0.05;             ///< rad/s, slower-spinning bodies may sleep, >= 0; default 0.05

@@ -78,6 +78,11 @@ const std::vector<Field<WorldSettings>>& settingsFields() {
         with<S>({.key = "speculativeDistance", .path = "settings.speculativeDistance", .unit = "m", .value = 0.02,
                  .check = Check::NonNegative, .note = "contacts are created this far before touching"},
                 member(&S::speculativeDistance)),
+        with<S>({.key = "contactImpulses", .path = "settings.contactImpulses", .type = Type::Bool, .value = true,
+                 .note = "contact events carry each point's normal impulse; `false`: the same events without "
+                         "impulses, and an engine that measures them only for the events (ODE) skips that work",
+                 .honour = Honour::Layer, .save = Save::WhenNotDefault},
+                member(&S::contactImpulses)),
         with<S>({.key = "sleepLinearVelocity", .path = "settings.sleepLinearVelocity", .unit = "m/s", .value = 0.05,
                  .check = Check::NonNegative, .note = "slower bodies may sleep"},
                 member(&S::sleepLinearVelocity)),
