@@ -57,10 +57,19 @@ std::string describeSolver(const World& world) {
     return text;
 }
 
-LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers, bool listen)
+namespace {
+WorldSettings layerSettings(const ScenePlan& plan, const std::string& backend, int workers, Listening listening) {
+    WorldSettings s = pileSettings(plan, backend, workers);
+    s.contactImpulses = listening != Listening::WithoutImpulses;
+    return s;
+}
+}  // namespace
+
+LayerSimulation::LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers, Listening listening)
     // the default material: friction 0.6, restitution 0
-    : world_(std::make_unique<World>(pileSettings(plan, backend, workers))), boxes_(createPile(*world_, plan)) {
-    if (listen) world_->addListener(&events_);
+    : world_(std::make_unique<World>(layerSettings(plan, backend, workers, listening))),
+      boxes_(createPile(*world_, plan)) {
+    if (listening != Listening::None) world_->addListener(&events_);
 }
 
 void LayerSimulation::readBoxes(std::vector<BoxState>& out) const { readStates(boxes_, out); }

@@ -36,11 +36,17 @@ public:
     std::size_t events = 0, points = 0;
 };
 
+/// Who reads a layer run's contact events.
+enum class Listening {
+    None,                   ///< no one: a step only tracks which pairs touch (World::lastEvents)
+    Everything,             ///< an EventCounter: every step writes and delivers its events
+    WithoutImpulses,        ///< the same with settings.contactImpulses false (points and depths only)
+};
+
 class LayerSimulation final : public Simulation {
 public:
-    /// `listen`: an EventCounter listens to the world, so every step writes and delivers its events
-    /// (without one, a step only tracks which pairs touch: World::lastEvents).
-    LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers = 1, bool listen = false);
+    LayerSimulation(const ScenePlan& plan, const std::string& backend, int workers = 1,
+                    Listening listening = Listening::None);
     void step() override { world_->step(); }
     void readBoxes(std::vector<BoxState>& out) const override;
     std::string describe() const override;

@@ -3,8 +3,9 @@
 # (anyphys_bench_direct_{ode,bullet,box2d}) under valgrind's callgrind and prints, per row, the
 # instructions of the last fifth of the scene's steps (the pile landed; the rest of the run goes
 # uncounted) on each side (anyphys with no one reading the events, anyphys with a listener
-# reading every event, the engine called directly) and the overhead 100 (anyphys / raw - 1). Then, for each row, the layer's own functions (anyphys::) that cost the
-# most instructions on the anyphys side.
+# reading every event, the same listener with settings.contactImpulses false, the engine called
+# directly) and the overhead 100 (anyphys / raw - 1). Then, for each row, the functions whose
+# instructions differ most between the anyphys and the raw side.
 #
 # Why: on a shared virtual machine a side's time moves by up to 10 % between rounds, more than the
 # 3 % the target allows; its instruction count is exact and the same on every run. Instructions
@@ -105,13 +106,14 @@ def functions(dump):
         cost[name] += int(m.group(1).replace(",", ""))
     return cost
 
-print("| row | anyphys Ir | listening Ir | raw Ir | overhead | with a listener |")
-print("|---|---:|---:|---:|---:|---:|")
+print("| row | anyphys Ir | listening Ir | raw Ir | overhead | with a listener | listener, no impulses |")
+print("|---|---:|---:|---:|---:|---:|---:|")
 for row in sorted(sides):
     ir = {side: totals[dump] for side, dump in sides[row].items()}
     raw = ir["raw"]
+    pct = lambda side: f"{100 * (ir[side] / raw - 1):.2f} %" if side in ir else "-"
     print(f"| {row} | {ir['anyphys']:,} | {ir['listening']:,} | {raw:,} | "
-          f"{100 * (ir['anyphys'] / raw - 1):.2f} % | {100 * (ir['listening'] / raw - 1):.2f} % |")
+          f"{pct('anyphys')} | {pct('listening')} | {pct('points')} |")
 
 # Where the difference lies: per function, the anyphys side's instructions less the raw side's,
 # as a share of the raw side. Code both sides run (the engine, physics the raw program mirrors)

@@ -49,13 +49,14 @@ void overhead(benchmark::State& state, const std::string& scene, const std::stri
     const int rounds = comparisonRounds();
     const std::string row = "overhead/" + scene + "/" + backend;
     for (auto _ : state) {
-        Best layer, listening, raw;
+        Best layer, listening, pointsOnly, raw;
         std::string described;
         std::size_t eventsPerStep = 0;
+        constexpr int kSides = 4;
         for (int round = 0; round < rounds; ++round) {
             // Rotate which goes first, so none always meets a warm or a cold cache.
-            for (int k = 0; k < 3; ++k) {
-                switch ((k + round) % 3) {
+            for (int k = 0; k < kSides; ++k) {
+                switch ((k + round) % kSides) {
                     case 0: {
                         LayerSimulation simulation(plan, backend);
                         layer.add(measure(simulation, plan, run));
@@ -63,10 +64,16 @@ void overhead(benchmark::State& state, const std::string& scene, const std::stri
                         break;
                     }
                     case 1: {
-                        LayerSimulation simulation(plan, backend, 1, /*listen=*/true);
+                        LayerSimulation simulation(plan, backend, 1, Listening::Everything);
                         listening.add(measure(simulation, plan, run));
                         eventsPerStep = simulation.events().events / static_cast<std::size_t>(run.steps);
                         dumpInstructionCount(row + " listening");
+                        break;
+                    }
+                    case 2: {
+                        LayerSimulation simulation(plan, backend, 1, Listening::WithoutImpulses);
+                        pointsOnly.add(measure(simulation, plan, run));
+                        dumpInstructionCount(row + " points");
                         break;
                     }
                     default: {
@@ -92,6 +99,8 @@ void overhead(benchmark::State& state, const std::string& scene, const std::stri
         c["listening_cpu_ms"] = listening.cpuMs;
         c["listening_overhead_pct"] = 100.0 * (listening.cpuMs / raw.cpuMs - 1.0);
         c["listening_events_per_step"] = static_cast<double>(eventsPerStep);
+        c["points_cpu_ms"] = pointsOnly.cpuMs;
+        c["points_overhead_pct"] = 100.0 * (pointsOnly.cpuMs / raw.cpuMs - 1.0);
         c["anyphys_penetration_mm"] = 1e3 * layer.last.outcome.penetration;
         c["raw_penetration_mm"] = 1e3 * raw.last.outcome.penetration;
         c["anyphys_settled"] = layer.last.outcome.settled ? 1 : 0;

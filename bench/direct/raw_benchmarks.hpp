@@ -5,13 +5,16 @@
 //                               same counters as the anyphys rows (bench_main.cpp's report())
 //   overhead/<scene>/<engine>   anyphys on backend <engine> (effects derived, so events on: the
 //                               touching pairs tracked, no one reading the events), the same with
-//                               a listener reading every event, and the raw version, in turn,
-//                               comparisonRounds() times each, in this one process; the fastest run
+//                               a listener reading every event, that listener without impulses,
+//                               and the raw version, in turn, comparisonRounds() times each, in
+//                               this one process; the fastest run
 //                               of each counts (the least disturbed on a shared machine). Counters:
 //                               anyphys_cpu_ms, raw_cpu_ms and overhead_pct = 100 (anyphys / raw -
 //                               1), CPU time per step; the same in wall time; listening_cpu_ms and
-//                               listening_overhead_pct, with listening_events_per_step; each side's
-//                               penetration and settled, to show they simulate the same thing.
+//                               listening_overhead_pct, with listening_events_per_step;
+//                               points_cpu_ms and points_overhead_pct, the listener with
+//                               settings.contactImpulses false (events without impulses); each
+//                               side's penetration and settled, to show they simulate the same thing.
 #include <functional>
 #include <memory>
 #include <string>

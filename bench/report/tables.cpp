@@ -79,7 +79,7 @@ void printWorkers(const Results& results, std::ostream& out) {
 
 void printOverhead(const Results& results, std::ostream& out) {
     Table table({"scene", "engine", "anyphys CPU ms/step", "raw CPU ms/step", "overhead (CPU)", "overhead (wall)",
-                 "with a listener (CPU)", "events/step", "penetration mm anyphys / raw", "settled anyphys / raw",
+                 "with a listener (CPU)", "listener, no impulses (CPU)", "events/step", "penetration mm anyphys / raw", "settled anyphys / raw",
                  "allocs/step anyphys / raw", "rounds"});
     for (const Record* overhead : inEngineOrder(results, "overhead")) {
         const Record& r = *overhead;
@@ -87,7 +87,8 @@ void printOverhead(const Results& results, std::ostream& out) {
         const auto yesNo = [](double v) { return std::string(v == 1 ? "yes" : "no"); };
         table.row({r.scene, engineName(r), num(r["anyphys_cpu_ms"], 3), num(r["raw_cpu_ms"], 3),
                    num(r["overhead_pct"], 1) + " %", num(r["overhead_wall_pct"], 1) + " %",
-                   num(r["listening_overhead_pct"], 1) + " %", num(r["listening_events_per_step"], 0),
+                   num(r["listening_overhead_pct"], 1) + " %", num(r["points_overhead_pct"], 1) + " %",
+                   num(r["listening_events_per_step"], 0),
                    num(r["anyphys_penetration_mm"], 2) + " / " + num(r["raw_penetration_mm"], 2),
                    yesNo(r["anyphys_settled"]) + " / " + yesNo(r["raw_settled"]),
                    allocations(r["anyphys_allocs_per_step"]) + " / " + allocations(r["raw_allocs_per_step"]),

@@ -99,7 +99,8 @@ void wrapperOverhead(const Results& results, Verdicts& v) {
         }
         v.check(r["overhead_pct"] < kOverheadPct, what + ": " + num(r["overhead_pct"], 1) + " % (wall " +
                                                       num(r["overhead_wall_pct"], 1) + " %; with a listener reading every event " +
-                                                      num(r["listening_overhead_pct"], 1) + " %)");
+                                                      num(r["listening_overhead_pct"], 1) + " %, without impulses " +
+                                                      num(r["points_overhead_pct"], 1) + " %)");
     }
     if (!any) v.missing("wrapper overhead against ODE, Bullet and Box2D");
 }
