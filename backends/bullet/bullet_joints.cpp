@@ -8,6 +8,7 @@
 
 #include "bullet_body.hpp"
 #include "bullet_convert.hpp"
+#include "bullet_joint_spring.hpp"
 #include "bullet_world.hpp"
 
 namespace anyphys::bullet {
@@ -75,8 +76,6 @@ void DistanceConstraint::getInfo2(btConstraintInfo2* info) {
     const btVector3 n = d / length;
     // J v = d(length)/dt; an impulse lambda pushes B along +n (A along -n).
     const btVector3 angA = -ra.cross(n), angB = rb.cross(n);
-    const btScalar rate = n.dot(m_rbB.getLinearVelocity() + m_rbB.getAngularVelocity().cross(rb) -
-                                m_rbA.getLinearVelocity() - m_rbA.getAngularVelocity().cross(ra));
     const btScalar fps = info->fps, erp = erp_ >= 0 ? erp_ : info->erp;
     for (int i = 0; i < count; ++i) {
         const int s = i * info->rowskip;
@@ -110,14 +109,14 @@ void DistanceConstraint::getInfo2(btConstraintInfo2* info) {
                 break;
             }
             case Row::Spring: {
-                // The spring-damper's impulse over this substep from the state at its start, as
-                // Bullet's own 6-DOF springs do it: the row asks for an infinite speed its way and
-                // is bounded by that impulse (bounds lo == hi stall the MLCP solver).
-                const btScalar C = length - static_cast<btScalar>(length_);
-                const btScalar impulse = -static_cast<btScalar>(spring->stiffness * C + spring->damping * rate) / fps;
-                info->m_constraintError[s] = impulse < 0 ? -SIMD_INFINITY : SIMD_INFINITY;
-                info->m_lowerLimit[s] = std::min(impulse, btScalar(0));
-                info->m_upperLimit[s] = std::max(impulse, btScalar(0));
+                SpringRowInput in;
+                in.spring = {-n, angA, n, angB};
+                in.stretch = static_cast<double>(length) - length_;
+                in.stiffness = spring->stiffness;
+                in.damping = spring->damping;
+                in.h = 1.0 / static_cast<double>(fps);
+                in.softRows = softSpringRows;
+                writeSpringRow(info, s, m_rbA, m_rbB, in);
                 break;
             }
             case Row::None: break;
@@ -145,20 +144,19 @@ DecoupledConstraint::DecoupledConstraint(btTypedConstraint& inner)
 void DecoupledConstraint::getInfo1(btConstraintInfo1* info) {
     inner_.getInfo1(info);
     rows_ = info->m_numConstraintRows;
-    if (stops) {
-        info->m_numConstraintRows += 2;
-        info->nub = std::max(0, info->nub - 2);
-    }
+    const int added = (stops ? 2 : 0) + (spring ? 1 : 0);
+    info->m_numConstraintRows += added;
+    info->nub = std::max(0, info->nub - added);
 }
 
-int DecoupledConstraint::stopRows(btConstraintInfo2* info, int row) {
+DecoupledConstraint::AxisRow DecoupledConstraint::axisRow(const Axis& axis) const {
     const btTransform& ta = m_rbA.getCenterOfMassTransform();
     const btTransform& tb = m_rbB.getCenterOfMassTransform();
-    const btTransform fa = ta * stops->frameA, fb = tb * stops->frameB;
+    const btTransform fa = ta * axis.frameA, fb = tb * axis.frameB;
     const btVector3 x = fa.getBasis().getColumn(0);
     btVector3 l1(0, 0, 0), a1, l2(0, 0, 0), a2;
     btScalar position;
-    if (stops->angular) {
+    if (axis.angular) {
         // The angle of B about A's X: the relative rotation's twist about X.
         const btQuaternion rel = fa.getRotation().inverse() * fb.getRotation();
         position = btScalar(2) * btAtan2(rel.x(), rel.w());
@@ -175,6 +173,11 @@ int DecoupledConstraint::stopRows(btConstraintInfo2* info, int row) {
         l2 = x;
         a2 = (fb.getOrigin() - tb.getOrigin()).cross(x);
     }
+    return {position, l1, a1, l2, a2};
+}
+
+int DecoupledConstraint::stopRows(btConstraintInfo2* info, int row) {
+    const auto [position, l1, a1, l2, a2] = axisRow(*stops);
     const btScalar erp = info->erp, fps = info->fps;
     for (int side = 0; side < 2; ++side) {
         const btScalar sign = side == 0 ? btScalar(1) : btScalar(-1);  // lower: C = x - lower; upper: upper - x
@@ -195,9 +198,44 @@ int DecoupledConstraint::stopRows(btConstraintInfo2* info, int row) {
     return 2;
 }
 
+void DecoupledConstraint::springRow(btConstraintInfo2* info, int innerRows, int row) {
+    const auto [position, l1, a1, l2, a2] = axisRow(*spring);
+    // The inner constraint's unbounded rows (already written) turn the spring's impulse into
+    // motion about the joint: they are solved alongside it.
+    constexpr int kMax = 6;
+    JointRow rigid[kMax];
+    btScalar targets[kMax];
+    int count = 0;
+    const auto at = [](const btScalar* axis, int s) { return axis ? btVector3(axis[s], axis[s + 1], axis[s + 2]) : btVector3(0, 0, 0); };
+    for (int r = 0; r < innerRows && count < kMax; ++r) {
+        const int s = r * info->rowskip;
+        if (info->m_lowerLimit[s] > -SIMD_INFINITY || info->m_upperLimit[s] < SIMD_INFINITY) continue;
+        rigid[count] = {at(info->m_J1linearAxis, s), at(info->m_J1angularAxis, s), at(info->m_J2linearAxis, s),
+                        at(info->m_J2angularAxis, s)};
+        targets[count++] = info->m_constraintError[s];
+    }
+    SpringRowInput in;
+    in.spring = {l1, a1, l2, a2};
+    in.stretch = static_cast<double>(position) + spring->turns;
+    in.stiffness = spring->stiffness;
+    in.damping = spring->damping;
+    in.rigid = rigid;
+    in.rigidTargets = targets;
+    in.rigidCount = count;
+    in.h = 1.0 / static_cast<double>(info->fps);
+    in.softRows = softSpringRows;
+    writeSpringRow(info, row * info->rowskip, m_rbA, m_rbB, in);
+}
+
 void DecoupledConstraint::getInfo2(btConstraintInfo2* info) {
     const int n = rows_;
     if (stops) stopRows(info, n);
+    innerRows(info);
+    if (spring) springRow(info, n, n + (stops ? 2 : 0));
+}
+
+void DecoupledConstraint::innerRows(btConstraintInfo2* info) {
+    const int n = rows_;
     if (!decouple || n < 2) {
         inner_.getInfo2(info);
         return;
@@ -358,6 +396,8 @@ BulletJointPeer::BulletJointPeer(BulletWorld& world, const JointPeerDef& def) : 
     }
     decoupled_ = std::make_unique<DecoupledConstraint>(*constraint_);
     decoupled_->decouple = world.decoupledJoints();
+    decoupled_->softSpringRows = world.solvesRowsSoftly();
+    if (distance_ != nullptr) distance_->softSpringRows = world.solvesRowsSoftly();
     feedback_ = {};
     decoupled_->setJointFeedback(&feedback_);
     decoupled_->enableFeedback(true);
@@ -404,6 +444,7 @@ void BulletJointPeer::setSteeringAngle(double angle) {
     steeringAngle_ = angle;
     dof_->setFrames(toBt(steeredFrameA()), toBt(def_.frameB));
     if (decoupled_->stops) decoupled_->stops->frameA = toBt(steeredFrameA());
+    if (decoupled_->spring) decoupled_->spring->frameA = toBt(steeredFrameA());
     wakeBodies();
 }
 
@@ -448,17 +489,19 @@ void BulletJointPeer::applySpring() {
         return;
     }
     if (dof_ == nullptr) return;
-    const int axis = def_.type == JointType::Hinge ? kAngX : kLinX;
+    // The wrapper's implicit row (DecoupledConstraint::AxisSpring), not Bullet's explicit 6-DOF
+    // spring, which diverges when stiff and, with limitIfNeeded, silently softens instead.
     if (!def_.spring) {
-        dof_->enableSpring(axis, false);
+        decoupled_->spring.reset();
         return;
     }
-    dof_->enableSpring(axis, true);
-    // limitIfNeeded = false: the SI values as given (Bullet would otherwise soften a spring whose
-    // period is under 4 substeps, which changes its frequency silently).
-    dof_->setStiffness(axis, static_cast<btScalar>(def_.spring->stiffness), false);
-    dof_->setDamping(axis, static_cast<btScalar>(def_.spring->damping), false);
-    dof_->setEquilibriumPoint(axis, 0);
+    DecoupledConstraint::AxisSpring spring;
+    spring.angular = def_.type == JointType::Hinge;
+    spring.frameA = toBt(steeredFrameA());
+    spring.frameB = toBt(def_.frameB);
+    spring.stiffness = def_.spring->stiffness;
+    spring.damping = def_.spring->damping;
+    decoupled_->spring = spring;
 }
 
 void BulletJointPeer::wakeBodies() {
@@ -473,14 +516,11 @@ void BulletJointPeer::beginStep() {
 }
 
 void BulletJointPeer::beginSubstep() {
-    if (def_.type == JointType::Hinge && def_.spring) {
-        // Bullet's angle is wrapped to (-pi, pi], the layer's runs on past +-pi (whole turns
-        // count): a spring wound k turns pulls back through them. Bullet's spring acts on its
-        // angle minus the equilibrium point, so the equilibrium carries the whole turns (its angle
-        // is minus the hinge angle: the wrapped part cancels).
+    if (def_.type == JointType::Hinge && decoupled_->spring) {
+        // The spring row's angle is wrapped to (-pi, pi], the layer's runs on past +-pi (whole
+        // turns count): a spring wound k turns pulls back through them.
         const double angle = hingeAngle();
-        const double turns = std::round((angle - wrap(angle)) / (2.0 * kPi));
-        dof_->setEquilibriumPoint(kAngX, static_cast<btScalar>(2.0 * kPi * turns));
+        decoupled_->spring->turns = 2.0 * kPi * std::round((angle - wrap(angle)) / (2.0 * kPi));
     }
     feedback_.m_appliedForceBodyA.setZero();
     feedback_.m_appliedForceBodyB.setZero();

@@ -12,9 +12,10 @@
 //   cone      btConeTwistConstraint (twist axis = frame X); asymmetric twist limits by turning
 //             B's frame about X to the middle of the range
 //   distance  DistanceConstraint below: one row along the line between the anchors (rigid,
-//             min / max as one-sided rows, or a spring as an exact impulse per substep)
+//             min / max as one-sided rows, or a spring's impulse, implicit when stiff)
 // Each is wrapped in a DecoupledConstraint, which is what the Bullet world solves: it hands the
-// rigid rows over decoupled and adds the stop rows of hinge, slider and wheel limits.
+// rigid rows over decoupled and adds the stop rows of hinge, slider and wheel limits and their
+// springs' rows (stable at any stiffness; Bullet's own 6-DOF spring is not used).
 // Positions and speeds are computed here from the bodies' states (never from Bullet's angles),
 // reactions from Bullet's joint feedback summed over the step's substeps.
 #include <memory>
@@ -41,6 +42,7 @@ public:
 
     std::optional<double> minLength, maxLength;
     std::optional<JointSpringSI> spring;
+    bool softSpringRows = true;  ///< the solver honours a row's CFM (bullet_joint_spring.hpp)
 
 private:
     enum class Row { None, Rigid, Min, Max, Spring };
@@ -70,23 +72,41 @@ public:
     btScalar getParam(int num, int axis = -1) const override { return inner_.getParam(num, axis); }
 
     bool decouple = true;  ///< false: the inner constraint's rows as they are
+    bool softSpringRows = true;  ///< the solver honours a row's CFM (bullet_joint_spring.hpp)
 
-    /// Stops on the joint's axis (frame X of A): the offset of B's frame origin along it, or the
-    /// angle of B about it (wrapped to (-pi, pi]). Two one-sided rows added after the inner
-    /// constraint's, which close the gap to a stop in the step they meet it (a speculative row,
-    /// as contacts are) and push out of an overshoot at the solver's ERP. Bullet's 6-DOF ranges
-    /// instead stop a body dead wherever it is when it would cross within the step (its bounce
-    /// logic) and then let it creep on at ERP x gap / h: a slider 1 m down a 30 deg incline reached
-    /// its stop at 0.97 s instead of 0.64.
-    struct AxisStops {
+    /// The joint's axis (frame X of A): the offset of B's frame origin along it, or the angle of
+    /// B about it (wrapped to (-pi, pi]).
+    struct Axis {
         bool angular = false;
         btTransform frameA, frameB;  // the joint frames in A's and B's centre-of-mass frames
+    };
+    /// Stops on the axis: two one-sided rows added after the inner constraint's, which close the
+    /// gap to a stop in the step they meet it (a speculative row, as contacts are) and push out of
+    /// an overshoot at the solver's ERP. Bullet's 6-DOF ranges instead stop a body dead wherever it
+    /// is when it would cross within the step (its bounce logic) and then let it creep on at ERP x
+    /// gap / h: a slider 1 m down a 30 deg incline reached its stop at 0.97 s instead of 0.64.
+    struct AxisStops : Axis {
         btScalar lower = 0, upper = 0;
     };
     std::optional<AxisStops> stops;
+    /// A spring-damper on the axis toward position 0: one row after the stops applying the
+    /// spring's impulse (bullet_joint_spring.hpp: implicit when stiff), solved with the inner
+    /// constraint's rigid rows. Bullet's own 6-DOF spring diverged at 15 Hz with 60 Hz steps.
+    struct AxisSpring : Axis {
+        double stiffness = 0, damping = 0;  // N/m and N s/m, or N m/rad and N m s/rad
+        double turns = 0;                   // rad: the hinge's whole turns (2 pi k), added to its wrapped angle
+    };
+    std::optional<AxisSpring> spring;
 
 private:
+    struct AxisRow {
+        btScalar position;
+        btVector3 l1, a1, l2, a2;  // J: d(position)/dt = l1 . vA + a1 . wA + l2 . vB + a2 . wB
+    };
+    AxisRow axisRow(const Axis& axis) const;
     int stopRows(btConstraintInfo2* info, int row);
+    void innerRows(btConstraintInfo2* info);
+    void springRow(btConstraintInfo2* info, int innerRows, int row);
 
     btTypedConstraint& inner_;
     int rows_ = 0;

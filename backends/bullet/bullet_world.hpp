@@ -66,6 +66,8 @@ public:
     btRigidBody& ground() { return *ground_; }
     /// Joint rows decoupled per joint (backend option decoupledJoints, default 1).
     bool decoupledJoints() const { return decoupledJoints_; }
+    /// The solver honours each row's CFM: sequential impulses do, the MLCP solver uses one for all.
+    bool solvesRowsSoftly() const { return mlcpInterface_ == nullptr; }
     /// Removes the joint's constraint from the Bullet world (on destroyJoint, or when its peer dies first).
     void detachJoint(BulletJointPeer& joint);
     /// After a teleport: refresh the body's bounds and wake what touches it.
