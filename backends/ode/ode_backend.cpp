@@ -72,6 +72,12 @@ Backend makeOdeBackend() {
     // Measured by the joint and assembly contract at the defaults (one 1/60 s step, quickstep 50
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
+        {"joints.stiff_hinge_lever",
+         "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) is at +0.016 rad, "
+         "0.026 rad/s after 2 s (exact -9.8e-5 rad, at rest): quickstep's 50 iterations do not converge the spring's "
+         "ERP / CFM row with the hinge's pin at a lever 1 000 times the bob's own inertia (the direct solver rests it "
+         "exactly; a 1 m rod, 4x, rests exactly)"},
+        {"planar.joints.stiff_hinge_lever", "as joints.stiff_hinge_lever, in a planar world (+0.012 rad at 1.0 rad/s)"},
         {"assemblies.ragdoll_limits",
          "an elbow bends 34 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations; 9 to 51 deg over eight starting turns of the pile, 2026-11-27); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg (measured before hull and capsule contacts were completed)"},
         {"planar.assemblies.ragdoll_limits",
@@ -150,6 +156,8 @@ Backend makeOdeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"joints.stiff_hinge_lever", 16200},  // in multiples of its bounds, measured 8 104
+        {"planar.joints.stiff_hinge_lever", 11900},  // measured 5 948
         {"assemblies.ragdoll_limits", 90.0},
         {"planar.assemblies.ragdoll_limits", 60.0},
         {"stack10.top_drift", 0.025},

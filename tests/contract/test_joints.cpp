@@ -482,6 +482,72 @@ protected:
         EXPECT_NEAR(wheel.angularVelocity().z(), 10.0, 0.1);  // about +axle
     }
 
+    // Springs far stiffer than the step resolves (omega h from 5 to 500 at 60 Hz) hold a 1 kg load
+    // at rest where the spring carries its weight: a ball on a slider along Y at -m g / k; a 1 m
+    // rod on a hinge about Z at one end, horizontal, at -m g (L / 2) / k. Undamped and critically
+    // damped: an explicit spring (the force of the step's start) diverges beyond omega h = 2.
+    // `pointMass`: the hinge carries a ball on a massless 1 m arm instead (its inertia about the
+    // hinge 1 000 times its own), where an iterative solver must carry the spring's torque
+    // through the hinge's pin: checked as the criterion joints.stiff_hinge_lever.
+    void StiffSpringsHoldTheirLoadCase(bool pointMass) {
+        constexpr double m = 1.0, L = 1.0;
+        struct Run {
+            JointType type;
+            double k, zeta;
+        };
+        std::vector<Run> runs;
+        if (!pointMass) runs = {{JointType::Slider, 1e5, 0.0}, {JointType::Slider, 1e5, 1.0}, {JointType::Slider, 1e9, 1.0}};
+        for (double zeta : {0.0, 1.0}) runs.push_back({JointType::Hinge, 1e5, zeta});
+        int ran = 0;
+        double worst = 0.0;  // the hinge runs' error in multiples of the bound
+        std::string worstText;
+        for (const Run& run : runs) {
+            const bool slider = run.type == JointType::Slider;
+            const char* name = slider ? "slider" : "hinge";
+            if (!hasJoint(name) || !hasParameter(std::string("joint.") + name + ".spring")) continue;
+            SCOPED_TRACE(std::string(name) + " k " + std::to_string(run.k) + " zeta " + std::to_string(run.zeta));
+            World world(jointSettings());
+            BodyDef def;
+            def.mass = m;
+            def.allowSleep = false;
+            def.shape = slider || pointMass ? ShapeDef::sphere(0.05) : ShapeDef::box(Vec3(L / 2, 0.05, 0.05));
+            def.position = slider ? Vec3::Zero() : pointMass ? Vec3(L, 0, 0) : Vec3(L / 2, 0, 0);
+            const Body b = world.createBody(def);
+            JointDef d;
+            d.type = run.type;
+            d.bodyB = b;
+            d.axis = slider ? Vec3::UnitY() : Vec3::UnitZ();
+            // About the joint: the ball's own inertia (1e-3 kg m^2) is left out of the lever's.
+            const double inertia = slider ? m : pointMass ? m * L * L : m * (L * L + 0.01) / 12 + m * L * L / 4;
+            d.spring = JointSpring{run.k, 2.0 * run.zeta * std::sqrt(run.k * inertia)};
+            Joint joint = world.createJoint(d);
+            while (world.time() < 2.0) world.step();  // throws if a body diverged
+            ++ran;
+            const double expected = -m * kG * (slider ? 1.0 : pointMass ? L : L / 2) / run.k;
+            report(backend() + " " + name + (pointMass ? " (point mass on 1 m)" : "") + " spring k " +
+                       std::to_string(run.k) + " zeta " + std::to_string(run.zeta) + ": rest position (exact " +
+                       std::to_string(expected) + ")",
+                   joint.position(), slider ? "m" : "rad");
+            // At rest the spring balances the weight: 2 % of the deflection, or 1e-7 (the joint's
+            // own error correction at the anchor) where the deflection is smaller than that; and
+            // still (1e-3 rad/s or m/s: well under one deflection per step).
+            const double bound = std::max(0.02 * std::abs(expected), 1e-7);
+            if (!pointMass) {
+                EXPECT_NEAR(joint.position(), expected, bound);
+                EXPECT_NEAR(joint.speed(), 0.0, 1e-3);
+                continue;
+            }
+            const double error = std::max(std::abs(joint.position() - expected) / bound, std::abs(joint.speed()) / 1e-3);
+            if (error > worst) {
+                worst = error;
+                worstText = "zeta " + std::to_string(run.zeta) + ": rests at " + std::to_string(joint.position()) +
+                            " rad (exact " + std::to_string(expected) + "), speed " + std::to_string(joint.speed()) + " rad/s";
+            }
+        }
+        ANYPHYS_REQUIRE(ran > 0, "joint.slider.spring or joint.hinge.spring");
+        if (pointMass) expectCriterion(criterion("joints.stiff_hinge_lever"), worst <= 1.0, worstText, worst);
+    }
+
     void BreaksAboveItsForceOnlyCase() {
         ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
         ANYPHYS_REQUIRE(hasParameter("joint.ball.breakForce"), "joint.ball.breakForce");
@@ -922,6 +988,10 @@ TEST_P(JointTest, FixedAndSliderWrenchedFarTurnBack) {
 // at sqrt(k / m), and its motor spins it up about the axle to the target speed.
 TEST_P(JointTest, WheelSuspensionAndDrive) { WheelSuspensionAndDriveCase(); }
 
+// Springs far stiffer than the step resolves hold a hanging load at m g / k, undamped or damped.
+TEST_P(JointTest, StiffSpringsHoldTheirLoad) { StiffSpringsHoldTheirLoadCase(false); }
+TEST_P(JointTest, StiffHingeSpringHoldsAPointMassOnALever) { StiffSpringsHoldTheirLoadCase(true); }
+
 // A joint breaks at its stated force, not below: a 2 kg body (load 19.6 N) hangs from a joint
 // rated 25 N, and from one rated 15 N that breaks, telling listeners and the handle.
 TEST_P(JointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase(); }
@@ -1086,6 +1156,8 @@ TEST_P(PlanarJointTest, DoublePendulumNormalModes) { DoublePendulumNormalModesCa
 TEST_P(PlanarJointTest, MotorHoldsALoadItCanCarry) { MotorHoldsALoadItCanCarryCase(); }
 TEST_P(PlanarJointTest, SliderOnInclineStopsAtItsLimit) { SliderOnInclineStopsAtItsLimitCase(); }
 TEST_P(PlanarJointTest, WheelSuspensionAndDrive) { WheelSuspensionAndDriveCase(); }
+TEST_P(PlanarJointTest, StiffSpringsHoldTheirLoad) { StiffSpringsHoldTheirLoadCase(false); }
+TEST_P(PlanarJointTest, StiffHingeSpringHoldsAPointMassOnALever) { StiffSpringsHoldTheirLoadCase(true); }
 TEST_P(PlanarJointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase(); }
 TEST_P(PlanarJointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
 TEST_P(PlanarJointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
