@@ -489,8 +489,8 @@ void BulletJointPeer::applySpring() {
         return;
     }
     if (dof_ == nullptr) return;
-    // The wrapper's implicit row (DecoupledConstraint::AxisSpring), not Bullet's explicit 6-DOF
-    // spring, which diverges when stiff and, with limitIfNeeded, silently softens instead.
+    // The wrapper's spring row (DecoupledConstraint::AxisSpring, implicit when stiff), not
+    // Bullet's 6-DOF spring, which diverges when stiff and, with limitIfNeeded, silently softens.
     if (!def_.spring) {
         decoupled_->spring.reset();
         return;
