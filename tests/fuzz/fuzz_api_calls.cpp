@@ -146,10 +146,11 @@ void newWorld(Decoder& d, Session& s) {
     if (d.flag()) w.divergencePolicy = DivergencePolicy::Freeze;
     if (d.flag()) w.capabilityPolicy = CapabilityPolicy::Lenient;
     if (d.flag()) w.maxSpeed = d.number(1, 1e5);
+    if (d.flag()) w.contactImpulses = false;
     if (std::getenv("ANYPHYS_FUZZ_TRACE"))
-        std::fprintf(stderr, "  settings gravity %g %g %g timeStep %g integrator %d solver %d substeps %d iterations %d maxSpeed %g\n",
+        std::fprintf(stderr, "  settings gravity %g %g %g timeStep %g integrator %d solver %d substeps %d iterations %d maxSpeed %g contactImpulses %d\n",
                      w.gravity.x(), w.gravity.y(), w.gravity.z(), w.timeStep, int(w.integrator), w.solver ? int(*w.solver) : -1,
-                     w.substeps.value_or(-1), w.iterations.value_or(-1), w.maxSpeed);
+                     w.substeps.value_or(-1), w.iterations.value_or(-1), w.maxSpeed, int(w.contactImpulses));
     fuzz::refusedOrDone([&] {
         auto world = std::make_unique<World>(w);
         world->setWarningHandler([](const std::string&) {});
@@ -257,7 +258,11 @@ void touchJoint(Decoder& d, Session& s) {
                 break;
             }
             case 2: {
-                const auto spring = d.flag() ? std::optional<JointSpring>(JointSpring{d.number(0, 100), d.number(0, 10), 0, 0}) : std::nullopt;
+                // Soft, or stiff far beyond what the step resolves (omega h up to hundreds).
+                const auto stiffness = [&] { return d.flag() ? d.number(0, 100) : std::pow(10.0, d.number(2, 9)); };
+                const auto damping = [&] { return d.flag() ? d.number(0, 10) : std::pow(10.0, d.number(1, 6)); };
+                std::optional<JointSpring> spring;
+                if (d.flag()) spring = JointSpring{stiffness(), damping(), 0, 0};
                 if (trace && spring) std::fprintf(stderr, "  spring stiffness %g damping %g\n", spring->stiffness, spring->damping);
                 j.setSpring(spring);
                 break;
