@@ -27,10 +27,6 @@ double rate(const btRigidBody& a, const btRigidBody& b, const JointRow& row, btS
     return static_cast<double>(of(a, row.l1, row.a1) + of(b, row.l2, row.a2));
 }
 
-}  // namespace
-
-namespace {
-
 // Row s applies exactly `impulse`: an infinite target speed its way, bounded by the impulse
 // (bounds lo == hi stall the MLCP solver).
 void writeImpulse(btTypedConstraint::btConstraintInfo2* info, int s, double impulse) {

@@ -7,8 +7,8 @@
 //                               touching pairs tracked, no one reading the events), the same with
 //                               a listener reading every event, that listener without impulses,
 //                               and the raw version, in turn, comparisonRounds() times each, in
-//                               this one process; the fastest run
-//                               of each counts (the least disturbed on a shared machine). Counters:
+//                               this one process; the fastest run of each counts (the least
+//                               disturbed on a shared machine). Counters:
 //                               anyphys_cpu_ms, raw_cpu_ms and overhead_pct = 100 (anyphys / raw -
 //                               1), CPU time per step; the same in wall time; listening_cpu_ms and
 //                               listening_overhead_pct, with listening_events_per_step;

@@ -79,8 +79,8 @@ void printWorkers(const Results& results, std::ostream& out) {
 
 void printOverhead(const Results& results, std::ostream& out) {
     Table table({"scene", "engine", "anyphys CPU ms/step", "raw CPU ms/step", "overhead (CPU)", "overhead (wall)",
-                 "with a listener (CPU)", "listener, no impulses (CPU)", "events/step", "penetration mm anyphys / raw", "settled anyphys / raw",
-                 "allocs/step anyphys / raw", "rounds"});
+                 "with a listener (CPU)", "listener, no impulses (CPU)", "events/step", "penetration mm anyphys / raw",
+                 "settled anyphys / raw", "allocs/step anyphys / raw", "rounds"});
     for (const Record* overhead : inEngineOrder(results, "overhead")) {
         const Record& r = *overhead;
         if (!r.ran()) continue;
