@@ -52,12 +52,6 @@ Backend makeNativeBackend() {
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
-        {"joints.stiff_hinge_lever",
-         "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) is not at rest after 2 s "
-         "(+2.1e-4 rad at 0.057 rad/s, exact -9.8e-5 rad): at the default 8 substeps x 1 iteration the spring's row and the "
-         "hinge's pin, at a lever 1 000 times the bob's own inertia, do not converge; 8 iterations rest it at -9.79e-5 rad, "
-         "and a 1 m rod (4x) rests exactly"},
-        {"planar.joints.stiff_hinge_lever", "as joints.stiff_hinge_lever, in a planar world"},
         {"assemblies.ragdoll_rest",
          "the pile of four ragdolls still moves at 0.44 m/s after 10 s (bound 0.1): nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.19 m/s, the slowest layout 0.70 m/s (0.15 and 0.77 before resting contacts were recycled, 0.33 m/s in this layout)"},
         {"assemblies.ragdoll_limits",
@@ -87,8 +81,6 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"joints.stiff_hinge_lever", 320},  // in multiples of its bounds, measured 160
-        {"planar.joints.stiff_hinge_lever", 320},  // measured 160
         {"assemblies.ragdoll_rest", 0.9},
         {"assemblies.ragdoll_limits", 7.5},
         {"planar.assemblies.ragdoll_limits", 5.2},

@@ -192,7 +192,7 @@ private:
     }
     // A limit (C >= 0 allowed, impulse >= 0) joins the rigid block, so a stop holds against a
     // long lever too (a row of its own would only stop the small body's spin).
-    void limitRow(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, true}; }
+    void limitRow(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, Row::Limit}; }
     // A range [lower, upper] on `position` along j: only the nearer stop joins the block. Both
     // would be two rows with opposite Jacobians, a singular K whose rounding-sized pivot blew a
     // ragdoll pile up; the far stop cannot act this substep anyway. A range of zero width is a lock.
@@ -208,28 +208,26 @@ private:
             joint_.impulse[lowerSlot] = 0.0;
         }
     }
-    // Drives Cdot toward `speed` with at most maxForce per second.
+    // Drives Cdot toward `speed` with at most maxForce per second, row by row. It also joins the
+    // block as a fixed row, so the block's softness sees the motor's impulse (a pin's give
+    // follows the joint's whole impulse: left out, a 1 000 N m motor straining against a 1e6
+    // N m/rad spring let a pin on a 1 m lever give 0.6 m). Solved in the block, a drive motor
+    // let a car's wheels lose 3.6 % of their speed after it reached its limit (not traced).
     void motorRow(int slot, const Jacobian& j, const JointMotor& motor) {
         const double most = motor.maxForce * p_.h;
         row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
+        locks_[lockCount_++] = {j, 0.0, slot, Row::Motor};
     }
-    // Implicit spring-damper toward C = 0.
+    // Implicit spring-damper toward C = 0. It joins the joint's block: solved alone, its row turns
+    // the body about its own centre, and at a long lever (a bob on a 1 m arm, 1 000 times its own
+    // inertia) Gauss-Seidel between it and the pin did not settle a stiff spring in 2 s (PGS
+    // diverged).
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
-        double& acc = joint_.impulse[slot];
-        if (mode_ == Mode::WarmStart) {
-            apply(j, acc, a_, b_);
-            return;
-        }
-        const double k = inverseMass(j, a_, b_);
         const double springDamping = spring.damping + p_.h * spring.stiffness;
-        if (k > 0.0 && springDamping > 0.0) {
-            const double gamma = 1.0 / (p_.h * springDamping);
-            const double bias = C * p_.h * spring.stiffness * gamma;
-            const double delta = -(rate(j, a_, b_) + bias + gamma * acc) / (k + gamma);
-            apply(j, delta, a_, b_);
-            acc += delta;
-        }
-        sum(j, acc);
+        if (!(springDamping > 0.0)) return;  // no spring: its impulse stays 0
+        const double gamma = 1.0 / (p_.h * springDamping);
+        if (!(gamma > 0.0)) return lock(slot, j, C);  // beyond double's range: rigid
+        locks_[lockCount_++] = {j, C * p_.h * spring.stiffness * gamma, slot, Row::Spring, gamma};
     }
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
@@ -242,27 +240,36 @@ private:
     static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
 
     // ---- the rigid rows and limits, solved together ---------------------------------------------
-    // Anchor points, rotation and sliding locks, and limits are gathered and solved as one block
-    // per pass (K = J M^-1 J^T, at most 8 x 8). Row by row, Gauss-Seidel converges slowly where a
-    // lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250): PGS with
-    // Baumgarte went unstable out of a hinge's plane, and a hinge limit let the bob through.
+    // Anchor points, rotation and sliding locks, limits and the spring are gathered and solved as
+    // one block per pass (K = J M^-1 J^T, at most 8 x 8: a hinge's or slider's five locks, a
+    // limit, the spring and the motor's fixed row). Row by row, Gauss-Seidel converges slowly
+    // where a lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250): PGS
+    // with Baumgarte went unstable out of a hinge's plane, and a hinge limit let the bob through.
     // Limits push only (impulse >= 0): a limit whose impulse would pull is fixed at 0 and the
     // rest solved again (an active set; at most one round per limit).
     static constexpr int kMaxLocks = 8;
+    enum class Row {
+        Rigid,   // C = 0, in the block's softness
+        Limit,   // unilateral: C >= 0, impulse >= 0
+        Spring,  // Cdot + bias + gamma impulse = 0: its own softness
+        Motor,   // solved before the block (motorRow); fixed in it
+    };
     struct Lock {
         Jacobian j;
-        double C = 0.0;
+        double C = 0.0;  // position error; a spring's row: its velocity bias
         int slot = 0;
-        bool limit = false;  // unilateral: C >= 0, impulse >= 0
+        Row row = Row::Rigid;
+        double gamma = 0.0;  // Spring
     };
-    void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, false}; }
+    void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, Row::Rigid}; }
 
     void solveLocks() {
         const int n = lockCount_;
         lockCount_ = 0;
         if (n == 0) return;
         if (mode_ == Mode::WarmStart) {
-            for (int i = 0; i < n; ++i) apply(locks_[i].j, joint_.impulse[locks_[i].slot], a_, b_);
+            for (int i = 0; i < n; ++i)
+                if (locks_[i].row != Row::Motor) apply(locks_[i].j, joint_.impulse[locks_[i].slot], a_, b_);
             return;
         }
         using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLocks, kMaxLocks>;
@@ -272,6 +279,7 @@ private:
         // Softness is the block's (uniform); the velocity bias is each row's. A limit short of
         // its stop lets the gap close exactly this substep (speculative), as contacts do.
         const Bias soft = rigidBias(1.0);
+        const double s = soft.massScale, t = soft.impulseScale;
         for (int i = 0; i < n; ++i) {
             const Jacobian& ji = locks_[i].j;
             const Vec3 la = a_.invMass.cwiseProduct(ji.linA), aa = a_.invI * ji.angA;
@@ -281,36 +289,50 @@ private:
                 K(k, i) = K(i, k) = jk.linA.dot(la) + jk.angA.dot(aa) + jk.linB.dot(lb) + jk.angB.dot(ab);
             }
             const double C = locks_[i].C;
-            const double bias = locks_[i].limit && C > 0.0 ? C * p_.invH : soft.bias * C;
+            const Row kind = locks_[i].row;
+            const double bias = kind == Row::Spring ? C : kind == Row::Limit && C > 0.0 ? C * p_.invH : soft.bias * C;
             rhs[i] = rate(ji, a_, b_) + bias;
             acc[i] = joint_.impulse[locks_[i].slot];
         }
-        // Solve K (delta + t acc) = -s rhs over the free rows, with fixed rows' deltas moved to
-        // the right-hand side. A row no body can answer (a planar body's tilt or lift) has no
-        // diagonal: it is left out, at 0, rather than divided by a rounding residue.
+        // The unknowns are z = delta + t acc (s + t = 1). Rigid rows: (K z)_rigid = -s rhs, the
+        // block's soft step; its softness acts on all the joint's impulses, the spring's too, so
+        // a pin gives only as much as its load asks (a spring row left out of it let a pin holding
+        // a 1 m lever give 2 cm). A spring's row, K delta + gamma (acc + delta) = -rhs in its own
+        // softness, written in z: (K z + gamma z)_spring = -rhs + t (K acc)_spring - s gamma acc.
+        // Without a spring A = K and the right side is -s rhs.
+        Block A = K;
+        Column right = -s * rhs;
+        for (int i = 0; i < n; ++i) {
+            if (locks_[i].row != Row::Spring) continue;
+            A(i, i) += locks_[i].gamma;
+            right[i] = -rhs[i] + t * K.row(i).dot(acc) - s * locks_[i].gamma * acc[i];
+        }
+        // Solve A z = right over the free rows, with fixed rows' z moved to the right-hand side.
+        // A row no body can answer (a planar body's tilt or lift) has no diagonal: it is left
+        // out, at 0, rather than divided by a rounding residue.
         Column delta = Column::Zero(n);
         std::array<bool, kMaxLocks> fixed{};
         const double largest = K.diagonal().maxCoeff();
-        for (int i = 0; i < n; ++i) fixed[i] = !(K(i, i) > 1e-12 * largest);
+        for (int i = 0; i < n; ++i) fixed[i] = locks_[i].row == Row::Motor || !(K(i, i) > 1e-12 * largest);
         for (int round = 0; round <= n; ++round) {
             int free[kMaxLocks], m = 0;
             for (int i = 0; i < n; ++i)
                 if (!fixed[i]) free[m++] = i;
             if (m == 0) break;
-            Block Kf(m, m);
+            Block Af(m, m);
             Column r(m);
             for (int a = 0; a < m; ++a) {
-                r[a] = -soft.massScale * rhs[free[a]];
+                r[a] = right[free[a]];
                 for (int i = 0; i < n; ++i)
-                    if (fixed[i]) r[a] -= K(free[a], i) * (delta[i] + soft.impulseScale * acc[i]);
-                for (int b = 0; b < m; ++b) Kf(a, b) = K(free[a], free[b]);
+                    if (fixed[i]) r[a] -= A(free[a], i) * (delta[i] + t * acc[i]);
+                for (int b = 0; b < m; ++b) Af(a, b) = A(free[a], free[b]);
             }
-            const Column y = Kf.ldlt().solve(r);
+            const Column y = Af.ldlt().solve(r);
             bool clamped = false;
             for (int a = 0; a < m; ++a) {
                 const int i = free[a];
-                delta[i] = std::isfinite(y[a]) ? y[a] - soft.impulseScale * acc[i] : 0.0;
-                if (locks_[i].limit && acc[i] + delta[i] < 0.0) {
+                delta[i] = std::isfinite(y[a]) ? y[a] - t * acc[i] : 0.0;
+                if (locks_[i].row == Row::Limit && acc[i] + delta[i] < 0.0) {
                     delta[i] = -acc[i];  // released: no pull
                     fixed[i] = true;
                     clamped = true;
@@ -319,6 +341,7 @@ private:
             if (!clamped) break;
         }
         for (int i = 0; i < n; ++i) {
+            if (locks_[i].row == Row::Motor) continue;  // its delta is 0, its impulse summed
             apply(locks_[i].j, delta[i], a_, b_);
             joint_.impulse[locks_[i].slot] += delta[i];
             sum(locks_[i].j, joint_.impulse[locks_[i].slot]);
