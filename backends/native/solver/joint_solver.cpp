@@ -208,15 +208,17 @@ private:
             joint_.impulse[lowerSlot] = 0.0;
         }
     }
-    // Drives Cdot toward `speed` with at most maxForce per second, row by row. It also joins the
-    // block as a fixed row, so the block's softness sees the motor's impulse (a pin's give
-    // follows the joint's whole impulse: left out, a 1 000 N m motor straining against a 1e6
-    // N m/rad spring let a pin on a 1 m lever give 0.6 m). Solved in the block, a drive motor
-    // let a car's wheels lose 3.6 % of their speed after it reached its limit (not traced).
-    void motorRow(int slot, const Jacobian& j, const JointMotor& motor) {
+    // Drives Cdot toward `speed` with at most maxForce per second, in the block: row by row, a
+    // motor turning a point-like bob on a 1 m arm overshot its speed by 57 %, and one straining
+    // against a stiff spring gained a sliver of its torque per pass. `apart`: a limit on the same
+    // axis is in the block, where two rigid rows along one Jacobian would make it singular; the
+    // motor is then solved here, row by row, and joins the block as a fixed row, so the block's
+    // softness still counts its impulse (left out, a 1 000 N m motor straining against a 1e6
+    // N m/rad spring let a pin on a 1 m lever give 0.6 m).
+    void motorRow(int slot, const Jacobian& j, const JointMotor& motor, bool apart) {
         const double most = motor.maxForce * p_.h;
-        row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
-        locks_[lockCount_++] = {j, 0.0, slot, Row::Motor};
+        if (apart) row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
+        locks_[lockCount_++] = {j, -motor.speed, slot, apart ? Row::MotorApart : Row::Motor, 0.0, most};
     }
     // Implicit spring-damper toward C = 0. It joins the joint's block: solved alone, its row turns
     // the body about its own centre, and at a long lever (a bob on a 1 m arm, 1 000 times its own
@@ -232,7 +234,7 @@ private:
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
-        if (def_.motor) motorRow(kMotor, j, *def_.motor);
+        if (def_.motor) motorRow(kMotor, j, *def_.motor, def_.limits.has_value());
         if (def_.limits) {
             limitPair(kLower, kUpper, j, position, def_.limits->lower, def_.limits->upper);
         }
@@ -240,26 +242,31 @@ private:
     static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
 
     // ---- the rigid rows and limits, solved together ---------------------------------------------
-    // Anchor points, rotation and sliding locks, limits and the spring are gathered and solved as
-    // one block per pass (K = J M^-1 J^T, at most 8 x 8: a hinge's or slider's five locks, a
-    // limit, the spring and the motor's fixed row). Row by row, Gauss-Seidel converges slowly
-    // where a lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250): PGS
-    // with Baumgarte went unstable out of a hinge's plane, and a hinge limit let the bob through.
+    // Anchor points, rotation and sliding locks, limits, the spring and the motor are gathered
+    // and solved as one block per pass (K = J M^-1 J^T, at most 8 x 8: a hinge's or slider's five
+    // locks, a limit, the spring and the motor). Row by row, Gauss-Seidel converges slowly where
+    // a lever is long against a small inertia (a bob on a 1 m arm: m L^2 / I = 250): PGS with
+    // Baumgarte went unstable out of a hinge's plane, and a hinge limit let the bob through.
     // Limits push only (impulse >= 0): a limit whose impulse would pull is fixed at 0 and the
-    // rest solved again (an active set; at most one round per limit).
+    // rest solved again (an active set; at most one round per row); a motor past its bound is
+    // held there the same way.
     static constexpr int kMaxLocks = 8;
     enum class Row {
-        Rigid,   // C = 0, in the block's softness
-        Limit,   // unilateral: C >= 0, impulse >= 0
-        Spring,  // Cdot + bias + gamma impulse = 0: its own softness
-        Motor,   // solved before the block (motorRow); fixed in it
+        Rigid,       // C = 0, in the block's softness
+        Limit,       // unilateral: C >= 0, impulse >= 0
+        Spring,      // Cdot + bias + gamma impulse = 0: its own softness
+        Motor,       // Cdot + bias = 0 (bias = -speed), impulse within +-most
+        MotorApart,  // solved before the block (motorRow); fixed in it
     };
     struct Lock {
         Jacobian j;
-        double C = 0.0;  // position error; a spring's row: its velocity bias
+        double C = 0.0;  // position error; a spring's or motor's row: its velocity bias
         int slot = 0;
         Row row = Row::Rigid;
         double gamma = 0.0;  // Spring
+        double most = 0.0;   // Motor
+        // Spring and motor rows keep their own law, outside the block's softness.
+        bool ownLaw() const { return row == Row::Spring || row == Row::Motor; }
     };
     void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, Row::Rigid}; }
 
@@ -269,7 +276,7 @@ private:
         if (n == 0) return;
         if (mode_ == Mode::WarmStart) {
             for (int i = 0; i < n; ++i)
-                if (locks_[i].row != Row::Motor) apply(locks_[i].j, joint_.impulse[locks_[i].slot], a_, b_);
+                if (locks_[i].row != Row::MotorApart) apply(locks_[i].j, joint_.impulse[locks_[i].slot], a_, b_);
             return;
         }
         using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLocks, kMaxLocks>;
@@ -290,7 +297,7 @@ private:
             }
             const double C = locks_[i].C;
             const Row kind = locks_[i].row;
-            const double bias = kind == Row::Spring ? C : kind == Row::Limit && C > 0.0 ? C * p_.invH : soft.bias * C;
+            const double bias = locks_[i].ownLaw() ? C : kind == Row::Limit && C > 0.0 ? C * p_.invH : soft.bias * C;
             rhs[i] = rate(ji, a_, b_) + bias;
             acc[i] = joint_.impulse[locks_[i].slot];
         }
@@ -298,12 +305,12 @@ private:
         // block's soft step; its softness acts on all the joint's impulses, the spring's too, so
         // a pin gives only as much as its load asks (a spring row left out of it let a pin holding
         // a 1 m lever give 2 cm). A spring's row, K delta + gamma (acc + delta) = -rhs in its own
-        // softness, written in z: (K z + gamma z)_spring = -rhs + t (K acc)_spring - s gamma acc.
-        // Without a spring A = K and the right side is -s rhs.
+        // softness, written in z: (K z + gamma z)_spring = -rhs + t (K acc)_spring - s gamma acc;
+        // a motor's the same with gamma 0. Without them A = K and the right side is -s rhs.
         Block A = K;
         Column right = -s * rhs;
         for (int i = 0; i < n; ++i) {
-            if (locks_[i].row != Row::Spring) continue;
+            if (!locks_[i].ownLaw()) continue;
             A(i, i) += locks_[i].gamma;
             right[i] = -rhs[i] + t * K.row(i).dot(acc) - s * locks_[i].gamma * acc[i];
         }
@@ -313,7 +320,7 @@ private:
         Column delta = Column::Zero(n);
         std::array<bool, kMaxLocks> fixed{};
         const double largest = K.diagonal().maxCoeff();
-        for (int i = 0; i < n; ++i) fixed[i] = locks_[i].row == Row::Motor || !(K(i, i) > 1e-12 * largest);
+        for (int i = 0; i < n; ++i) fixed[i] = locks_[i].row == Row::MotorApart || !(K(i, i) > 1e-12 * largest);
         for (int round = 0; round <= n; ++round) {
             int free[kMaxLocks], m = 0;
             for (int i = 0; i < n; ++i)
@@ -328,20 +335,29 @@ private:
                 for (int b = 0; b < m; ++b) Af(a, b) = A(free[a], free[b]);
             }
             const Column y = Af.ldlt().solve(r);
+            for (int a = 0; a < m; ++a) delta[free[a]] = std::isfinite(y[a]) ? y[a] - t * acc[free[a]] : 0.0;
+            // Limits first: a limit that pulls is released and the rest solved again. Only then
+            // is a motor held at its bound (a speculative stop pulling in the same round sent a
+            // car's drive motor to full brake).
             bool clamped = false;
-            for (int a = 0; a < m; ++a) {
-                const int i = free[a];
-                delta[i] = std::isfinite(y[a]) ? y[a] - t * acc[i] : 0.0;
-                if (locks_[i].row == Row::Limit && acc[i] + delta[i] < 0.0) {
-                    delta[i] = -acc[i];  // released: no pull
+            for (Row kind : {Row::Limit, Row::Motor}) {
+                for (int a = 0; a < m; ++a) {
+                    const int i = free[a];
+                    if (locks_[i].row != kind) continue;
+                    const double total = acc[i] + delta[i];
+                    const double bound = kind == Row::Limit ? std::max(total, 0.0)  // released: no pull
+                                                            : std::clamp(total, -locks_[i].most, locks_[i].most);
+                    if (bound == total) continue;
+                    delta[i] = bound - acc[i];
                     fixed[i] = true;
                     clamped = true;
                 }
+                if (clamped) break;
             }
             if (!clamped) break;
         }
         for (int i = 0; i < n; ++i) {
-            if (locks_[i].row == Row::Motor) continue;  // its delta is 0, its impulse summed
+            if (locks_[i].row == Row::MotorApart) continue;  // its delta is 0, its impulse summed
             apply(locks_[i].j, delta[i], a_, b_);
             joint_.impulse[locks_[i].slot] += delta[i];
             sum(locks_[i].j, joint_.impulse[locks_[i].slot]);
@@ -442,7 +458,7 @@ private:
         if (def_.limits) {
             limitPair(kLower, kUpper, along, travel, def_.limits->lower, def_.limits->upper);
         }
-        if (def_.motor) motorRow(kMotor, angularRow(axle), *def_.motor);
+        if (def_.motor) motorRow(kMotor, angularRow(axle), *def_.motor, false);  // limits are the suspension's
         hingeLocks(1);  // about the axle, frame Y
         const Vec3 z = frameA_ * Vec3::UnitZ();
         lock(kLinear0, linearRow(axle, rA_ + d_, rB_), d_.dot(axle));

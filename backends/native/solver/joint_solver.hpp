@@ -6,9 +6,9 @@
 // substep and step. Soft step: rigid rows correct their position error softly in the solve pass
 // and hold velocity exactly in the relax pass; PGS: Baumgarte correction in every pass.
 //
-// The rigid rows of a joint (anchor point, rotation and sliding locks), its limits and its spring
-// are solved together as one small block, the spring with its own softness; a motor row by row
-// before them.
+// The rows of a joint (anchor point, rotation and sliding locks, limits, spring, motor) are solved
+// together as one small block, the spring and the motor each with its own law. A motor whose
+// joint has limits on its axis goes row by row before the block.
 // Rows by type (joints.hpp has the impulse slots):
 //   ball      anchor point (3 rows)
 //   hinge     anchor point, 2 rotation locks across the axis, limit / motor / spring on the angle
