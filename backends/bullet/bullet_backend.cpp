@@ -69,6 +69,11 @@ Backend makeBulletBackend() {
         {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
     };
     caps.knownDeviations = {
+        {"joints.motor_lever",
+         "a 1 000 N m hinge motor at 1 rad/s turning a 1 kg point-like bob on a 1 m arm under gravity lags: 0.53 rad/s "
+         "off its speed at worst, 1.21 rad after 2 s (exact 2). Sequential impulses do not carry the motor's torque "
+         "through the pin at a lever 1 000 times the bob's own inertia (the MLCP solver turns it at 1 rad/s)"},
+        {"planar.joints.motor_lever", "as joints.motor_lever, in a planar world (the same figures)"},
         {"vehicle.turning_radius",
          "the car turns 14 % wide (10.4 m for the bicycle geometry's 9.16 m at 0.3 rad) at 1 substep x 30 "
          "iterations: the steered wheel joints do not converge (100 iterations: 9.46 m, 4 substeps: 9.61 m)"},
@@ -156,6 +161,8 @@ Backend makeBulletBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"joints.motor_lever", 160},  // in multiples of its bounds, measured 79.3
+        {"planar.joints.motor_lever", 160},  // measured 79.3
         {"vehicle.turning_radius", 0.2},
         {"planar.pyramid20.drift", 0.24},
         {"pyramid20.sink", 0.31},

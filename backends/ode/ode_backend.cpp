@@ -78,6 +78,11 @@ Backend makeOdeBackend() {
          "ERP / CFM row with the hinge's pin at a lever 1 000 times the bob's own inertia (the direct solver rests it "
          "exactly; a 1 m rod, 4x, rests exactly)"},
         {"planar.joints.stiff_hinge_lever", "as joints.stiff_hinge_lever, in a planar world (+0.012 rad at 1.0 rad/s)"},
+        {"joints.motor_lever",
+         "a 1 000 N m hinge motor at 1 rad/s turning a 1 kg point-like bob on a 1 m arm under gravity is 10.4 rad/s off its "
+         "speed at worst and ends at -0.51 rad after 2 s (exact 2): quickstep's 50 iterations do not carry the motor's "
+         "torque through the pin at a lever 1 000 times the bob's own inertia (the direct solver turns it at 1 rad/s)"},
+        {"planar.joints.motor_lever", "as joints.motor_lever, in a planar world (13.3 rad/s off, -0.80 rad after 2 s)"},
         {"assemblies.ragdoll_limits",
          "an elbow bends 34 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations; 9 to 51 deg over eight starting turns of the pile, 2026-11-27); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg (measured before hull and capsule contacts were completed)"},
         {"planar.assemblies.ragdoll_limits",
@@ -158,6 +163,8 @@ Backend makeOdeBackend() {
     caps.deviationCeilings = {
         {"joints.stiff_hinge_lever", 16200},  // in multiples of its bounds, measured 8 104
         {"planar.joints.stiff_hinge_lever", 11900},  // measured 5 948
+        {"joints.motor_lever", 2100},  // in multiples of its bounds, measured 1 041
+        {"planar.joints.motor_lever", 2700},  // measured 1 330
         {"assemblies.ragdoll_limits", 90.0},
         {"planar.assemblies.ragdoll_limits", 60.0},
         {"stack10.top_drift", 0.025},
