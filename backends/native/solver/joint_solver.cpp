@@ -193,11 +193,12 @@ private:
     // A limit (C >= 0 allowed, impulse >= 0) joins the rigid block, so a stop holds against a
     // long lever too (a row of its own would only stop the small body's spin).
     void limitRow(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, Row::Limit}; }
+    static constexpr double kLockedRange = 1e-12;  // a range this narrow is a lock
     // A range [lower, upper] on `position` along j: only the nearer stop joins the block. Both
     // would be two rows with opposite Jacobians, a singular K whose rounding-sized pivot blew a
     // ragdoll pile up; the far stop cannot act this substep anyway. A range of zero width is a lock.
     void limitPair(int lowerSlot, int upperSlot, const Jacobian& j, double position, double lower, double upper) {
-        if (upper - lower <= 1e-12) {
+        if (upper - lower <= kLockedRange) {
             lock(lowerSlot, j, position - lower);
             joint_.impulse[upperSlot] = 0.0;
         } else if (position - lower <= upper - position) {
@@ -210,11 +211,11 @@ private:
     }
     // Drives Cdot toward `speed` with at most maxForce per second, in the block: row by row, a
     // motor turning a point-like bob on a 1 m arm overshot its speed by 57 %, and one straining
-    // against a stiff spring gained a sliver of its torque per pass. `apart`: a limit on the same
-    // axis is in the block, where two rigid rows along one Jacobian would make it singular; the
-    // motor is then solved here, row by row, and joins the block as a fixed row, so the block's
-    // softness still counts its impulse (left out, a 1 000 N m motor straining against a 1e6
-    // N m/rad spring let a pin on a 1 m lever give 0.6 m).
+    // against a stiff spring gained a sliver of its torque per pass. `apart`: the axis is locked
+    // (limits of zero width), a rigid row along the same Jacobian that would make the block
+    // singular; the motor is then solved here, row by row, and joins the block as a fixed row, so
+    // the block's softness still counts its impulse (left out, a 1 000 N m motor straining
+    // against a 1e6 N m/rad spring let a pin on a 1 m lever give 0.6 m).
     void motorRow(int slot, const Jacobian& j, const JointMotor& motor, bool apart) {
         const double most = motor.maxForce * p_.h;
         if (apart) row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
@@ -234,9 +235,11 @@ private:
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
-        if (def_.motor) motorRow(kMotor, j, *def_.motor, def_.limits.has_value());
+        if (def_.motor) motorRow(kMotor, j, *def_.motor, def_.limits && def_.limits->upper - def_.limits->lower <= kLockedRange);
         if (def_.limits) {
             limitPair(kLower, kUpper, j, position, def_.limits->lower, def_.limits->upper);
+            Lock& stop = locks_[lockCount_ - 1];
+            if (def_.motor && stop.row == Row::Limit) stop.motorSide = stop.j.angB.dot(j.angB) + stop.j.linB.dot(j.linB) > 0.0 ? 1.0 : -1.0;
         }
     }
     static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
@@ -265,6 +268,8 @@ private:
         Row row = Row::Rigid;
         double gamma = 0.0;  // Spring
         double most = 0.0;   // Motor
+        // A limit on the motor's axis: +1 or -1 as its Jacobian is the motor's or its negation.
+        double motorSide = 0.0;
         // Spring and motor rows keep their own law, outside the block's softness.
         bool ownLaw() const { return row == Row::Spring || row == Row::Motor; }
     };
@@ -321,6 +326,19 @@ private:
         std::array<bool, kMaxLocks> fixed{};
         const double largest = K.diagonal().maxCoeff();
         for (int i = 0; i < n; ++i) fixed[i] = locks_[i].row == Row::MotorApart || !(K(i, i) > 1e-12 * largest);
+        // A limit on the motor's axis would make the block singular beside it (one Jacobian, two
+        // rigid rows). It starts released; if the motor's turn would carry the joint past it, the
+        // limit joins and the motor pushes into it with all it has.
+        int motor = -1, motorLimit = -1;
+        for (int i = 0; i < n; ++i) {
+            if (locks_[i].row == Row::Motor && !fixed[i]) motor = i;
+            if (locks_[i].motorSide != 0.0 && !fixed[i]) motorLimit = i;
+        }
+        if (motor < 0) motorLimit = -1;
+        if (motorLimit >= 0) {
+            fixed[motorLimit] = true;
+            delta[motorLimit] = -acc[motorLimit];
+        }
         for (int round = 0; round <= n; ++round) {
             int free[kMaxLocks], m = 0;
             for (int i = 0; i < n; ++i)
@@ -336,6 +354,17 @@ private:
             }
             const Column y = Af.ldlt().solve(r);
             for (int a = 0; a < m; ++a) delta[free[a]] = std::isfinite(y[a]) ? y[a] - t * acc[free[a]] : 0.0;
+            if (motorLimit >= 0) {
+                const int l = motorLimit;
+                motorLimit = -1;  // decided once
+                if (rhs[l] + K.row(l).dot(delta) < 0.0) {  // past the stop: it joins
+                    fixed[l] = false;
+                    delta[l] = 0.0;
+                    fixed[motor] = true;
+                    delta[motor] = -locks_[l].motorSide * locks_[motor].most - acc[motor];
+                    continue;
+                }
+            }
             // Limits first: a limit that pulls is released and the rest solved again. Only then
             // is a motor held at its bound (a speculative stop pulling in the same round sent a
             // car's drive motor to full brake).

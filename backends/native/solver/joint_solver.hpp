@@ -7,8 +7,8 @@
 // and hold velocity exactly in the relax pass; PGS: Baumgarte correction in every pass.
 //
 // The rows of a joint (anchor point, rotation and sliding locks, limits, spring, motor) are solved
-// together as one small block, the spring and the motor each with its own law. A motor whose
-// joint has limits on its axis goes row by row before the block.
+// together as one small block, the spring and the motor each with its own law. A motor on a
+// locked axis (limits of zero width) goes row by row before the block.
 // Rows by type (joints.hpp has the impulse slots):
 //   ball      anchor point (3 rows)
 //   hinge     anchor point, 2 rotation locks across the axis, limit / motor / spring on the angle
