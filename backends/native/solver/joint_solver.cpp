@@ -327,8 +327,7 @@ private:
         const double largest = K.diagonal().maxCoeff();
         for (int i = 0; i < n; ++i) fixed[i] = locks_[i].row == Row::MotorApart || !(K(i, i) > 1e-12 * largest);
         // A limit on the motor's axis would make the block singular beside it (one Jacobian, two
-        // rigid rows). It starts released; if the motor's turn would carry the joint past it, the
-        // limit joins and the motor pushes into it with all it has.
+        // rigid rows). It starts released and joins only if the joint would pass it (below).
         int motor = -1, motorLimit = -1;
         for (int i = 0; i < n; ++i) {
             if (locks_[i].row == Row::Motor && !fixed[i]) motor = i;
@@ -339,7 +338,7 @@ private:
             fixed[motorLimit] = true;
             delta[motorLimit] = -acc[motorLimit];
         }
-        for (int round = 0; round <= n; ++round) {
+        for (int round = 0; round <= n + 1; ++round) {
             int free[kMaxLocks], m = 0;
             for (int i = 0; i < n; ++i)
                 if (!fixed[i]) free[m++] = i;
@@ -354,17 +353,6 @@ private:
             }
             const Column y = Af.ldlt().solve(r);
             for (int a = 0; a < m; ++a) delta[free[a]] = std::isfinite(y[a]) ? y[a] - t * acc[free[a]] : 0.0;
-            if (motorLimit >= 0) {
-                const int l = motorLimit;
-                motorLimit = -1;  // decided once
-                if (rhs[l] + K.row(l).dot(delta) < 0.0) {  // past the stop: it joins
-                    fixed[l] = false;
-                    delta[l] = 0.0;
-                    fixed[motor] = true;
-                    delta[motor] = -locks_[l].motorSide * locks_[motor].most - acc[motor];
-                    continue;
-                }
-            }
             // Limits first: a limit that pulls is released and the rest solved again. Only then
             // is a motor held at its bound (a speculative stop pulling in the same round sent a
             // car's drive motor to full brake).
@@ -383,7 +371,21 @@ private:
                 }
                 if (clamped) break;
             }
-            if (!clamped) break;
+            if (clamped) continue;
+            // The stop on the motor's axis, released so far: if the joint would pass it, it joins,
+            // and the motor, which cannot then reach its speed, pushes toward that speed with all
+            // it has (into the stop, or away from it where a heavier load holds the joint there).
+            if (motorLimit < 0) break;
+            const int l = motorLimit;
+            motorLimit = -1;
+            if (rhs[l] + K.row(l).dot(delta) >= 0.0) break;
+            const Lock& stop = locks_[l];
+            const double rateAtStop = -stop.motorSide * (stop.C > 0.0 ? stop.C * p_.invH : soft.bias * stop.C);
+            fixed[l] = false;
+            delta[l] = 0.0;
+            fixed[motor] = true;
+            const double most = locks_[motor].most;
+            delta[motor] = (-locks_[motor].C > rateAtStop ? most : -most) - acc[motor];
         }
         for (int i = 0; i < n; ++i) {
             if (locks_[i].row == Row::MotorApart) continue;  // its delta is 0, its impulse summed

@@ -289,6 +289,23 @@ TEST(NativeJoints, MotorDrivesALeverIntoItsStop) {
         // The pin holds under the motor's 1 000 N m (as above: the soft step gives less than 0.1 mm).
         EXPECT_NEAR(bob->state().position.norm(), 1.0, solver == Solver::SoftStep ? 1e-4 : 2e-3) << toString(solver);
     }
+    // A motor too weak to lift the arm off a stop at 0 (2 N m against m g L = 9.8 N m): the arm
+    // rests on the stop, the motor straining at its bound (once the motor was held at its bound,
+    // the stop had to be checked again: the arm fell through it at 15 rad/s).
+    for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
+        auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver);
+        NativeWorld& world = *worldPtr;
+        const Vec3 start(1, 0, 0);
+        auto bob = pointMass(world, start, 1.0, 1e-3);
+        JointPeerDef d = heldToWorld(JointType::Hinge, *bob, start, Vec3::Zero(),
+                                     Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // axis Z
+        d.motor = JointMotor{speed, 2.0};
+        d.limits = JointLimits{0.0, 3.0};
+        auto hinge = world.createJoint(d);
+        for (int i = 0; i < 60; ++i) world.step(i * dt, dt);
+        EXPECT_NEAR(hinge->position(), 0.0, 1e-6) << toString(solver) << ", weak motor";
+        EXPECT_NEAR(hinge->speed(), 0.0, 1e-6) << toString(solver) << ", weak motor";
+    }
 }
 
 }  // namespace
