@@ -181,6 +181,19 @@ TEST(NativeJoints, MotorReachesTargetSpeedAtTorqueLimit) {
 }
 
 
+// A 1 kg point-like bob (inertia 1e-3 kg m^2) at (1, 0, 0) on a 1 m arm, to be held by a hinge about
+// Z at the origin: its inertia about the hinge is 1 000 times its own. Gravity along -Y.
+struct Lever {
+    explicit Lever(Solver solver)
+        : world(jointWorld(Effect::Gravity | Effect::Joints, solver)), bob(pointMass(*world, Vec3(1, 0, 0), 1.0, 1e-3)) {}
+    JointPeerDef hinge() const {
+        return heldToWorld(JointType::Hinge, *bob, Vec3(1, 0, 0), Vec3::Zero(),
+                           Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // X to Z
+    }
+    std::unique_ptr<NativeWorld> world;
+    std::unique_ptr<BodyPeer> bob;
+};
+
 // A 1 kg point-like bob (inertia 1e-3 kg m^2) on a 1 m arm, held horizontal by a stiff hinge spring:
 // the lever's inertia about the hinge is 1 000 times the bob's own, so the spring's torque must go
 // through the pin. The spring is solved in the joint's block with the pin: it rests at -m g L / k.
@@ -189,12 +202,10 @@ TEST(NativeJoints, LeverOnAStiffHingeSpringRestsOnItsPin) {
     constexpr double m = 1.0, L = 1.0, dt = 1.0 / 60.0;
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel})
     for (bool motor : {false, true}) {
-        auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver);
-        NativeWorld& world = *worldPtr;
-        const Vec3 start(L, 0, 0);
-        auto bob = pointMass(world, start, m, 1e-3);
-        JointPeerDef d = heldToWorld(JointType::Hinge, *bob, start, Vec3::Zero(),
-                                     Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // axis Z
+        Lever lever(solver);
+        NativeWorld& world = *lever.world;
+        auto& bob = lever.bob;
+        JointPeerDef d = lever.hinge();
         const double k = motor ? 1e6 : 1e5;
         d.spring = JointSpringSI{k, motor ? 0.0 : 2.0 * std::sqrt(k * m * L * L)};  // critically damped
         if (motor) d.motor = JointMotor{1.0, 1000.0};
@@ -225,7 +236,6 @@ TEST(NativeJoints, LeverOnAStiffHingeSpringRestsOnItsPin) {
     }
 }
 
-
 // A motor with ample torque (1 000 N m against at most m g L = 9.8 N m) turns a point-like bob on a
 // 1 m arm (inertia 1 000 times its own) at its speed from the first substep on, in a vertical
 // plane under gravity: the angle is speed x t. Solved row by row with the pin, the motor overshot
@@ -233,12 +243,10 @@ TEST(NativeJoints, LeverOnAStiffHingeSpringRestsOnItsPin) {
 TEST(NativeJoints, MotorTurnsALeverAtItsSpeed) {
     constexpr double speed = 1.0, dt = 1.0 / 60.0;
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
-        auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver);
-        NativeWorld& world = *worldPtr;
-        const Vec3 start(1, 0, 0);
-        auto bob = pointMass(world, start, 1.0, 1e-3);
-        JointPeerDef d = heldToWorld(JointType::Hinge, *bob, start, Vec3::Zero(),
-                                     Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // axis Z
+        Lever lever(solver);
+        NativeWorld& world = *lever.world;
+        auto& bob = lever.bob;
+        JointPeerDef d = lever.hinge();
         d.motor = JointMotor{speed, 1000.0};
         auto hinge = world.createJoint(d);
         for (int i = 0; i < 30; ++i) {
@@ -259,19 +267,16 @@ TEST(NativeJoints, MotorTurnsALeverAtItsSpeed) {
     }
 }
 
-
 // The same motor with a stop on its axis at 0.25 rad: the arm turns at the motor's speed to the
 // stop and rests there with the motor pushing into it (the stop and the motor share one Jacobian;
 // in the block the stop joins only when the motor would carry the arm past it).
 TEST(NativeJoints, MotorDrivesALeverIntoItsStop) {
     constexpr double speed = 1.0, stop = 0.25, dt = 1.0 / 60.0;
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
-        auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver);
-        NativeWorld& world = *worldPtr;
-        const Vec3 start(1, 0, 0);
-        auto bob = pointMass(world, start, 1.0, 1e-3);
-        JointPeerDef d = heldToWorld(JointType::Hinge, *bob, start, Vec3::Zero(),
-                                     Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // axis Z
+        Lever lever(solver);
+        NativeWorld& world = *lever.world;
+        auto& bob = lever.bob;
+        JointPeerDef d = lever.hinge();
         d.motor = JointMotor{speed, 1000.0};
         d.limits = JointLimits{-3.0, stop};
         auto hinge = world.createJoint(d);
@@ -293,12 +298,9 @@ TEST(NativeJoints, MotorDrivesALeverIntoItsStop) {
     // rests on the stop, the motor straining at its bound (once the motor was held at its bound,
     // the stop had to be checked again: the arm fell through it at 15 rad/s).
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
-        auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver);
-        NativeWorld& world = *worldPtr;
-        const Vec3 start(1, 0, 0);
-        auto bob = pointMass(world, start, 1.0, 1e-3);
-        JointPeerDef d = heldToWorld(JointType::Hinge, *bob, start, Vec3::Zero(),
-                                     Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // axis Z
+        Lever lever(solver);
+        NativeWorld& world = *lever.world;
+        JointPeerDef d = lever.hinge();
         d.motor = JointMotor{speed, 2.0};
         d.limits = JointLimits{0.0, 3.0};
         auto hinge = world.createJoint(d);
