@@ -235,11 +235,13 @@ private:
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
-        if (def_.motor) motorRow(kMotor, j, *def_.motor, def_.limits && def_.limits->upper - def_.limits->lower <= kLockedRange);
+        const bool locked = def_.limits && def_.limits->upper - def_.limits->lower <= kLockedRange;
+        if (def_.motor) motorRow(kMotor, j, *def_.motor, locked);
         if (def_.limits) {
             limitPair(kLower, kUpper, j, position, def_.limits->lower, def_.limits->upper);
             Lock& stop = locks_[lockCount_ - 1];
-            if (def_.motor && stop.row == Row::Limit) stop.motorSide = stop.j.angB.dot(j.angB) + stop.j.linB.dot(j.linB) > 0.0 ? 1.0 : -1.0;
+            if (def_.motor && stop.row == Row::Limit)
+                stop.motorSide = stop.j.angB.dot(j.angB) + stop.j.linB.dot(j.linB) > 0.0 ? 1.0 : -1.0;
         }
     }
     static Jacobian negate(const Jacobian& j) { return {-j.linA, -j.angA, -j.linB, -j.angB}; }
