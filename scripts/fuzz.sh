@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz) with clang, ASan and UBSan into build-fuzz/ (the
 # library and the fuzzers only) and runs both, side by side. See docs/reliability.md.
-#   scripts/fuzz.sh --short      30 s (both fuzzers at once; CI, scripts/test.sh)
+#   scripts/fuzz.sh --short      30 s (both fuzzers at once; a quick check at a session's stop)
 #   scripts/fuzz.sh --long       until each fuzzer has run FUZZ_RUNS inputs (default 1000000)
 #   scripts/fuzz.sh --time N     N seconds per fuzzer
 # New inputs that reach new code go to build-fuzz/corpus/<target>/ (seeded from the repository's
@@ -43,7 +43,7 @@ mkdir -p "$build_dir/crashes"
 limit=(-max_total_time="$seconds")
 if [[ $mode == long ]]; then limit=(-runs="$runs"); fi
 targets=(scene_json api_calls)
-# The two fuzzers run side by side, one per core (CI has two).
+# The two fuzzers run side by side, one per core (this machine and CI have two).
 pids=()
 for target in "${targets[@]}"; do
   corpus="$build_dir/corpus/$target"

@@ -2,7 +2,7 @@
 # Installs every Debian 12 package that anyphys' build, tests and tools need.
 # Idempotent: when everything is already installed it does nothing (no apt-get at all).
 # Usage: scripts/setup.sh [--fuzz]
-#   --fuzz  also clang and libFuzzer, for the fuzz targets (scripts/fuzz.sh; scripts/test.sh runs them)
+#   --fuzz  also clang and libFuzzer, for the fuzz targets (scripts/fuzz.sh)
 set -euo pipefail
 
 with_fuzz=0
