@@ -190,6 +190,16 @@ struct Lever {
         return heldToWorld(JointType::Hinge, *bob, Vec3(1, 0, 0), Vec3::Zero(),
                            Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY())));  // X to Z
     }
+    JointPeerDef motoredHinge(double speed, double maxTorque) const {
+        JointPeerDef d = hinge();
+        d.motor = JointMotor{speed, maxTorque};
+        return d;
+    }
+    /// Steps first .. last - 1 of 60 Hz.
+    void run(int first, int last) {
+        for (int i = first; i < last; ++i) world->step(i * kDt, kDt);
+    }
+    static constexpr double kDt = 1.0 / 60.0;
     std::unique_ptr<NativeWorld> world;
     std::unique_ptr<BodyPeer> bob;
 };
@@ -199,18 +209,16 @@ struct Lever {
 // through the pin. The spring is solved in the joint's block with the pin: it rests at -m g L / k.
 // With a 1 000 N m motor straining against a 1e6 N m/rad spring, the pin still holds the bob.
 TEST(NativeJoints, LeverOnAStiffHingeSpringRestsOnItsPin) {
-    constexpr double m = 1.0, L = 1.0, dt = 1.0 / 60.0;
+    constexpr double m = 1.0, L = 1.0;
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel})
     for (bool motor : {false, true}) {
         Lever lever(solver);
-        NativeWorld& world = *lever.world;
         auto& bob = lever.bob;
-        JointPeerDef d = lever.hinge();
+        JointPeerDef d = motor ? lever.motoredHinge(1.0, 1000.0) : lever.hinge();
         const double k = motor ? 1e6 : 1e5;
         d.spring = JointSpringSI{k, motor ? 0.0 : 2.0 * std::sqrt(k * m * L * L)};  // critically damped
-        if (motor) d.motor = JointMotor{1.0, 1000.0};
-        auto hinge = world.createJoint(d);
-        for (int i = 0; i < 120; ++i) world.step(i * dt, dt);
+        auto hinge = lever.world->createJoint(d);
+        lever.run(0, 120);
         const double angle = hinge->position();
         const Vec3 onCircle = L * Vec3(std::cos(angle), std::sin(angle), 0.0);
         const double pinGap = (bob->state().position - onCircle).norm();
@@ -241,16 +249,13 @@ TEST(NativeJoints, LeverOnAStiffHingeSpringRestsOnItsPin) {
 // plane under gravity: the angle is speed x t. Solved row by row with the pin, the motor overshot
 // to 1.57 rad/s at 0.5 s.
 TEST(NativeJoints, MotorTurnsALeverAtItsSpeed) {
-    constexpr double speed = 1.0, dt = 1.0 / 60.0;
+    constexpr double speed = 1.0, dt = Lever::kDt;
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
         Lever lever(solver);
-        NativeWorld& world = *lever.world;
         auto& bob = lever.bob;
-        JointPeerDef d = lever.hinge();
-        d.motor = JointMotor{speed, 1000.0};
-        auto hinge = world.createJoint(d);
+        auto hinge = lever.world->createJoint(lever.motoredHinge(speed, 1000.0));
         for (int i = 0; i < 30; ++i) {
-            world.step(i * dt, dt);
+            lever.run(i, i + 1);
             // 1e-6 rad/s: the motor's row is exact in the block; the pin's softness moves the bob
             // on its circle by far less.
             ASSERT_NEAR(hinge->speed(), speed, 1e-6) << toString(solver) << ", step " << i;
@@ -271,20 +276,18 @@ TEST(NativeJoints, MotorTurnsALeverAtItsSpeed) {
 // stop and rests there with the motor pushing into it (the stop and the motor share one Jacobian;
 // in the block the stop joins only when the motor would carry the arm past it).
 TEST(NativeJoints, MotorDrivesALeverIntoItsStop) {
-    constexpr double speed = 1.0, stop = 0.25, dt = 1.0 / 60.0;
+    constexpr double speed = 1.0, stop = 0.25, dt = Lever::kDt;
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
         Lever lever(solver);
-        NativeWorld& world = *lever.world;
         auto& bob = lever.bob;
-        JointPeerDef d = lever.hinge();
-        d.motor = JointMotor{speed, 1000.0};
+        JointPeerDef d = lever.motoredHinge(speed, 1000.0);
         d.limits = JointLimits{-3.0, stop};
-        auto hinge = world.createJoint(d);
-        for (int i = 0; i < 12; ++i) world.step(i * dt, dt);
+        auto hinge = lever.world->createJoint(d);
+        lever.run(0, 12);
         // 0.2 s in: turning at the motor's speed, short of the stop (1e-6: as the free motor).
         EXPECT_NEAR(hinge->speed(), speed, 1e-6) << toString(solver);
         EXPECT_NEAR(hinge->position(), speed * 12 * dt, 1e-3) << toString(solver);
-        for (int i = 12; i < 60; ++i) world.step(i * dt, dt);
+        lever.run(12, 60);
         std::cout << "[ MEASURED ] native " << toString(solver) << " motor into a stop at " << stop << " rad: "
                   << hinge->position() << " rad at " << hinge->speed() << " rad/s, arm " << bob->state().position.norm()
                   << " m\n";
@@ -299,12 +302,10 @@ TEST(NativeJoints, MotorDrivesALeverIntoItsStop) {
     // the stop had to be checked again: the arm fell through it at 15 rad/s).
     for (Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
         Lever lever(solver);
-        NativeWorld& world = *lever.world;
-        JointPeerDef d = lever.hinge();
-        d.motor = JointMotor{speed, 2.0};
+        JointPeerDef d = lever.motoredHinge(speed, 2.0);
         d.limits = JointLimits{0.0, 3.0};
-        auto hinge = world.createJoint(d);
-        for (int i = 0; i < 60; ++i) world.step(i * dt, dt);
+        auto hinge = lever.world->createJoint(d);
+        lever.run(0, 60);
         EXPECT_NEAR(hinge->position(), 0.0, 1e-6) << toString(solver) << ", weak motor";
         EXPECT_NEAR(hinge->speed(), 0.0, 1e-6) << toString(solver) << ", weak motor";
     }
