@@ -208,16 +208,18 @@ int run(const RunOptions& o) {
         particleFile << kParticlesHeader << '\n';
         writeParticleRows(particleFile, 0, world.time(), world);
     }
-    // With --hash and no --out, stdout carries the hash alone.
+    // With --hash and no --out, stdout carries the hash alone, and the rows are not formatted at
+    // all (formatting every body's state took a third of a 10 000-box run).
     std::ostringstream discard;
     discard.setstate(std::ios::badbit);  // writes are dropped
     const bool csvToStdout = !o.outOption->count() && !o.hash;
     std::ostream& out = o.outOption->count() ? static_cast<std::ostream&>(file) : csvToStdout ? std::cout : discard;
+    const bool writeStates = &out != &discard;
     out << kCsvHeader << '\n';
-    writeRows(out, 0, world.time(), bodies);
+    if (writeStates) writeRows(out, 0, world.time(), bodies);
     for (long long step = 1; step <= steps; ++step) {
         world.step();
-        writeRows(out, step, world.time(), bodies);
+        if (writeStates) writeRows(out, step, world.time(), bodies);
         if (eventFile.is_open()) recorder.writeRows(eventFile, step, world.time(), names);
         if (jointFile.is_open()) writeJointRows(jointFile, step, world.time(), joints);
         if (particleFile.is_open()) writeParticleRows(particleFile, step, world.time(), world);
