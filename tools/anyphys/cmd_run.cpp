@@ -1,6 +1,7 @@
 // `anyphys run SCENE.json`: steps a scene file and writes every body's state as CSV, with
 // --events the collision and trigger events of each step, with --joints every joint's state, and
 // with --particles every fluid particle and cloth node.
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <string_view>
 
 #include "cli.hpp"
 
@@ -51,10 +53,32 @@ std::string csvField(const std::string& text) {
     return quoted + "\"";
 }
 
+/// Numbers as CSV fields, each preceded by its comma, in the shortest decimal form that reads back
+/// to the same double (std::to_chars): exact like %.17g, and several times faster to write, which
+/// matters when a row is written per body per step.
+class CsvNumbers {
+public:
+    CsvNumbers& operator<<(double value) {
+        *end_++ = ',';
+        end_ = std::to_chars(end_, buffer_ + sizeof buffer_, value).ptr;
+        return *this;
+    }
+    CsvNumbers& operator<<(std::size_t value) {
+        *end_++ = ',';
+        end_ = std::to_chars(end_, buffer_ + sizeof buffer_, value).ptr;
+        return *this;
+    }
+    std::string_view text() const { return {buffer_, static_cast<std::size_t>(end_ - buffer_)}; }
+
+private:
+    char buffer_[512];  // 25 characters at most per double with its comma: room for 20 fields
+    char* end_ = buffer_;
+};
+
 std::string prefix(long long step, double time) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%lld,%.17g,", step, time);
-    return buffer;
+    CsvNumbers t;
+    t << time;
+    return std::to_string(step) + std::string(t.text()) + ',';
 }
 
 /// enter / stay / exit for collisions; trigger_enter / trigger_exit for sensors (the tracker
@@ -84,18 +108,17 @@ private:
     std::vector<ContactEvent> events_;
 };
 
-/// One row per body. 17 significant digits read back to the same double.
+/// One row per body, every number exact (CsvNumbers).
 void writeRows(std::ostream& out, long long step, double time, const std::vector<Body>& bodies) {
     const std::string head = prefix(step, time);
-    char buffer[512];
     for (const Body& body : bodies) {
         const BodyState s = body.state();
         const Quat& q = s.orientation;
         const Vec3 &p = s.position, &v = s.linearVelocity, &w = s.angularVelocity;
-        std::snprintf(buffer, sizeof buffer,
-                      ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", p.x(),
-                      p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z());
-        out << head << csvField(body.name()) << buffer;
+        CsvNumbers row;
+        row << p.x() << p.y() << p.z() << q.w() << q.x() << q.y() << q.z() << v.x() << v.y() << v.z() << w.x() << w.y()
+            << w.z();
+        out << head << csvField(body.name()) << row.text() << '\n';
     }
 }
 
@@ -103,13 +126,12 @@ void writeRows(std::ostream& out, long long step, double time, const std::vector
 /// frame). A joint without a name is written as #index (its place in the scene's list).
 void writeJointRows(std::ostream& out, long long step, double time, const std::vector<Joint>& joints) {
     const std::string head = prefix(step, time);
-    char buffer[512];
     for (std::size_t i = 0; i < joints.size(); ++i) {
         const Joint& joint = joints[i];
         const Vec3 f = joint.reactionForce(), t = joint.reactionTorque();
-        std::snprintf(buffer, sizeof buffer, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", joint.position(),
-                      joint.speed(), f.x(), f.y(), f.z(), t.x(), t.y(), t.z());
-        out << head << (joint.name().empty() ? "#" + std::to_string(i) : csvField(joint.name())) << buffer;
+        CsvNumbers row;
+        row << joint.position() << joint.speed() << f.x() << f.y() << f.z() << t.x() << t.y() << t.z();
+        out << head << (joint.name().empty() ? "#" + std::to_string(i) : csvField(joint.name())) << row.text() << '\n';
     }
 }
 
@@ -117,7 +139,6 @@ void writeJointRows(std::ostream& out, long long step, double time, const std::v
 /// world's fluids then cloths), its index (a cloth's node (i, j) is j (resolution[0] + 1) + i).
 void writeParticleRows(std::ostream& out, long long step, double time, const World& world) {
     const std::string head = prefix(step, time);
-    char buffer[512];
     const std::vector<ParticleSystemView> systems = world.particleSystems();
     for (std::size_t k = 0; k < systems.size(); ++k) {
         const ParticleSystemView& s = systems[k];
@@ -125,9 +146,9 @@ void writeParticleRows(std::ostream& out, long long step, double time, const Wor
         for (std::size_t i = 0; i < s.positions->size(); ++i) {
             const Vec3& p = (*s.positions)[i];
             const Vec3& v = (*s.velocities)[i];
-            std::snprintf(buffer, sizeof buffer, ",%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", i, p.x(), p.y(), p.z(),
-                          v.x(), v.y(), v.z());
-            out << head << name << buffer;
+            CsvNumbers row;
+            row << i << p.x() << p.y() << p.z() << v.x() << v.y() << v.z();
+            out << head << name << row.text() << '\n';
         }
     }
 }
