@@ -287,6 +287,7 @@ void BulletWorld::step(double /*time: forces come evaluated from the layer*/, do
         for (BulletJointPeer* joint : joints_) joint->endSubstep(h);
         for (BulletBodyPeer* body : kinematic_) body->advanceKinematic(h);
     }
+    mergeEarlierImpulses();
     for (BulletJointPeer* joint : joints_) joint->endStep(dt);
     for (BulletBodyPeer* body : forced_) body->clearForces();
     forced_.clear();
@@ -320,8 +321,30 @@ void BulletWorld::accumulateSubstepImpulses() {
         const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
         double impulse = 0.0;
         for (int i = 0; i < manifold->getNumContacts(); ++i) impulse += manifold->getContactPoint(i).getAppliedImpulse();
-        if (impulse > 0.0) earlierImpulses_[pairOf(*manifold)] += impulse;
+        if (impulse > 0.0) earlierImpulses_.push_back({pairOf(*manifold), impulse});
     }
+}
+
+void BulletWorld::mergeEarlierImpulses() {
+    if (earlierImpulses_.empty()) return;
+    // Stable, so a pair's sum adds its substeps and manifolds in the order they were solved.
+    std::stable_sort(earlierImpulses_.begin(), earlierImpulses_.end(),
+                     [](const EarlierImpulse& x, const EarlierImpulse& y) { return x.pair < y.pair; });
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < earlierImpulses_.size(); ++k) {
+        if (kept > 0 && earlierImpulses_[kept - 1].pair == earlierImpulses_[k].pair)
+            earlierImpulses_[kept - 1].impulse += earlierImpulses_[k].impulse;
+        else
+            earlierImpulses_[kept++] = earlierImpulses_[k];
+    }
+    earlierImpulses_.resize(kept);
+}
+
+BulletWorld::EarlierImpulse* BulletWorld::earlierImpulse(const btPersistentManifold& manifold) {
+    const ObjectPair pair = pairOf(manifold);
+    const auto it = std::lower_bound(earlierImpulses_.begin(), earlierImpulses_.end(), pair,
+                                     [](const EarlierImpulse& e, const ObjectPair& p) { return e.pair < p; });
+    return it != earlierImpulses_.end() && it->pair == pair ? &*it : nullptr;
 }
 
 // A first pass over every manifold, short and independent per manifold, lets the processor load
@@ -345,25 +368,20 @@ void BulletWorld::reportContacts(ContactReport& out) {
     // With substeps, each pair's impulse of the earlier substeps is shared among its points in
     // proportion to their last impulses (evenly when those are zero): the pair's total is the
     // step's, its split among points the last substep's.
-    struct LastSolve {
-        double impulse = 0.0;
-        int points = 0;
-    };
-    std::map<ObjectPair, LastSolve> lastSolve;
-    if (!earlierImpulses_.empty())
-        for (const btPersistentManifold* manifold : manifolds) {
-            LastSolve& last = lastSolve[pairOf(*manifold)];
-            for (int i = 0; i < manifold->getNumContacts(); ++i) {
-                last.impulse += manifold->getContactPoint(i).getAppliedImpulse();
-                ++last.points;
-            }
-        }
+    if (!earlierImpulses_.empty()) {
+        for (EarlierImpulse& e : earlierImpulses_) e = {e.pair, e.impulse, 0.0, 0};
+        for (const btPersistentManifold* manifold : manifolds)
+            if (EarlierImpulse* e = earlierImpulse(*manifold))
+                for (int i = 0; i < manifold->getNumContacts(); ++i) {
+                    e->lastImpulse += manifold->getContactPoint(i).getAppliedImpulse();
+                    ++e->lastPoints;
+                }
+    }
     const auto earlierShare = [&](const btPersistentManifold& manifold, const btManifoldPoint& p) {
         if (earlierImpulses_.empty()) return 0.0;
-        const auto earlier = earlierImpulses_.find(pairOf(manifold));
-        if (earlier == earlierImpulses_.end()) return 0.0;
-        const LastSolve& last = lastSolve[pairOf(manifold)];
-        return last.impulse > 0.0 ? earlier->second * p.getAppliedImpulse() / last.impulse : earlier->second / last.points;
+        const EarlierImpulse* e = earlierImpulse(manifold);
+        if (e == nullptr) return 0.0;
+        return e->lastImpulse > 0.0 ? e->impulse * p.getAppliedImpulse() / e->lastImpulse : e->impulse / e->lastPoints;
     };
     for (const btPersistentManifold* manifold : manifolds) {
         const int count = manifold->getNumContacts();

@@ -3,7 +3,6 @@
 // destroyed in the right order (the world first, then solver, broad phase, dispatcher and
 // configuration), plus what anyphys adds per world: the material table, the layer filter, the
 // effects and the forces held for a step (addForce and the layer's step forces).
-#include <map>
 #include <memory>
 #include <utility>
 #include <unordered_set>
@@ -79,6 +78,11 @@ private:
     static ObjectPair pairOf(const btPersistentManifold& manifold);
     /// Adds each pair's normal impulse of the substep just solved to earlierImpulses_.
     void accumulateSubstepImpulses();
+    /// After the last substep: earlierImpulses_ sorted by pair, one entry per pair.
+    void mergeEarlierImpulses();
+    /// The pair's entry in earlierImpulses_ (once merged), or nullptr.
+    struct EarlierImpulse;
+    EarlierImpulse* earlierImpulse(const btPersistentManifold& manifold);
     /// Brings the broad phase's bounds up to the poses a step left (queries see where bodies are).
     void refreshBounds();
     /// The manifolds holding contact points, in the dispatcher's order.
@@ -87,8 +91,16 @@ private:
     WorldSettings settings_;
     Effects effects_;
     // Normal impulse per pair over the step's substeps before the last (events only). Bullet's
-    // points hold the last solve's impulse; reportContacts adds these to report the whole step's.
-    std::map<ObjectPair, double> earlierImpulses_;
+    // points hold the last solve's impulse; reportContacts adds these to report the whole step's,
+    // shared among a pair's points as the last solve shared its impulse (`last`). A vector kept
+    // from step to step, so a steady step allocates nothing (a map made a node per pair per step).
+    struct EarlierImpulse {
+        ObjectPair pair;
+        double impulse = 0.0;      // N s, the earlier substeps' sum
+        double lastImpulse = 0.0;  // the last substep's, over the pair's points (reportContacts)
+        int lastPoints = 0;
+    };
+    std::vector<EarlierImpulse> earlierImpulses_;
     MaterialTable materials_;
     std::vector<BulletBodyPeer*> bodies_;     // every attached body
     int meshBodies_ = 0;                      // attached bodies with a triangle mesh
