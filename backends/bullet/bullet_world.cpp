@@ -321,15 +321,19 @@ void BulletWorld::accumulateSubstepImpulses() {
         const btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
         double impulse = 0.0;
         for (int i = 0; i < manifold->getNumContacts(); ++i) impulse += manifold->getContactPoint(i).getAppliedImpulse();
-        if (impulse > 0.0) earlierImpulses_.push_back({pairOf(*manifold), impulse});
+        if (!(impulse > 0.0)) continue;  // none (a NaN too, as before)
+        const auto solved = static_cast<std::uint32_t>(earlierImpulses_.size());
+        earlierImpulses_.push_back({pairOf(*manifold), impulse, 0.0, 0, solved});
     }
 }
 
 void BulletWorld::mergeEarlierImpulses() {
     if (earlierImpulses_.empty()) return;
-    // Stable, so a pair's sum adds its substeps and manifolds in the order they were solved.
-    std::stable_sort(earlierImpulses_.begin(), earlierImpulses_.end(),
-                     [](const EarlierImpulse& x, const EarlierImpulse& y) { return x.pair < y.pair; });
+    // A pair's entries in the order they were solved, so its sum adds its substeps and manifolds
+    // in that order (std::stable_sort would allocate a buffer every step).
+    std::sort(earlierImpulses_.begin(), earlierImpulses_.end(), [](const EarlierImpulse& x, const EarlierImpulse& y) {
+        return x.pair != y.pair ? x.pair < y.pair : x.solved < y.solved;
+    });
     std::size_t kept = 0;
     for (std::size_t k = 0; k < earlierImpulses_.size(); ++k) {
         if (kept > 0 && earlierImpulses_[kept - 1].pair == earlierImpulses_[k].pair)
@@ -369,7 +373,10 @@ void BulletWorld::reportContacts(ContactReport& out) {
     // proportion to their last impulses (evenly when those are zero): the pair's total is the
     // step's, its split among points the last substep's.
     if (!earlierImpulses_.empty()) {
-        for (EarlierImpulse& e : earlierImpulses_) e = {e.pair, e.impulse, 0.0, 0};
+        for (EarlierImpulse& e : earlierImpulses_) {
+            e.lastImpulse = 0.0;
+            e.lastPoints = 0;
+        }
         for (const btPersistentManifold* manifold : manifolds)
             if (EarlierImpulse* e = earlierImpulse(*manifold))
                 for (int i = 0; i < manifold->getNumContacts(); ++i) {

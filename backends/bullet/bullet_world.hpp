@@ -3,6 +3,7 @@
 // destroyed in the right order (the world first, then solver, broad phase, dispatcher and
 // configuration), plus what anyphys adds per world: the material table, the layer filter, the
 // effects and the forces held for a step (addForce and the layer's step forces).
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <unordered_set>
@@ -99,6 +100,7 @@ private:
         double impulse = 0.0;      // N s, the earlier substeps' sum
         double lastImpulse = 0.0;  // the last substep's, over the pair's points (reportContacts)
         int lastPoints = 0;
+        std::uint32_t solved = 0;  // before merging: which solve added it (sums keep solve order)
     };
     std::vector<EarlierImpulse> earlierImpulses_;
     MaterialTable materials_;
