@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "anyphys/containers/assembly.hpp"
 #include "anyphys/containers/mass_regularization.hpp"
@@ -182,6 +184,38 @@ TEST_P(AssemblyTest, RagdollPileStaysWholeAndComesToRest) { ragdollPile("ragdoll
 // joints keep the frames they were made with), then every body is set to its state in the file.
 // Native's old hinge rows (small-angle, axis . yB) went from 10 m/s to 1e4 m/s within 3 steps of
 // this; every backend must hold it for 10 s, whole.
+//
+// The pile is chaotic: on native, nudging every velocity in the file by 7e-12 of itself changed
+// the worst gap from 32 to 55 mm, and 7 of 30 such nudges (k 1e-12, k = 0..29) gave more than
+// 5 cm, up to 75 mm. One run is one draw, so a change of rounding anywhere in the solver could
+// flip the verdict either way. The pile is run several times, nudged so, and judged by the median
+// of the draws' worst gaps; every draw must stay finite and unthrown.
+struct PinchedPileDraw {
+    double worstGap = 0.0;  // m
+    double fastest = 0.0;   // m/s, fastest body over the run
+    bool finite = true;
+};
+
+PinchedPileDraw runPinchedPile(const Scene& scene, const Scene& snapshot, double velocityNudge) {
+    World world(scene.settings, scene.materials);
+    const SceneObjects objects = createSceneObjects(world, scene);
+    JointGapMeter gaps(scene, objects);  // the anchors as made
+    for (const BodyDef& b : snapshot.bodies) {
+        Body body = objects.body(b.name);
+        body.setTransform(b.position, b.orientation);
+        body.setLinearVelocity((1.0 + velocityNudge) * b.linearVelocity);
+        body.setAngularVelocity((1.0 + velocityNudge) * b.angularVelocity);
+    }
+    PinchedPileDraw draw;
+    while (world.time() < 10.0 && gaps.observe()) {
+        world.step();  // a diverged state throws (the default policy), failing the test
+        for (const Body& body : objects.bodies) draw.fastest = std::max(draw.fastest, body.linearVelocity().norm());
+    }
+    draw.worstGap = gaps.worst();
+    draw.finite = gaps.finite();
+    return draw;
+}
+
 TEST_P(AssemblyTest, PinchedPileFromTheSoakRunStaysWhole) {
     ANYPHYS_REQUIRE(caps().dimensions == 3 && !planarTest(), "3D worlds");
     const Scene& ragdoll = builtinAssembly("ragdoll");
@@ -206,29 +240,31 @@ TEST_P(AssemblyTest, PinchedPileFromTheSoakRunStaysWhole) {
         ASSERT_NE(spawned, snapshot.joints.end()) << prefix;
         appendInstance(scene, ragdoll, Transform{spawned->def.anchor - first.def.anchor, Quat::Identity()}, prefix);
     }
-    World world(scene.settings, scene.materials);
-    const SceneObjects objects = createSceneObjects(world, scene);
-    JointGapMeter gaps(scene, objects);  // the anchors as made
-    for (const BodyDef& b : snapshot.bodies) {
-        Body body = objects.body(b.name);
-        body.setTransform(b.position, b.orientation);
-        body.setLinearVelocity(b.linearVelocity);
-        body.setAngularVelocity(b.angularVelocity);
+    // Nine draws: the median is then the fifth, and a minority of wide draws cannot move it.
+    int draws = 9;
+#ifdef ANYPHYS_SANITIZED
+    draws = 1;  // about 30 s per draw on native under the sanitizers
+    std::cout << "[ NOT RUN  ] " << backend() << " pinched pile: draws 2 to 9 left to the release run\n";
+#endif
+    std::vector<double> worstGaps;
+    std::string listed;
+    for (int k = 0; k < draws; ++k) {
+        const PinchedPileDraw draw = runPinchedPile(scene, snapshot, 1e-12 * k);
+        std::cout << "[ MEASURED ] " << backend() << " pinched pile from the soak run, velocities x (1 + " << k
+                  << "e-12): worst joint gap " << draw.worstGap * 1e3 << " mm, fastest body " << draw.fastest
+                  << " m/s over 10 s\n";
+        EXPECT_TRUE(draw.finite) << "draw " << k;
+        // Nothing is thrown: the fastest body in the file moves at 10 m/s; falling 10 m gives 14 m/s.
+        EXPECT_LT(draw.fastest, 20.0) << "draw " << k;
+        worstGaps.push_back(draw.worstGap);
+        listed += (listed.empty() ? "" : ", ") + std::to_string(draw.worstGap);
     }
-    double fastest = 0.0;
-    while (world.time() < 10.0 && gaps.observe()) {
-        world.step();  // a diverged state throws (the default policy), failing the test
-        for (const Body& body : objects.bodies) fastest = std::max(fastest, body.linearVelocity().norm());
-    }
-    std::cout << "[ MEASURED ] " << backend() << " pinched pile from the soak run: worst joint gap "
-              << gaps.worst() * 1e3 << " mm, fastest body " << fastest << " m/s over 10 s\n";
-    EXPECT_TRUE(gaps.finite());
-    // Nothing is thrown: the fastest body in the file moves at 10 m/s; falling 10 m gives 14 m/s.
-    EXPECT_LT(fastest, 20.0);
+    std::sort(worstGaps.begin(), worstGaps.end());
+    const double median = worstGaps[worstGaps.size() / 2];
     // Whole, by the pile's criterion (5 cm), under a key of its own: this pile and the four-ragdoll
     // pile above are different runs, and a backend may meet the bound in one and not the other.
-    expectCriterion("assemblies.pinched_pile_gap", gaps.worst() < 0.05, "worst joint gap " + std::to_string(gaps.worst()) + " m",
-                    gaps.worst());
+    expectCriterion("assemblies.pinched_pile_gap", median < 0.05,
+                    "median worst joint gap " + std::to_string(median) + " m of draws " + listed, median);
 }
 
 TEST_P(AssemblyTest, RegularisedMassesHoldAHeavyEndedChainTogether) {
