@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <numbers>
+#include <sstream>
 
 #include "anyphys/joint_capabilities.hpp"
 #include "contract_fixture.hpp"
@@ -776,6 +777,41 @@ protected:
         for (int i = 0; i < 10; ++i) world.step();
         EXPECT_LT(a.position().y(), -1.0);  // free now: falls
     }
+    // Every mass scaled by one factor changes no motion under gravity and joints alone (each
+    // reaction scales with the masses): a hinge pendulum of 1 m released at 1 rad keeps its bob
+    // of 1e5 kg or 1e7 kg on its circle as it keeps one of 1 kg. A joint softness fixed in
+    // absolute terms, not relative to the masses it holds, stretches in proportion to the load.
+    void HeavyPendulumSwingsAsALightOneCase() {
+        ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
+        const double L = 1.0, amplitude = 1.0;
+        const auto worstGap = [&](double mass) {
+            World world(jointSettings());
+            Body bob = ball(world, Vec3(L * std::sin(amplitude), -L * std::cos(amplitude), 0.0), mass, 0.1);
+            JointDef d;
+            d.type = JointType::Hinge;
+            d.bodyB = bob;
+            d.anchor = Vec3::Zero();
+            d.axis = Vec3::UnitZ();
+            world.createJoint(d);
+            return swing(world, bob, L, 5.0, kG * L * (1.0 - std::cos(amplitude))).maxGap;
+        };
+        const double light = worstGap(1.0);
+        std::ostringstream measured;
+        measured << "worst gap with a 1 kg bob " << light << " m";
+        // As for the heavy stack (test_stability.cpp): twice the light run's figure, and at least
+        // 1 mm more, for what rounding makes of the same swing; an absolute softness stretches
+        // the joint 1e5 times as far under the 1e5 kg bob.
+        const double bound = std::max(2.0 * light, light + 1e-3);
+        double times = 0.0;
+        for (const double mass : {1e5, 1e7}) {
+            const double gap = worstGap(mass);
+            measured << ", " << mass << " kg " << gap << " m";
+            times = std::max(times, gap / bound);
+        }
+        std::cout << "[ MEASURED ] " << backend() << " hinge pendulum over 5 s: " << measured.str() << "\n";
+        expectCriterion(criterion("joints.heavy_pendulum"), times <= 1.0,
+                        measured.str() + " (" + std::to_string(times) + " x the bound)", times);
+    }
 };
 
 TEST_P(JointTest, HingePendulumPeriodMatchesEllipticIntegral) {
@@ -1106,6 +1142,7 @@ TEST_P(JointTest, FixedJointHoldsTheRelativePose) {
 // by ball joints, released horizontal: the largest gap between joined anchors over 5 s, per
 // backend and solver. Long chains with heavy ends are where iterative solvers stretch.
 TEST_P(JointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
+TEST_P(JointTest, HeavyPendulumSwingsAsALightOne) { HeavyPendulumSwingsAsALightOneCase(); }
 
 // collideConnected false (the default): two jointed, overlapping boxes never touch; true: they do.
 TEST_P(JointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
@@ -1198,6 +1235,7 @@ TEST_P(PlanarJointTest, StiffSpringsHoldTheirLoad) { StiffSpringsHoldTheirLoadCa
 TEST_P(PlanarJointTest, StiffHingeSpringHoldsAPointMassOnALever) { StiffSpringsHoldTheirLoadCase(true); }
 TEST_P(PlanarJointTest, MotorTurnsAPointMassOnALever) { MotorTurnsAPointMassOnALeverCase(); }
 TEST_P(PlanarJointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase(); }
+TEST_P(PlanarJointTest, HeavyPendulumSwingsAsALightOne) { HeavyPendulumSwingsAsALightOneCase(); }
 TEST_P(PlanarJointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
 TEST_P(PlanarJointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
 TEST_P(PlanarJointTest, HandlesAndValidation) { HandlesAndValidationCase(); }
