@@ -73,6 +73,16 @@ protected:
         return world.createBody(d);
     }
 
+    /// A hinge about Z through the origin, holding `body` to the world.
+    static Joint hingeToWorldAboutZ(World& world, const Body& body) {
+        JointDef d;
+        d.type = JointType::Hinge;
+        d.bodyB = body;
+        d.anchor = Vec3::Zero();
+        d.axis = Vec3::UnitZ();
+        return world.createJoint(d);
+    }
+
     // Period from the times x crosses 0 going down, interpolated within the step; also the
     // largest anchor gap seen (distance of the bob from its circle) and the energy range.
     struct Swing {
@@ -787,12 +797,7 @@ protected:
         const auto worstGap = [&](double mass) {
             World world(jointSettings());
             Body bob = ball(world, Vec3(L * std::sin(amplitude), -L * std::cos(amplitude), 0.0), mass, 0.1);
-            JointDef d;
-            d.type = JointType::Hinge;
-            d.bodyB = bob;
-            d.anchor = Vec3::Zero();
-            d.axis = Vec3::UnitZ();
-            world.createJoint(d);
+            hingeToWorldAboutZ(world, bob);
             return swing(world, bob, L, 5.0, kG * L * (1.0 - std::cos(amplitude))).maxGap;
         };
         const double light = worstGap(1.0);
@@ -976,12 +981,7 @@ TEST_P(JointTest, HingeWrenchedOffItsAxisTurnsBack) {
     ANYPHYS_REQUIRE(hasJoint("hinge"), "joint type hinge");
     World world(jointSettings(false));
     Body body = createThinLimb(world);
-    JointDef d;
-    d.type = JointType::Hinge;
-    d.bodyB = body;
-    d.anchor = Vec3::Zero();
-    d.axis = Vec3::UnitZ();
-    world.createJoint(d);
+    hingeToWorldAboutZ(world, body);
     // Turned 120 degrees about X around the anchor: the anchor still coincides, the axis does not.
     const Quat wrench(Eigen::AngleAxisd(120.0 * kDegree, Vec3::UnitX()));
     body.setTransform(wrench * Vec3(0, -0.15, 0), wrench);
