@@ -58,7 +58,7 @@ const std::vector<Field<WorldSettings>>& settingsFields() {
          .note = "effect names (`anyphys backends` lists them); `[]` means simulate nothing", .save = Save::WhenSet,
          .ownCode = true},
         with<S>({.key = "contactHertz", .path = "settings.contactHertz", .unit = "Hz", .value = 60.0,
-                 .check = Check::Positive, .note = "soft-contact stiffness (soft step); native caps it at a fifth of the substep rate"},
+                 .check = Check::Positive, .note = "soft-contact stiffness (soft step); native caps it at a fifth of the substep rate. Small bodies need it stiffer: on native a ten-box stack of 4 cm cubes falls at 60 Hz and stands at 120 Hz with 16 substeps"},
                 member(&S::contactHertz)),
         with<S>({.key = "contactDampingRatio", .path = "settings.contactDampingRatio", .unit = "1", .value = 10.0,
                  .check = Check::NonNegative, .note = "soft-contact damping ratio (10: heavily damped, no bounce from overlap)"},
