@@ -3,6 +3,7 @@
 // a test needs is skipped by capability, with the reason printed (never by backend name).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -19,6 +20,13 @@ inline BodyDef sphereDef(double radius) {
     d.shape = ShapeDef::sphere(radius);
     return d;
 }
+
+/// The bound of a mass-scaling case: how far a run with every mass scaled may exceed the same run
+/// at the scene's masses (`light`, in any measure where more is worse). Scaling every mass changes
+/// no motion under gravity, contacts and joints, so the runs differ only by rounding, which a
+/// structure that already sways turns into another sway: twice the light run's figure, and at
+/// least 1 mm more. A softness fixed in absolute terms exceeds it by the mass factor.
+inline double massScalingBound(double light) { return std::max(2.0 * light, light + 1e-3); }
 
 /// The names of the built backends. Computed once per process: every suite's instantiation asks,
 /// and each test runs in a process of its own under ctest, where copying every backend's

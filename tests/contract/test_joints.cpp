@@ -803,10 +803,7 @@ protected:
         const double light = worstGap(1.0);
         std::ostringstream measured;
         measured << "worst gap with a 1 kg bob " << light << " m";
-        // As for the heavy stack (test_stability.cpp): twice the light run's figure, and at least
-        // 1 mm more, for what rounding makes of the same swing; an absolute softness stretches
-        // the joint 1e5 times as far under the 1e5 kg bob.
-        const double bound = std::max(2.0 * light, light + 1e-3);
+        const double bound = massScalingBound(light);
         double times = 0.0;
         for (const double mass : {1e5, 1e7}) {
             const double gap = worstGap(mass);
