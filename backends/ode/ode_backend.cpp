@@ -157,12 +157,12 @@ Backend makeOdeBackend() {
          "as stability.stack10.direct.s1, planar: drifts 36 cm and throws the top box up 1.1 m"},
         {"planar.stability.stack10.direct.s4",
          "as stability.stack10.direct.s4, planar: drifts 2.4 cm, top box lifts 7 cm"},
-        {"joints.heavy_pendulum",
-         "a joint's own rows take the world's CFM (1e-6), the same whatever the masses they hold, and ODE gives a hinge's "
-         "no CFM of their own: a 1 m hinge pendulum stretches 2.4 mm with a 1 kg bob, 4.0 cm with 1e5 kg and 4.27 m with "
-         "1e7 kg. Contacts got a mass-relative CFM (kCfmReferenceMass); joints would need the world's CFM set from the "
-         "heaviest jointed body, with every contact then given its own"},
-        {"planar.joints.heavy_pendulum", "as joints.heavy_pendulum, planar: the same figures"},
+        {"joints.heavy_joints",
+         "below 1 t (kCfmReferenceMass) a pair's rows keep the world's CFM, absolute in ODE, so a light body's joints "
+         "are stiffer than a heavy one's: a bob on a 1 m arm resting on a hinge limit sits 1.3 mm past it at 1 kg and "
+         "3.3 mm at 1e5 and 1e7 kg alike (a 1 t bob's figure; bound 2.5 mm). The pendulums, the fixed joint and the "
+         "slider hold within the bound"},
+        {"planar.joints.heavy_joints", "as joints.heavy_joints, planar: 1.4 mm at 1 kg, 3.0 mm at 1e5 and 1e7 kg"},
     });
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
@@ -179,8 +179,8 @@ Backend makeOdeBackend() {
         {"stability.stack10.direct.s4", 5000},
         {"planar.stability.stack10.direct.s1", 5000},
         {"planar.stability.stack10.direct.s4", 150},
-        {"joints.heavy_pendulum", 1400},         // in multiples of its bound, measured 895
-        {"planar.joints.heavy_pendulum", 1400},  // measured 904
+        {"joints.heavy_joints", 2.0},          // in multiples of its bound, measured 1.29
+        {"planar.joints.heavy_joints", 1.7},   // measured 1.09
     };
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.

@@ -102,15 +102,13 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
     // reduced mass it scales with the masses; unlike it, a 1 t box on another is a pair of 1 t,
     // as the box stacks kDefaultCfm was tuned on have it.
     const double pairMass = b.isDynamic() ? std::max(a.mass(), b.mass()) : a.mass();
-    const double cfm = pairMass > kCfmReferenceMass ? cfm_ * (kCfmReferenceMass / pairMass) : cfm_;
-    if (cfm != cfm_) {  // only then: the world's own CFM leaves ODE's arithmetic as it was
-        surface.mode |= dContactSoftCFM;
-        surface.soft_cfm = cfm;
-        // The friction rows' CFM is the world's unless a slip is given (ODE's contact joint uses
-        // slip as their CFM): left at the world's, a 1 000 t stack walked 0.87 m in 10 s.
-        surface.mode |= dContactSlip1 | dContactSlip2;
-        surface.slip1 = surface.slip2 = cfm;
-    }
+    // Always given, never the world's: that follows the heaviest slider or wheel (OdeWorld::step).
+    // The friction rows' CFM is the world's unless a slip is given (ODE's contact joint uses slip
+    // as their CFM, and the flags do nothing else): left at the world's, a 1 000 t stack walked
+    // 0.87 m in 10 s.
+    const double cfm = pairCfm(cfm_, pairMass);
+    surface.mode |= dContactSoftCFM | dContactSlip1 | dContactSlip2;
+    surface.soft_cfm = surface.slip1 = surface.slip2 = cfm;
     if (effects_.has(Effect::Restitution) && m.restitution > 0) {
         surface.mode |= dContactBounce;
         surface.bounce = m.restitution;

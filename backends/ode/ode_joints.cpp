@@ -264,7 +264,7 @@ void OdeJoint::configureMotors() {
         case JointType::Distance:
             if (!def_.spring) {
                 dJointSetDBallParam(main_, dParamERP, kJointErp);
-                dJointSetDBallParam(main_, dParamCFM, world_.cfm());
+                dJointSetDBallParam(main_, dParamCFM, rowCfm());
             }
             // A range without a spring is free inside: the double ball is off.
             rod_ = def_.spring || !(def_.minLength || def_.maxLength);
@@ -373,8 +373,46 @@ double OdeJoint::measurePosition() const {
 
 // ---- stepping ---------------------------------------------------------------------------------
 
+double OdeJoint::pairMass() const {
+    const double massB = b_->isDynamic() ? b_->mass() : 0.0;
+    return a_ && a_->isDynamic() ? std::max(massB, a_->mass()) : massB;
+}
+
+double OdeJoint::rowCfm() const { return pairCfm(world_.cfm(), pairMass()); }
+
+void OdeJoint::applyRowCfm(double cfm) {
+    // Each step, so a mass set after the joint's creation counts. For a pair of 1 t or less this
+    // is the world's CFM, the value ODE gave these rows at creation: no change in its arithmetic.
+    switch (def_.type) {
+        case JointType::Fixed: dJointSetFixedParam(main_, dParamCFM, cfm); break;
+        case JointType::Ball: dJointSetBallParam(main_, dParamCFM, cfm); break;
+        case JointType::Cone:
+            dJointSetBallParam(main_, dParamCFM, cfm);
+            for (int i : {kSwingAxis, kTwistLowerAxis, kTwistUpperAxis})
+                dJointSetAMotorParam(amotor_, group(i) + dParamStopCFM, cfm);
+            break;
+        case JointType::Hinge:
+            dJointSetBallParam(main_, dParamCFM, cfm);
+            for (int i = 0; i < 2; ++i) {
+                dJointSetAMotorParam(align_, group(i) + dParamStopCFM, cfm);
+                dJointSetAMotorParam(stops_, group(i) + dParamStopCFM, cfm);
+            }
+            dJointSetAMotorParam(amotor_, group(kMotorAxis) + dParamCFM, cfm);
+            break;
+        case JointType::Slider: dJointSetLMotorParam(lmotor_, group(kMotorAxis) + dParamCFM, cfm); break;
+        case JointType::Distance:
+            if (!def_.spring) dJointSetDBallParam(main_, dParamCFM, cfm);
+            break;
+        case JointType::Wheel:
+            dJointSetHinge2Param(main_, dParamStopCFM, cfm);  // the steering lock
+            dJointSetHinge2Param(main_, dParamCFM2, cfm);     // the spin motor
+            break;
+    }
+}
+
 void OdeJoint::beforeOdeStep(double h) {
     for (std::size_t i = 0; i < partCount_; ++i) parts_[i].feedback = dJointFeedback{};
+    applyRowCfm(rowCfm());
     const Transform fa = frameInA(), fb = frameInB();
     const Vec3 x = fa.orientation * Vec3::UnitX();
     double erp = 0.0, cfm = 0.0;
@@ -531,6 +569,8 @@ void OdeJoint::addStopRow(const Vec3& at, const Vec3& normal, double gap, double
     dContact contact{};
     contact.surface.mode = dContactMotionN;  // frictionless (mu 0): the normal row only
     contact.surface.mu = 0.0;
+    contact.surface.mode |= dContactSoftCFM;  // the joint's, not the world's (OdeWorld::step)
+    contact.surface.soft_cfm = rowCfm();
     // ODE's row: B's speed along the normal relative to A >= ERP/h (depth - surface layer) + motionN.
     const double layer = dWorldGetContactSurfaceLayer(world_.id());
     contact.surface.motionN = gap > 0.0 ? -gap / h : 0.0;

@@ -68,6 +68,10 @@ public:
     void afterOdeStep();
     /// After the anyphys step of dt seconds in `substeps` ODE steps: reactions, position, speed.
     void finishStep(double dt, int substeps);
+    /// kg: the heavier dynamic body's mass (0 if neither is dynamic).
+    double pairMass() const;
+    /// ODE gives the type's main rows no CFM of their own: they take the world's (slider, wheel).
+    bool mainRowsTakeTheWorldsCfm() const { return def_.type == JointType::Slider || def_.type == JointType::Wheel; }
     std::size_t slot = 0;  // index in the world's joint list (kept by the world)
 
 private:
@@ -93,6 +97,11 @@ private:
     bool centreStop(const Vec3& axis, const Vec3& anchor, Vec3& t, double& lever) const;
     void ropeRows(double h);  // distance min / max: the contact rows of the next ODE step
     void addStopRow(const Vec3& at, const Vec3& normal, double gap, double h);
+    /// The CFM of the joint's own rows: the world's, made stiffer for a heavy pair (pairCfm).
+    double rowCfm() const;
+    /// Gives every row whose CFM ODE lets a joint set (all but a slider's and a wheel's main
+    /// rows, and the springs', which come from their stiffness) the CFM `cfm`.
+    void applyRowCfm(double cfm);
 
     OdeWorld& world_;
     JointPeerDef def_;

@@ -25,15 +25,22 @@ constexpr double kSlipDirectionSpeed = 1e-6;
 /// 1e-6 measured best on box_stack_10 and pyramid_20. Overridden by backendOptions["cfm"].
 constexpr double kDefaultCfm = 1e-6;
 
-/// kg: the pair mass up to which contacts take the world's CFM as it is. ODE's CFM is a
-/// compliance, so one value for every pair makes a heavy pair's contacts softer in proportion to
-/// its mass: a ten-box stack of 100 t boxes sank 9.2 m into the ground over 10 s at 1e-6. A
-/// heavier pair's CFM is divided by its mass in units of this one, which keeps its contacts'
-/// frequency and damping ratio those of a pair of 1 t, the mass kDefaultCfm was tuned on;
-/// lighter pairs keep the world's CFM (made softer, as a rule relative at every mass would make
-/// them, fast 1 kg spheres went through thin walls in three contract cases). No pair of
-/// the benchmark scenes is heavier, so bench/direct/ode_scenes.cpp does not repeat the rule.
+/// kg: the pair mass up to which contacts and joint rows take the world's CFM as it is. ODE's
+/// CFM is a compliance, so one value for every pair makes a heavy pair's rows softer in
+/// proportion to its mass: a ten-box stack of 100 t boxes sank 9.2 m into the ground over 10 s at
+/// 1e-6, and a 1e7 kg pendulum bob stretched its hinge 4.27 m. A heavier pair's CFM is divided by
+/// its mass in units of this one, which keeps its rows' frequency and damping ratio those of a
+/// pair of 1 t, the mass kDefaultCfm was tuned on; lighter pairs keep the world's CFM (made
+/// softer, as a rule relative at every mass would make them, fast 1 kg spheres went through thin
+/// walls in three contract cases). No pair of the benchmark scenes is heavier, so
+/// bench/direct/ode_scenes.cpp does not repeat the rule.
 constexpr double kCfmReferenceMass = 1000.0;
+
+/// The CFM of rows holding a pair whose heavier dynamic body weighs `pairMass` kg, for a world
+/// CFM of `cfm` (kCfmReferenceMass).
+inline double pairCfm(double cfm, double pairMass) {
+    return pairMass > kCfmReferenceMass ? cfm * (kCfmReferenceMass / pairMass) : cfm;
+}
 
 /// CFM of contacts that bounce (restitution above the threshold): ODE's rigid default. A soft
 /// contact acts as a damped spring and absorbs part of the rebound ODE's bounce asks for

@@ -172,6 +172,16 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
         points_.clear();
     }
     const bool joints = effects_.has(Effect::Joints) && !userJoints_.empty();
+    if (joints) {
+        // The one value ODE's world CFM still sets (contacts and every other joint row have their
+        // own): a slider's and a wheel's main rows, made stiff enough for the heaviest pair they
+        // hold (pairCfm). A light slider in the same world is stiffer with it, never softer.
+        double heaviest = 0.0;
+        for (const OdeJoint* j : userJoints_)
+            if (j->mainRowsTakeTheWorldsCfm()) heaviest = std::max(heaviest, j->pairMass());
+        const double worldCfm = pairCfm(cfm_, heaviest);
+        if (worldCfm != dWorldGetCFM(world_)) dWorldSetCFM(world_, worldCfm);
+    }
     for (int s = 0; s < substeps; ++s) {
         if (contacts) collide();
         if (joints)

@@ -814,6 +814,70 @@ protected:
         expectCriterion(criterion("joints.heavy_pendulum"), times <= 1.0,
                         measured.str() + " (" + std::to_string(times) + " x the bound)", times);
     }
+
+    // How far a joint of `type` holding a 10 cm ball of `mass` kg under gravity lets it off the
+    // path the joint allows, worst over 3 s (m): a pendulum (ball, distance rod) off its 1 m
+    // circle; a ball welded 1 m out (fixed) off its place; a ball sliding along X at 1 m/s
+    // (slider) off the axis; a bob on a 1 m arm dropped onto a hinge limit, past it (arc length).
+    double heavyJointError(JointType type, double mass) {
+        World world(jointSettings());
+        const bool pendulum = type == JointType::Ball || type == JointType::Distance;
+        const Vec3 start = pendulum ? Vec3(std::sin(1.0), -std::cos(1.0), 0.0)
+                           : type == JointType::Slider ? Vec3::Zero()
+                                                       : Vec3(1, 0, 0);
+        Body bob = ball(world, start, mass, 0.1);
+        JointDef d;
+        d.type = type;
+        d.bodyB = bob;
+        if (type == JointType::Distance) d.anchorB = start;
+        if (type == JointType::Slider) {
+            d.axis = Vec3::UnitX();
+            bob.setLinearVelocity(Vec3(1, 0, 0));
+        }
+        if (type == JointType::Hinge) d.limits = JointLimits{-0.5, 0.5};
+        Joint joint = world.createJoint(d);
+        double worst = 0.0;
+        while (world.time() < 3.0) {
+            world.step();
+            const Vec3 p = bob.position();
+            switch (type) {
+                case JointType::Ball:
+                case JointType::Distance: worst = std::max(worst, std::abs(p.norm() - 1.0)); break;
+                case JointType::Fixed: worst = std::max(worst, (p - start).norm()); break;
+                case JointType::Slider: worst = std::max(worst, std::hypot(p.y(), p.z())); break;
+                default: worst = std::max(worst, -0.5 - joint.position()); break;  // hinge, 1 m arm
+            }
+        }
+        return worst;
+    }
+
+    void HeavyBodiesHoldTheirJointsAsLightOnesCase() {
+        const std::pair<JointType, const char*> cases[] = {{JointType::Fixed, "fixed"},
+                                                           {JointType::Ball, "ball"},
+                                                           {JointType::Distance, "distance"},
+                                                           {JointType::Slider, "slider"},
+                                                           {JointType::Hinge, "hinge"}};
+        std::ostringstream measured;
+        double times = 0.0;
+        int tried = 0;
+        for (const auto& [type, name] : cases) {
+            if (!hasJoint(name) || (type == JointType::Hinge && !hasParameter("joint.hinge.limits"))) continue;
+            ++tried;
+            const double light = heavyJointError(type, 1.0);
+            const double bound = massScalingBound(light);
+            measured << (tried > 1 ? "; " : "") << name << (type == JointType::Hinge ? " at its limit" : "") << ": 1 kg "
+                     << light << " m";
+            for (const double mass : {1e5, 1e7}) {
+                const double error = heavyJointError(type, mass);
+                measured << ", " << mass << " kg " << error << " m";
+                times = std::max(times, error / bound);
+            }
+        }
+        ANYPHYS_REQUIRE(tried > 0, "joint type fixed, ball, distance, slider or hinge with limits");
+        std::cout << "[ MEASURED ] " << backend() << " heavy joints over 3 s: " << measured.str() << "\n";
+        expectCriterion(criterion("joints.heavy_joints"), times <= 1.0,
+                        measured.str() + " (" + std::to_string(times) + " x the bound)", times);
+    }
 };
 
 TEST_P(JointTest, HingePendulumPeriodMatchesEllipticIntegral) {
@@ -1141,6 +1205,10 @@ TEST_P(JointTest, FixedJointHoldsTheRelativePose) {
 TEST_P(JointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
 TEST_P(JointTest, HeavyPendulumSwingsAsALightOne) { HeavyPendulumSwingsAsALightOneCase(); }
 
+// The same for the other joint types and a hinge's limit: a heavy body's joint holds it as well
+// as a light one's (see massScalingBound), whatever the mass.
+TEST_P(JointTest, HeavyBodiesHoldTheirJointsAsLightOnes) { HeavyBodiesHoldTheirJointsAsLightOnesCase(); }
+
 // collideConnected false (the default): two jointed, overlapping boxes never touch; true: they do.
 TEST_P(JointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
 
@@ -1233,6 +1301,7 @@ TEST_P(PlanarJointTest, StiffHingeSpringHoldsAPointMassOnALever) { StiffSpringsH
 TEST_P(PlanarJointTest, MotorTurnsAPointMassOnALever) { MotorTurnsAPointMassOnALeverCase(); }
 TEST_P(PlanarJointTest, BreaksAboveItsForceOnly) { BreaksAboveItsForceOnlyCase(); }
 TEST_P(PlanarJointTest, HeavyPendulumSwingsAsALightOne) { HeavyPendulumSwingsAsALightOneCase(); }
+TEST_P(PlanarJointTest, HeavyBodiesHoldTheirJointsAsLightOnes) { HeavyBodiesHoldTheirJointsAsLightOnesCase(); }
 TEST_P(PlanarJointTest, HangingChainHoldsTogether) { HangingChainHoldsTogetherCase(); }
 TEST_P(PlanarJointTest, CollideConnectedDecidesContacts) { CollideConnectedDecidesContactsCase(); }
 TEST_P(PlanarJointTest, HandlesAndValidation) { HandlesAndValidationCase(); }
