@@ -17,6 +17,13 @@ namespace {
 using test::backendSettings;
 using test::boxDef;
 
+// A static box of half extents `half` whose top face is the plane y = 0.
+void addStaticGround(World& world, const Vec3& half) {
+    BodyDef ground = boxDef("ground", half, {0, -half.y(), 0});
+    ground.type = BodyType::Static;
+    world.createBody(ground);
+}
+
 // Fastest box after dropping a 3 x 3 x 10 grid of unit cubes (0.1 m gaps) on a box ground and
 // stepping it `seconds` at 60 Hz, sleeping off, with the default contactHertz (60).
 double fastestAfterDrop(int substeps, int iterations, double seconds) {
@@ -24,9 +31,7 @@ double fastestAfterDrop(int substeps, int iterations, double seconds) {
     settings.substeps = substeps;
     settings.iterations = iterations;
     World world(settings);
-    BodyDef ground = boxDef("ground", {20, 1, 20}, {0, -1, 0});
-    ground.type = BodyType::Static;
-    world.createBody(ground);
+    addStaticGround(world, {20, 1, 20});
     std::vector<Body> boxes;
     for (int y = 0; y < 10; ++y)
         for (int x = 0; x < 3; ++x)
@@ -61,9 +66,7 @@ double smallStackDrift(double size, double hertz) {
     WorldSettings settings = backendSettings("native");
     settings.contactHertz = hertz;
     World world(settings);
-    BodyDef ground = boxDef("ground", {1, 0.5, 1}, {0, -0.5, 0});
-    ground.type = BodyType::Static;
-    world.createBody(ground);
+    addStaticGround(world, {1, 0.5, 1});
     std::vector<Body> boxes;
     for (int i = 0; i < 10; ++i) {
         BodyDef box = boxDef("box", Vec3::Constant(size / 2), {0, size / 2 + i * size, 0});
