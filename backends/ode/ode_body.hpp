@@ -4,6 +4,7 @@
 // ODE's own body frame is used as is.
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -101,5 +102,12 @@ private:
     Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();          // user, this step
     Vec3 heldForce_ = Vec3::Zero(), heldTorque_ = Vec3::Zero();  // the layer's step forces (holdForStep), this step
 };
+
+/// kg: the mass of the heavier dynamic body of a pair (the mass kCfmReferenceMass compares); a
+/// body that is null, static or kinematic counts as none.
+inline double heavierDynamicMass(const OdeBody* a, const OdeBody* b) {
+    const auto massOf = [](const OdeBody* body) { return body && body->isDynamic() ? body->mass() : 0.0; };
+    return std::max(massOf(a), massOf(b));
+}
 
 }  // namespace anyphys::ode

@@ -98,10 +98,10 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
         surface.mode |= dContactApprox1;
         surface.mu = m.friction;
     }
-    // The pair's mass (kCfmReferenceMass): the heavier dynamic body's (a is dynamic). Like the
+    // The pair's mass (kCfmReferenceMass): the heavier dynamic body's. Like the
     // reduced mass it scales with the masses; unlike it, a 1 t box on another is a pair of 1 t,
     // as the box stacks kDefaultCfm was tuned on have it.
-    const double pairMass = b.isDynamic() ? std::max(a.mass(), b.mass()) : a.mass();
+    const double pairMass = heavierDynamicMass(&a, &b);
     // Always given, never the world's: that follows the heaviest slider or wheel (OdeWorld::step).
     // The friction rows' CFM is the world's unless a slip is given (ODE's contact joint uses slip
     // as their CFM, and the flags do nothing else): left at the world's, a 1 000 t stack walked

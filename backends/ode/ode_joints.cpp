@@ -373,10 +373,7 @@ double OdeJoint::measurePosition() const {
 
 // ---- stepping ---------------------------------------------------------------------------------
 
-double OdeJoint::pairMass() const {
-    const double massB = b_->isDynamic() ? b_->mass() : 0.0;
-    return a_ && a_->isDynamic() ? std::max(massB, a_->mass()) : massB;
-}
+double OdeJoint::pairMass() const { return heavierDynamicMass(a_, b_); }
 
 double OdeJoint::rowCfm() const { return pairCfm(world_.cfm(), pairMass()); }
 
