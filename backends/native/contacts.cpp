@@ -244,10 +244,12 @@ void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies,
             touching = touching || m.points[i].separation < linearSlop;
         }
         warmStartFrom(scratch.previous, cm, speculativeDistance);
+        // The solver's anchors, found here where the shapes are at hand, so the solver's prepare
+        // stage needs no shapes.
         for (int i = 0; i < cm.pointCount; ++i) {
             ContactPointState& p = cm.points[i];
-            p.anchorA = p.geometry.point - a.state.position;
-            p.anchorB = p.geometry.point - b.state.position;
+            p.anchorA = contactAnchor(sa, a.state.orientation, p.geometry.point - a.state.position, -cm.normal);
+            p.anchorB = contactAnchor(sb, b.state.orientation, p.geometry.point - b.state.position, cm.normal);
             p.baseSeparation = p.geometry.separation;
         }
     }

@@ -21,9 +21,10 @@ struct ContactPointState {
     ManifoldPoint geometry;
     double normalImpulse = 0.0;    // N s, accumulated in the last substep: the next step's warm start
     double stepImpulse = 0.0;      // N s, pushed through this point over the whole last step (events)
-    // Where the narrow phase found the point: its offsets from each body's centre of mass (world
-    // axes; the solver's anchors, but on round shapes' cores: contactAnchor) and the separation
-    // there. Recycling keeps them and moves only the separation (ContactManager::recycle).
+    // Where the narrow phase found the point: the solver's anchors, offsets from each body's
+    // centre of mass (world axes; on a round shape's core, see contactAnchor), and the separation
+    // there. Recycling (flat shapes only, whose anchors are the point itself) keeps them and moves
+    // only the separation (ContactManager::recycle).
     Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
     double baseSeparation = 0.0;
 };

@@ -69,7 +69,6 @@ struct BodyView {
     Vec3 invMass = Vec3::Zero();
     Mat3 invI = Mat3::Zero();
     Vec3 center = Vec3::Zero();
-    Quat orientation = Quat::Identity();
     Vec3 v = Vec3::Zero(), w = Vec3::Zero();
     Vec3 acceleration = Vec3::Zero();
     bool moves = false;  // has a solver state (dynamic or kinematic)
@@ -86,7 +85,6 @@ struct BodyView {
     view.invMass = b.invMass;
     view.invI = b.invInertia;
     view.center = b.position0;
-    view.orientation = b.orientation0;
     view.v = Vec3(s.v[0], s.v[1], s.v[2]);
     view.w = Vec3(s.w[0], s.w[1], s.w[2]);
     view.acceleration = b.linearAcceleration;
@@ -142,10 +140,9 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         // move the surface: a ball's surface point turned with the ball rose, so the contact
         // unloaded within each step, the ball sank and a sliding one lost speed 28 % faster than
         // mu g.
-        // The point's offsets are those the narrow phase found, kept by a recycled manifold
-        // (ContactManager::recycle).
-        const Vec3 rA = a.moves ? contactAnchor(*in.shapeA, a.orientation, mp.anchorA, -n) : Vec3::Zero();
-        const Vec3 rB = b.moves ? contactAnchor(*in.shapeB, b.orientation, mp.anchorB, n) : Vec3::Zero();
+        // The narrow phase placed both (ContactManager), and a recycled manifold keeps them.
+        const Vec3 rA = a.moves ? mp.anchorA : Vec3::Zero();
+        const Vec3 rB = b.moves ? mp.anchorB : Vec3::Zero();
         setLane(cp.anchorA, lane, rA);
         setLane(cp.anchorB, lane, rB);
         const double s = mp.geometry.separation;

@@ -67,8 +67,6 @@ struct ContactLane {
     std::int32_t bodyA = kStaticBody, bodyB = kStaticBody;
     double friction = 0.0, restitution = 0.0;
     std::uint32_t orderKey = 0;  // a hash of the pair and manifold: where the solver visits it (ConstraintGraph)
-    const Shape* shapeA = nullptr;  // the pair's shapes, where the anchors lie (contactAnchor)
-    const Shape* shapeB = nullptr;
 };
 
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h

@@ -14,7 +14,6 @@ namespace {
 struct PlanarView {
     double invMass = 0.0, invI = 0.0;
     double cx = 0.0, cy = 0.0;             // centre of mass
-    Quat orientation = Quat::Identity();
     double vx = 0.0, vy = 0.0, w = 0.0;
     double ax = 0.0, ay = 0.0;             // linear acceleration
     bool moves = false;
@@ -29,7 +28,6 @@ PlanarView planarViewOf(std::int32_t index, const SolverBody* bodies, const Solv
     view.invI = b.invInertia(2, 2);
     view.cx = b.position0.x();
     view.cy = b.position0.y();
-    view.orientation = b.orientation0;
     view.vx = s.v[0];
     view.vy = s.v[1];
     view.w = s.w[2];
@@ -78,9 +76,8 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
         // A static body's anchor is the point itself (zero offset): it never moves or turns. A
         // round shape's anchor lies on its core, as in the 3D path (contact_constraint.cpp).
-        const Vec3 normal(nx, ny, 0.0);
-        const Vec3 rA = a.moves ? contactAnchor(*in.shapeA, a.orientation, mp.anchorA, -normal) : Vec3::Zero();
-        const Vec3 rB = b.moves ? contactAnchor(*in.shapeB, b.orientation, mp.anchorB, normal) : Vec3::Zero();
+        const Vec3 rA = a.moves ? mp.anchorA : Vec3::Zero();
+        const Vec3 rB = b.moves ? mp.anchorB : Vec3::Zero();
         const double rAx = rA.x(), rAy = rA.y(), rBx = rB.x(), rBy = rB.y();
         cp.anchorAx[lane] = rAx;
         cp.anchorAy[lane] = rAy;

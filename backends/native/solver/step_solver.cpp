@@ -86,7 +86,7 @@ void StepSolver::collect(NativeWorld& world) {
             for (ContactManifold& m : contact.manifolds)
                 if (m.pointCount > 0)
                     lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
-                                      contact.friction, contact.restitution, orderKey(contact, m), &a.shapes[contact.shapeA], &b.shapes[contact.shapeB]});
+                                      contact.friction, contact.restitution, orderKey(contact, m)});
             enlist(contact.bodyA);
             enlist(contact.bodyB);
         });
