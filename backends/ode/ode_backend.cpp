@@ -149,14 +149,6 @@ Backend makeOdeBackend() {
     caps.knownDeviations.insert({
         {"stability.stack10.pgs.s1",
          "quickstep at 1 substep x 50 iterations: the 10-box stack drifts 1.7 cm over 10 s (bound 1 cm); 0.5 mm at 4 substeps"},
-        {"stability.stack10.direct.s1",
-         "dWorldStep topples the 10-box stack (drift 12.8 m) at 1 substep: its Dantzig LCP fails on the stack's contacts (\"LCP internal error, s <= 0\" on stderr: once with 2 boxes, 7 times with 5, 28 with 10 in 10 s) and the unconverged result tips the stack; CFM from 1e-9 to 1e-5 changes neither (measured), a 5-box stack still stands"},
-        {"stability.stack10.direct.s4",
-         "dWorldStep topples the 10-box stack at 4 substeps too (3.0 m)"},
-        {"planar.stability.stack10.direct.s1",
-         "as stability.stack10.direct.s1, planar: drifts 36 cm and throws the top box up 1.1 m"},
-        {"planar.stability.stack10.direct.s4",
-         "as stability.stack10.direct.s4, planar: drifts 2.4 cm, top box lifts 7 cm"},
         {"joints.heavy_joints",
          "below 1 t (kCfmReferenceMass) a pair's rows keep the world's CFM, absolute in ODE, so a light body's joints "
          "are stiffer than a heavy one's: a bob on a 1 m arm resting on a hinge limit sits 1.3 mm past it at 1 kg and "
@@ -175,10 +167,6 @@ Backend makeOdeBackend() {
         {"planar.assemblies.ragdoll_limits", 60.0},
         {"stack10.top_drift", 0.025},
         {"stability.stack10.pgs.s1", 2.5},
-        {"stability.stack10.direct.s1", 5000},
-        {"stability.stack10.direct.s4", 5000},
-        {"planar.stability.stack10.direct.s1", 5000},
-        {"planar.stability.stack10.direct.s4", 150},
         {"joints.heavy_joints", 2.0},          // in multiples of its bound, measured 1.29
         {"planar.joints.heavy_joints", 1.7},   // measured 1.09
     };

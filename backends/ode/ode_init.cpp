@@ -13,6 +13,7 @@ namespace anyphys::ode {
 namespace {
 
 std::atomic<long> messagesReceived{0};
+thread_local long lcpFailures = 0;
 
 // ODE reports solver trouble (for example "LCP internal error, s <= 0" from dWorldStep's Dantzig
 // solver) through a message callback that by default prints every occurrence: hundreds of lines
@@ -20,6 +21,7 @@ std::atomic<long> messagesReceived{0};
 // with a note that repeats are not shown; the simulation is unchanged.
 void reportOnce(int number, const char* format, va_list args) {
     ++messagesReceived;
+    if (number == d_ERR_LCP) ++lcpFailures;
     static std::mutex mutex;
     static std::set<std::string> seen;
     {
@@ -34,6 +36,8 @@ void reportOnce(int number, const char* format, va_list args) {
 }  // namespace
 
 long odeMessagesReceived() { return messagesReceived; }
+
+long odeLcpFailuresOnThisThread() { return lcpFailures; }
 
 void ensureOdeInitialised() {
     // dInitODE2 must run once before any ODE call. dCloseODE is never called: worlds of this

@@ -17,5 +17,8 @@ void ensureOdeThreadData();
 std::mutex& odeRandomMutex();
 /// How many messages ODE has sent (printed or not) in this process: for tests.
 long odeMessagesReceived();
+/// How many times ODE reported a failed LCP (d_ERR_LCP, from dWorldStep's Dantzig solver) on the
+/// calling thread: ODE sends its messages on the thread that steps.
+long odeLcpFailuresOnThisThread();
 
 }  // namespace anyphys::ode

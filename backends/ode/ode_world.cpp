@@ -202,7 +202,7 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
                 if (bodies_[i]->id()) before_[i] = toVec3(dBodyGetPosition(bodies_[i]->id()));
         }
         if (direct_) {
-            dWorldStep(world_, h);
+            if (directStepper_.step(world_, bodies_, h)) ++directFallbacks_;
             ++directSteps_;
         } else {
             dWorldQuickStep(world_, h);

@@ -14,6 +14,7 @@
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "ode_body.hpp"
+#include "ode_direct_step.hpp"
 #include "ode_joints.hpp"
 
 namespace anyphys::ode {
@@ -51,6 +52,8 @@ public:
     /// ODE steps taken by dWorldStep (the direct solver) and by dWorldQuickStep.
     std::uint64_t directSteps() const { return directSteps_; }
     std::uint64_t quickSteps() const { return quickSteps_; }
+    /// Direct steps whose LCP gave up and that quickstep took instead (DirectStepper).
+    std::uint64_t directFallbacks() const { return directFallbacks_; }
     /// How the last collide pass found its pairs (see collide()).
     enum class CollidePass { Skipped, PerAwakeGeom, WholeSpace };
     CollidePass lastCollidePass() const { return lastPass_; }
@@ -129,7 +132,8 @@ private:
     double lastDt_ = 0.0;           // s, the last anyphys step (impulse = force x dt)
     std::vector<Vec3> before_;      // positions before the ODE step (continuous collision)
 
-    std::uint64_t directSteps_ = 0, quickSteps_ = 0;
+    std::uint64_t directSteps_ = 0, quickSteps_ = 0, directFallbacks_ = 0;
+    DirectStepper directStepper_;
     unsigned long randomSeed_ = 0;  // this world's stream of ODE's global generator (quickstep reorders rows)
 };
 
