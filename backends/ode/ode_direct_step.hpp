@@ -2,7 +2,7 @@
 // dWorldStep with a fallback. ODE 0.16's Dantzig LCP gives up on some sets of resting contacts
 // ("LCP internal error, s <= 0": a degenerate pivot) and leaves the rows it had not reached
 // without force, so a ten-box stack fell through itself (12.8 m in 10 s). A step whose LCP gave
-// up is taken again from the same state by quickstep.
+// up is taken again from the same state by quickstep, at the world's `iterations`.
 #include <ode/ode.h>
 
 #include <vector>

@@ -18,7 +18,8 @@ thread_local long lcpFailures = 0;
 // ODE reports solver trouble (for example "LCP internal error, s <= 0" from dWorldStep's Dantzig
 // solver) through a message callback that by default prints every occurrence: hundreds of lines
 // a second from one stack. Each kind of message (its format text) is printed once per process,
-// with a note that repeats are not shown; the simulation is unchanged.
+// with a note that repeats are not shown. LCP failures are also counted per thread, for
+// DirectStepper to take such a step again.
 void reportOnce(int number, const char* format, va_list args) {
     ++messagesReceived;
     if (number == d_ERR_LCP) ++lcpFailures;
