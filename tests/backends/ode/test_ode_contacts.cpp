@@ -110,7 +110,7 @@ TEST(OdeContacts, SteadyStepsWithEventsAllocateNothing) {
 }
 
 // dWorldStep's Dantzig solver reports "LCP internal error" now and then on a 10-box stack (once
-// in 300 steps since such steps fall back to quickstep, ode_direct_step.hpp; 28 times in 10 s
+// in 600 steps since such steps fall back to quickstep, ode_direct_step.hpp; 28 times in 10 s
 // while the stack fell, before); ODE's own handler printed each. The backend prints each kind of
 // message once per process. Counted on stderr while 16 direct-solver stacks run 5 s, in two
 // worlds; ODE must have sent more than 10 messages meanwhile, or the case proves nothing.
