@@ -35,7 +35,7 @@ Shape blob(unsigned seed) {
     return convex(points);
 }
 
-std::vector<Manifold> run(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double speculative,
+std::vector<Manifold> collideWith(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double speculative,
                           CollideCache* cache = nullptr) {
     std::vector<Manifold> out;
     collide(a, xa, b, xb, speculative, out, cache);
@@ -57,13 +57,13 @@ void expectSame(const std::vector<Manifold>& with, const std::vector<Manifold>& 
     }
 }
 
-struct Pair {
+struct ShapePair {
     const char* name;
     Shape a, b;
     double reach;  // centre distance at which they about touch
 };
 
-std::vector<Pair> pairs() {
+std::vector<ShapePair> pairs() {
     const Shape cube = box(Vec3(0.5, 0.5, 0.5)), slab = box(Vec3(1.2, 0.2, 0.7)), hull = prism(12, 0.5, 0.5);
     return {{"box-box", cube, cube, 1.0},      {"slab-box", slab, cube, 0.8},  {"box-hull", cube, hull, 1.0},
             {"hull-box", hull, cube, 1.0},     {"hull-hull", hull, hull, 1.0}, {"blob-hull", blob(3), hull, 1.0},
@@ -74,7 +74,7 @@ TEST(CollideCache, NeverChangesTheResultAlongRandomMotions) {
     std::mt19937 rng(2024);
     std::uniform_real_distribution<double> u(-1, 1);
     auto randomAxis = [&] { return Vec3(u(rng), u(rng), u(rng)).normalized(); };
-    for (const Pair& pair : pairs()) {
+    for (const ShapePair& pair : pairs()) {
         SCOPED_TRACE(pair.name);
         int touching = 0, apart = 0;
         for (int trial = 0; trial < 60; ++trial) {
@@ -90,8 +90,8 @@ TEST(CollideCache, NeverChangesTheResultAlongRandomMotions) {
             const double step = trial % 4 < 2 ? 0.002 : 0.05, turn = trial % 4 < 2 ? 0.002 : 0.5;
             for (int k = 0; k < 30; ++k) {
                 const double speculative = 0.02 + 0.02 * (0.5 + 0.5 * u(rng));
-                const std::vector<Manifold> without = run(pair.a, xa, pair.b, xb, speculative);
-                expectSame(run(pair.a, xa, pair.b, xb, speculative, &cache), without);
+                const std::vector<Manifold> without = collideWith(pair.a, xa, pair.b, xb, speculative);
+                expectSame(collideWith(pair.a, xa, pair.b, xb, speculative, &cache), without);
                 (without.empty() ? apart : touching) += 1;
                 xa.position += step * Vec3(u(rng), u(rng), u(rng));
                 xa.orientation = (rotation(turn * u(rng), randomAxis()) * xa.orientation).normalized();
@@ -106,13 +106,13 @@ TEST(CollideCache, RemembersTheSeparatingAxisAndTheReferenceFace) {
     const Shape cube = box(Vec3(0.5, 0.5, 0.5)), hull = prism(12, 0.5, 0.5);
     CollideCache cache;
     // Side by side, 0.1 apart along x: a's face +x separates them.
-    EXPECT_TRUE(run(cube, at(Vec3::Zero()), cube, at(Vec3(1.1, 0, 0)), 0.02, &cache).empty());
+    EXPECT_TRUE(collideWith(cube, at(Vec3::Zero()), cube, at(Vec3(1.1, 0, 0)), 0.02, &cache).empty());
     EXPECT_TRUE(cache.separating);
     EXPECT_EQ(cache.axis, CollideCache::FaceOfA);
     EXPECT_EQ(cache.indexA, 0);
     // Hulls resting: the reference face is remembered, not as separating.
     CollideCache resting;
-    ASSERT_EQ(run(hull, at(Vec3(0.05, 0.99, 0)), hull, at(Vec3::Zero()), 0.02, &resting).size(), 1u);
+    ASSERT_EQ(collideWith(hull, at(Vec3(0.05, 0.99, 0)), hull, at(Vec3::Zero()), 0.02, &resting).size(), 1u);
     EXPECT_FALSE(resting.separating);
     EXPECT_NE(resting.axis, CollideCache::None);
 }
@@ -122,11 +122,11 @@ TEST(CollideCache, AStaleAxisGivesNoWrongContacts) {
     // which the remembered axis (still a's +x, now overlapped) must not hide.
     const Shape cube = box(Vec3(0.5, 0.5, 0.5));
     CollideCache cache;
-    ASSERT_TRUE(run(cube, at(Vec3::Zero()), cube, at(Vec3(1.1, 0, 0)), 0.02, &cache).empty());
+    ASSERT_TRUE(collideWith(cube, at(Vec3::Zero()), cube, at(Vec3(1.1, 0, 0)), 0.02, &cache).empty());
     ASSERT_TRUE(cache.separating);
     const Transform turned = at(Vec3(1.1, 0, 0), rotation(std::numbers::pi / 4, Vec3::UnitZ()));
-    const std::vector<Manifold> cached = run(cube, at(Vec3::Zero()), cube, turned, 0.02, &cache);
-    const std::vector<Manifold> fresh = run(cube, at(Vec3::Zero()), cube, turned, 0.02);
+    const std::vector<Manifold> cached = collideWith(cube, at(Vec3::Zero()), cube, turned, 0.02, &cache);
+    const std::vector<Manifold> fresh = collideWith(cube, at(Vec3::Zero()), cube, turned, 0.02);
     ASSERT_EQ(fresh.size(), 1u);
     expectSame(cached, fresh);
     EXPECT_NEAR(fresh[0].points[0].separation, 1.1 - 0.5 - 0.5 * std::numbers::sqrt2, 1e-9);
@@ -135,12 +135,12 @@ TEST(CollideCache, AStaleAxisGivesNoWrongContacts) {
     // The same with hulls, and with the pair moved so that another axis separates them.
     const Shape hull = prism(12, 0.5, 0.5);
     CollideCache hullCache;
-    ASSERT_TRUE(run(hull, at(Vec3::Zero()), hull, at(Vec3(0, 1.2, 0)), 0.02, &hullCache).empty());
+    ASSERT_TRUE(collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(0, 1.2, 0)), 0.02, &hullCache).empty());
     ASSERT_TRUE(hullCache.separating);
-    expectSame(run(hull, at(Vec3::Zero()), hull, at(Vec3(1.2, 0, 0)), 0.02, &hullCache),
-               run(hull, at(Vec3::Zero()), hull, at(Vec3(1.2, 0, 0)), 0.02));
-    expectSame(run(hull, at(Vec3::Zero()), hull, at(Vec3(0.3, 0.98, 0)), 0.02, &hullCache),
-               run(hull, at(Vec3::Zero()), hull, at(Vec3(0.3, 0.98, 0)), 0.02));
+    expectSame(collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(1.2, 0, 0)), 0.02, &hullCache),
+               collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(1.2, 0, 0)), 0.02));
+    expectSame(collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(0.3, 0.98, 0)), 0.02, &hullCache),
+               collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(0.3, 0.98, 0)), 0.02));
 }
 
 TEST(CollideCache, ACacheOfAnotherPairIsHarmless) {
@@ -150,11 +150,11 @@ TEST(CollideCache, ACacheOfAnotherPairIsHarmless) {
         for (const bool separating : {true, false})
             for (const int index : {-3, 7, 500}) {
                 CollideCache cache{axis, separating, index, index};
-                expectSame(run(cube, at(Vec3::Zero()), cube, at(Vec3(0.1, 0.99, 0)), 0.02, &cache),
-                           run(cube, at(Vec3::Zero()), cube, at(Vec3(0.1, 0.99, 0)), 0.02));
+                expectSame(collideWith(cube, at(Vec3::Zero()), cube, at(Vec3(0.1, 0.99, 0)), 0.02, &cache),
+                           collideWith(cube, at(Vec3::Zero()), cube, at(Vec3(0.1, 0.99, 0)), 0.02));
                 cache = {axis, separating, index, index};
-                expectSame(run(hull, at(Vec3::Zero()), hull, at(Vec3(0.1, 0.99, 0)), 0.02, &cache),
-                           run(hull, at(Vec3::Zero()), hull, at(Vec3(0.1, 0.99, 0)), 0.02));
+                expectSame(collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(0.1, 0.99, 0)), 0.02, &cache),
+                           collideWith(hull, at(Vec3::Zero()), hull, at(Vec3(0.1, 0.99, 0)), 0.02));
             }
 }
 
