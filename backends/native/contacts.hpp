@@ -36,6 +36,13 @@ struct ContactManifold {
     ContactPointState points[4];
     Vec3 frictionImpulse = Vec3::Zero();  // N s, world frame, at the friction centre (warm start)
     double twistImpulse = 0.0;            // N m s, about the normal (warm start)
+
+    /// The normal impulse its points carried over the last substep (N s): the load it bears.
+    double carriedImpulse() const {
+        double sum = 0.0;
+        for (int i = 0; i < pointCount; ++i) sum += points[i].normalImpulse;
+        return sum;
+    }
 };
 
 // The first 64 bytes hold what the narrow phase reads of every contact, most of which (in a

@@ -58,7 +58,7 @@ const std::vector<Field<WorldSettings>>& settingsFields() {
          .note = "effect names (`anyphys backends` lists them); `[]` means simulate nothing", .save = Save::WhenSet,
          .ownCode = true},
         with<S>({.key = "contactHertz", .path = "settings.contactHertz", .unit = "Hz", .value = 60.0,
-                 .check = Check::Positive, .note = "soft-contact stiffness (soft step); native caps it at a fifth of the substep rate. Small bodies need it stiffer: on native, ten-box stacks of 2 and 4 cm cubes fall at 60 Hz and stand at 90 Hz with the default 8 substeps (boxes moved under 3 mm). Native's joints keep their own stiffness"},
+                 .check = Check::Positive, .note = "soft-contact stiffness (soft step); native caps it at a fifth of the substep rate, and up to that cap stiffens a contact between moving bodies that carries more than their weight (a column's lower contacts), so ten-box stacks of 2 to 32 cm cubes stand within 3 mm at the defaults (2 cm cubes in a planar world need shorter steps). Native's joints keep their own stiffness"},
                 member(&S::contactHertz)),
         with<S>({.key = "contactDampingRatio", .path = "settings.contactDampingRatio", .unit = "1", .value = 10.0,
                  .check = Check::NonNegative, .note = "soft-contact damping ratio (10: heavily damped, no bounce from overlap)"},

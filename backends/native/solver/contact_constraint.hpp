@@ -78,9 +78,27 @@ struct Softness {
 };
 Softness makeSoftness(double hertz, double zeta, double h);
 
+/// Loaded contacts made stiffer (loadSoftness). A contact's spring is written for the mass of its
+/// two bodies, so in a column of N boxes the bottom contacts sag and yield N times as far as the
+/// top one: the column leans, and a tall stack of small boxes tipped over at 60 Hz.
+struct LoadStiffening {
+    double hertz = 0.0;         // the contacts' frequency between two moving bodies
+    double maxHertz = 0.0;      // the stiffness cap (StepSolver::solve)
+    double dampingRatio = 0.0;
+    double h = 0.0;             // s, substep
+    double gravity = 0.0;       // m/s^2, |g|: a carried mass is the impulse over g h; 0: off
+};
+
+/// The softness of a contact between two moving bodies (inverse masses invMassA, invMassB) whose
+/// points carried `impulse` (N s per substep: the warm start): `base` while that is no more than
+/// the weight of the pair; above it the frequency rises with the square root of the carried mass
+/// over the pair's, so that every contact of a column sags as far as the top one, up to the cap.
+Softness loadSoftness(const Softness& base, double impulse, double invMassA, double invMassB, const LoadStiffening& load);
+
 struct ContactPrepareParams {
     Softness dynamicSoftness;          // contacts between two moving bodies
     Softness staticSoftness;           // contacts with a static body: stiffer, so piles do not sink
+    LoadStiffening load;
     double speculativeDistance = 0.0;  // m: points farther than this weigh little in the friction centre
     double velocityTimeOffset = 0.0;   // s: where the integrator's velocity sits in time (restitution)
     double stepTime = 0.0;             // s: the whole step (an impact falls within it)
