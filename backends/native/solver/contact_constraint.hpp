@@ -78,7 +78,7 @@ struct Softness {
 };
 Softness makeSoftness(double hertz, double zeta, double h);
 
-/// Loaded contacts made stiffer (loadSoftness). A contact's spring is written for the mass of its
+/// Loaded contacts made stiffer (contactSoftness). A contact's spring is written for the mass of its
 /// two bodies, so in a column of N boxes the bottom contacts sag and yield N times as far as the
 /// top one: the column leans, and a tall stack of small boxes tipped over at 60 Hz.
 struct LoadStiffening {
@@ -89,12 +89,6 @@ struct LoadStiffening {
     double gravity = 0.0;       // m/s^2, |g|: a carried mass is the impulse over g h; 0: off
 };
 
-/// The softness of a contact between two moving bodies (inverse masses invMassA, invMassB) whose
-/// points carried `impulse` (N s per substep: the warm start): `base` while that is no more than
-/// the weight of the pair; above it the frequency rises with the square root of the carried mass
-/// over the pair's, so that every contact of a column sags as far as the top one, up to the cap.
-Softness loadSoftness(const Softness& base, double impulse, double invMassA, double invMassB, const LoadStiffening& load);
-
 struct ContactPrepareParams {
     Softness dynamicSoftness;          // contacts between two moving bodies
     Softness staticSoftness;           // contacts with a static body: stiffer, so piles do not sink
@@ -104,6 +98,14 @@ struct ContactPrepareParams {
     double stepTime = 0.0;             // s: the whole step (an impact falls within it)
     bool warmStart = true;
 };
+
+/// The softness of manifold m's contact: against a static body `staticSoftness`; between two moving
+/// bodies (inverse masses invMassA, invMassB) `dynamicSoftness` while its points carried no more
+/// than the pair's weight over the last substep (the warm start), and above it a frequency raised
+/// by the square root of the carried mass over the pair's, so that every contact of a column sags
+/// as far as the top one, up to the cap (LoadStiffening). Shared by the 3D and planar prepares.
+Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic, const ContactManifold& m, double invMassA,
+                         double invMassB);
 
 /// Fills `wc` from up to four lanes (`count` of them; the rest are padding with no effect).
 void prepareContacts(WideContact& wc, const ContactLane* lanes, int count, const SolverBody* bodies,

@@ -61,9 +61,7 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
     pc.friction[lane] = in.friction;
     pc.restitution[lane] = in.restitution;
     const bool againstStatic = a.invMass == 0.0 || b.invMass == 0.0;
-    const Softness soft = againstStatic ? params.staticSoftness
-                                        : loadSoftness(params.dynamicSoftness, params.warmStart ? m.carriedImpulse() : 0.0,
-                                                       a.invMass, b.invMass, params.load);  // as in 3D
+    const Softness soft = contactSoftness(params, againstStatic, m, a.invMass, b.invMass);
     pc.biasRate[lane] = soft.biasRate;
     pc.massScale[lane] = soft.massScale;
     pc.impulseScale[lane] = soft.impulseScale;

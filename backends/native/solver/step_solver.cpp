@@ -313,7 +313,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     prepareParams_.dynamicSoftness = makeSoftness(hertz, settings.contactDampingRatio, h_);
     prepareParams_.staticSoftness = makeSoftness(2.0 * hertz, settings.contactDampingRatio, h_);
     // Between moving bodies, contacts that carry more than their pair's weight stiffen, up to the
-    // same cap (loadSoftness): ten 2 cm cubes stood 184 mm off true at 60 Hz, 1.9 mm so.
+    // same cap (contactSoftness): ten 2 cm cubes stood 184 mm off true at 60 Hz, 1.9 mm so.
     prepareParams_.load = {hertz, maxHertz, settings.contactDampingRatio, h_,
                            effects.has(Effect::Gravity) ? settings.gravity.norm() : 0.0};
     prepareParams_.speculativeDistance = settings.speculativeDistance;

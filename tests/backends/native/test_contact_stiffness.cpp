@@ -60,16 +60,16 @@ TEST(NativeContactStiffness, PileDroppedAtFewSubstepsComesToRest) {
     }
 }
 
-// Largest sideways move of any box of a stack of `count` cubes of edge `size` on a box ground,
+// Largest sideways move of any box of a ten-box stack of cubes of edge `size` on a box ground,
 // over 10 s at 60 Hz, sleeping off, at `hertz` (3D, or in a planar world).
-double smallStackDrift(double size, double hertz, bool planar = false, int count = 10) {
+double smallStackDrift(double size, double hertz, bool planar = false) {
     WorldSettings settings = backendSettings("native");
     settings.contactHertz = hertz;
     settings.planar = planar;
     World world(settings);
     addStaticGround(world, {1, 0.5, 1});
     std::vector<Body> boxes;
-    for (int i = 0; i < count; ++i) {
+    for (int i = 0; i < 10; ++i) {
         BodyDef box = boxDef("box", Vec3::Constant(size / 2), {0, size / 2 + i * size, 0});
         box.allowSleep = false;
         boxes.push_back(world.createBody(box));
@@ -86,7 +86,7 @@ double smallStackDrift(double size, double hertz, bool planar = false, int count
 // boxes above, sagged and yielded N times as far as the top one, and ten small cubes tipped over at
 // the default 60 Hz: 179, 350 and 19.0 mm for 2, 4 and 8 cm cubes (3D; 32 cm: 16.8); 60.8 mm for
 // 8 cm cubes in a planar world (32 cm: 22.9). Contacts that carry more than their pair's weight now
-// stiffen, up to the cap (loadSoftness): 2.0, 2.8, 2.8 and 2.8 mm; 4.9 and 4.9 mm. Bound: an eighth
+// stiffen, up to the cap (contactSoftness): 2.0, 2.8, 2.8 and 2.8 mm; 4.9 and 4.9 mm. Bound: an eighth
 // of the edge; a fallen stack moves its boxes by many edges. What is left is a sway of a few
 // millimetres at the start, before the contacts carry their load, whatever the size: planar 4 cm
 // cubes sway 5.1 mm, just over their eighth (349 mm before), and planar 2 cm cubes still fall
