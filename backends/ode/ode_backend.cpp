@@ -72,6 +72,10 @@ Backend makeOdeBackend() {
     // Measured by the joint and assembly contract at the defaults (one 1/60 s step, quickstep 50
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
+        {"joints.spring_swing",
+         "an undamped 0.75 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): ODE steps the spring's "
+         "ERP / CFM row implicitly over the whole 1/60 s step (backward Euler), which damps it by itself"},
+        {"planar.joints.spring_swing", "as joints.spring_swing, in a planar world: 23 % of the swing kept"},
         {"joints.stiff_hinge_lever",
          "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) is at +0.016 rad, "
          "0.026 rad/s after 2 s (exact -9.8e-5 rad, at rest): quickstep's 50 iterations do not converge the spring's "
@@ -159,6 +163,8 @@ Backend makeOdeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"joints.spring_swing", 0.9},         // of the swing lost, measured 0.768 (it cannot pass 1)
+        {"planar.joints.spring_swing", 0.9},  // measured 0.768
         {"joints.stiff_hinge_lever", 16200},  // in multiples of its bounds, measured 8 104
         {"planar.joints.stiff_hinge_lever", 11900},  // measured 5 948
         {"joints.motor_lever", 2100},  // in multiples of its bounds, measured 1 041

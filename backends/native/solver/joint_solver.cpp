@@ -221,16 +221,36 @@ private:
         if (apart) row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
         locks_[lockCount_++] = {j, -motor.speed, slot, apart ? Row::MotorApart : Row::Motor, 0.0, most};
     }
-    // Implicit spring-damper toward C = 0. It joins the joint's block: solved alone, its row turns
-    // the body about its own centre, and at a long lever (a bob on a 1 m arm, 1 000 times its own
-    // inertia) Gauss-Seidel between it and the pin did not settle a stiff spring in 2 s (PGS
-    // diverged).
+    // Spring-damper toward C = 0. It joins the joint's block: solved alone, its row turns the body
+    // about its own centre, and at a long lever (a bob on a 1 m arm, 1 000 times its own inertia)
+    // Gauss-Seidel between it and the pin did not settle a stiff spring in 2 s (PGS diverged).
+    // The damping is implicit (on the velocity after the impulse). The stiffness is explicit
+    // where the substep resolves the spring's own frequency: its impulse is -h k C from the
+    // substep's start, kept through the relax pass, which is symplectic Euler and keeps an
+    // undamped spring's energy. An implicit stiffness damps by itself, as if with h k N s/m: an
+    // undamped 0.7 Hz slider spring kept 70 % of its swing after 10 s. A spring too stiff for
+    // the substep stays implicit, where explicit steps would diverge.
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
-        const double springDamping = spring.damping + p_.h * spring.stiffness;
+        const bool resolved = spring.stiffness * p_.h * p_.h * rowInverseMass(j) <= kExplicitSpring;
+        const double springDamping = spring.damping + (resolved ? 0.0 : p_.h * spring.stiffness);
+        if (resolved && (mode_ == Mode::Relax || !(springDamping > 0.0))) {
+            // The substep's stiffness impulse (undamped), or the solve pass's impulse kept.
+            const double total = mode_ == Mode::Relax ? joint_.impulse[slot] : -p_.h * spring.stiffness * C;
+            locks_[lockCount_++] = {j, total, slot, Row::SpringHeld};
+            return;
+        }
         if (!(springDamping > 0.0)) return;  // no spring: its impulse stays 0
         const double gamma = 1.0 / (p_.h * springDamping);
         if (!(gamma > 0.0)) return lock(slot, j, C);  // beyond double's range: rigid
         locks_[lockCount_++] = {j, C * p_.h * spring.stiffness * gamma, slot, Row::Spring, gamma};
+    }
+    // (omega h)^2 of a spring whose stiffness is stepped explicitly: at most 0.5, a quarter of
+    // symplectic Euler's bound of 4 (omega h = 2), so a body held by several such springs stays
+    // stable. omega uses the row's own inverse mass, which a long lever only lowers.
+    static constexpr double kExplicitSpring = 0.5;
+    double rowInverseMass(const Jacobian& j) const {
+        return j.linA.dot(a_.invMass.cwiseProduct(j.linA)) + j.angA.dot(a_.invI * j.angA) +
+               j.linB.dot(b_.invMass.cwiseProduct(j.linB)) + j.angB.dot(b_.invI * j.angB);
     }
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
@@ -260,6 +280,7 @@ private:
         Rigid,       // C = 0, in the block's softness
         Limit,       // unilateral: C >= 0, impulse >= 0
         Spring,      // Cdot + bias + gamma impulse = 0: its own softness
+        SpringHeld,  // an explicit spring's impulse, given (C holds the total); fixed in the block
         Motor,       // Cdot + bias = 0 (bias = -speed), impulse within +-most
         MotorApart,  // solved before the block (motorRow); fixed in it
     };
@@ -327,7 +348,10 @@ private:
         Column delta = Column::Zero(n);
         std::array<bool, kMaxLocks> fixed{};
         const double largest = K.diagonal().maxCoeff();
-        for (int i = 0; i < n; ++i) fixed[i] = locks_[i].row == Row::MotorApart || !(K(i, i) > 1e-12 * largest);
+        for (int i = 0; i < n; ++i) {
+            fixed[i] = locks_[i].row == Row::MotorApart || locks_[i].row == Row::SpringHeld || !(K(i, i) > 1e-12 * largest);
+            if (locks_[i].row == Row::SpringHeld && K(i, i) > 1e-12 * largest) delta[i] = locks_[i].C - acc[i];
+        }
         // A limit on the motor's axis would make the block singular beside it (one Jacobian, two
         // rigid rows). It starts released and joins only if the joint would pass it (below).
         int motor = -1, motorLimit = -1;
