@@ -77,7 +77,7 @@ void writeSpringRow(btTypedConstraint::btConstraintInfo2* info, int s, const btR
     }
     K = std::max(K, 0.0);
     const double h = in.h, k = in.stiffness, c = in.damping, hkc = h * k + c;
-    if (h * hkc * K <= 1.5) {
+    if (h * hkc * K * in.springsOnBusierBody <= 1.5) {
         // Soft: the force at the substep's start (semi-implicit Euler: a free spring keeps its
         // energy; stable while (omega h)^2 + 2 h c K < 4).
         writeImpulse(info, s, -h * (k * in.stretch + c * rate(a, b, row, 0)));

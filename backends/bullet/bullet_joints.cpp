@@ -116,6 +116,7 @@ void DistanceConstraint::getInfo2(btConstraintInfo2* info) {
                 in.damping = spring->damping;
                 in.h = 1.0 / static_cast<double>(fps);
                 in.softRows = softSpringRows;
+                in.springsOnBusierBody = springsOnBusierBody;
                 writeSpringRow(info, s, m_rbA, m_rbB, in);
                 break;
             }
@@ -224,6 +225,7 @@ void DecoupledConstraint::springRow(btConstraintInfo2* info, int innerRows, int 
     in.rigidCount = count;
     in.h = 1.0 / static_cast<double>(info->fps);
     in.softRows = softSpringRows;
+    in.springsOnBusierBody = springsOnBusierBody;
     writeSpringRow(info, row * info->rowskip, m_rbA, m_rbB, in);
 }
 
@@ -431,6 +433,11 @@ void BulletJointPeer::setLimits(const std::optional<JointLimits>& limits) {
     def_.limits = limits;
     applyLimits();
     wakeBodies();
+}
+
+void BulletJointPeer::setSpringsOnBusierBody(int count) {
+    decoupled_->springsOnBusierBody = count;
+    if (distance_ != nullptr) distance_->springsOnBusierBody = count;
 }
 
 void BulletJointPeer::setSpring(const std::optional<JointSpringSI>& spring) {

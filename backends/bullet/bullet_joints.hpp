@@ -43,6 +43,7 @@ public:
     std::optional<double> minLength, maxLength;
     std::optional<JointSpringSI> spring;
     bool softSpringRows = true;  ///< the solver honours a row's CFM (bullet_joint_spring.hpp)
+    int springsOnBusierBody = 1;  ///< set by the world every step (bullet_joint_spring.hpp)
 
 private:
     enum class Row { None, Rigid, Min, Max, Spring };
@@ -73,6 +74,7 @@ public:
 
     bool decouple = true;  ///< false: the inner constraint's rows as they are
     bool softSpringRows = true;  ///< the solver honours a row's CFM (bullet_joint_spring.hpp)
+    int springsOnBusierBody = 1;  ///< set by the world every step (bullet_joint_spring.hpp)
 
     /// The joint's axis (frame X of A): the offset of B's frame origin along it, or the angle of
     /// B about it (wrapped to (-pi, pi]).
@@ -133,6 +135,9 @@ public:
     /// The constraint in the Bullet world (the decoupling wrapper around the engine's own).
     btTypedConstraint& constraint() { return *decoupled_; }
     bool collideConnected() const { return def_.collideConnected; }
+    bool sprung() const { return def_.spring.has_value(); }
+    /// The most sprung joints on either of its bodies (BulletWorld counts them every step).
+    void setSpringsOnBusierBody(int count);
     /// Before the step's first substep.
     void beginStep();
     /// Before each substep of h seconds: clears Bullet's feedback.

@@ -271,12 +271,35 @@ void BulletWorld::setMaterialTable(const MaterialTable& table) {
     world_->setMaterials(&materials_);  // the points hold the old table's values
 }
 
+// A spring keeps its explicit force only while the springs of its busier body together stay
+// inside explicit stepping's stable range (bullet_joint_spring.hpp): each joint gets that count.
+void BulletWorld::countSpringsPerBody() {
+    sprungBodies_.clear();
+    for (BulletJointPeer* joint : joints_)
+        if (joint->sprung()) {
+            sprungBodies_.push_back(&joint->constraint().getRigidBodyA());
+            sprungBodies_.push_back(&joint->constraint().getRigidBodyB());
+        }
+    if (sprungBodies_.empty()) return;
+    std::sort(sprungBodies_.begin(), sprungBodies_.end(), std::less<const btRigidBody*>{});
+    const auto springsOn = [&](const btRigidBody& body) {
+        if (body.getInvMass() == 0) return 0;  // static or kinematic: nothing to destabilise
+        const auto [first, last] = std::equal_range(sprungBodies_.begin(), sprungBodies_.end(), &body, std::less<const btRigidBody*>{});
+        return static_cast<int>(last - first);
+    };
+    for (BulletJointPeer* joint : joints_)
+        if (joint->sprung())
+            joint->setSpringsOnBusierBody(
+                std::max({1, springsOn(joint->constraint().getRigidBodyA()), springsOn(joint->constraint().getRigidBodyB())}));
+}
+
 void BulletWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     // One internal Bullet step per substep, of exactly dt / substeps: the layer already takes
     // fixed steps, so Bullet's own accumulator must neither add nor drop a step.
     const int substeps = resolvedSubsteps(settings_);
     const double h = dt / substeps;
     const auto bh = static_cast<btScalar>(h);
+    countSpringsPerBody();
     for (BulletJointPeer* joint : joints_) joint->beginStep();
     earlierImpulses_.clear();
     for (int s = 0; s < substeps; ++s) {

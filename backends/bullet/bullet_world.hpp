@@ -74,6 +74,8 @@ public:
     void teleported(BulletBodyPeer& body);
 
 private:
+    /// Tells each sprung joint how many sprung joints its busier body has (before each step).
+    void countSpringsPerBody();
     /// A pair of collision objects, lower address first (one Bullet pair, however many manifolds).
     using ObjectPair = std::pair<const btCollisionObject*, const btCollisionObject*>;
     static ObjectPair pairOf(const btPersistentManifold& manifold);
@@ -120,6 +122,7 @@ private:
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
     std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
+    std::vector<const btRigidBody*> sprungBodies_;  // scratch of countSpringsPerBody: each sprung joint's bodies
     std::vector<const btPersistentManifold*> withPoints_;  // scratch of manifoldsWithPoints
     int jointIterations_ = 300;                // solver iterations of joint rows (backend option)
     bool decoupledJoints_ = true;              // DecoupledConstraint on (backend option)

@@ -92,7 +92,7 @@ class JointPass {
 public:
     JointPass(const JointConstraint& c, const SolverBody* bodies, const SolverState* states, const JointSolveParams& p,
               Mode mode)
-        : joint_(*c.joint), def_(c.joint->def), p_(p), mode_(mode),
+        : joint_(*c.joint), def_(c.joint->def), p_(p), mode_(mode), springsOnBusierBody_(c.springsOnBusierBody),
           a_(load(c.a, c.fixedA, bodies, states)), b_(load(c.b, c.fixedB, bodies, states)) {
         frameA_ = a_.q * def_.frameA.orientation;
         frameB_ = b_.q * def_.frameB.orientation;
@@ -231,7 +231,7 @@ private:
     // undamped 0.7 Hz slider spring kept 70 % of its swing after 10 s. A spring too stiff for
     // the substep stays implicit, where explicit steps would diverge.
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
-        const bool resolved = spring.stiffness * p_.h * p_.h * rowInverseMass(j) <= kExplicitSpring;
+        const bool resolved = spring.stiffness * p_.h * p_.h * rowInverseMass(j) * springsOnBusierBody_ <= kExplicitSpring;
         const double springDamping = spring.damping + (resolved ? 0.0 : p_.h * spring.stiffness);
         if (resolved && (mode_ == Mode::Relax || !(springDamping > 0.0))) {
             // The substep's stiffness impulse (undamped), or the solve pass's impulse kept.
@@ -244,9 +244,12 @@ private:
         if (!(gamma > 0.0)) return lock(slot, j, C);  // beyond double's range: rigid
         locks_[lockCount_++] = {j, C * p_.h * spring.stiffness * gamma, slot, Row::Spring, gamma};
     }
-    // (omega h)^2 of a spring whose stiffness is stepped explicitly: at most 0.5, a quarter of
-    // symplectic Euler's bound of 4 (omega h = 2), so a body held by several such springs stays
-    // stable. omega uses the row's own inverse mass, which a long lever only lowers.
+    // (omega h)^2 of a spring whose stiffness is stepped explicitly, times the count of springs on
+    // its busier body: at most 0.5. Explicit stepping is stable while h^2 times the largest
+    // eigenvalue of M^-1 K stays under 4; a body's springs together bound that by 1.5 times this
+    // sum (a row sum of M^-1/2 K M^-1/2), so 0.75 at most. Counted per spring alone, twelve
+    // springs on one light body diverged. omega uses the row's own inverse mass, which a long
+    // lever only lowers.
     static constexpr double kExplicitSpring = 0.5;
     double rowInverseMass(const Jacobian& j) const {
         return j.linA.dot(a_.invMass.cwiseProduct(j.linA)) + j.angA.dot(a_.invI * j.angA) +
@@ -532,6 +535,7 @@ private:
     const JointPeerDef& def_;
     const JointSolveParams& p_;
     Mode mode_;
+    int springsOnBusierBody_;
     Side a_, b_;
     Quat frameA_, frameB_;
     Vec3 rA_ = Vec3::Zero(), rB_ = Vec3::Zero(), d_ = Vec3::Zero();

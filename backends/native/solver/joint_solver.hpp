@@ -18,8 +18,8 @@
 //   distance  length: rigid, or min / max limits, or a spring (with optional min / max)
 //   wheel     2 sliding locks across the suspension, 2 rotation locks about the (steered) axle,
 //             suspension limit and spring, drive motor on the spin
-// Motors clamp their impulse to maxForce x substep; springs are implicit (exact for a linear
-// spring-damper under implicit Euler), stiffness and damping in SI.
+// Motors clamp their impulse to maxForce x substep. Springs damp implicitly; their stiffness is
+// explicit where the substep resolves the spring and implicit beyond (springRow); SI units.
 #include <cstdint>
 
 #include "joints.hpp"
@@ -33,6 +33,7 @@ struct JointConstraint {
     NativeJoint* joint = nullptr;
     std::int32_t a = kStaticBody, b = kStaticBody;  // solver bodies, or kStaticBody
     Transform fixedA, fixedB;  // pose of a side that is not a solver body (world: identity)
+    int springsOnBusierBody = 1;  // the most sprung joints on either body (at least 1)
 };
 
 struct JointSolveParams {

@@ -1,6 +1,7 @@
 #include "solver/step_solver.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 #include "anyphys/peers/gyroscopic.hpp"
@@ -184,6 +185,25 @@ void StepSolver::buildBody(std::uint32_t index, const NativeBody& nb, SolverBody
     }
 }
 
+// Springs step their stiffness explicitly only while the body's springs together stay well inside
+// explicit stepping's stable range, so each spring needs the count on its busiest body.
+void StepSolver::countSpringsPerBody() {
+    springsPerBody_.assign(bodies_.size(), 0);
+    const auto count = [&](std::int32_t body) {
+        if (body != kStaticBody && springsPerBody_[static_cast<std::size_t>(body)] < UINT16_MAX)
+            ++springsPerBody_[static_cast<std::size_t>(body)];
+    };
+    for (const JointConstraint& c : joints_)
+        if (c.joint->def.spring) {
+            count(c.a);
+            count(c.b);
+        }
+    for (JointConstraint& c : joints_) {
+        const auto on = [&](std::int32_t body) { return body == kStaticBody ? 0 : int(springsPerBody_[static_cast<std::size_t>(body)]); };
+        c.springsOnBusierBody = std::max(1, std::max(on(c.a), on(c.b)));
+    }
+}
+
 void StepSolver::buildConstraints() {
     for (ContactLane& lane : lanes_) {
         lane.bodyA = solverIndex_[static_cast<std::uint32_t>(lane.bodyA)];
@@ -204,6 +224,7 @@ void StepSolver::buildConstraints() {
         side(joint.bodyB, c.b, c.fixedB);
         joints_.push_back(c);
     }
+    countSpringsPerBody();
     const auto& colors = graph_.colors();
     const std::size_t colorCount = colors.size();
     colorFirstWide_.resize(colorCount);

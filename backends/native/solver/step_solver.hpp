@@ -94,6 +94,8 @@ private:
     int gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const;
     /// Writes solver poses and velocities back to the world's bodies.
     void finalizeBodies(int begin, int end);
+    /// Fills each joint's springsOnBusierBody.
+    void countSpringsPerBody();
     /// Solver-body forces from the user's callback at the current states.
     void applyForceCallback(int substep);
 
@@ -101,6 +103,7 @@ private:
     std::vector<ContactLane> lanes_;          // by contact order; bodies are world indices until solve
     std::vector<std::uint32_t> jointList_;    // joint slots with an awake dynamic body, in slot order
     std::vector<JointConstraint> joints_;
+    std::vector<std::uint16_t> springsPerBody_;  // per solver body: sprung joints on it (buildConstraints)
     std::vector<std::uint32_t> bodyOrder_;    // world index of each solver body
     std::vector<std::int32_t> solverIndex_;   // per world body: solver index or kStaticBody
     std::vector<SolverBody> bodies_;

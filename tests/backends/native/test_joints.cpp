@@ -155,9 +155,51 @@ TEST(NativeJoints, SliderSpringFrequency) {
         previous = x;
     }
     const double exact = 2.0 * std::numbers::pi * std::sqrt(m / k);
-    // Implicit Euler on the spring lengthens the period by O((omega h)^2) = 1e-4 here; 0.5 % bound.
+    // The substep resolves the spring, so its stiffness is explicit (symplectic Euler): the period
+    // changes by O((omega h)^2) = 1e-4 here; 0.5 % bound.
     EXPECT_NEAR((last - first) / (crossings - 1), exact, 0.005 * exact);
     EXPECT_NEAR(body->state().position.y(), 0.0, 1e-9);
+}
+
+// A spring stepped explicitly is stable while (omega h)^2 < 4, but a body's springs add up: twelve
+// distance springs on one 0.1 kg point, each at (omega h)^2 = 0.45 in the 1/480 s substep (alone:
+// explicit, its swing kept), diverged within two steps when each was judged alone. Counted per
+// body they are implicit, and the point stays within what its energy allows (v0 / omega).
+TEST(NativeJoints, SpringsSharingALightBodyStayStable) {
+    const double m = 0.1, h = 1.0 / 480.0, k = 0.45 * m / (h * h), v0 = 1.0;
+    for (const int springs : {1, 12}) {
+        auto worldPtr = jointWorld(Effect::Joints);
+        NativeWorld& world = *worldPtr;
+        auto body = pointMass(world, Vec3::Zero(), m, 1e-4);
+        std::vector<std::unique_ptr<JointPeer>> joints;
+        for (int i = 0; i < springs; ++i) {
+            JointPeerDef d;
+            d.type = JointType::Distance;
+            d.bodyB = body.get();
+            d.anchorA = Vec3((i % 2 ? 1.0 : -1.0) * (1.0 + 0.01 * i), 0, 0);
+            d.length = std::abs(d.anchorA.x());
+            d.spring = JointSpringSI{k, 0.0};
+            joints.push_back(world.createJoint(d));
+        }
+        body->setLinearVelocity({v0, 0, 0});
+        double widest = 0.0, widestLastSecond = 0.0, t = 0.0;
+        for (int step = 0; step < 600; ++step, t += 1.0 / 60.0) {
+            world.step(t, 1.0 / 60.0);
+            widest = std::max(widest, std::abs(body->state().position.x()));
+            if (step >= 540) widestLastSecond = std::max(widestLastSecond, std::abs(body->state().position.x()));
+        }
+        const double allowed = v0 / std::sqrt(springs * k / m);
+        std::cout << "[ MEASURED ] " << springs << " springs of (omega h)^2 = 0.45 on one point: widest swing " << widest
+                  << " m (energy allows " << allowed << ")\n";
+        ASSERT_TRUE(std::isfinite(widest));
+        // Symplectic Euler swings 1 / sqrt(1 - (omega h)^2 / 4) = 1.06 times as wide; an implicit
+        // spring less. One spring alone keeps its swing: an implicit one would have lost it all
+        // ((omega h)^2 / 2 of the energy per substep).
+        EXPECT_LE(widest, 1.1 * allowed);
+        if (springs == 1) {
+            EXPECT_GE(widestLastSecond, allowed);
+        }
+    }
 }
 
 // A motor spins a flywheel up at its maximum torque: w = tau t / I until the target speed,
