@@ -223,23 +223,31 @@ protected:
         EXPECT_NEAR(wheel.angularVelocity().z(), target, 0.01 * target);  // positive speed: +axis
     }
 
-    void SliderSpringFrequencyCase() {
-        ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
-        ANYPHYS_REQUIRE(hasParameter("joint.slider.spring"), "joint.slider.spring");
-        World world(jointSettings(false));
-        const double k = 40.0, m = 2.0;
+    // A 2 kg box on a slider along X held by an undamped 40 N/m spring, started through its rest
+    // position at 0.5 m/s (in a world without gravity): x = (v0 / omega) sin(omega t).
+    static constexpr double kSpringK = 40.0, kSpringMass = 2.0, kSpringV0 = 0.5;
+    // The caller first requires the slider joint and its spring.
+    std::pair<Body, Joint> springOnSlider(World& world) const {
         BodyDef bd;
         bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
-        bd.mass = m;
+        bd.mass = kSpringMass;
         bd.allowSleep = false;
-        bd.linearVelocity = Vec3(0.5, 0, 0);
+        bd.linearVelocity = Vec3(kSpringV0, 0, 0);
         Body body = world.createBody(bd);
         JointDef d;
         d.type = JointType::Slider;
         d.bodyB = body;
         d.axis = Vec3::UnitX();
-        d.spring = JointSpring{k, 0.0};
-        Joint joint = world.createJoint(d);
+        d.spring = JointSpring{kSpringK, 0.0};
+        return {body, world.createJoint(d)};
+    }
+
+    void SliderSpringFrequencyCase() {
+        ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
+        ANYPHYS_REQUIRE(hasParameter("joint.slider.spring"), "joint.slider.spring");
+        World world(jointSettings(false));
+        const auto [body, joint] = springOnSlider(world);
+        const double k = kSpringK, m = kSpringMass;
         double previous = 0.0, first = -1, last = -1, offAxis = 0.0;
         int crossings = 0;
         const double dt = world.settings().timeStep;
@@ -272,19 +280,8 @@ protected:
         ANYPHYS_REQUIRE(hasJoint("slider"), "joint type slider");
         ANYPHYS_REQUIRE(hasParameter("joint.slider.spring"), "joint.slider.spring");
         World world(jointSettings(false));
-        const double k = 40.0, m = 2.0, v0 = 0.5;
-        BodyDef bd;
-        bd.shape = ShapeDef::box(Vec3(0.1, 0.1, 0.1));
-        bd.mass = m;
-        bd.allowSleep = false;
-        bd.linearVelocity = Vec3(v0, 0, 0);
-        Body body = world.createBody(bd);
-        JointDef d;
-        d.type = JointType::Slider;
-        d.bodyB = body;
-        d.axis = Vec3::UnitX();
-        d.spring = JointSpring{k, 0.0};
-        Joint joint = world.createJoint(d);
+        const auto [body, joint] = springOnSlider(world);
+        const double k = kSpringK, m = kSpringMass, v0 = kSpringV0;
         const double period = 2.0 * kPi * std::sqrt(m / k), exact = v0 / std::sqrt(k / m);
         double last = 0.0;
         while (world.time() < 10.0) {
