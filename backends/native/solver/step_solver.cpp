@@ -1,8 +1,8 @@
 #include "solver/step_solver.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 
 #include "anyphys/peers/gyroscopic.hpp"
 #include "anyphys/task_system.hpp"
@@ -188,13 +188,15 @@ void StepSolver::buildBody(std::uint32_t index, const NativeBody& nb, SolverBody
 // Springs step their stiffness explicitly only while the body's springs together stay well inside
 // explicit stepping's stable range, so each spring needs the count on its busiest body.
 void StepSolver::countSpringsPerBody() {
+    const auto sprung = [](const JointConstraint& c) { return c.joint->def.spring.has_value(); };
+    if (std::none_of(joints_.begin(), joints_.end(), sprung)) return;  // each keeps its count of 1
     springsPerBody_.assign(bodies_.size(), 0);
     const auto count = [&](std::int32_t body) {
         if (body != kStaticBody && springsPerBody_[static_cast<std::size_t>(body)] < UINT16_MAX)
             ++springsPerBody_[static_cast<std::size_t>(body)];
     };
     for (const JointConstraint& c : joints_)
-        if (c.joint->def.spring) {
+        if (sprung(c)) {
             count(c.a);
             count(c.b);
         }
