@@ -71,7 +71,7 @@ Backend makeBox2dBackend() {
          "speed at worst (1.90 rad after 2 s, exact 2): 8 velocity iterations do not carry the motor's torque through "
          "the pin at a lever 1 000 times the bob's own inertia"},
         {"planar.joints.spring_swing",
-         "an undamped 0.75 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): Box2D 2.4's soft "
+         "an undamped 0.7 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): Box2D 2.4's soft "
          "spring (the weld that stands in for the slider's) is implicit over the whole 1/60 s step, which damps it by itself"},
         {"planar.joints.stiff_hinge_lever",
          "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) winds up and spins at "

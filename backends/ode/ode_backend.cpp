@@ -73,7 +73,7 @@ Backend makeOdeBackend() {
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
         {"joints.spring_swing",
-         "an undamped 0.75 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): ODE steps the spring's "
+         "an undamped 0.7 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): ODE steps the spring's "
          "ERP / CFM row implicitly over the whole 1/60 s step (backward Euler), which damps it by itself"},
         {"planar.joints.spring_swing", "as joints.spring_swing, in a planar world: 23 % of the swing kept"},
         {"joints.stiff_hinge_lever",
