@@ -231,7 +231,7 @@ private:
     // undamped 0.7 Hz slider spring kept 70 % of its swing after 10 s. A spring too stiff for
     // the substep stays implicit, where explicit steps would diverge.
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
-        const bool resolved = spring.stiffness * p_.h * p_.h * rowInverseMass(j) * springsOnBusierBody_ <= kExplicitSpring;
+        const bool resolved = spring.stiffness * p_.h * p_.h * inverseMass(j, a_, b_) * springsOnBusierBody_ <= kExplicitSpring;
         const double springDamping = spring.damping + (resolved ? 0.0 : p_.h * spring.stiffness);
         if (resolved && (mode_ == Mode::Relax || !(springDamping > 0.0))) {
             // The substep's stiffness impulse (undamped), or the solve pass's impulse kept.
@@ -251,10 +251,6 @@ private:
     // springs on one light body diverged. omega uses the row's own inverse mass, which a long
     // lever only lowers.
     static constexpr double kExplicitSpring = 0.5;
-    double rowInverseMass(const Jacobian& j) const {
-        return j.linA.dot(a_.invMass.cwiseProduct(j.linA)) + j.angA.dot(a_.invI * j.angA) +
-               j.linB.dot(b_.invMass.cwiseProduct(j.linB)) + j.angB.dot(b_.invI * j.angB);
-    }
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
