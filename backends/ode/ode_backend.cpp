@@ -72,10 +72,6 @@ Backend makeOdeBackend() {
     // Measured by the joint and assembly contract at the defaults (one 1/60 s step, quickstep 50
     // iterations); tests/contract/test_joints.cpp, test_assemblies.cpp.
     caps.knownDeviations = {
-        {"joints.spring_swing",
-         "an undamped 0.7 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): ODE steps the spring's "
-         "ERP / CFM row implicitly over the whole 1/60 s step (backward Euler), which damps it by itself"},
-        {"planar.joints.spring_swing", "as joints.spring_swing, in a planar world: 23 % of the swing kept"},
         {"joints.stiff_hinge_lever",
          "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) is at +0.016 rad, "
          "0.026 rad/s after 2 s (exact -9.8e-5 rad, at rest): quickstep's 50 iterations do not converge the spring's "
@@ -117,10 +113,6 @@ Backend makeOdeBackend() {
          "as joints.double_pendulum_energy_slow, in a planar world (48 %)"},
         {"planar.joints.double_pendulum_energy_fast",
          "as joints.double_pendulum_energy_fast, in a planar world (46 %)"},
-        {"joints.wheel_travel",
-         "released at its unloaded length, a wheel on a 200 N/m suspension drops 0.174 m, not 2 m g / k = 0.196 m: the suspension's ERP / CFM spring is implicit at one 1/60 s step (w h = 0.17) and drains the bounce"},
-        {"planar.joints.wheel_travel",
-         "as joints.wheel_travel: 0.174 m instead of 0.196 m"},
         {"joints.chain_gap",
          "a 40-link ball chain of 10 cm links released horizontal comes apart at one 1/60 s step (gaps of metres after about a second, both solvers): the whipping links turn about 1 rad per step, beyond what one linearised step holds; substeps hold it"},
         {"joints.chain_gap_heavy",
@@ -163,8 +155,6 @@ Backend makeOdeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"joints.spring_swing", 0.9},         // of the swing lost, measured 0.768 (it cannot pass 1)
-        {"planar.joints.spring_swing", 0.9},  // measured 0.768
         {"joints.stiff_hinge_lever", 16200},  // in multiples of its bounds, measured 8 104
         {"planar.joints.stiff_hinge_lever", 11900},  // measured 5 948
         {"joints.motor_lever", 2100},  // in multiples of its bounds, measured 1 041
@@ -227,7 +217,6 @@ Backend makeOdeBackend() {
         {"joints.double_pendulum_fast", 0.0418},
         {"joints.double_pendulum_slow", 0.0414},
         {"joints.hinge_limit", 2.3},  // in multiples of its bounds
-        {"joints.wheel_travel", 0.229},
         {"joints.wide_pendulum_energy", 0.192},
         {"planar.joints.chain_gap", 255},  // torn: 5x the catalogue chain_40_planar (51 m), the larger of its two measures
         {"planar.joints.chain_gap.direct", 88.9},  // torn: 5x, the figure depends on when it tore
@@ -237,7 +226,6 @@ Backend makeOdeBackend() {
         {"planar.joints.double_pendulum_energy_slow", 0.963},
         {"planar.joints.double_pendulum_fast", 0.0365},
         {"planar.joints.double_pendulum_slow", 0.0381},
-        {"planar.joints.wheel_travel", 0.229},
         {"planar.joints.wide_pendulum_energy", 0.217},
         {"assemblies.ragdoll_gap", 0.45},
         {"assemblies.ragdoll_rest", 0.544},

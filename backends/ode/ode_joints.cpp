@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "ode_joint_spring.hpp"
 #include "ode_math.hpp"
 #include "ode_tuning.hpp"
 #include "ode_world.hpp"
@@ -414,6 +415,15 @@ void OdeJoint::beforeOdeStep(double h) {
     const Vec3 x = fa.orientation * Vec3::UnitX();
     double erp = 0.0, cfm = 0.0;
     const bool spring = def_.spring && springRow(*def_.spring, h, erp, cfm);
+    springPush_ = SpringPush{};
+    // A soft spring's stiffness becomes a force of this ODE step; its row keeps the damping.
+    const auto soften = [&](const SpringLine& line, double inverseMass) {
+        const double k = def_.spring->stiffness;
+        if (!springStepsExplicitly(k, h, inverseMass, springsOnBusierBody)) return;
+        springPush_ = pushSpring(line, k, a_, b_);
+        erp = 0.0;
+        cfm = def_.spring->damping > 0.0 ? 1.0 / def_.spring->damping : kFreeCfm;
+    };
     switch (def_.type) {
         case JointType::Hinge: {
             const double angle = hingeAngle(fa, fb);
@@ -447,6 +457,7 @@ void OdeJoint::beforeOdeStep(double h) {
                 }
             }
             if (spring) {
+                soften({.axis = x, .angular = true, .stretch = angle}, hingeInverseInertia(x, fb.position, a_, b_));
                 // A motor row whose target speed closes ERP of the error this step, softened by CFM.
                 dJointSetAMotorParam(amotor_, group(kSpringAxis) + dParamVel, -erp / h * angle);
                 dJointSetAMotorParam(amotor_, group(kSpringAxis) + dParamCFM, cfm);
@@ -463,6 +474,9 @@ void OdeJoint::beforeOdeStep(double h) {
                 addStopRow(fb.position, x, offset - def_.limits->lower, h);
             }
             if (spring) {
+                // The LMotor's row moves the centres (no torque).
+                const SpringLine line{.axis = x, .atA = stateA().position, .atB = b_->state().position, .stretch = offset};
+                soften(line, inverseMassAlong(line, a_, b_));
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamVel, -erp / h * offset);
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamCFM, cfm);
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamFMax, dInfinity);
@@ -471,6 +485,12 @@ void OdeJoint::beforeOdeStep(double h) {
         }
         case JointType::Distance:
             if (spring) {
+                const Vec3 pa = anchorAWorld(), pb = anchorBWorld();
+                const double length = (pb - pa).norm();
+                if (length > 1e-9) {  // else no line to push along: the row alone
+                    const SpringLine line{.axis = (pb - pa) / length, .atA = pa, .atB = pb, .stretch = length - def_.length};
+                    soften(line, inverseMassAlong(line, a_, b_));
+                }
                 dJointSetDBallParam(main_, dParamERP, erp);
                 dJointSetDBallParam(main_, dParamCFM, cfm);
             }
@@ -503,15 +523,17 @@ void OdeJoint::beforeOdeStep(double h) {
             }
             break;
         }
-        case JointType::Wheel:
+        case JointType::Wheel: {
+            // Travel stops: the same one-sided rows as a rope's, along the suspension axis at B's
+            // anchor (where the suspension acts on both bodies).
+            const double travel = (fb.position - fa.position).dot(x);
             if (def_.limits) {
-                // Travel stops: the same one-sided rows as a rope's, along the suspension axis at
-                // B's anchor (where the suspension acts on both bodies).
-                const double travel = (fb.position - fa.position).dot(x);
                 addStopRow(fb.position, -x, def_.limits->upper - travel, h);
                 addStopRow(fb.position, x, travel - def_.limits->lower, h);
             }
             if (spring) {
+                const SpringLine line{.axis = x, .atA = fb.position, .atB = fb.position, .stretch = travel};
+                soften(line, inverseMassAlong(line, a_, b_));
                 dJointSetHinge2Param(main_, dParamSuspensionERP, erp);
                 dJointSetHinge2Param(main_, dParamSuspensionCFM, cfm);
             } else {
@@ -519,6 +541,7 @@ void OdeJoint::beforeOdeStep(double h) {
                 dJointSetHinge2Param(main_, dParamSuspensionCFM, kFreeCfm);
             }
             break;
+        }
         case JointType::Fixed:
         case JointType::Ball:
             break;
@@ -597,6 +620,8 @@ void OdeJoint::afterOdeStep() {
     }
     if (!awake || !enabled_) return;
     ++stepped_;
+    sumForce_ += springPush_.force;
+    sumTorque_ += springPush_.torque;
     for (std::size_t i = 0; i < partCount_; ++i) {
         const dJointFeedback& f = parts_[i].feedback;
         sumForce_ += parts_[i].bIsBody1 ? toVec3(f.f1) : toVec3(f.f2);

@@ -17,7 +17,8 @@
 // Springs are ODE constraint rows softened with ERP = h k / (h k + c), CFM = 1 / (h k + c)
 // (ODE manual, "Joint error and the ERP"), recomputed every ODE step for its length h: an
 // implicit spring-damper, stable at any stiffness. Where the row is a motor row (AMotor, LMotor)
-// its target speed carries the position error: vel = -ERP / h x.
+// its target speed carries the position error: vel = -ERP / h x. A soft spring's stiffness is a
+// force instead and its row only the damper (ode_joint_spring.hpp), so it keeps its swing.
 // Angles, offsets and their rates are measured here from the bodies' poses, never read from ODE,
 // so every backend reports the same numbers; the user-mode AMotor rows are fed those angles.
 // Stops (hinge limits, cone swing and twist, slider and wheel travel, distance range) are
@@ -33,6 +34,7 @@
 
 #include "anyphys/peers/joint_peer.hpp"
 #include "ode_body.hpp"
+#include "ode_joint_spring.hpp"
 
 namespace anyphys::ode {
 
@@ -72,7 +74,10 @@ public:
     double pairMass() const;
     /// ODE gives the type's main rows no CFM of their own: they take the world's (slider, wheel).
     bool mainRowsTakeTheWorldsCfm() const { return def_.type == JointType::Slider || def_.type == JointType::Wheel; }
+    /// Simulated with a spring.
+    bool sprung() const { return def_.spring.has_value() && enabled_; }
     std::size_t slot = 0;  // index in the world's joint list (kept by the world)
+    int springsOnBusierBody = 1;  // sprung joints on the busier of A and B (kept by the world)
 
 private:
     struct Part {
@@ -128,6 +133,7 @@ private:
     double position_ = 0.0, speed_ = 0.0;
     Vec3 reactionForce_ = Vec3::Zero(), reactionTorque_ = Vec3::Zero();
     Vec3 sumForce_ = Vec3::Zero(), sumTorque_ = Vec3::Zero();  // on B (about its centre), this step
+    SpringPush springPush_;  // the explicit spring's force on B, this ODE step
     int stepped_ = 0;  // ODE steps of this anyphys step that simulated the joint (awake, enabled)
 };
 

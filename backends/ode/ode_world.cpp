@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "anyphys/error.hpp"
 #include "anyphys/peers/resolved_settings.hpp"
@@ -183,6 +184,7 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
         const double worldCfm = pairCfm(cfm_, heaviest);
         if (worldCfm != dWorldGetCFM(world_)) dWorldSetCFM(world_, worldCfm);
     }
+    if (joints) countSpringsPerBody();
     for (int s = 0; s < substeps; ++s) {
         if (contacts) collide();
         if (joints)
@@ -220,6 +222,26 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
     for (OdeJoint* j : userJoints_) j->finishStep(dt, joints ? substeps : 1);
     randomSeed_ = dRandGetSeed();
     dRandSetSeed(outsideSeed);
+}
+
+void OdeWorld::countSpringsPerBody() {
+    // Springs on one body add up: each soft alone, several together can be too stiff to step
+    // explicitly (ode_joint_spring.hpp).
+    sprungBodies_.clear();
+    for (const OdeJoint* joint : userJoints_)
+        if (joint->sprung()) {
+            sprungBodies_.push_back(joint->bodyA());
+            sprungBodies_.push_back(joint->bodyB());
+        }
+    if (sprungBodies_.empty()) return;
+    std::sort(sprungBodies_.begin(), sprungBodies_.end(), std::less<const OdeBody*>{});
+    const auto springsOn = [&](const OdeBody* body) {
+        if (!body || !body->isDynamic()) return 0;  // the world, static: nothing to destabilise
+        const auto [first, last] = std::equal_range(sprungBodies_.begin(), sprungBodies_.end(), body, std::less<const OdeBody*>{});
+        return static_cast<int>(last - first);
+    };
+    for (OdeJoint* joint : userJoints_)
+        if (joint->sprung()) joint->springsOnBusierBody = std::max({1, springsOn(joint->bodyA()), springsOn(joint->bodyB())});
 }
 
 void* OdeWorld::nativeObject(const std::type_info& pointerType) {

@@ -89,6 +89,8 @@ private:
     bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
     void applyDampingStep(double h);
     double odeStep() const;  // s, the length of one ODE step
+    /// Gives each sprung joint the count of sprung joints on the busier of its bodies.
+    void countSpringsPerBody();
 
     WorldSettings settings_;
     Effects effects_;
@@ -103,6 +105,7 @@ private:
 
     std::vector<OdeBody*> bodies_;
     std::vector<OdeJoint*> userJoints_;
+    std::vector<const OdeBody*> sprungBodies_;  // countSpringsPerBody: each sprung joint's bodies, sorted
     // Body pairs joined by joints with collideConnected false, and how many such joints each has.
     std::map<std::pair<const OdeBody*, const OdeBody*>, int> excludedPairs_;
     std::vector<OdeBody*> forced_;         // bodies with held forces this step
