@@ -52,7 +52,8 @@ Backend makeBox2dBackend() {
                        "body.allowSleep", "body.isAwake", "body.shape.shapes.material", "body.shape.shapes.isTrigger",
                        "body.shape.shapes.layer", "body.shape.shapes.mask"};
     // Hinge and slider springs are Box2D's soft weld and wheel joints beside the revolute and
-    // prismatic ones (which have none); wheel and distance springs are their joints' own.
+    // prismatic ones (which have none); wheel and distance springs are their joints' own. A soft
+    // spring's stiffness is applied explicitly, its damping by Box2D (box2d_joints.hpp).
     // Reactions are Box2D's joint impulses summed over the substeps, so the layer can break
     // joints by them. Not declared: wheel steering (no planar meaning), cone (no cone type).
     for (const char* field : {"limits", "motor", "spring"}) {
@@ -70,9 +71,6 @@ Backend makeBox2dBackend() {
          "a 1 000 N m hinge motor at 1 rad/s turning a 1 kg point-like bob on a 1 m arm under gravity is 2.0 rad/s off its "
          "speed at worst (1.90 rad after 2 s, exact 2): 8 velocity iterations do not carry the motor's torque through "
          "the pin at a lever 1 000 times the bob's own inertia"},
-        {"planar.joints.spring_swing",
-         "an undamped 0.7 Hz slider spring keeps 23 % of its swing after 10 s (bound: within 2 %): Box2D 2.4's soft "
-         "spring (the weld that stands in for the slider's) is implicit over the whole 1/60 s step, which damps it by itself"},
         {"planar.joints.stiff_hinge_lever",
          "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) winds up and spins at "
          "Box2D's cap of 0.5 pi rad per step (94 rad/s): the soft weld that stands in for the hinge spring (Box2D 2.4's "
@@ -84,9 +82,6 @@ Backend makeBox2dBackend() {
          "a point-like bob on a 1 m arm (m L^2 / I = 250) released horizontal passes a -0.5 rad hinge limit by 0.32 rad "
          "and rests 0.025 rad past it: Box2D solves the limit apart from the anchor, and 8 velocity iterations do not "
          "converge at that lever (0.06 rad past with 30 iterations); a uniform rod overshoots 0.005 rad"},
-        {"planar.joints.wheel_travel",
-         "released at its unloaded length, a wheel on a 200 N/m suspension drops 0.174 m, not 2 m g / k = 0.196 m: "
-         "Box2D's implicit soft spring at one 60 Hz step (w h = 0.17) drains the bounce"},
         {"planar.joints.chain_gap",
          "a 40-link ball chain (10x end mass) released horizontal tears apart at the defaults (1 substep x 8 "
          "iterations: gaps of metres after 1.3 s); it holds within 7.5 mm at 4 substeps and 22 mm at 30 iterations"},
@@ -157,7 +152,6 @@ Backend makeBox2dBackend() {
          "joints of a planar pile of 10 ragdolls open by up to 87 cm at the defaults (as planar.assemblies.ragdoll_gap)"},
     });
     caps.deviationCeilings.insert({
-        {"planar.joints.spring_swing", 0.9},  // of the swing lost, measured 0.768 (it cannot pass 1)
         {"planar.joints.stiff_hinge_lever", 6.9e7},  // in multiples of its bounds, measured 3.46e7 (spinning)
         {"planar.joints.motor_lever", 400},  // in multiples of its bounds, measured 202
         {"planar.contacts.overhang_stands", 3.0},  // m, measured 1.81 (fallen)
@@ -169,7 +163,6 @@ Backend makeBox2dBackend() {
         {"planar.joints.double_pendulum_energy_fast", 0.254},
         {"planar.joints.hinge_limit", 12.7},  // in multiples of its bounds
         {"planar.joints.pendulum_energy", 0.394},
-        {"planar.joints.wheel_travel", 0.229},
         {"planar.joints.wide_pendulum_energy", 1.68},
         {"planar.joints.wide_pendulum_period", 0.198},
         {"planar.assemblies.ragdoll_gap", 0.744},

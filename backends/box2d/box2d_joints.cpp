@@ -23,6 +23,44 @@ bool inPlane(const Vec3& v) { return std::abs(v.z()) <= kAxisTolerance * v.norm(
 // moves nothing in a lifetime) so its damping acts.
 float springStiffness(const JointSpringSI& s) { return std::max(static_cast<float>(s.stiffness), 1e-20f); }
 
+// A soft spring (its stiffness applied here, explicitly) while k h^2 K times the sprung joints on
+// the busier body stays under this: the rule of the native and ODE joints, well inside symplectic
+// Euler's stable range (omega h)^2 < 4 (its swing's extremes are then at most 7 % wide), and
+// shared by the springs of one body (several soft springs on one light body diverge together).
+// The damping stays Box2D's, implicit, so it does not enter the test.
+constexpr double kExplicitSpringLimit = 0.5;
+
+// A Box2D body's inverse mass and inverse moment about its centre (0: static, kinematic, or a
+// fixed rotation). b2Body::GetInertia is about the body origin.
+double inverseMass(const b2Body& b) { return b.GetType() == b2_dynamicBody && b.GetMass() > 0.0f ? 1.0 / b.GetMass() : 0.0; }
+double inverseInertia(const b2Body& b) {
+    if (b.GetType() != b2_dynamicBody) return 0.0;
+    const b2Vec2 c = b.GetLocalCenter();
+    const double central = static_cast<double>(b.GetInertia()) - static_cast<double>(b.GetMass()) * b2Dot(c, c);
+    return central > 0.0 ? 1.0 / central : 0.0;
+}
+
+// A hinge's inverse moment with its pin acting: the Schur complement K_ss - K_sp K_pp^-1 K_ps of
+// the spring's row (wB - wA) against the pin's two point rows at `pin`. A body on an arm turns
+// about the pin, far heavier than about its centre (a box on a 1 m arm: 150 times).
+double pinnedInverseInertia(const b2Body& a, const b2Body& b, const b2Vec2& pin) {
+    const double ma = inverseMass(a), mb = inverseMass(b), ia = inverseInertia(a), ib = inverseInertia(b);
+    const b2Vec2 ra = pin - a.GetWorldCenter(), rb = pin - b.GetWorldCenter();
+    // Each point row's angular coefficients: B's r x e_i, A's -(r x e_i).
+    const double armB[2] = {-rb.y, rb.x}, armA[2] = {-ra.y, ra.x};
+    double ksp[2], kpp[2][2];
+    for (int i = 0; i < 2; ++i) {
+        ksp[i] = ib * armB[i] + ia * armA[i];
+        for (int j = 0; j < 2; ++j) kpp[i][j] = (i == j ? ma + mb : 0.0) + ib * armB[i] * armB[j] + ia * armA[i] * armA[j];
+    }
+    const double kss = ia + ib;
+    const double det = kpp[0][0] * kpp[1][1] - kpp[0][1] * kpp[1][0];
+    if (!(det > 1e-12 * (kpp[0][0] * kpp[1][1]))) return kss;  // the pin holds nothing that moves
+    const double x0 = (kpp[1][1] * ksp[0] - kpp[0][1] * ksp[1]) / det;
+    const double x1 = (kpp[0][0] * ksp[1] - kpp[1][0] * ksp[0]) / det;
+    return std::clamp(kss - (ksp[0] * x0 + ksp[1] * x1), 0.0, kss);
+}
+
 // Box2D's distance range for the peer's definition: a rigid rod without minLength / maxLength
 // (soft with a spring, free beyond the spring's pull), else the range (Box2D clamps the lower
 // end to b2_linearSlop).
@@ -104,6 +142,7 @@ b2Body* Box2dJoint::bodyA() const { return a_ ? a_->b2() : ground_; }
 
 void Box2dJoint::enable(b2World& world, bool on) {
     if (on == (joint_ != nullptr)) return;
+    explicitSpring_ = false;  // a new Box2D joint holds the whole spring until the step chooses
     if (!on) {
         if (spring_) world.DestroyJoint(spring_);
         spring_ = nullptr;
@@ -216,7 +255,8 @@ void Box2dJoint::enable(b2World& world, bool on) {
 // revolute joint holds anyway), and its wheel joint is one along an axis (the line held, what
 // the prismatic joint holds anyway). So a sprung hinge or slider is two Box2D joints on the same
 // anchors: the springs are solved in Box2D's solver, implicitly (soft constraints), with gravity
-// and contacts, like its own wheel and distance springs.
+// and contacts, like its own wheel and distance springs; a soft one keeps only its damping there
+// and its stiffness is applied explicitly (beginStep, beforeSubstep).
 b2Joint* Box2dJoint::makeSpring(b2World& world) const {
     if (def_.type == JointType::Slider) {
         b2WheelJointDef jd;
@@ -394,6 +434,7 @@ void Box2dJoint::applyLimits() {
 
 void Box2dJoint::applySpring() {
     if (!joint_) return;
+    explicitSpring_ = false;  // Box2D holds the whole new spring until the next step chooses
     const float k = def_.spring ? springStiffness(*def_.spring) : 0.0f;
     const float c = def_.spring ? static_cast<float>(def_.spring->damping) : 0.0f;
     if (springJoint()) {  // hinge, slider: the spring's own joint comes and goes with it
@@ -430,6 +471,127 @@ void Box2dJoint::applySpring() {
 }
 
 // ---- the step ----------------------------------------------------------------------------
+
+bool Box2dJoint::sprung() const {
+    if (!joint_ || !def_.spring) return false;
+    switch (def_.type) {
+        case JointType::Hinge:
+        case JointType::Ball:
+        case JointType::Slider:
+        case JointType::Wheel: return true;
+        case JointType::Distance: {  // a closed range is a rod: Box2D leaves the spring out
+            float lower = 0.0f, upper = 0.0f;
+            distanceRange(def_, lower, upper);
+            return std::max(lower, b2_linearSlop) < upper;
+        }
+        case JointType::Fixed:
+        case JointType::Cone: break;
+    }
+    return false;
+}
+
+b2Joint* Box2dJoint::springHolder() const {
+    if (springJoint()) return spring_;
+    return def_.type == JointType::Wheel || def_.type == JointType::Distance ? joint_ : nullptr;
+}
+
+void Box2dJoint::setImplicitStiffness(float stiffness) {
+    b2Joint* j = springHolder();
+    if (!j) return;
+    switch (j->GetType()) {
+        case e_weldJoint: static_cast<b2WeldJoint*>(j)->SetStiffness(stiffness); break;
+        case e_wheelJoint: static_cast<b2WheelJoint*>(j)->SetStiffness(stiffness); break;
+        case e_distanceJoint: static_cast<b2DistanceJoint*>(j)->SetStiffness(stiffness); break;
+        default: break;
+    }
+}
+
+// The spring's line of action now, as the Box2D joint that holds it sees it. Linear: it pulls
+// B's point along `direction` and A's point the other way; angular: it turns B about +Z and A the
+// other way. `stretch` is C (m or rad from rest, in Box2D's sense: a hinge's energy k C^2 / 2 is
+// the same in the layer's sign_ C). `inverseMass` is K = J M^-1 J^T along it: a hinge's with the
+// pin acting, the others' with both bodies free (the slider's line and the wheel's only lower the
+// true K, so the soft test on it errs toward the implicit spring).
+struct Box2dJoint::SpringAxis {
+    bool angular = false;
+    b2Vec2 direction{0.0f, 0.0f};
+    b2Vec2 pointA{0.0f, 0.0f}, pointB{0.0f, 0.0f};
+    double stretch = 0.0;
+    double inverseMass = 0.0;
+};
+
+bool Box2dJoint::springAxis(SpringAxis& out) const {
+    const b2Body& a = *bodyA();
+    const b2Body& b = *bodyB();
+    switch (def_.type) {
+        case JointType::Hinge:
+        case JointType::Ball:  // the soft weld's angle from the reference
+            out.angular = true;
+            out.stretch = static_cast<double>(b.GetAngle()) - a.GetAngle() - referenceAngle_;
+            out.inverseMass = pinnedInverseInertia(a, b, anchorB());
+            return true;
+        case JointType::Slider:
+        case JointType::Wheel:
+            // Along A's axis, at B's anchor on both bodies (A's material point under it), as the
+            // wheel joint's spring row: its rate is what speed() reports.
+            out.direction = axis();
+            out.pointA = out.pointB = anchorB();
+            out.stretch = b2Dot(anchorB() - anchorA(), out.direction);
+            break;
+        case JointType::Distance: {
+            out.pointA = anchorA();
+            out.pointB = anchorB();
+            out.direction = out.pointB - out.pointA;
+            const float length = out.direction.Normalize();
+            if (length <= b2_linearSlop) return false;  // no line (Box2D drops its spring there too)
+            out.stretch = static_cast<double>(length) - def_.length;
+            break;
+        }
+        case JointType::Fixed:
+        case JointType::Cone: return false;
+    }
+    const auto arm = [&](const b2Body& body, const b2Vec2& point) {
+        return static_cast<double>(b2Cross(point - body.GetWorldCenter(), out.direction));
+    };
+    const double armA = arm(a, out.pointA), armB = arm(b, out.pointB);
+    out.inverseMass = inverseMass(a) + inverseMass(b) + inverseInertia(a) * armA * armA + inverseInertia(b) * armB * armB;
+    return true;
+}
+
+void Box2dJoint::beginStep(double h, int springsOnBusierBody) {
+    impulse_ = {0.0, 0.0};
+    angularImpulse_ = 0.0;
+    if (!sprung()) return;
+    const double k = def_.spring->stiffness, c = def_.spring->damping;
+    SpringAxis line;
+    const bool soft = springAxis(line) && k * h * h * line.inverseMass * springsOnBusierBody <= kExplicitSpringLimit;
+    if (soft == explicitSpring_) return;
+    explicitSpring_ = soft;
+    // Soft: Box2D keeps only the damping (stiffness ~0, see springStiffness); stiff: all of it.
+    setImplicitStiffness(springStiffness(soft ? JointSpringSI{0.0, c} : *def_.spring));
+}
+
+void Box2dJoint::beforeSubstep(double h) {
+    if (!explicitSpring_ || !sprung()) return;
+    SpringAxis line;
+    if (!springAxis(line)) return;
+    // The pull of the substep's start, on the velocities before Box2D's step: the step's solve
+    // then sees it as it sees gravity. Sleeping and static bodies take nothing (wake = false).
+    const double impulse = -h * def_.spring->stiffness * line.stretch;  // on B, along the spring
+    const auto p = static_cast<float>(impulse);
+    b2Body* a = bodyA();
+    b2Body* b = bodyB();
+    if (line.angular) {
+        a->ApplyAngularImpulse(-p, false);
+        b->ApplyAngularImpulse(p, false);
+        angularImpulse_ += impulse;
+        return;
+    }
+    a->ApplyLinearImpulse(-p * line.direction, line.pointA, false);
+    b->ApplyLinearImpulse(p * line.direction, line.pointB, false);
+    impulse_.x += impulse * line.direction.x;  // on B at B's anchor, as the reactions are
+    impulse_.y += impulse * line.direction.y;
+}
 
 void Box2dJoint::afterSubstep() {
     // inv_dt = 1: the impulse of the Box2D step just taken (warm start included), applied to B

@@ -15,7 +15,17 @@
 //   ball      (received directly, not through the layer) as the hinge about Z.
 // Position and speed are computed here from the bodies' poses and velocities (not from Box2D's
 // joint getters), so they mean what joint_peer.hpp says on every backend. Reactions are Box2D's
-// joint impulses (the spring's joint's included) summed over the step's substeps, divided by dt.
+// joint impulses (the spring's joint's included, and a soft spring's explicit pull) summed over
+// the step's substeps, divided by dt.
+//
+// Springs: Box2D's soft springs (weld, wheel, distance) are implicit over the whole step, which
+// damps a free oscillation by about (omega h)^2 / 4 of its swing per step (an undamped 0.7 Hz
+// slider spring kept 23 % of its swing after 10 s at 60 Hz). So a soft spring's stiffness is
+// applied here instead, as the impulse -h k C from the substep's start before each Box2D step
+// (symplectic Euler: a free spring keeps its energy), while its damping stays Box2D's, implicit
+// (the Box2D joint keeps stiffness ~0 and damping c). A stiff spring, where that explicit step
+// would lose its accuracy or diverge, stays wholly Box2D's. The rule is the native and ODE
+// joints' (ode_joint_spring.hpp).
 //
 // The b2Joint exists only while the world simulates joints (Effect::Joints); the peer keeps what
 // it needs to build it again (the definition with the setters' changes, the reference angle).
@@ -65,11 +75,17 @@ public:
     bool attached() const { return world_ != nullptr; }
     /// The joint holds this body.
     bool holds(const Box2dBody& body) const { return &body == a_ || &body == b_; }
-    /// Each step: begin, then after every Box2D step, then end with the whole step's duration.
-    void beginStep() {
-        impulse_ = {0.0, 0.0};
-        angularImpulse_ = 0.0;
-    }
+    /// The joint has a spring acting in Box2D (joints on; a distance range not closed).
+    bool sprung() const;
+    /// The Box2D bodies the joint holds (A: the ground body when held to the world).
+    b2Body* bodyA() const;
+    b2Body* bodyB() const { return b_->b2(); }
+    /// Each step: begin with the substep h and the most sprung joints on either of its moving
+    /// bodies (it chooses the spring's explicit or implicit stiffness for the step), then before
+    /// and after every Box2D step, then end with the whole step's duration.
+    void beginStep(double h, int springsOnBusierBody);
+    /// A soft spring's pull of the substep's start, on both bodies' velocities.
+    void beforeSubstep(double h);
     /// Adds the Box2D step's joint impulses to the step's sums.
     void afterSubstep();
     void endStep(double dt);
@@ -77,8 +93,6 @@ public:
     std::size_t slot = 0;
 
 private:
-    b2Body* bodyA() const;
-    b2Body* bodyB() const { return b_->b2(); }
     /// World anchor points: B's, and for a distance joint A's.
     b2Vec2 anchorA() const { return bodyA()->GetWorldPoint(localAnchorA_); }
     b2Vec2 anchorB() const { return bodyB()->GetWorldPoint(localAnchorB_); }
@@ -89,6 +103,13 @@ private:
         return def_.type == JointType::Hinge || def_.type == JointType::Ball || def_.type == JointType::Slider;
     }
     b2Joint* makeSpring(b2World& world) const;
+    /// The Box2D joint that holds the spring (the spring's own, or the joint itself), or null.
+    b2Joint* springHolder() const;
+    /// Sets the stiffness the Box2D joint steps implicitly (its damping stays the spring's).
+    void setImplicitStiffness(float stiffness);
+    /// The spring's direction, stretch and inverse mass now (see SpringAxis in the .cpp).
+    struct SpringAxis;
+    bool springAxis(SpringAxis& out) const;
     void applyMotor();
     void applyLimits();
     void applySpring();
@@ -107,6 +128,7 @@ private:
     float referenceAngle_ = 0.0f;      // Box2D angle of B minus A's at creation
     double sign_ = 1.0;                // hinge: frame X . Z; wheel: frame Y . Z (+1 or -1)
     double ballAxisZ_ = 1.0;           // ball: frame X . Z (1 for the layer's planar ball)
+    bool explicitSpring_ = false;      // this step the spring's stiffness is applied here, not by Box2D
     // Sums over the current step's Box2D steps (N s, N m s; B's anchor, world frame).
     struct {
         double x = 0.0, y = 0.0;

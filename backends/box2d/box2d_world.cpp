@@ -226,9 +226,11 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
         b->flushForces(userForces);
     }
     rules_.clearSolvedImpulses(substeps_ > 1);
-    for (Box2dJoint* j : joints_) j->beginStep();
+    beginJointSteps(h);
     for (int i = 0; i < substeps_; ++i) {
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
+        // Soft springs' pulls first: the step start's velocities include them (markStepStart).
+        for (Box2dJoint* j : joints_) j->beforeSubstep(h);
         if (effects_.has(Effect::Restitution))
             for (Box2dBody* b : bodies_) b->markStepStart();
         world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
@@ -237,6 +239,23 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
     world_->ClearForces();
     for (Box2dJoint* j : joints_) j->endStep(dt);
     sumImpulses();
+}
+
+void Box2dWorld::beginJointSteps(double h) {
+    // Only moving bodies count: a static or kinematic body is not set swinging by its springs.
+    const auto moves = [](const b2Body* b) { return b->GetType() == b2_dynamicBody; };
+    sprungBodies_.clear();
+    for (const Box2dJoint* j : joints_)
+        if (j->sprung())
+            for (const b2Body* b : {static_cast<const b2Body*>(j->bodyA()), static_cast<const b2Body*>(j->bodyB())})
+                if (moves(b)) sprungBodies_.push_back(b);
+    std::sort(sprungBodies_.begin(), sprungBodies_.end(), std::less<const b2Body*>{});
+    const auto springsOn = [&](const b2Body* b) {
+        const auto [first, last] = std::equal_range(sprungBodies_.begin(), sprungBodies_.end(), b, std::less<const b2Body*>{});
+        return static_cast<int>(last - first);
+    };
+    for (Box2dJoint* j : joints_)
+        j->beginStep(h, j->sprung() ? std::max({1, springsOn(j->bodyA()), springsOn(j->bodyB())}) : 1);
 }
 
 namespace {

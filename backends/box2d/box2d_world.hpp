@@ -62,6 +62,9 @@ private:
     void refilterAll();
     /// The table's friction into every existing contact (after the table or the effects change).
     void reapplyMaterials();
+    /// Begins every joint's step: each sprung joint with the most sprung joints on either of its
+    /// moving bodies (springs on one body share its stable range: see Box2dJoint::beginStep).
+    void beginJointSteps(double h);
 
     WorldSettings settings_;
     int velocityIterations_;
@@ -72,6 +75,7 @@ private:
     std::unique_ptr<b2World> world_;
     std::vector<Box2dBody*> bodies_;
     std::vector<Box2dJoint*> joints_;
+    std::vector<const b2Body*> sprungBodies_;  // per sprung joint its moving bodies, sorted (beginJointSteps)
     b2Body* ground_ = nullptr;
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
