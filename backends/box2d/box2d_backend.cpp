@@ -51,9 +51,9 @@ Backend makeBox2dBackend() {
                        "body.gyroscopic", "body.material", "body.isTrigger", "body.layer", "body.mask",
                        "body.allowSleep", "body.isAwake", "body.shape.shapes.material", "body.shape.shapes.isTrigger",
                        "body.shape.shapes.layer", "body.shape.shapes.mask"};
-    // Hinge and slider springs are Box2D's soft weld and wheel joints beside the revolute and
-    // prismatic ones (which have none); wheel and distance springs are their joints' own. A soft
-    // spring's stiffness is applied explicitly, its damping by Box2D (box2d_joints.hpp).
+    // Slider springs are Box2D's wheel joint beside the prismatic one (which has none); wheel and
+    // distance springs are their joints' own; hinge springs are the backend's impulses with the
+    // pin acting. A soft spring's stiffness is applied explicitly (box2d_joints.hpp).
     // Reactions are Box2D's joint impulses summed over the substeps, so the layer can break
     // joints by them. Not declared: wheel steering (no planar meaning), cone (no cone type).
     for (const char* field : {"limits", "motor", "spring"}) {
@@ -71,11 +71,6 @@ Backend makeBox2dBackend() {
          "a 1 000 N m hinge motor at 1 rad/s turning a 1 kg point-like bob on a 1 m arm under gravity is 2.0 rad/s off its "
          "speed at worst (1.90 rad after 2 s, exact 2): 8 velocity iterations do not carry the motor's torque through "
          "the pin at a lever 1 000 times the bob's own inertia"},
-        {"planar.joints.stiff_hinge_lever",
-         "a 1 kg point-like bob on a 1 m arm held by a 1e5 N m/rad hinge spring (omega h = 5.3) winds up and spins at "
-         "Box2D's cap of 0.5 pi rad per step (94 rad/s): the soft weld that stands in for the hinge spring (Box2D 2.4's "
-         "revolute joint has none) solves its angle apart from its pin, at a lever 1 000 times the bob's own inertia, "
-         "in 8 velocity iterations; a 1 m rod (4x) rests exactly"},
         {"planar.assemblies.ragdoll_limits",
          "a hinge goes 88 deg past its limits in the planar pile at Box2D 2.4's 8 velocity iterations per 1/60 s step (as planar.assemblies.ragdoll_gap)"},
         {"planar.joints.hinge_limit",
@@ -152,7 +147,6 @@ Backend makeBox2dBackend() {
          "joints of a planar pile of 10 ragdolls open by up to 87 cm at the defaults (as planar.assemblies.ragdoll_gap)"},
     });
     caps.deviationCeilings.insert({
-        {"planar.joints.stiff_hinge_lever", 6.9e7},  // in multiples of its bounds, measured 3.46e7 (spinning)
         {"planar.joints.motor_lever", 400},  // in multiples of its bounds, measured 202
         {"planar.contacts.overhang_stands", 3.0},  // m, measured 1.81 (fallen)
         {"planar.contacts.tip_about_edge", 0.035},  // s, measured 0.0221

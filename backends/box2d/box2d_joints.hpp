@@ -5,7 +5,7 @@
 //   fixed     b2WeldJoint (stiffness 0: rigid)
 //   hinge     b2RevoluteJoint about Z (frame X is +Z or -Z: angles, limits and motor speeds are
 //             turned to Box2D's +Z when it is -Z); a planar ball arrives as a hinge about +Z.
-//             Spring: a soft b2WeldJoint on the same anchor (the revolute has none).
+//             Spring: impulses applied here with the pin acting (the revolute has none).
 //   slider    b2PrismaticJoint along frame X (in the plane). Spring: a b2WheelJoint on the same
 //             anchors and axis (the prismatic has none).
 //   distance  b2DistanceJoint: rigid rod (min = max = length), rope or range (minLength /
@@ -18,14 +18,15 @@
 // joint impulses (the spring's joint's included, and a soft spring's explicit pull) summed over
 // the step's substeps, divided by dt.
 //
-// Springs: Box2D's soft springs (weld, wheel, distance) are implicit over the whole step, which
+// Springs: Box2D's soft springs (wheel, distance) are implicit over the whole step, which
 // damps a free oscillation by about (omega h)^2 / 4 of its swing per step (an undamped 0.7 Hz
 // slider spring kept 23 % of its swing after 10 s at 60 Hz). So a soft spring's stiffness is
 // applied here instead, as the impulse -h k C from the substep's start before each Box2D step
 // (symplectic Euler: a free spring keeps its energy), while its damping stays Box2D's, implicit
 // (the Box2D joint keeps stiffness ~0 and damping c). A stiff spring, where that explicit step
 // would lose its accuracy or diverge, stays wholly Box2D's. The rule is the native and ODE
-// joints' (ode_joint_spring.hpp).
+// joints' (ode_joint_spring.hpp). A hinge's spring is all applied here, for the joint alone with
+// its pin, explicit or implicit by the same rule (hingeSpringImpulse).
 //
 // The b2Joint exists only while the world simulates joints (Effect::Joints); the peer keeps what
 // it needs to build it again (the definition with the setters' changes, the reference angle).
@@ -98,10 +99,8 @@ private:
     b2Vec2 anchorB() const { return bodyB()->GetWorldPoint(localAnchorB_); }
     /// Frame X of A in the world (slider and wheel).
     b2Vec2 axis() const { return bodyA()->GetWorldVector(localAxisA_); }
-    /// Hinges and sliders take their spring from a second Box2D joint (see makeSpring).
-    bool springJoint() const {
-        return def_.type == JointType::Hinge || def_.type == JointType::Ball || def_.type == JointType::Slider;
-    }
+    /// Sliders take their spring from a second Box2D joint (see makeSpring).
+    bool springJoint() const { return def_.type == JointType::Slider; }
     b2Joint* makeSpring(b2World& world) const;
     /// The Box2D joint that holds the spring (the spring's own, or the joint itself), or null.
     b2Joint* springHolder() const;
@@ -109,7 +108,9 @@ private:
     void setImplicitStiffness(float stiffness);
     /// The spring's direction, stretch and inverse mass now (see SpringAxis in the .cpp).
     struct SpringAxis;
-    bool springAxis(SpringAxis& out) const;
+    bool springAxis(SpringAxis& out, double h) const;
+    /// A hinge's spring impulse on B for the substep of h seconds (about +Z, Box2D's sense).
+    double hingeSpringImpulse(const SpringAxis& line, double h) const;
     void applyMotor();
     void applyLimits();
     void applySpring();
@@ -121,7 +122,7 @@ private:
     Box2dBody* b_;
     b2Body* ground_;
     b2Joint* joint_ = nullptr;
-    b2Joint* spring_ = nullptr;    // hinge, slider with a spring: a soft weld, a wheel joint
+    b2Joint* spring_ = nullptr;    // slider with a spring: a wheel joint
     b2Vec2 localAnchorA_{0.0f, 0.0f};  // in A's Box2D body frame (world frame for the world)
     b2Vec2 localAnchorB_{0.0f, 0.0f};
     b2Vec2 localAxisA_{1.0f, 0.0f};    // frame X in A's Box2D body frame (slider, wheel)
