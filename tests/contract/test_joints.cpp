@@ -682,12 +682,18 @@ protected:
                 }
                 continue;
             }
-            // The lever's figure is a declared criterion on several backends, in this measure.
-            const double error = std::max(std::abs(joint.position() - expected) / bound, std::abs(joint.speed()) / 1e-3);
+            // The lever's figure is a declared criterion on some backends, in this measure: the
+            // same bounds in multiples (1 passes). Undamped, the lever may swing as the rod may:
+            // native resolves it in its substeps with the pin acting ((omega h)^2 = 0.43) and keeps
+            // the swing, 1.06 times the deflection.
+            const double error =
+                run.zeta > 0.0 ? std::max(std::abs(joint.position() - expected) / bound, std::abs(joint.speed()) / 1e-3)
+                               : std::max(std::abs(centre - expected) / bound, swing / (1.1 * std::abs(expected) + bound));
             if (error > worst) {
                 worst = error;
-                worstText = "zeta " + std::to_string(run.zeta) + ": rests at " + std::to_string(joint.position()) +
-                            " rad (exact " + std::to_string(expected) + "), speed " + std::to_string(joint.speed()) + " rad/s";
+                worstText = "zeta " + std::to_string(run.zeta) + ": at " + std::to_string(joint.position()) + " rad (exact " +
+                            std::to_string(expected) + "), speed " + std::to_string(joint.speed()) +
+                            " rad/s, the last second's swing " + std::to_string(swing) + " rad about " + std::to_string(centre);
             }
         }
         ANYPHYS_REQUIRE(ran > 0, "joint.slider.spring or joint.hinge.spring");

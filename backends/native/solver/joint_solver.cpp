@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include <Eigen/Cholesky>
+#include <Eigen/QR>
 
 namespace anyphys::native {
 namespace {
@@ -62,10 +63,12 @@ Jacobian linearRow(const Vec3& n, const Vec3& leverA, const Vec3& rB) {
 }
 Jacobian angularRow(const Vec3& axis) { return {Vec3::Zero(), -axis, Vec3::Zero(), axis}; }
 
-double inverseMass(const Jacobian& j, const Side& a, const Side& b) {
-    return j.linA.dot(a.invMass.cwiseProduct(j.linA)) + j.angA.dot(a.invI * j.angA) +
-           j.linB.dot(b.invMass.cwiseProduct(j.linB)) + j.angB.dot(b.invI * j.angB);
+// J_i M^-1 J_k^T.
+double coupling(const Jacobian& i, const Jacobian& k, const Side& a, const Side& b) {
+    return i.linA.dot(a.invMass.cwiseProduct(k.linA)) + i.angA.dot(a.invI * k.angA) +
+           i.linB.dot(b.invMass.cwiseProduct(k.linB)) + i.angB.dot(b.invI * k.angB);
 }
+double inverseMass(const Jacobian& j, const Side& a, const Side& b) { return coupling(j, j, a, b); }
 double rate(const Jacobian& j, const Side& a, const Side& b) {
     return j.linA.dot(a.v) + j.angA.dot(a.w) + j.linB.dot(b.v) + j.angB.dot(b.w);
 }
@@ -231,7 +234,7 @@ private:
     // undamped 0.7 Hz slider spring kept 70 % of its swing after 10 s. A spring too stiff for
     // the substep stays implicit, where explicit steps would diverge.
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
-        const bool resolved = spring.stiffness * p_.h * p_.h * inverseMass(j, a_, b_) * springsOnBusierBody_ <= kExplicitSpring;
+        const bool resolved = spring.stiffness * p_.h * p_.h * springInverseMass(j) * springsOnBusierBody_ <= kExplicitSpring;
         const double springDamping = spring.damping + (resolved ? 0.0 : p_.h * spring.stiffness);
         if (resolved && (mode_ == Mode::Relax || !(springDamping > 0.0))) {
             // The substep's stiffness impulse (undamped), or the solve pass's impulse kept.
@@ -248,9 +251,31 @@ private:
     // its busier body: at most 0.5. Explicit stepping is stable while h^2 times the largest
     // eigenvalue of M^-1 K stays under 4; a body's springs together bound that by 1.5 times this
     // sum (a row sum of M^-1/2 K M^-1/2), so 0.75 at most. Counted per spring alone, twelve
-    // springs on one light body diverged. omega uses the row's own inverse mass, which a long
-    // lever only lowers.
+    // springs on one light body diverged. The ODE and Box2D backends use the same rule.
     static constexpr double kExplicitSpring = 0.5;
+    // The spring row's inverse mass for that rule: a hinge's with its pin and axis locks acting
+    // (the Schur complement K_ss - K_sp K_pp^-1 K_ps), as a body on an arm turns about the pin
+    // (a box on a 1 m arm: 150 times its own inertia; judged by the row alone, a 40 N m/rad
+    // spring there was implicit at one substep and lost 95 % of its swing in 10 s). Other rows'
+    // own, which their locks only lower.
+    double springInverseMass(const Jacobian& spring) const {
+        const double alone = inverseMass(spring, a_, b_);
+        if (def_.type != JointType::Hinge) return alone;
+        std::array<Jacobian, 5> pin;
+        for (int k = 0; k < 3; ++k) pin[k] = linearRow(Vec3::Unit(k), rA_, rB_);
+        pin[3] = angularRow(frameA_ * Vec3::UnitY());
+        pin[4] = angularRow(frameA_ * Vec3::UnitZ());
+        Eigen::Matrix<double, 5, 5> kpp;
+        Eigen::Matrix<double, 5, 1> kps;
+        for (int i = 0; i < 5; ++i) {
+            kps[i] = coupling(pin[i], spring, a_, b_);
+            for (int k = 0; k < 5; ++k) kpp(i, k) = coupling(pin[i], pin[k], a_, b_);
+        }
+        // A pin to the world holds fewer directions than it has rows: the least-squares solution.
+        const Eigen::Matrix<double, 5, 1> x = kpp.completeOrthogonalDecomposition().solve(kps);
+        if (!x.allFinite()) return alone;
+        return std::clamp(alone - kps.dot(x), 0.0, alone);
+    }
     // The axis rows of hinge, slider: limits, motor and spring on position C along j.
     void axisRows(const Jacobian& j, double position) {
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
