@@ -282,17 +282,25 @@ protected:
         World world(jointSettings(false));
         const auto [body, joint] = springOnSlider(world);
         const double k = kSpringK, m = kSpringMass, v0 = kSpringV0;
-        const double period = 2.0 * kPi * std::sqrt(m / k), exact = v0 / std::sqrt(k / m);
+        expectSwingKept(world, joint, v0 / std::sqrt(k / m), 2.0 * kPi * std::sqrt(m / k), "slider spring", "m",
+                        "joints.spring_swing");
+    }
+
+    // Steps an undamped spring's world to 10 s; its swing, the largest |position| of the last
+    // period, must be within 2 % of `exact` (criterion `id`).
+    void expectSwingKept(World& world, const Joint& joint, double exact, double period, const std::string& what,
+                         const std::string& unit, const std::string& id) const {
         double last = 0.0;
         while (world.time() < 10.0) {
             world.step();
             if (world.time() > 10.0 - period) last = std::max(last, std::abs(joint.position()));
         }
         const double change = std::abs(last / exact - 1.0);
-        std::cout << "[ MEASURED ] " << backend() << " undamped slider spring: swing " << last << " m after 10 s (exact "
-                  << exact << "): " << 100.0 * change << " % off\n";
-        expectCriterion(criterion("joints.spring_swing"), change <= 0.02,
-                        "the swing is " + std::to_string(last) + " m after 10 s, exact " + std::to_string(exact), change);
+        std::cout << "[ MEASURED ] " << backend() << " undamped " << what << ": swing " << last << " " << unit
+                  << " after 10 s (exact " << exact << "): " << 100.0 * change << " % off\n";
+        expectCriterion(criterion(id), change <= 0.02,
+                        "the swing is " + std::to_string(last) + " " + unit + " after 10 s, exact " + std::to_string(exact),
+                        change);
     }
 
     // A 2 kg box (20 cm cube) on a 1 m arm, turning about a hinge at the origin (axis Z, no
@@ -322,17 +330,9 @@ protected:
         d.spring = JointSpring{k, 0.0};
         Joint joint = world.createJoint(d);
         const double inertia = m * (2.0 * half) * (2.0 * half) / 6.0 + m * r * r;  // about the hinge
-        const double omega = std::sqrt(k / inertia), exact = w0 / omega, period = 2.0 * kPi / omega;
-        double last = 0.0;
-        while (world.time() < 10.0) {
-            world.step();
-            if (world.time() > 10.0 - period) last = std::max(last, std::abs(joint.position()));
-        }
-        const double change = std::abs(last / exact - 1.0);
-        std::cout << "[ MEASURED ] " << backend() << " undamped hinge spring on a 1 m arm: swing " << last
-                  << " rad after 10 s (exact " << exact << "): " << 100.0 * change << " % off\n";
-        expectCriterion(criterion("joints.hinge_spring_swing"), change <= 0.02,
-                        "the swing is " + std::to_string(last) + " rad after 10 s, exact " + std::to_string(exact), change);
+        const double omega = std::sqrt(k / inertia);
+        expectSwingKept(world, joint, w0 / omega, 2.0 * kPi / omega, "hinge spring on a 1 m arm", "rad",
+                        "joints.hinge_spring_swing");
     }
 
     // Twelve distance springs of 500 N/m hold a 0.1 kg ball between anchors on both sides of it,
