@@ -109,7 +109,11 @@ void Box2dBody::applyDamping(bool on, double h) {
 }
 
 void Box2dBody::flushForces(bool apply) {
+    stepForce_.SetZero();
+    stepTorque_ = 0.0f;
     if (apply && body_->IsAwake()) {
+        stepForce_ = force_ + heldForce_;
+        stepTorque_ = torque_ + heldTorque_;
         // addForce's first, then the step forces: the order Box2D summed them in when this
         // backend ran the force hook itself.
         if (force_.x != 0.0f || force_.y != 0.0f) body_->ApplyForceToCenter(force_, false);

@@ -68,6 +68,10 @@ public:
     /// forces (holdForStep), onto the b2Body at the step's start if it is awake and `apply`
     /// (the world keeps them there over every substep: SetAutoClearForces(false)).
     void flushForces(bool apply);
+    /// What flushForces put on the b2Body for this step (N, N m; zero if nothing): Box2D keeps a
+    /// body's pending force private, and a joint predicting the substep's velocities needs it.
+    b2Vec2 stepForce() const { return stepForce_; }
+    float stepTorque() const { return stepTorque_; }
     /// Marks the body a Box2D bullet (time of impact against other moving bodies too) when this
     /// step would carry it more than half its smallest inner radius.
     void updateBullet(bool continuous, double h);
@@ -92,6 +96,8 @@ private:
     float torque_ = 0.0f;
     b2Vec2 heldForce_{0.0f, 0.0f};  // holdForStep's, kept apart so Box2D adds it after force_
     float heldTorque_ = 0.0f;
+    b2Vec2 stepForce_{0.0f, 0.0f};  // flushForces' sums on the b2Body this step
+    float stepTorque_ = 0.0f;
     b2Vec2 stepStartVelocity_{0.0f, 0.0f};
 };
 

@@ -43,25 +43,37 @@ double inverseInertia(const b2Body& b) {
 
 // A hinge's spring row (wB - wA) with its pin acting: the Schur complement of the row against the
 // pin's two point rows at `pin`, K = K_ss - K_sp K_pp^-1 K_ps, and the row's rate once the pin has
-// taken the substep's gravity, v = J_s v0 - K_sp K_pp^-1 J_p v0 (v0: the velocities after it). A
-// body on an arm turns about the pin, far heavier than about its centre (a box on a 1 m arm: 150
-// times), and a weight on the arm winds the spring through the pin.
+// taken the substep's gravity and forces, v = J_s v0 - K_sp K_pp^-1 J_p v0 (v0: the velocities
+// after them). A body on an arm turns about the pin, far heavier than about its centre (a box on
+// a 1 m arm: 150 times), and a load on the arm winds the spring through the pin. `peerA`,
+// `peerB`: the layer's bodies (null: the ground), whose step forces Box2D holds privately.
 struct PinnedTurn {
     double inverseInertia = 0.0;
     double rate = 0.0;
 };
 
-PinnedTurn pinnedTurn(const b2Body& a, const b2Body& b, const b2Vec2& pin, double h) {
+PinnedTurn pinnedTurn(const b2Body& a, const Box2dBody* peerA, const b2Body& b, const Box2dBody* peerB, const b2Vec2& pin,
+                      double h) {
     const double ma = inverseMass(a), mb = inverseMass(b), ia = inverseInertia(a), ib = inverseInertia(b);
     const b2Vec2 ra = pin - a.GetWorldCenter(), rb = pin - b.GetWorldCenter();
     const b2Vec2 g = b.GetWorld()->GetGravity();
-    const auto velocity = [&](const b2Body& body, const b2Vec2& r) {  // of the body's point at the pin
-        const double scale = body.GetType() == b2_dynamicBody && body.IsAwake() ? h * body.GetGravityScale() : 0.0;
-        const b2Vec2 v = body.GetLinearVelocity();
-        const double w = body.GetAngularVelocity();
-        return std::array<double, 2>{v.x + scale * g.x - w * r.y, v.y + scale * g.y + w * r.x};
+    // Velocities after the substep's gravity and forces: linear at the body's point at the pin,
+    // and angular.
+    struct Moving {
+        std::array<double, 2> point;
+        double w;
     };
-    const std::array<double, 2> vb = velocity(b, rb), va = velocity(a, ra);
+    const auto moving = [&](const b2Body& body, const Box2dBody* peer, const b2Vec2& r, double invMass, double invI) {
+        const bool pushed = body.GetType() == b2_dynamicBody && body.IsAwake();
+        const b2Vec2 f = pushed && peer ? peer->stepForce() : b2Vec2(0.0f, 0.0f);
+        const double scale = pushed ? h * body.GetGravityScale() : 0.0;
+        const double w = body.GetAngularVelocity() + (pushed && peer ? h * invI * peer->stepTorque() : 0.0);
+        const b2Vec2 v = body.GetLinearVelocity();
+        return Moving{{v.x + scale * g.x + h * invMass * f.x - w * r.y, v.y + scale * g.y + h * invMass * f.y + w * r.x}, w};
+    };
+    const Moving movingB = moving(b, peerB, rb, mb, ib), movingA = moving(a, peerA, ra, ma, ia);
+    const std::array<double, 2>& vb = movingB.point;
+    const std::array<double, 2>& va = movingA.point;
     // Each point row's angular coefficients: B's r x e_i, A's -(r x e_i).
     const double armB[2] = {-rb.y, rb.x}, armA[2] = {-ra.y, ra.x};
     double ksp[2], kpp[2][2], pinRate[2];
@@ -70,7 +82,7 @@ PinnedTurn pinnedTurn(const b2Body& a, const b2Body& b, const b2Vec2& pin, doubl
         for (int j = 0; j < 2; ++j) kpp[i][j] = (i == j ? ma + mb : 0.0) + ib * armB[i] * armB[j] + ia * armA[i] * armA[j];
         pinRate[i] = vb[i] - va[i];
     }
-    PinnedTurn turn{ia + ib, static_cast<double>(b.GetAngularVelocity()) - a.GetAngularVelocity()};
+    PinnedTurn turn{ia + ib, movingB.w - movingA.w};
     const double det = kpp[0][0] * kpp[1][1] - kpp[0][1] * kpp[1][0];
     if (!(det > 1e-12 * (kpp[0][0] * kpp[1][1]))) return turn;  // the pin holds nothing that moves
     const double x0 = (kpp[1][1] * ksp[0] - kpp[0][1] * ksp[1]) / det;
@@ -535,7 +547,7 @@ bool Box2dJoint::springAxis(SpringAxis& out, double h) const {
         case JointType::Ball: {  // the angle from the reference
             out.angular = true;
             out.stretch = static_cast<double>(b.GetAngle()) - a.GetAngle() - referenceAngle_;
-            const PinnedTurn turn = pinnedTurn(a, b, anchorB(), h);
+            const PinnedTurn turn = pinnedTurn(a, a_, b, b_, anchorB(), h);
             out.inverseMass = turn.inverseInertia;
             out.rate = turn.rate;
             return true;
