@@ -516,7 +516,6 @@ void Box2dJoint::setImplicitStiffness(float stiffness) {
     b2Joint* j = springHolder();
     if (!j) return;
     switch (j->GetType()) {
-        case e_weldJoint: static_cast<b2WeldJoint*>(j)->SetStiffness(stiffness); break;
         case e_wheelJoint: static_cast<b2WheelJoint*>(j)->SetStiffness(stiffness); break;
         case e_distanceJoint: static_cast<b2DistanceJoint*>(j)->SetStiffness(stiffness); break;
         default: break;
@@ -529,7 +528,7 @@ void Box2dJoint::setImplicitStiffness(float stiffness) {
 // the same in the layer's sign_ C). `inverseMass` is K = J M^-1 J^T along it: a hinge's with the
 // pin acting, the others' with both bodies free (the slider's line and the wheel's only lower the
 // true K, so the soft test on it errs toward the implicit spring). `rate`: a hinge's, with the pin
-// acting, after the substep's gravity.
+// acting, after the substep's gravity and forces.
 struct Box2dJoint::SpringAxis {
     bool angular = false;
     b2Vec2 direction{0.0f, 0.0f};
@@ -610,14 +609,21 @@ void Box2dJoint::beforeSubstep(double h) {
     SpringAxis line;
     if (!springAxis(line, h)) return;
     if (!line.angular && !explicitSpring_) return;  // Box2D's joint holds the whole spring
+    b2Body* a = bodyA();
+    b2Body* b = bodyB();
+    if (line.angular && !b->IsAwake() && !(a->GetType() == b2_dynamicBody && a->IsAwake())) {
+        // Asleep, the pair is not stepped: the hinge reports the torque it last held (its rate
+        // would leave out the load, which Box2D does not apply to sleeping bodies).
+        angularImpulse_ += lastHingeImpulse_;
+        return;
+    }
     // The pull of the substep's start, on the velocities before Box2D's step: the step's solve
     // then sees it as it sees gravity. Sleeping and static bodies take nothing (wake = false).
     const double impulse = line.angular ? hingeSpringImpulse(line, h)
                                         : -h * def_.spring->stiffness * line.stretch;  // on B, along the spring
     const auto p = static_cast<float>(impulse);
-    b2Body* a = bodyA();
-    b2Body* b = bodyB();
     if (line.angular) {
+        lastHingeImpulse_ = impulse;
         a->ApplyAngularImpulse(-p, false);
         b->ApplyAngularImpulse(p, false);
         angularImpulse_ += impulse;

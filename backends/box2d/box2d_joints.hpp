@@ -130,6 +130,7 @@ private:
     double sign_ = 1.0;                // hinge: frame X . Z; wheel: frame Y . Z (+1 or -1)
     double ballAxisZ_ = 1.0;           // ball: frame X . Z (1 for the layer's planar ball)
     bool explicitSpring_ = false;      // this step the spring's stiffness is applied here, not by Box2D
+    double lastHingeImpulse_ = 0.0;    // hinge: the spring's impulse of the last stepped substep (N m s)
     // Sums over the current step's Box2D steps (N s, N m s; B's anchor, world frame).
     struct {
         double x = 0.0, y = 0.0;

@@ -350,6 +350,26 @@ TEST(Box2dJoints, StiffHingeSpringHoldsALeverAgainstAForce) {
     }
 }
 
+// A lever held up by a stiff hinge spring (2e4 N m/rad, critically damped; 2 kg at 1 m, under
+// gravity) comes to rest at m g L / k and falls asleep there; asleep, the hinge still reports the
+// torque it holds, m g L about its anchor (1e-3 relative: float, and the lever's cos of 1e-3 rad).
+TEST(Box2dJoints, SleepingLeverKeepsItsSpringTorque) {
+    auto world = jointWorld(Effect::Gravity | Effect::Joints | Effect::Sleeping);
+    const double m = 2.0, L = 1.0, k = 2e4;
+    BodyPeerDef bd;
+    bd.def.position = Vec3(L, 0, 0);
+    bd.def.allowSleep = true;
+    bd.mass = {m, Vec3::Constant(1e-2)};
+    auto bob = world->createBody(bd);
+    JointPeerDef d = heldToWorld(JointType::Hinge, *bob, Vec3(L, 0, 0), Vec3::Zero());
+    d.spring = JointSpringSI{k, 2.0 * std::sqrt(k * (m * L * L + 1e-2))};
+    auto hinge = world->createJoint(d);
+    run(*world, 3.0);
+    EXPECT_FALSE(bob->isAwake());
+    EXPECT_NEAR(hinge->position(), -m * kG * L / k, 1e-3 * m * kG * L / k);
+    EXPECT_NEAR(hinge->reactionTorque().z(), m * kG * L, 1e-3 * m * kG * L);
+}
+
 // A vertical slider on a spring holds a 2 kg body under gravity at the static sag m g / k below
 // its start, and the joint carries its weight (the spring is solved with gravity in Box2D's
 // solver). k = 100 N/m, damping ratio 0.7, 5 s to settle (e^{-zeta omega t} = 1e-8): sag within
