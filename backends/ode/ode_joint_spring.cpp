@@ -14,21 +14,22 @@ constexpr double kExplicitSpring = 0.5;
 
 bool moves(const OdeBody* body) { return body && body->isDynamic() && body->id(); }
 
-// u . I^-1 u in the world, I the body's principal inertia (its frame is ODE's body frame).
-double inverseInertiaAlong(const OdeBody& body, const Vec3& u) {
-    const Vec3 local = body.state().orientation.conjugate() * u;
+// I^-1 in the world, I the body's principal inertia (its frame is ODE's body frame); a zero
+// moment is a locked direction.
+Eigen::Matrix3d worldInverseInertia(const OdeBody& body) {
+    const Eigen::Matrix3d r = body.state().orientation.toRotationMatrix();
     const Vec3 inertia = body.massProperties().inertia;
-    double sum = 0.0;
+    Vec3 inverse = Vec3::Zero();
     for (int i = 0; i < 3; ++i)
-        if (inertia[i] > 0.0) sum += local[i] * local[i] / inertia[i];
-    return sum;
+        if (inertia[i] > 0.0) inverse[i] = 1.0 / inertia[i];
+    return r * inverse.asDiagonal() * r.transpose();
 }
 
 double inverseMassOf(const OdeBody* body, const SpringLine& line, const Vec3& at) {
     if (!moves(body)) return 0.0;
-    if (line.angular) return inverseInertiaAlong(*body, line.axis);
+    if (line.angular) return line.axis.dot(worldInverseInertia(*body) * line.axis);
     const Vec3 arm = (at - body->state().position).cross(line.axis);
-    return 1.0 / body->mass() + inverseInertiaAlong(*body, arm);
+    return 1.0 / body->mass() + arm.dot(worldInverseInertia(*body) * arm);
 }
 
 void push(const OdeBody* body, const SpringLine& line, const Vec3& at, double amount) {
@@ -48,12 +49,7 @@ Eigen::Matrix<double, 6, 6> inverseMassMatrix(const OdeBody* body) {
     Eigen::Matrix<double, 6, 6> m = Eigen::Matrix<double, 6, 6>::Zero();
     if (!moves(body)) return m;
     m.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / body->mass();
-    const Eigen::Matrix3d r = body->state().orientation.toRotationMatrix();
-    const Vec3 inertia = body->massProperties().inertia;
-    Vec3 inverse = Vec3::Zero();
-    for (int i = 0; i < 3; ++i)
-        if (inertia[i] > 0.0) inverse[i] = 1.0 / inertia[i];
-    m.bottomRightCorner<3, 3>() = r * inverse.asDiagonal() * r.transpose();
+    m.bottomRightCorner<3, 3>() = worldInverseInertia(*body);
     return m;
 }
 
