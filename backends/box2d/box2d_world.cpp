@@ -242,20 +242,13 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
 }
 
 void Box2dWorld::beginJointSteps(double h) {
-    // Only moving bodies count: a static or kinematic body is not set swinging by its springs.
-    const auto moves = [](const b2Body* b) { return b->GetType() == b2_dynamicBody; };
-    sprungBodies_.clear();
+    springsPerBody_.clear();
     for (const Box2dJoint* j : joints_)
         if (j->sprung())
             for (const b2Body* b : {static_cast<const b2Body*>(j->bodyA()), static_cast<const b2Body*>(j->bodyB())})
-                if (moves(b)) sprungBodies_.push_back(b);
-    std::sort(sprungBodies_.begin(), sprungBodies_.end(), std::less<const b2Body*>{});
-    const auto springsOn = [&](const b2Body* b) {
-        const auto [first, last] = std::equal_range(sprungBodies_.begin(), sprungBodies_.end(), b, std::less<const b2Body*>{});
-        return static_cast<int>(last - first);
-    };
-    for (Box2dJoint* j : joints_)
-        j->beginStep(h, j->sprung() ? std::max({1, springsOn(j->bodyA()), springsOn(j->bodyB())}) : 1);
+                if (b->GetType() == b2_dynamicBody) springsPerBody_.add(b);  // not static or kinematic
+    springsPerBody_.sort();
+    for (Box2dJoint* j : joints_) j->beginStep(h, j->sprung() ? springsPerBody_.onBusierBody(j->bodyA(), j->bodyB()) : 1);
 }
 
 namespace {

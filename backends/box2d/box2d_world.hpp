@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "anyphys/peers/springs_per_body.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "box2d_body.hpp"
@@ -75,7 +76,7 @@ private:
     std::unique_ptr<b2World> world_;
     std::vector<Box2dBody*> bodies_;
     std::vector<Box2dJoint*> joints_;
-    std::vector<const b2Body*> sprungBodies_;  // per sprung joint its moving bodies, sorted (beginJointSteps)
+    SpringsPerBody<b2Body> springsPerBody_;  // beginJointSteps'
     b2Body* ground_ = nullptr;
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for

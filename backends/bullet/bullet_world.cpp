@@ -274,23 +274,17 @@ void BulletWorld::setMaterialTable(const MaterialTable& table) {
 // A spring keeps its explicit force only while the springs of its busier body together stay
 // inside explicit stepping's stable range (bullet_joint_spring.hpp): each joint gets that count.
 void BulletWorld::countSpringsPerBody() {
-    sprungBodies_.clear();
+    springsPerBody_.clear();
     for (BulletJointPeer* joint : joints_)
-        if (joint->sprung()) {
-            sprungBodies_.push_back(&joint->constraint().getRigidBodyA());
-            sprungBodies_.push_back(&joint->constraint().getRigidBodyB());
-        }
-    if (sprungBodies_.empty()) return;
-    std::sort(sprungBodies_.begin(), sprungBodies_.end(), std::less<const btRigidBody*>{});
-    const auto springsOn = [&](const btRigidBody& body) {
-        if (body.getInvMass() == 0) return 0;  // static or kinematic: nothing to destabilise
-        const auto [first, last] = std::equal_range(sprungBodies_.begin(), sprungBodies_.end(), &body, std::less<const btRigidBody*>{});
-        return static_cast<int>(last - first);
-    };
+        if (joint->sprung())
+            for (const btRigidBody* body : {&joint->constraint().getRigidBodyA(), &joint->constraint().getRigidBodyB()})
+                if (body->getInvMass() != 0) springsPerBody_.add(body);  // not static or kinematic
+    if (springsPerBody_.empty()) return;
+    springsPerBody_.sort();
     for (BulletJointPeer* joint : joints_)
         if (joint->sprung())
             joint->setSpringsOnBusierBody(
-                std::max({1, springsOn(joint->constraint().getRigidBodyA()), springsOn(joint->constraint().getRigidBodyB())}));
+                springsPerBody_.onBusierBody(&joint->constraint().getRigidBodyA(), &joint->constraint().getRigidBodyB()));
 }
 
 void BulletWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {

@@ -13,6 +13,7 @@
 #include <BulletDynamics/MLCPSolvers/btMLCPSolver.h>
 #include <btBulletDynamicsCommon.h>
 
+#include "anyphys/peers/springs_per_body.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "bullet_body.hpp"
@@ -74,7 +75,8 @@ public:
     void teleported(BulletBodyPeer& body);
 
 private:
-    /// Tells each sprung joint how many sprung joints its busier body has (before each step).
+    /// Tells each sprung joint how many sprung joints its busier body has (before each step;
+    /// anyphys/peers/springs_per_body.hpp).
     void countSpringsPerBody();
     /// A pair of collision objects, lower address first (one Bullet pair, however many manifolds).
     using ObjectPair = std::pair<const btCollisionObject*, const btCollisionObject*>;
@@ -122,7 +124,7 @@ private:
     std::vector<BulletBodyPeer*> kinematic_;  // attached kinematic bodies
     std::vector<BulletBodyPeer*> forced_;     // bodies with force or torque this step
     std::vector<BulletJointPeer*> joints_;    // every attached joint, in creation order
-    std::vector<const btRigidBody*> sprungBodies_;  // scratch of countSpringsPerBody: each sprung joint's bodies
+    SpringsPerBody<btRigidBody> springsPerBody_;    // countSpringsPerBody's
     std::vector<const btPersistentManifold*> withPoints_;  // scratch of manifoldsWithPoints
     int jointIterations_ = 300;                // solver iterations of joint rows (backend option)
     bool decoupledJoints_ = true;              // DecoupledConstraint on (backend option)

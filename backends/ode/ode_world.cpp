@@ -225,23 +225,15 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
 }
 
 void OdeWorld::countSpringsPerBody() {
-    // Springs on one body add up: each soft alone, several together can be too stiff to step
-    // explicitly (ode_joint_spring.hpp).
-    sprungBodies_.clear();
+    springsPerBody_.clear();
     for (const OdeJoint* joint : userJoints_)
-        if (joint->sprung()) {
-            sprungBodies_.push_back(joint->bodyA());
-            sprungBodies_.push_back(joint->bodyB());
-        }
-    if (sprungBodies_.empty()) return;
-    std::sort(sprungBodies_.begin(), sprungBodies_.end(), std::less<const OdeBody*>{});
-    const auto springsOn = [&](const OdeBody* body) {
-        if (!body || !body->isDynamic()) return 0;  // the world, static: nothing to destabilise
-        const auto [first, last] = std::equal_range(sprungBodies_.begin(), sprungBodies_.end(), body, std::less<const OdeBody*>{});
-        return static_cast<int>(last - first);
-    };
+        if (joint->sprung())
+            for (const OdeBody* body : {joint->bodyA(), joint->bodyB()})
+                if (body && body->isDynamic()) springsPerBody_.add(body);  // not the world, not static
+    if (springsPerBody_.empty()) return;
+    springsPerBody_.sort();
     for (OdeJoint* joint : userJoints_)
-        if (joint->sprung()) joint->springsOnBusierBody = std::max({1, springsOn(joint->bodyA()), springsOn(joint->bodyB())});
+        if (joint->sprung()) joint->springsOnBusierBody = springsPerBody_.onBusierBody(joint->bodyA(), joint->bodyB());
 }
 
 void* OdeWorld::nativeObject(const std::type_info& pointerType) {

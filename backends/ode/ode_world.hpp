@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "anyphys/peers/springs_per_body.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "ode_body.hpp"
@@ -89,7 +90,8 @@ private:
     bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
     void applyDampingStep(double h);
     double odeStep() const;  // s, the length of one ODE step
-    /// Gives each sprung joint the count of sprung joints on the busier of its bodies.
+    /// Gives each sprung joint the count of sprung joints on the busier of its bodies
+    /// (anyphys/peers/springs_per_body.hpp).
     void countSpringsPerBody();
 
     WorldSettings settings_;
@@ -105,7 +107,7 @@ private:
 
     std::vector<OdeBody*> bodies_;
     std::vector<OdeJoint*> userJoints_;
-    std::vector<const OdeBody*> sprungBodies_;  // countSpringsPerBody: each sprung joint's bodies, sorted
+    SpringsPerBody<OdeBody> springsPerBody_;  // countSpringsPerBody's
     // Body pairs joined by joints with collideConnected false, and how many such joints each has.
     std::map<std::pair<const OdeBody*, const OdeBody*>, int> excludedPairs_;
     std::vector<OdeBody*> forced_;         // bodies with held forces this step
