@@ -34,6 +34,9 @@ struct NativeJoint {
     std::uint32_t bodyB = kWorldBody;
     double steeringAngle = 0.0;         // rad, wheels with steering
     std::array<double, kRowCount> impulse{};  // accumulated per row (N s, N m s), kept between steps
+    // The spring's stiffness is explicit this substep: decided once, at its warm start, from the
+    // substep's starting pose (the solver's springRow).
+    bool springExplicit = false;
     // What the joint reports (JointPeer), updated at the end of each step.
     double position = 0.0;
     double speed = 0.0;

@@ -232,9 +232,14 @@ private:
     // substep's start, kept through the relax pass, which is symplectic Euler and keeps an
     // undamped spring's energy. An implicit stiffness damps by itself, as if with h k N s/m: an
     // undamped 0.7 Hz slider spring kept 70 % of its swing after 10 s. A spring too stiff for
-    // the substep stays implicit, where explicit steps would diverge.
+    // the substep stays implicit, where explicit steps would diverge. Decided once per substep,
+    // at its warm start (for a hinge a 5 x 5 solve): the solve passes see the same pose, and the
+    // relax passes, after the positions moved, keep that substep's law.
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
-        const bool resolved = spring.stiffness * p_.h * p_.h * springInverseMass(j) * springsOnBusierBody_ <= kExplicitSpring;
+        if (mode_ == Mode::WarmStart)
+            joint_.springExplicit =
+                spring.stiffness * p_.h * p_.h * springInverseMass(j) * springsOnBusierBody_ <= kExplicitSpring;
+        const bool resolved = joint_.springExplicit;
         const double springDamping = spring.damping + (resolved ? 0.0 : p_.h * spring.stiffness);
         if (resolved && (mode_ == Mode::Relax || !(springDamping > 0.0))) {
             // The substep's stiffness impulse (undamped), or the solve pass's impulse kept.
