@@ -76,6 +76,9 @@ public:
     std::size_t slot = 0;
     /// Order among the awake bodies in the world's current collide pass (kept by the world).
     std::size_t awakeRank = 0;
+    /// isActive() when the world's current collide pass began: the pass asks it of every
+    /// candidate pair, and nothing wakes or sleeps until the ODE step.
+    bool activeInPass = false;
     /// Queued in the world's list of bodies with forces this step.
     bool forceQueued = false;
 

@@ -36,7 +36,9 @@ int dropDegenerateContacts(dContact* contacts, int count) {
         const dContactGeom& g = contacts[i].geom;
         const Vec3 normal = toVec3(g.normal);
         const bool valid = toVec3(g.pos).allFinite() && std::isfinite(g.depth) && std::abs(normal.norm() - 1.0) < 1e-6;
-        if (valid) contacts[kept++] = contacts[i];
+        if (!valid) continue;
+        if (kept != i) contacts[kept] = contacts[i];  // a dContact is 200-odd bytes: no copy onto itself
+        ++kept;
     }
     return kept;
 }
@@ -51,7 +53,7 @@ void OdeWorld::awakeGeomCallback(void* self, dGeomID o1, dGeomID o2) {
     // A pair of two awake bodies is collided once: from the body that comes first.
     const auto* mine = static_cast<const OdeBody*>(dGeomGetData(world.currentGeom_));
     const auto* theirs = static_cast<const OdeBody*>(dGeomGetData(other));
-    if (theirs->isActive() && theirs->awakeRank < mine->awakeRank) return;
+    if (theirs->activeInPass && theirs->awakeRank < mine->awakeRank) return;
     world.collidePair(world.currentGeom_, other);
 }
 
@@ -64,7 +66,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     // Something must respond: a dynamic body, or a sensor and something moving.
     const bool trigger = sa->trigger || sb->trigger;
     if (trigger ? !(a->moves() || b->moves()) : !(a->isDynamic() || b->isDynamic())) return;
-    if (!a->isActive() && !b->isActive()) return;  // asleep (or asleep on something static)
+    if (!a->activeInPass && !b->activeInPass) return;  // asleep (or asleep on something static)
     if (!layersCollide(sa->layer, sa->mask, sb->layer, sb->mask)) return;
     if (jointExcludes(a, b)) return;  // joined by a joint with collideConnected false
     if (!collidable(o1, o2)) return;
@@ -117,11 +119,12 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
         surface.soft_cfm = std::min(cfm, kBounceCfm);
     }
     const bool feedback = wantsFeedback();
+    const Vec3 fallA = stepFall(a), fallB = stepFall(b);  // once per pair: the same for every point
     for (int i = 0; i < count; ++i) {
         contacts[i].surface = surface;
         if (surface.mode & dContactApprox1) {
             const Vec3 point = toVec3(contacts[i].geom.pos);
-            alignFrictionWithSlip(contacts[i], predictedVelocity(a, point) - predictedVelocity(b, point));
+            alignFrictionWithSlip(contacts[i], (pointVelocity(a.id(), point) + fallA) - (pointVelocity(b.id(), point) + fallB));
         }
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
@@ -129,10 +132,10 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
     }
 }
 
-Vec3 OdeWorld::predictedVelocity(const OdeBody& body, const Vec3& point) const {
-    const bool falls = body.isDynamic() && effects_.has(Effect::Gravity) && body.id() && dBodyGetGravityMode(body.id());
-    return predictedPointVelocity(body.id(), point, falls ? Vec3(body.gravityScale() * settings_.gravity) : Vec3::Zero(),
-                                  odeStep());
+Vec3 OdeWorld::stepFall(const OdeBody& body) const {
+    // A gravityScale of 0 (ODE's gravity mode off, OdeBody) gives 0 here without asking ODE.
+    const bool falls = body.isDynamic() && effects_.has(Effect::Gravity);
+    return (falls ? Vec3(body.gravityScale() * settings_.gravity) : Vec3::Zero()) * odeStep();
 }
 
 void OdeWorld::collide() {
@@ -143,7 +146,8 @@ void OdeWorld::collide() {
     awakeGeoms_.clear();
     awakeBodies_ = 0;
     for (OdeBody* body : bodies_) {
-        if (!body->isActive()) continue;
+        body->activeInPass = body->isActive();
+        if (!body->activeInPass) continue;
         body->awakeRank = awakeBodies_++;
         for (std::size_t i = 0; i < body->shapeCount(); ++i) awakeGeoms_.push_back(body->shape(i).geom());
     }
@@ -190,10 +194,10 @@ void OdeWorld::reportContacts(ContactReport& out) {
     // the normal impulse is that force along the normal times dt (with substeps: the last
     // substep's force held for the whole step). The feedback array outlives the joints.
     const bool haveImpulses = feedbackValid_ && feedback_.size() == points_.size();
-    const auto asleep = [](const OdeBody& body) { return body.moves() && !body.isActive(); };
     for (const PairRecord& p : pairs_) {
-        if (!p.a->isActive() && !p.b->isActive()) continue;  // both asleep: the layer keeps the pair
-        const bool sleeping = asleep(*p.a) || asleep(*p.b);
+        const bool activeA = p.a->isActive(), activeB = p.b->isActive();  // after the step
+        if (!activeA && !activeB) continue;  // both asleep: the layer keeps the pair
+        const bool sleeping = (p.a->moves() && !activeA) || (p.b->moves() && !activeB);
         if (p.trigger) {
             out.addPair(p.a->userData(), p.b->userData(), true, Vec3::Zero(), sleeping);
             continue;
@@ -202,8 +206,11 @@ void OdeWorld::reportContacts(ContactReport& out) {
         out.addPair(p.a->userData(), p.b->userData(), false, -points_[p.first].normal, sleeping);
         for (std::uint32_t i = p.first; i < p.first + p.count; ++i) {
             const PointRecord& c = points_[i];
-            const double impulse =
-                haveImpulses ? std::max(0.0, dCalcVectorDot3(feedback_[i].f1, c.normal.data())) * lastDt_ : 0.0;
+            double impulse = 0.0;
+            if (haveImpulses) {  // dCalcVectorDot3, inline: the report visits every point every step
+                const dReal* f = feedback_[i].f1;
+                impulse = std::max(0.0, f[0] * c.normal.x() + f[1] * c.normal.y() + f[2] * c.normal.z()) * lastDt_;
+            }
             out.addPoint({c.position, c.depth, impulse});
         }
     }

@@ -16,11 +16,4 @@ void alignFrictionWithSlip(dContact& contact, const Vec3& relativeVelocity) {
     contact.surface.mode |= dContactFDir1;
 }
 
-Vec3 predictedPointVelocity(dBodyID body, const Vec3& point, const Vec3& gravity, double h) {
-    if (!body) return Vec3::Zero();
-    dVector3 v;
-    dBodyGetPointVel(body, point.x(), point.y(), point.z(), v);
-    return Vec3(v[0], v[1], v[2]) + gravity * h;
-}
-
 }  // namespace anyphys::ode

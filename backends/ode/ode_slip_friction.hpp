@@ -16,9 +16,20 @@ namespace anyphys::ode {
 /// the ODE step). A slip slower than kSlipDirectionSpeed keeps ODE's directions.
 void alignFrictionWithSlip(dContact& contact, const Vec3& relativeVelocity);
 
+/// The velocity of `body`'s point at `point` now; a null body (static geom) does not move.
+inline Vec3 pointVelocity(dBodyID body, const Vec3& point) {
+    if (!body) return Vec3::Zero();
+    dVector3 v;
+    dBodyGetPointVel(body, point.x(), point.y(), point.z(), v);
+    return Vec3(v[0], v[1], v[2]);
+}
+
 /// The velocity of `body`'s point at `point` at the end of an ODE step of `h` without contacts:
 /// its velocity plus `gravity` x h (pass zero for a body gravity does not move). A null body
 /// (static geom) does not move.
-Vec3 predictedPointVelocity(dBodyID body, const Vec3& point, const Vec3& gravity, double h);
+inline Vec3 predictedPointVelocity(dBodyID body, const Vec3& point, const Vec3& gravity, double h) {
+    if (!body) return Vec3::Zero();
+    return pointVelocity(body, point) + gravity * h;
+}
 
 }  // namespace anyphys::ode

@@ -84,7 +84,9 @@ private:
     void collidePair(dGeomID o1, dGeomID o2);
     void collide();
     void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count);
-    Vec3 predictedVelocity(const OdeBody& body, const Vec3& point) const;  // m/s, at the ODE step's end
+    /// The velocity gravity adds to the body over one ODE step (m/s): with its velocity now at a
+    /// point, the point's velocity at the step's end before contacts (slip-aligned friction).
+    Vec3 stepFall(const OdeBody& body) const;
     void continuousCollision(const std::vector<Vec3>& before);
     /// A joint with collideConnected false joins a and b (either order).
     bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
