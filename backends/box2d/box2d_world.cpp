@@ -273,14 +273,16 @@ void Box2dWorld::sumImpulses() {
     std::sort(impulses_.begin(), impulses_.end(), byContact);
     impulses_.erase(std::unique(impulses_.begin(), impulses_.end(), [](const auto& x, const auto& y) { return x.contact == y.contact; }),
                     impulses_.end());
+    summedFilter_.reset();
+    for (const SummedImpulses& s : impulses_) summedFilter_.set(filterBit(s.contact));
     if (!impulses_.empty())
         for (const ContactRules::SolvedImpulses& s : solved)
-            if (SummedImpulses* summed = findSum(impulses_, s.contact))
+            if (SummedImpulses* summed = summedFilter_[filterBit(s.contact)] ? findSum(impulses_, s.contact) : nullptr)
                 for (std::size_t p = 0; p < summed->sum.size(); ++p) summed->sum[p] += s.normal[p];
     solved.clear();
 }
 
-const Box2dWorld::SummedImpulses* Box2dWorld::summedImpulses(const b2Contact* contact) const { return findSum(impulses_, contact); }
+const Box2dWorld::SummedImpulses* Box2dWorld::findSummed(const b2Contact* contact) const { return findSum(impulses_, contact); }
 
 bool Box2dWorld::hasAwakeBodies() const {
     if (!effects_.has(Effect::Contacts)) return true;

@@ -4,6 +4,8 @@
 #include <box2d/box2d.h>
 
 #include <array>
+#include <bitset>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -89,8 +91,20 @@ private:
         std::array<float, b2_maxManifoldPoints> sum;
     };
     std::vector<SummedImpulses> impulses_;
+    /// One bit per contact of impulses_, at filterBit(contact): a step sums a few contacts (those
+    /// time of impact solved: about 70 of 14 900 in a 5 050-box pyramid) and asks about every
+    /// contact; a clear bit answers without the binary search.
+    std::bitset<1024> summedFilter_;
+    static std::size_t filterBit(const b2Contact* contact) {
+        // Fibonacci hashing: the product's top ten bits mix all of the address's bits.
+        return static_cast<std::size_t>((reinterpret_cast<std::uintptr_t>(contact) * 0x9E3779B97F4A7C15ull) >> 54);
+    }
     void sumImpulses();  // after the step
-    const SummedImpulses* summedImpulses(const b2Contact* contact) const;
+    /// The entry of `contact` in impulses_, or none. Inline: the report asks for every contact.
+    const SummedImpulses* summedImpulses(const b2Contact* contact) const {
+        return summedFilter_[filterBit(contact)] ? findSummed(contact) : nullptr;
+    }
+    const SummedImpulses* findSummed(const b2Contact* contact) const;  // the binary search
 };
 
 }  // namespace anyphys::box2d
