@@ -65,9 +65,7 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
     if (body_ && !def.isAwake) dBodyDisable(body_);
 }
 
-const GeomSurface& OdeBody::surface(dGeomID geom) const { return shapeOf(geom).surface(); }
-
-const OdeShape& OdeBody::shapeOf(dGeomID geom) const {
+const OdeShape& OdeBody::childOwning(dGeomID geom) const {
     // A compound has a few children: a scan is cheaper than a map, and one shape needs none.
     for (const auto& shape : shapes_)
         if (shape->geom() == geom) return *shape;

@@ -31,11 +31,14 @@ int dropDegenerateContacts(dContact* contacts, int count) {
     // ODE's convex-convex test returns NaN normals for faces that touch exactly (blocks of an
     // arch built flush); one such contact makes the step's quaternions NaN and ODE aborts the
     // process. A contact without a finite point, unit normal and finite depth is dropped.
+    // |n| within 1e-6 of 1, compared squared (no square root per contact).
+    constexpr double kLeastSquaredNorm = (1.0 - 1e-6) * (1.0 - 1e-6), kMostSquaredNorm = (1.0 + 1e-6) * (1.0 + 1e-6);
     int kept = 0;
     for (int i = 0; i < count; ++i) {
         const dContactGeom& g = contacts[i].geom;
-        const Vec3 normal = toVec3(g.normal);
-        const bool valid = toVec3(g.pos).allFinite() && std::isfinite(g.depth) && std::abs(normal.norm() - 1.0) < 1e-6;
+        const double squaredNorm = toVec3(g.normal).squaredNorm();  // NaN fails both comparisons
+        const bool valid = toVec3(g.pos).allFinite() && std::isfinite(g.depth) && squaredNorm > kLeastSquaredNorm &&
+                           squaredNorm < kMostSquaredNorm;
         if (!valid) continue;
         if (kept != i) contacts[kept] = contacts[i];  // a dContact is 200-odd bytes: no copy onto itself
         ++kept;
@@ -61,19 +64,22 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     auto* a = static_cast<OdeBody*>(dGeomGetData(o1));
     auto* b = static_cast<OdeBody*>(dGeomGetData(o2));
     // Per geom: a compound's children may differ in material, filter and sensor flag.
-    const GeomSurface* sa = &a->surface(o1);
-    const GeomSurface* sb = &b->surface(o2);
+    const OdeShape* shapeA = &a->shapeOf(o1);
+    const OdeShape* shapeB = &b->shapeOf(o2);
+    const GeomSurface* sa = &shapeA->surface();
+    const GeomSurface* sb = &shapeB->surface();
     // Something must respond: a dynamic body, or a sensor and something moving.
     const bool trigger = sa->trigger || sb->trigger;
     if (trigger ? !(a->moves() || b->moves()) : !(a->isDynamic() || b->isDynamic())) return;
     if (!a->activeInPass && !b->activeInPass) return;  // asleep (or asleep on something static)
     if (!layersCollide(sa->layer, sa->mask, sb->layer, sb->mask)) return;
     if (jointExcludes(a, b)) return;  // joined by a joint with collideConnected false
-    if (!collidable(o1, o2)) return;
+    if (!collidable(shapeA->type(), shapeB->type())) return;
     // ODE's normals point into geom 1: make that a dynamic body, whose joint feedback is read.
     if (!a->isDynamic()) {
         std::swap(o1, o2);
         std::swap(a, b);
+        std::swap(shapeA, shapeB);
         std::swap(sa, sb);
     }
     // Collide into a stack buffer: most candidate pairs from the broad phase have no points.
@@ -81,7 +87,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
     n = dropDegenerateContacts(found, n);
     if (n <= 0) return;
-    if (n == 1 && !trigger) n = completeOnePointContact(a->shapeOf(o1), b->shapeOf(o2), found, kMaxContactsPerPair);
+    if (n == 1 && !trigger) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
     if (!trigger) createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);  // sensors never collide
     if (!effects_.has(Effect::Events)) return;
     const auto first = static_cast<std::uint32_t>(points_.size());

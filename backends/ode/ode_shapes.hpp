@@ -17,6 +17,12 @@ inline bool collidable(dGeomID a, dGeomID b) {
     return !((ca == dConvexClass && cb == dTriMeshClass) || (ca == dTriMeshClass && cb == dConvexClass));
 }
 
+/// collidable(dGeomID, dGeomID) for the layer's shapes, from their types (the near callback's
+/// test: no calls into ODE for each candidate pair).
+inline bool collidable(ShapeType a, ShapeType b) {
+    return !((a == ShapeType::Convex && b == ShapeType::Mesh) || (a == ShapeType::Mesh && b == ShapeType::Convex));
+}
+
 /// A geom's surface as the layer resolved it (a compound child's own, else the body's).
 struct GeomSurface {
     std::uint32_t material = 0;
