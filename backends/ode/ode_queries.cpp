@@ -32,7 +32,7 @@ void rayCallback(void* data, dGeomID o1, dGeomID o2) {
 }
 
 struct OverlapQuery {
-    dGeomID probe;
+    const OdeShape* probe;
     std::uint32_t mask;
     bool movingOnly;  // wakeTouching: only bodies that can be woken
     std::vector<std::uint64_t>* found;
@@ -41,14 +41,17 @@ struct OverlapQuery {
 
 void overlapCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<OverlapQuery*>(data);
-    const dGeomID other = o1 == q.probe ? o2 : o1;
-    if (other == q.probe) return;
+    const dGeomID probe = q.probe->geom();
+    const dGeomID other = o1 == probe ? o2 : o1;
+    if (other == probe) return;
     const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
-    if (!body || (body->surface(other).layer & q.mask) == 0) return;
-    if (q.movingOnly ? !body->moves() : body->surface(other).trigger) return;
-    if (!collidable(q.probe, other)) return;
+    if (!body) return;
+    const OdeShape& shape = body->shapeOf(other);
+    if ((shape.surface().layer & q.mask) == 0) return;
+    if (q.movingOnly ? !body->moves() : shape.surface().trigger) return;
+    if (!collidable(q.probe->type(), shape.type())) return;
     dContactGeom contact;
-    if (dCollide(q.probe, other, 1, &contact, sizeof(dContactGeom)) < 1) return;
+    if (dCollide(probe, other, 1, &contact, sizeof(dContactGeom)) < 1) return;
     if (q.found) q.found->push_back(body->userData());
     if (q.bodies) q.bodies->push_back(body);
 }
@@ -83,7 +86,7 @@ std::vector<std::uint64_t> OdeWorld::overlap(const std::vector<PeerShape>& shape
         probe.place(pose);
         dGeomSetCategoryBits(probe.geom(), ~0ul);
         dGeomSetCollideBits(probe.geom(), ~0ul);
-        OverlapQuery q{probe.geom(), mask, false, &found, nullptr};
+        OverlapQuery q{&probe, mask, false, &found, nullptr};
         dSpaceCollide2(probe.geom(), reinterpret_cast<dGeomID>(space_), &q, &overlapCallback);
     }
     std::sort(found.begin(), found.end());
@@ -94,7 +97,7 @@ std::vector<std::uint64_t> OdeWorld::overlap(const std::vector<PeerShape>& shape
 void OdeWorld::wakeTouching(const OdeBody& body) {
     std::vector<const OdeBody*> touching;
     for (std::size_t i = 0; i < body.shapeCount(); ++i) {
-        OverlapQuery q{body.shape(i).geom(), ~0u, true, nullptr, &touching};
+        OverlapQuery q{&body.shape(i), ~0u, true, nullptr, &touching};
         dSpaceCollide2(body.shape(i).geom(), reinterpret_cast<dGeomID>(space_), &q, &overlapCallback);
     }
     for (const OdeBody* b : touching)

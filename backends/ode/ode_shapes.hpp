@@ -10,15 +10,10 @@
 
 namespace anyphys::ode {
 
-/// False for geom pairs ODE cannot collide safely: convex against triangle mesh, whose collider
+/// False for shape pairs ODE cannot collide safely: convex against triangle mesh, whose collider
 /// in ODE 0.16 built without libccd (Debian's) crashes inside OPCODE. Such pairs never touch.
-inline bool collidable(dGeomID a, dGeomID b) {
-    const int ca = dGeomGetClass(a), cb = dGeomGetClass(b);
-    return !((ca == dConvexClass && cb == dTriMeshClass) || (ca == dTriMeshClass && cb == dConvexClass));
-}
-
-/// collidable(dGeomID, dGeomID) for the layer's shapes, from their types (the near callback's
-/// test: no calls into ODE for each candidate pair).
+/// From the layer's shape types: the near callback asks it of every candidate pair, without
+/// calls into ODE.
 inline bool collidable(ShapeType a, ShapeType b) {
     return !((a == ShapeType::Convex && b == ShapeType::Mesh) || (a == ShapeType::Mesh && b == ShapeType::Convex));
 }
