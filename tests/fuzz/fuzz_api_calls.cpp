@@ -181,11 +181,14 @@ void createBody(Decoder& d, Session& s) {
     if (d.flag()) b.layer = d.byte();
     if (d.flag()) b.mask = d.byte();
     b.allowSleep = d.flag();
-    if (std::getenv("ANYPHYS_FUZZ_TRACE"))
-        std::fprintf(stderr, "  body %s type %d shape %d radius %g half %g %g %g at %g %g %g mass %g density %g\n", b.name.c_str(),
-                     int(b.type), int(b.shape.type), b.shape.radius, b.shape.halfExtents.x(), b.shape.halfExtents.y(),
-                     b.shape.halfExtents.z(), b.position.x(), b.position.y(), b.position.z(), b.mass.value_or(-1),
-                     b.density.value_or(-1));
+    if (std::getenv("ANYPHYS_FUZZ_TRACE")) {
+        const Vec3 inertia = b.inertia.value_or(Vec3::Constant(-1));
+        std::fprintf(stderr, "  body %s type %d shape %d radius %g half %g %g %g normal %g %g %g"
+                     " offset %g at %g %g %g mass %g density %g inertia %g %g %g\n", b.name.c_str(), int(b.type), int(b.shape.type), b.shape.radius,
+                     b.shape.halfExtents.x(), b.shape.halfExtents.y(), b.shape.halfExtents.z(), b.shape.normal.x(),
+                     b.shape.normal.y(), b.shape.normal.z(), b.shape.offset, b.position.x(), b.position.y(),
+                     b.position.z(), b.mass.value_or(-1), b.density.value_or(-1), inertia.x(), inertia.y(), inertia.z());
+    }
     fuzz::refusedOrDone([&] { s.bodies.push_back(s.world->createBody(b)); });
 }
 
@@ -355,7 +358,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                 s.world->jointCount());
         switch (kind) {
             case 0: case 1: createBody(d, s); break;
-            case 2: { Body b = anyBody(d, s); fuzz::refusedOrDone([&] { s.world->destroyBody(b); }); break; }
+            case 2: {
+                Body b = anyBody(d, s);
+                if (trace) std::fprintf(stderr, "  destroy body %u\n", b.id().index);
+                fuzz::refusedOrDone([&] { s.world->destroyBody(b); });
+                break;
+            }
             case 3: createJoint(d, s); break;
             case 4: { Joint j = anyJoint(d, s); fuzz::refusedOrDone([&] { s.world->destroyJoint(j); }); break; }
             case 5: touchBody(d, s); break;
