@@ -7,6 +7,7 @@
 
 #include "anyphys/backends.hpp"
 #include "body_shapes.hpp"
+#include "geometry/shape_bounds.hpp"
 #include "anyphys/validation.hpp"
 #include "world_impl.hpp"
 
@@ -294,6 +295,33 @@ void requireUsableMass(const BodyDef& def, const ResolvedShapes& resolved, doubl
     const double value = def.mass ? *def.mass : def.inertia ? def.inertia->minCoeff() : density;
     throw Error::invalid(field, value, os.str());
 }
+
+// Each principal inertia must be at least kMinInertiaRatio x mass x the squared reach of the
+// shapes about that axis (bounded by their boxes in the principal frame).
+void requireResolvableInertia(const BodyDef& def, const ResolvedShapes& resolved) {
+    Vec3 reach = Vec3::Zero();  // along each principal axis, the farthest any shape extends
+    for (const PeerShape& shape : resolved.shapes)
+        if (const auto box = shapeBounds(shape.def, shape.local))
+            reach = reach.cwiseMax(box->min.cwiseAbs()).cwiseMax(box->max.cwiseAbs());
+    const Vec3 r2 = reach.cwiseAbs2();
+    const MassProperties& m = resolved.mass;
+    const Vec3 least = kMinInertiaRatio * m.mass * Vec3(r2.y() + r2.z(), r2.x() + r2.z(), r2.x() + r2.y());
+    if ((m.inertia.array() >= least.array()).all()) return;
+    const auto list = [](const Vec3& v) {
+        std::ostringstream os;
+        os.precision(6);
+        os << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+        return os.str();
+    };
+    std::ostringstream rule;
+    rule.precision(6);
+    rule << "each principal inertia must be at least anyphys::kMinInertiaRatio (" << kMinInertiaRatio
+         << ") x mass x its squared reach about that axis, " << list(least) << " kg m^2 for " << m.mass
+         << " kg reaching " << list(reach) << " m from its centre of mass (lighter in rotation, a solver in "
+         << "double precision loses the body's translation)";
+    // Given inertia is the user's; otherwise the shapes' densities made it (a compound's).
+    throw Error::invalid(def.inertia ? "BodyDef.inertia" : "BodyDef.shape", list(m.inertia), rule.str());
+}
 }  // namespace
 
 Body World::createBody(const BodyDef& input) {
@@ -338,7 +366,10 @@ Body World::createBody(const BodyDef& input) {
     def.orientation.normalize();
     const double density = def.density.value_or(materials_.get(def.material).density);
     ResolvedShapes resolved = resolveShapes(def, pieceDensities(def));
-    if (def.type == BodyType::Dynamic) requireUsableMass(def, resolved, density);
+    if (def.type == BodyType::Dynamic) {
+        requireUsableMass(def, resolved, density);
+        requireResolvableInertia(def, resolved);
+    }
     resolveSurfaces(def, resolved.shapes);
     BodyPeerDef peerDef;
     peerDef.def = def;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "debug/shape_bounds.hpp"
+#include "geometry/shape_bounds.hpp"
 
 namespace anyphys {
 namespace {

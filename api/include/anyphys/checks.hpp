@@ -59,6 +59,13 @@ inline constexpr double kMinLength = 1e-6;
 /// divides by it); 1e30 kg is half the Sun.
 inline constexpr double kMinMass = 1e-30;
 inline constexpr double kMaxMass = 1e30;
+/// The least principal inertia of a dynamic body, as a fraction of its mass times the square of
+/// its shapes' reach about that axis (the inertia it would have with the mass at the far corner).
+/// Physics allows less (a point mass has none), but a solver's constraint row weighs the body's
+/// turning and its translation together: past 1e12 apart, the translation falls below what a
+/// double rounds away. A 1e20 kg box of 0.1 m given 2 kg m^2 (1e-17 of that inertia; the API
+/// fuzzer) made ODE's LCP fail and then abort the process on a non-finite rotation.
+inline constexpr double kMinInertiaRatio = 1e-12;
 /// Largest WorldSettings::substeps, iterations and maxStepsPerUpdate: a count of 2e9 is a typo that
 /// would hang the step, not a setting (the sweeps and the catalogue use at most 64 and 1000).
 inline constexpr int kMaxSubsteps = 1000;

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "../world_impl.hpp"
-#include "shape_bounds.hpp"
+#include "../geometry/shape_bounds.hpp"
 
 namespace anyphys {
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
-// The world AABB of one primitive shape at a pose, computed by the layer from the ShapeDef so that
-// debug drawing shows the same bounds on every backend (engines pad their broad-phase boxes each
-// in their own way). Pure function: unit-tested without a backend.
+// The AABB of one primitive shape at a pose, computed by the layer from the ShapeDef: debug
+// drawing shows the same bounds on every backend (engines pad their broad-phase boxes each in
+// their own way), and body creation measures a body's reach about its axes with it. Pure
+// function: unit-tested without a backend.
 #include <optional>
 
 #include "anyphys/defs.hpp"
