@@ -62,7 +62,24 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
         coreExtent_ = std::min(coreExtent_, shape->coreExtent());
         shapes_.push_back(std::move(shape));
     }
+    if (type_ == BodyType::Dynamic) rowWeightBound_ = largestRowWeight();
     if (body_ && !def.isAwake) dBodyDisable(body_);
+}
+
+double OdeBody::largestRowWeight() const {
+    // A unit row acting at r from the centre of mass weighs 1/m + |r x d|^2 / I along d, at most
+    // 1/m + |r|^2 / I_min; r is bounded by the farthest corner of the geoms' bounding boxes.
+    const Vec3 centre = toVec3(dBodyGetPosition(body_));
+    double reach2 = 0.0;
+    for (const auto& shape : shapes_) {
+        dReal box[6];
+        dGeomGetAABB(shape->geom(), box);
+        const Vec3 far(std::max(std::abs(box[0] - centre.x()), std::abs(box[1] - centre.x())),
+                       std::max(std::abs(box[2] - centre.y()), std::abs(box[3] - centre.y())),
+                       std::max(std::abs(box[4] - centre.z()), std::abs(box[5] - centre.z())));
+        reach2 = std::max(reach2, far.squaredNorm());
+    }
+    return 1.0 / mass_.mass + reach2 / mass_.inertia.minCoeff();
 }
 
 const OdeShape& OdeBody::childOwning(dGeomID geom) const {

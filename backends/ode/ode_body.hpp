@@ -60,6 +60,9 @@ public:
     double gravityScale() const { return gravityScale_; }
     double mass() const { return mass_.mass; }
     double coreExtent() const { return coreExtent_; }
+    /// 1/kg: an upper bound on the weight J M^-1 J^T of any unit constraint row acting on this
+    /// body at a point of its shapes; 0 for static and kinematic bodies (conditionedCfm).
+    double rowWeightBound() const { return rowWeightBound_; }
     std::size_t shapeCount() const { return shapes_.size(); }
     const OdeShape& shape(std::size_t i) const { return *shapes_[i]; }
 
@@ -93,6 +96,7 @@ private:
     double planeZ_ = 0.0;                // planar: the centre of mass's constant z
     BodyType type_;
     const OdeShape& childOwning(dGeomID geom) const;  // shapeOf for a body of several shapes
+    double largestRowWeight() const;                  // rowWeightBound_ of a dynamic body
     std::vector<std::unique_ptr<OdeShape>> shapes_;
     Transform staticPose_;  // static bodies: their frame's pose (they have no dBody)
     MassProperties mass_;
@@ -104,6 +108,7 @@ private:
     double linearDamping_, angularDamping_;  // 1/s
     GyroscopicMode gyroscopic_;
     double coreExtent_ = 0.0;
+    double rowWeightBound_ = 0.0;
     Vec3 force_ = Vec3::Zero(), torque_ = Vec3::Zero();          // user, this step
     Vec3 heldForce_ = Vec3::Zero(), heldTorque_ = Vec3::Zero();  // the layer's step forces (holdForStep), this step
 };

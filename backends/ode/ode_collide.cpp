@@ -114,7 +114,8 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
     // The friction rows' CFM is the world's unless a slip is given (ODE's contact joint uses slip
     // as their CFM, and the flags do nothing else): left at the world's, a 1 000 t stack walked
     // 0.87 m in 10 s.
-    const double cfm = pairCfm(cfm_, pairMass);
+    const double rowWeight = a.rowWeightBound() + b.rowWeightBound();
+    const double cfm = conditionedCfm(pairCfm(cfm_, pairMass), lastH_, rowWeight);
     surface.mode |= dContactSoftCFM | dContactSlip1 | dContactSlip2;
     surface.soft_cfm = surface.slip1 = surface.slip2 = cfm;
     if (effects_.has(Effect::Restitution) && m.restitution > 0) {
@@ -122,7 +123,7 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
         surface.bounce = m.restitution;
         surface.bounce_vel = settings_.restitutionThreshold;  // slower impacts do not bounce
         surface.mode |= dContactSoftCFM;  // rigid, so softness does not absorb the rebound
-        surface.soft_cfm = std::min(cfm, kBounceCfm);
+        surface.soft_cfm = conditionedCfm(std::min(cfm, kBounceCfm), lastH_, rowWeight);
     }
     const bool feedback = wantsFeedback();
     const Vec3 fallA = stepFall(a), fallB = stepFall(b);  // once per pair: the same for every point

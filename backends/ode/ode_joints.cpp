@@ -376,7 +376,13 @@ double OdeJoint::measurePosition() const {
 
 double OdeJoint::pairMass() const { return heavierDynamicMass(a_, b_); }
 
-double OdeJoint::rowCfm() const { return pairCfm(world_.cfm(), pairMass()); }
+double OdeJoint::rowWeightBound() const {
+    return (a_ ? a_->rowWeightBound() : 0.0) + (b_ ? b_->rowWeightBound() : 0.0);
+}
+
+double OdeJoint::rowCfm() const {
+    return conditionedCfm(pairCfm(world_.cfm(), pairMass()), world_.odeStep(), rowWeightBound());
+}
 
 void OdeJoint::applyRowCfm(double cfm) {
     // Each step, so a mass set after the joint's creation counts. For a pair of 1 t or less this

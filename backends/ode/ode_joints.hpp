@@ -72,6 +72,8 @@ public:
     void finishStep(double dt, int substeps);
     /// kg: the heavier dynamic body's mass (0 if neither is dynamic).
     double pairMass() const;
+    /// 1/kg: the bound on one of its rows' weight J M^-1 J^T (OdeBody::rowWeightBound, summed).
+    double rowWeightBound() const;
     /// ODE gives the type's main rows no CFM of their own: they take the world's (slider, wheel).
     bool mainRowsTakeTheWorldsCfm() const { return def_.type == JointType::Slider || def_.type == JointType::Wheel; }
     /// Simulated with a spring.
@@ -102,7 +104,8 @@ private:
     bool centreStop(const Vec3& axis, const Vec3& anchor, Vec3& t, double& lever) const;
     void ropeRows(double h);  // distance min / max: the contact rows of the next ODE step
     void addStopRow(const Vec3& at, const Vec3& normal, double gap, double h);
-    /// The CFM of the joint's own rows: the world's, made stiffer for a heavy pair (pairCfm).
+    /// The CFM of the joint's own rows: the world's, made stiffer for a heavy pair (pairCfm),
+    /// never below the conditioning floor (conditionedCfm).
     double rowCfm() const;
     /// Gives every row whose CFM ODE lets a joint set (all but a slider's and a wheel's main
     /// rows, and the springs', which come from their stiffness) the CFM `cfm`.

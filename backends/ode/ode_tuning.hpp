@@ -2,6 +2,8 @@
 // Defaults of the ODE backend that are not WorldSettings fields. bench/direct/ode_scenes.cpp
 // repeats them to drive raw ODE exactly like the backend does: change both together.
 
+#include <algorithm>
+
 namespace anyphys::ode {
 
 /// Used when WorldSettings leaves them unset. 50 quickstep iterations (ODE's own default is 20):
@@ -40,6 +42,24 @@ constexpr double kCfmReferenceMass = 1000.0;
 /// CFM of `cfm` (kCfmReferenceMass).
 inline double pairCfm(double cfm, double pairMass) {
     return pairMass > kCfmReferenceMass ? cfm * (kCfmReferenceMass / pairMass) : cfm;
+}
+
+/// The least CFM a constraint row gets, as a fraction of its weight J M^-1 J^T times the step
+/// (ODE adds CFM / h to the row's diagonal): enough that dWorldStep's LCP never meets a pivot
+/// that rounding made zero, far too little to soften anything. ODE's CFM is absolute and the mass
+/// rule above keeps the world's below 1 t, so a 1e-15 kg box resting on the ground had rows of
+/// weight 1e15 regularised by 1e-21 of it: the LCP failed and ODE aborted the process
+/// (dxLDLTRemove's assertion; at 1e-20 kg, a non-finite rotation). At 60 Hz the floor passes
+/// the default CFM only for bodies under about 1e-7 kg (kBounceCfm: under about 1 g), and
+/// there adds 1e-12 of a row's weight, nothing measurable. No body of the benchmark scenes is
+/// that light, so bench/direct/ode_scenes.cpp does not repeat it. Measured on a 0.1 m box
+/// resting on the ground: 1e-14 is enough from 1e-25 to 1e-12 kg; 1e-12 leaves a factor 100.
+constexpr double kCfmConditioningFloor = 1e-12;
+
+/// `cfm`, raised where needed to the floor (kCfmConditioningFloor) for rows of weight at most
+/// `rowWeight` (OdeBody::rowWeightBound of both bodies) over an ODE step of h seconds.
+inline double conditionedCfm(double cfm, double h, double rowWeight) {
+    return std::max(cfm, kCfmConditioningFloor * h * rowWeight);
 }
 
 /// CFM of contacts that bounce (restitution above the threshold): ODE's rigid default. A soft

@@ -178,10 +178,13 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
         // own): a slider's and a wheel's main rows, made stiff enough for the heaviest pair they
         // hold (pairCfm). A light slider in the same world is stiffer with it, never softer; with
         // the last heavy one gone, the world's CFM is back to its own.
-        double heaviest = 0.0;
+        double heaviest = 0.0, heaviestRow = 0.0;
         for (const OdeJoint* j : userJoints_)
-            if (j->mainRowsTakeTheWorldsCfm()) heaviest = std::max(heaviest, j->pairMass());
-        const double worldCfm = pairCfm(cfm_, heaviest);
+            if (j->mainRowsTakeTheWorldsCfm()) {
+                heaviest = std::max(heaviest, j->pairMass());
+                heaviestRow = std::max(heaviestRow, j->rowWeightBound());
+            }
+        const double worldCfm = conditionedCfm(pairCfm(cfm_, heaviest), h, heaviestRow);
         if (worldCfm != dWorldGetCFM(world_)) dWorldSetCFM(world_, worldCfm);
     }
     if (joints) countSpringsPerBody();

@@ -50,6 +50,8 @@ public:
     Effects effects() const { return effects_; }
     double erp() const { return erp_; }
     double cfm() const { return cfm_; }
+    /// s, the length of one ODE step: the last one taken, else the one the settings announce.
+    double odeStep() const;
     /// ODE steps taken by dWorldStep (the direct solver) and by dWorldQuickStep.
     std::uint64_t directSteps() const { return directSteps_; }
     std::uint64_t quickSteps() const { return quickSteps_; }
@@ -91,7 +93,6 @@ private:
     /// A joint with collideConnected false joins a and b (either order).
     bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
     void applyDampingStep(double h);
-    double odeStep() const;  // s, the length of one ODE step
     /// Gives each sprung joint the count of sprung joints on the busier of its bodies
     /// (anyphys/peers/springs_per_body.hpp).
     void countSpringsPerBody();
