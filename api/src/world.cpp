@@ -322,6 +322,20 @@ void requireResolvableInertia(const BodyDef& def, const ResolvedShapes& resolved
     // Given inertia is the user's; otherwise the shapes' densities made it (a compound's).
     throw Error::invalid(def.inertia ? "BodyDef.inertia" : "BodyDef.shape", list(m.inertia), rule.str());
 }
+
+// What the backend lacks to hold a dynamic body of `mass` kg up (Capabilities::lightestBody,
+// heaviestBody), or "" when it holds it.
+std::string massOutsideRange(const Capabilities& caps, double mass) {
+    const bool light = caps.lightestBody > 0.0 && mass < caps.lightestBody;
+    const bool heavy = caps.heaviestBody > 0.0 && mass > caps.heaviestBody;
+    if (!light && !heavy) return "";
+    std::ostringstream os;
+    os.precision(6);
+    os << "a body of " << mass << " kg (it holds " << (light ? "no body under " : "no body over ")
+       << (light ? caps.lightestBody : caps.heaviestBody) << " kg up on its contacts: capabilities "
+       << (light ? "lightestBody" : "heaviestBody") << ")";
+    return os.str();
+}
 }  // namespace
 
 Body World::createBody(const BodyDef& input) {
@@ -369,6 +383,13 @@ Body World::createBody(const BodyDef& input) {
     if (def.type == BodyType::Dynamic) {
         requireUsableMass(def, resolved, density);
         requireResolvableInertia(def, resolved);
+        const std::string outside = massOutsideRange(caps, resolved.mass.mass);
+        if (!outside.empty()) {
+            const std::string field = def.mass ? "BodyDef.mass" : "BodyDef.density";
+            const std::string what = field + ": backend \"" + settings_.backend + "\" does not support " + outside;
+            if (settings_.capabilityPolicy == CapabilityPolicy::Strict) throw Error(ErrorKind::Unsupported, field, what);
+            warn(what + "; simulated anyway");
+        }
     }
     resolveSurfaces(def, resolved.shapes);
     BodyPeerDef peerDef;

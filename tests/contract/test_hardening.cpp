@@ -557,6 +557,50 @@ TEST_P(HardeningTest, InertiaTooLightForTheMassIsRefusedNamingTheField) {
     }
 }
 
+// The masses a backend holds up on its contacts (Capabilities::lightestBody and heaviestBody, else
+// the layer's whole range): a 0.1 m box at either end rests on the ground with every solver. Past
+// their declared limits Bullet's box sank through and Box2D's went non-finite (measured by
+// decade, 2026-12-02), so a body there is refused naming the field, or simulated with a warning
+// under the lenient policy.
+TEST_P(HardeningTest, BodiesAtTheBackendsMassLimitsRestOnTheGround) {
+    const Capabilities c = caps();
+    // Without declared limits: 1e-25 kg (a lighter 0.1 m box's inertia nears kMinMass) and 1e29.
+    const double lightest = c.lightestBody > 0.0 ? c.lightestBody : 1e-25;
+    const double heaviest = c.heaviestBody > 0.0 ? c.heaviestBody : 1e29;
+    BodyDef def = boxDef("box", Vec3(0.05, 0.05, 0.05), Vec3(0, 0.05, 0));
+    def.allowSleep = false;
+    for (Solver solver : c.solvers)
+        for (double mass : {lightest, heaviest}) {
+            SCOPED_TRACE(std::string(toString(solver)) + " at " + std::to_string(mass) + " kg");
+            WorldSettings s = settings();
+            s.solver = solver;
+            World world(s);
+            world.createBody(groundDef());
+            def.mass = mass;
+            const Body box = world.createBody(def);
+            for (int i = 0; i < 120; ++i) world.step();
+            // As a 1 kg box rests: within 2 mm of its height (ODE's quickstep, the softest
+            // contacts here, 1.2 mm deep above 1 t), still.
+            EXPECT_NEAR(box.position().y(), 0.05, 2e-3);
+            EXPECT_LT(box.linearVelocity().norm(), 1e-2);
+        }
+    for (const auto& [limit, beyond] : {std::pair{c.lightestBody, c.lightestBody / 10}, std::pair{c.heaviestBody, c.heaviestBody * 10}}) {
+        if (limit == 0.0) continue;  // no declared limit on this side
+        def.mass = beyond;
+        World strict(settings());
+        expectError([&] { strict.createBody(def); }, ErrorKind::Unsupported, "BodyDef.mass", {"does not support", "Body"});
+        EXPECT_EQ(strict.bodyCount(), 0u);
+        WorldSettings s = settings();
+        s.capabilityPolicy = CapabilityPolicy::Lenient;
+        World lenient(s);
+        std::vector<std::string> warnings;
+        lenient.setWarningHandler([&](const std::string& w) { warnings.push_back(w); });
+        lenient.createBody(def);
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_THAT(warnings[0], HasSubstr("BodyDef.mass"));
+    }
+}
+
 // userData is the game's: kept on the def, readable and replaceable through the handles, never
 // touched by a step, refused (StaleHandle) once the body or joint is gone.
 TEST_P(HardeningTest, UserDataIsKeptOnBodiesAndJoints) {

@@ -45,6 +45,8 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"knownDeviations", caps.knownDeviations},
         {"deviationCeilings", caps.deviationCeilings},
         {"missingShapePairs", missingPairNames(caps)},
+        {"lightestBody", caps.lightestBody},
+        {"heaviestBody", caps.heaviestBody},
     };
 }
 
@@ -98,6 +100,16 @@ void printText(const std::vector<BackendInfo>& backends) {
         for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
         row("options", orNone(options));
         row("missing pairs", orNone(missingPairNames(c)));
+        {
+            std::ostringstream range;
+            range.precision(3);
+            if (c.lightestBody > 0.0 || c.heaviestBody > 0.0)
+                range << (c.lightestBody > 0.0 ? c.lightestBody : kMinMass) << " to "
+                      << (c.heaviestBody > 0.0 ? c.heaviestBody : kMaxMass) << " kg";
+            else
+                range << "any (the layer's " << kMinMass << " to " << kMaxMass << " kg)";
+            row("body masses", range.str());
+        }
         for (const auto& [criterion, reason] : c.knownDeviations) {
             const auto ceiling = c.deviationCeilings.find(criterion);
             const std::string limit = ceiling == c.deviationCeilings.end() ? "" : " [ceiling " + std::to_string(ceiling->second) + "]";

@@ -39,6 +39,12 @@ struct Capabilities {
     bool contactImpulses = false;              ///< contact events carry real normal impulses
     std::set<std::string> queries;             ///< "raycast", "overlap"
     int maxConvexVertices = 0;                 ///< largest convex hull accepted (0: no limit)
+    /// kg: the lightest and the heaviest dynamic body the engine holds up on its contacts (0: no
+    /// limit within the layer's kMinMass and kMaxMass). Measured per backend, every solver: a
+    /// box resting on the ground for 2 s, masses by decade; outside the range it sank through or
+    /// went non-finite. A body outside is refused (strict) or warned about (lenient).
+    double lightestBody = 0.0;
+    double heaviestBody = 0.0;
     /// Pairs of (primitive) shape types this backend cannot collide, each stored with the smaller
     /// type first. A world whose content would pair them is refused (strict) or warned about
     /// (lenient) when the second body arrives.
