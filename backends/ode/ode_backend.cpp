@@ -34,7 +34,7 @@ Backend makeOdeBackend() {
     caps.forceEvaluation = ForceEvaluation::PerStep;  // forces are held constant over an ODE step
     caps.contactImpulses = true;                      // from the contact joints' feedback
     caps.queries = {"raycast", "overlap"};
-    // Debian's ODE is built without libccd, and its convex-trimesh collider crashes: the pair is
+    // Debian's ODE collides a hull with a mesh through libccd, and that collider crashes: the pair is
     // never collided, so the layer refuses worlds that would need it.
     caps.missingShapePairs = {{ShapeType::Convex, ShapeType::Mesh}};
     caps.parameters = {"settings.gravity", "settings.timeStep", "settings.integrator", "settings.substeps",
