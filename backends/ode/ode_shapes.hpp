@@ -12,8 +12,8 @@ namespace anyphys::ode {
 
 /// False for shape pairs ODE cannot collide safely: convex against triangle mesh, whose collider
 /// in Debian's ODE 0.16 (libccd's dCollideConvexTrimeshTrianglesCCD over OPCODE) crashes. Such
-/// pairs never touch. From the layer's shape types: the near callback asks it of every candidate pair, without
-/// calls into ODE.
+/// pairs never touch. From the layer's shape types: the near callback asks it of every candidate
+/// pair, without calls into ODE.
 inline bool collidable(ShapeType a, ShapeType b) {
     return !((a == ShapeType::Convex && b == ShapeType::Mesh) || (a == ShapeType::Mesh && b == ShapeType::Convex));
 }
