@@ -176,8 +176,9 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
     {
         // The one value ODE's world CFM still sets (contacts and every other joint row have their
         // own): a slider's and a wheel's main rows, made stiff enough for the heaviest pair they
-        // hold (pairCfm). A light slider in the same world is stiffer with it, never softer; with
-        // the last heavy one gone, the world's CFM is back to its own.
+        // hold (pairCfm), and never below the conditioning floor of the lightest (conditionedCfm).
+        // A light slider in the same world is stiffer with it, never softer; with the last heavy
+        // one gone, the world's CFM is back to its own.
         double heaviest = 0.0, heaviestRow = 0.0;
         for (const OdeJoint* j : userJoints_)
             if (j->mainRowsTakeTheWorldsCfm()) {
