@@ -50,7 +50,7 @@ OdeBody::OdeBody(OdeWorld& world, const BodyPeerDef& peerDef)
     coreExtent_ = std::numeric_limits<double>::infinity();
     for (const PeerShape& ps : peerDef.shapes) {
         auto shape = std::make_unique<OdeShape>(ps, world.space());
-        dGeomSetData(shape->geom(), this);
+        shape->setOwner(this);
         // ODE's broad phase pre-filter: it pairs geoms when either's category meets the other's
         // collide bits, weaker than layersCollide (both ways), which the near callback applies.
         dGeomSetCategoryBits(shape->geom(), ps.layer);
@@ -80,13 +80,6 @@ double OdeBody::largestRowWeight() const {
         reach2 = std::max(reach2, far.squaredNorm());
     }
     return 1.0 / mass_.mass + reach2 / mass_.inertia.minCoeff();
-}
-
-const OdeShape& OdeBody::childOwning(dGeomID geom) const {
-    // A compound has a few children: a scan is cheaper than a map, and one shape needs none.
-    for (const auto& shape : shapes_)
-        if (shape->geom() == geom) return *shape;
-    return *shapes_.front();  // not one of ours: never happens for geoms carrying this body
 }
 
 OdeBody::~OdeBody() {

@@ -52,11 +52,6 @@ public:
     std::uint32_t mask() const { return mask_; }
     /// Every geom is a sensor: the body never responds to contact.
     bool isTrigger() const { return trigger_; }
-    /// The surface of one of its geoms (material, filter, sensor flag: per compound child).
-    const GeomSurface& surface(dGeomID geom) const { return shapeOf(geom).surface(); }
-    /// The shape owning `geom`, one of this body's. Inline for the body of one shape, which the
-    /// near callback asks about for both geoms of every candidate pair.
-    const OdeShape& shapeOf(dGeomID geom) const { return shapes_.size() == 1 ? *shapes_.front() : childOwning(geom); }
     double gravityScale() const { return gravityScale_; }
     double mass() const { return mass_.mass; }
     double coreExtent() const { return coreExtent_; }
@@ -95,7 +90,6 @@ private:
     Quat planeTilt_ = Quat::Identity();  // planar: orientation = (turn about Z) x planeTilt_
     double planeZ_ = 0.0;                // planar: the centre of mass's constant z
     BodyType type_;
-    const OdeShape& childOwning(dGeomID geom) const;  // shapeOf for a body of several shapes
     double largestRowWeight() const;                  // rowWeightBound_ of a dynamic body
     std::vector<std::unique_ptr<OdeShape>> shapes_;
     Transform staticPose_;  // static bodies: their frame's pose (they have no dBody)

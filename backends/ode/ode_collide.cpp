@@ -54,18 +54,18 @@ void OdeWorld::awakeGeomCallback(void* self, dGeomID o1, dGeomID o2) {
     auto& world = *static_cast<OdeWorld*>(self);
     const dGeomID other = o1 == world.currentGeom_ ? o2 : o1;
     // A pair of two awake bodies is collided once: from the body that comes first.
-    const auto* mine = static_cast<const OdeBody*>(dGeomGetData(world.currentGeom_));
-    const auto* theirs = static_cast<const OdeBody*>(dGeomGetData(other));
+    const OdeBody* mine = bodyOfGeom(world.currentGeom_);
+    const OdeBody* theirs = bodyOfGeom(other);
     if (theirs->activeInPass && theirs->awakeRank < mine->awakeRank) return;
     world.collidePair(world.currentGeom_, other);
 }
 
 void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
-    auto* a = static_cast<OdeBody*>(dGeomGetData(o1));
-    auto* b = static_cast<OdeBody*>(dGeomGetData(o2));
     // Per geom: a compound's children may differ in material, filter and sensor flag.
-    const OdeShape* shapeA = &a->shapeOf(o1);
-    const OdeShape* shapeB = &b->shapeOf(o2);
+    const OdeShape* shapeA = shapeOfGeom(o1);
+    const OdeShape* shapeB = shapeOfGeom(o2);
+    OdeBody* a = shapeA->owner();
+    OdeBody* b = shapeB->owner();
     const GeomSurface* sa = &shapeA->surface();
     const GeomSurface* sb = &shapeB->surface();
     // Something must respond: a dynamic body, or a sensor and something moving.

@@ -20,8 +20,10 @@ struct RayQuery {
 void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<RayQuery*>(data);
     const dGeomID other = o1 == q.ray ? o2 : o1;
-    const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
-    if (!body || body->surface(other).trigger || (body->surface(other).layer & q.mask) == 0) return;
+    const OdeBody* body = bodyOfGeom(other);
+    if (!body) return;
+    const GeomSurface& surface = shapeOfGeom(other)->surface();
+    if (surface.trigger || (surface.layer & q.mask) == 0) return;
     dContactGeom hit;
     if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
     Vec3 normal = toVec3(hit.normal);
@@ -44,9 +46,9 @@ void overlapCallback(void* data, dGeomID o1, dGeomID o2) {
     const dGeomID probe = q.probe->geom();
     const dGeomID other = o1 == probe ? o2 : o1;
     if (other == probe) return;
-    const auto* body = static_cast<const OdeBody*>(dGeomGetData(other));
+    const OdeBody* body = bodyOfGeom(other);
     if (!body) return;
-    const OdeShape& shape = body->shapeOf(other);
+    const OdeShape& shape = *shapeOfGeom(other);
     if ((shape.surface().layer & q.mask) == 0) return;
     if (q.movingOnly ? !body->moves() : shape.surface().trigger) return;
     if (!collidable(q.probe->type(), shape.type())) return;

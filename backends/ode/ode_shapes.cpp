@@ -77,6 +77,8 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
         }
         case ShapeType::Compound: break;  // the layer flattens compounds: never reaches a backend
     }
+    if (d.type == ShapeType::Convex) hull_ = shape.hull;
+    if (geom_) dGeomSetData(geom_, this);
 }
 
 OdeShape::~OdeShape() {
@@ -107,6 +109,7 @@ dGeomID OdeShape::twin() const {
             break;
         default: break;
     }
+    if (twin_) dGeomSetData(twin_, const_cast<OdeShape*>(this));
     return twin_;
 }
 

@@ -26,9 +26,12 @@ struct GeomSurface {
     bool trigger = false;
 };
 
+class OdeBody;
+
 class OdeShape {
 public:
     /// Builds the geom of `shape` in `space` (0: in no space, e.g. a query probe). Not placed yet.
+    /// The geom's data (and its twin's) is this shape (shapeOfGeom).
     explicit OdeShape(const PeerShape& shape, dSpaceID space);
     ~OdeShape();
     OdeShape(const OdeShape&) = delete;
@@ -37,6 +40,11 @@ public:
     dGeomID geom() const { return geom_; }
     ShapeType type() const { return type_; }
     const GeomSurface& surface() const { return surface_; }
+    /// Convex shapes: the hull, in the geom's frame; null for other shapes.
+    const HullData* hull() const { return hull_.get(); }
+    /// The body the geom belongs to; null for a query probe.
+    OdeBody* owner() const { return owner_; }
+    void setOwner(OdeBody* body) { owner_ = body; }
 
     /// A second geom of the same shape in no space and on no body, made on first use, for
     /// colliding the shape at a pose of its own (ode_contact_completion.hpp); null for shapes
@@ -64,6 +72,8 @@ private:
 
     dGeomID geom_ = nullptr;
     mutable dGeomID twin_ = nullptr;
+    OdeBody* owner_ = nullptr;
+    std::shared_ptr<const HullData> hull_;
     ShapeType type_;
     GeomSurface surface_;
     Transform local_;
@@ -80,5 +90,14 @@ private:
     std::vector<dTriIndex> meshIndices_;
     dTriMeshDataID meshData_ = nullptr;
 };
+
+/// The shape whose geom (or twin) `geom` is; null for other geoms (rays).
+inline const OdeShape* shapeOfGeom(dGeomID geom) { return static_cast<const OdeShape*>(dGeomGetData(geom)); }
+
+/// The body owning `geom`; null for a ray or a query probe.
+inline OdeBody* bodyOfGeom(dGeomID geom) {
+    const OdeShape* shape = shapeOfGeom(geom);
+    return shape ? shape->owner() : nullptr;
+}
 
 }  // namespace anyphys::ode
