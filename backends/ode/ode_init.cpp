@@ -9,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include "ode_convex_sphere.hpp"
+
 namespace anyphys::ode {
 namespace {
 
@@ -47,6 +49,7 @@ void ensureOdeInitialised() {
     static const bool initialised = [] {
         dInitODE2(0);
         dSetMessageHandler(&reportOnce);
+        dSetColliderOverride(dConvexClass, dSphereClass, &collideConvexSphere);  // ode_convex_sphere.hpp
         return true;
     }();
     (void)initialised;

@@ -23,6 +23,13 @@ inline void toOde(const Quat& q, dQuaternion out) {
 }
 
 /// ODE rotation matrices are 3x4, row-major, the fourth column unused.
+inline Mat3 toMat3(const dReal* r) {
+    Mat3 m;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m(i, j) = r[i * 4 + j];
+    return m;
+}
+
 inline void toOde(const Mat3& m, dMatrix3 out) {
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) out[i * 4 + j] = m(i, j);

@@ -1,0 +1,99 @@
+#include "ode_convex_sphere.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ode_math.hpp"
+#include "ode_shapes.hpp"
+
+namespace anyphys::ode {
+namespace {
+
+/// The point of segment ab nearest to p.
+Vec3 nearestOnSegment(const Vec3& a, const Vec3& b, const Vec3& p) {
+    const Vec3 ab = b - a;
+    const double length2 = ab.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    return a + t * ab;
+}
+
+/// The point of the hull's surface nearest to p, a point outside it (hull frame). The nearest
+/// point lies on a face p is in front of: inside that face, or on one of its edges.
+Vec3 nearestOnSurface(const HullData& hull, const Vec3& p) {
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 nearest = p;
+    const auto consider = [&](const Vec3& q) {
+        if (const double d2 = (p - q).squaredNorm(); d2 < best) {
+            best = d2;
+            nearest = q;
+        }
+    };
+    for (std::size_t f = 0; f < hull.faces.size(); ++f) {
+        const Vec3& n = hull.faceNormals[f];
+        const double height = n.dot(p) - hull.faceOffsets[f];
+        if (height <= 0.0) continue;
+        const std::vector<int>& loop = hull.faces[f];
+        bool inside = true;
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+            const Vec3& a = hull.vertices[loop[k]];
+            const Vec3& b = hull.vertices[loop[(k + 1) % loop.size()]];
+            if ((b - a).cross(p - a).dot(n) < 0.0) {  // beyond this edge (the loop is counter-clockwise)
+                inside = false;
+                consider(nearestOnSegment(a, b, p));
+            }
+        }
+        if (inside) consider(p - height * n);
+    }
+    return nearest;
+}
+
+}  // namespace
+
+int collideConvexSphere(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int /*skip: one contact*/) {
+    const OdeShape* shape = shapeOfGeom(o1);
+    constexpr int kContactCountBits = 0xffff;  // ODE's NUMC_MASK: the low bits of flags, the room for contacts
+    if ((flags & kContactCountBits) == 0 || !shape || !shape->hull()) return 0;
+    const HullData& hull = *shape->hull();
+    const Vec3 origin = toVec3(dGeomGetPosition(o1));
+    const Mat3 rotation = toMat3(dGeomGetRotation(o1));
+    const double radius = dGeomSphereGetRadius(o2);
+    const Vec3 centre = rotation.transpose() * (toVec3(dGeomGetPosition(o2)) - origin);  // hull frame
+    // The face the centre is farthest in front of (or, inside, least deep behind).
+    std::size_t face = 0;
+    double height = -std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < hull.faces.size(); ++f)
+        if (const double h = hull.faceNormals[f].dot(centre) - hull.faceOffsets[f]; h > height) {
+            height = h;
+            face = f;
+        }
+    if (!(height <= radius)) return 0;  // apart (and a NaN centre is never a contact)
+    Vec3 surface, outward;  // hull frame: the hull's nearest surface point, the way to the sphere
+    double distance;        // signed: negative with the centre inside
+    if (height <= 0.0) {
+        outward = hull.faceNormals[face];
+        surface = centre - height * outward;
+        distance = height;
+    } else {
+        surface = nearestOnSurface(hull, centre);
+        distance = (centre - surface).norm();
+        if (distance > radius) return 0;
+        outward = distance > 0.0 ? Vec3((centre - surface) / distance) : hull.faceNormals[face];
+    }
+    const double depth = radius - distance;
+    // Midway between the hull's surface and the sphere's deepest point, as ODE's own colliders.
+    const Vec3 point = origin + rotation * (surface + 0.5 * (distance - radius) * outward);
+    const Vec3 normal = -(rotation * outward);  // into o1: moving the hull along it parts them
+    for (int k = 0; k < 3; ++k) {
+        contact->pos[k] = point[k];
+        contact->normal[k] = normal[k];
+    }
+    contact->pos[3] = contact->normal[3] = 0.0;
+    contact->depth = depth;
+    contact->g1 = o1;
+    contact->g2 = o2;
+    contact->side1 = contact->side2 = -1;
+    return 1;
+}
+
+}  // namespace anyphys::ode
