@@ -83,6 +83,7 @@ public:
 
 private:
     void wake();
+    double largestRowWeight() const;  // rowWeightBound_ of a dynamic body
 
     OdeWorld& world_;
     dBodyID body_ = nullptr;
@@ -90,7 +91,6 @@ private:
     Quat planeTilt_ = Quat::Identity();  // planar: orientation = (turn about Z) x planeTilt_
     double planeZ_ = 0.0;                // planar: the centre of mass's constant z
     BodyType type_;
-    double largestRowWeight() const;                  // rowWeightBound_ of a dynamic body
     std::vector<std::unique_ptr<OdeShape>> shapes_;
     Transform staticPose_;  // static bodies: their frame's pose (they have no dBody)
     MassProperties mass_;

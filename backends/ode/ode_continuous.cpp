@@ -35,10 +35,11 @@ double pointDepth(dGeomID g, const Vec3& p) {
 void sweepCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<SweepQuery*>(data);
     const dGeomID other = o1 == q.ray ? o2 : o1;
-    const OdeBody* target = bodyOfGeom(other);
+    const OdeShape* shape = shapeOfGeom(other);
+    const OdeBody* target = shape ? shape->owner() : nullptr;
     if (!target || target == q.body) return;
     // The moving body's centre ray stands for all its geoms (their union of layers and masks).
-    const GeomSurface& surface = shapeOfGeom(other)->surface();
+    const GeomSurface& surface = shape->surface();
     if (surface.trigger || !layersCollide(q.body->layer(), q.body->mask(), surface.layer, surface.mask)) return;
     // Already inside: the discrete contact handles it; the ray would only find the way out.
     if (pointDepth(other, q.start) > 0) return;

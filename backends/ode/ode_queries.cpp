@@ -20,10 +20,9 @@ struct RayQuery {
 void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<RayQuery*>(data);
     const dGeomID other = o1 == q.ray ? o2 : o1;
-    const OdeBody* body = bodyOfGeom(other);
-    if (!body) return;
-    const GeomSurface& surface = shapeOfGeom(other)->surface();
-    if (surface.trigger || (surface.layer & q.mask) == 0) return;
+    const OdeShape* shape = shapeOfGeom(other);
+    const OdeBody* body = shape ? shape->owner() : nullptr;
+    if (!body || shape->surface().trigger || (shape->surface().layer & q.mask) == 0) return;
     dContactGeom hit;
     if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
     Vec3 normal = toVec3(hit.normal);
@@ -46,12 +45,11 @@ void overlapCallback(void* data, dGeomID o1, dGeomID o2) {
     const dGeomID probe = q.probe->geom();
     const dGeomID other = o1 == probe ? o2 : o1;
     if (other == probe) return;
-    const OdeBody* body = bodyOfGeom(other);
-    if (!body) return;
-    const OdeShape& shape = *shapeOfGeom(other);
-    if ((shape.surface().layer & q.mask) == 0) return;
-    if (q.movingOnly ? !body->moves() : shape.surface().trigger) return;
-    if (!collidable(q.probe->type(), shape.type())) return;
+    const OdeShape* shape = shapeOfGeom(other);
+    const OdeBody* body = shape ? shape->owner() : nullptr;
+    if (!body || (shape->surface().layer & q.mask) == 0) return;
+    if (q.movingOnly ? !body->moves() : shape->surface().trigger) return;
+    if (!collidable(q.probe->type(), shape->type())) return;
     dContactGeom contact;
     if (dCollide(probe, other, 1, &contact, sizeof(dContactGeom)) < 1) return;
     if (q.found) q.found->push_back(body->userData());
