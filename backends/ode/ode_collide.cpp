@@ -31,13 +31,15 @@ int dropDegenerateContacts(dContact* contacts, int count) {
     // ODE's convex-convex test returns NaN normals for faces that touch exactly (blocks of an
     // arch built flush); one such contact makes the step's quaternions NaN and ODE aborts the
     // process. A contact without a finite point, unit normal and finite depth is dropped.
-    // |n| within 1e-6 of 1, compared squared (no square root per contact).
+    // |n| within 1e-6 of 1, compared squared (no square root per contact). The point and depth
+    // are finite when their sum is: a NaN or infinity carries into it. Finite values sum to an
+    // infinity only near 1e308, far past kMaxCoordinate, where a body is already diverged.
     constexpr double kLeastSquaredNorm = (1.0 - 1e-6) * (1.0 - 1e-6), kMostSquaredNorm = (1.0 + 1e-6) * (1.0 + 1e-6);
     int kept = 0;
     for (int i = 0; i < count; ++i) {
         const dContactGeom& g = contacts[i].geom;
         const double squaredNorm = toVec3(g.normal).squaredNorm();  // NaN fails both comparisons
-        const bool valid = toVec3(g.pos).allFinite() && std::isfinite(g.depth) && squaredNorm > kLeastSquaredNorm &&
+        const bool valid = std::isfinite(g.pos[0] + g.pos[1] + g.pos[2] + g.depth) && squaredNorm > kLeastSquaredNorm &&
                            squaredNorm < kMostSquaredNorm;
         if (!valid) continue;
         if (kept != i) contacts[kept] = contacts[i];  // a dContact is 200-odd bytes: no copy onto itself
@@ -92,8 +94,10 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     if (!effects_.has(Effect::Events)) return;
     const auto first = static_cast<std::uint32_t>(points_.size());
     if (!trigger)  // a sensor's overlap has no points
-        for (int i = 0; i < n; ++i)
-            points_.push_back({toVec3(found[i].geom.pos), toVec3(found[i].geom.normal), found[i].geom.depth});
+        for (int i = 0; i < n; ++i) {
+            points_.push_back({toVec3(found[i].geom.pos), found[i].geom.depth, 0.0});
+            normals_.push_back(toVec3(found[i].geom.normal));
+        }
     pairs_.push_back({a, b, trigger, first, static_cast<std::uint32_t>(points_.size()) - first});
 }
 
@@ -139,15 +143,11 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
     }
 }
 
-Vec3 OdeWorld::stepFall(const OdeBody& body) const {
-    // A gravityScale of 0 (ODE's gravity mode off, OdeBody) gives 0 here without asking ODE.
-    const bool falls = body.isDynamic() && effects_.has(Effect::Gravity);
-    return (falls ? Vec3(body.gravityScale() * settings_.gravity) : Vec3::Zero()) * odeStep();
-}
-
 void OdeWorld::collide() {
     pairs_.clear();
     points_.clear();
+    normals_.clear();
+    fallTime_ = effects_.has(Effect::Gravity) ? odeStep() : 0.0;
     joints_.clear();
     feedbackValid_ = false;
     awakeGeoms_.clear();
@@ -201,6 +201,10 @@ void OdeWorld::reportContacts(ContactReport& out) {
     // the normal impulse is that force along the normal times dt (with substeps: the last
     // substep's force held for the whole step). The feedback array outlives the joints.
     const bool haveImpulses = feedbackValid_ && feedback_.size() == points_.size();
+    // Every point in one copy (a pair skipped below leaves its points unreferenced, which the
+    // layer allows), rather than one push per point: the report runs every step.
+    const auto base = static_cast<std::uint32_t>(out.points.size());
+    out.points.insert(out.points.end(), points_.begin(), points_.end());
     for (const PairRecord& p : pairs_) {
         const bool activeA = p.a->isActive(), activeB = p.b->isActive();  // after the step
         if (!activeA && !activeB) continue;  // both asleep: the layer keeps the pair
@@ -209,16 +213,14 @@ void OdeWorld::reportContacts(ContactReport& out) {
             out.addPair(p.a->userData(), p.b->userData(), true, Vec3::Zero(), sleeping);
             continue;
         }
-        // ODE's normal points into body a; the layer's from A to B.
-        out.addPair(p.a->userData(), p.b->userData(), false, -points_[p.first].normal, sleeping);
+        // ODE's normal points into body a; the layer's from A to B. The pair's points are the
+        // step's, at the same place in `out` (below), its impulses filled in there.
+        out.pairs.push_back({p.a->userData(), p.b->userData(), false, sleeping, -normals_[p.first], base + p.first, p.count});
+        if (!haveImpulses) continue;
         for (std::uint32_t i = p.first; i < p.first + p.count; ++i) {
-            const PointRecord& c = points_[i];
-            double impulse = 0.0;
-            if (haveImpulses) {  // dCalcVectorDot3, inline: the report visits every point every step
-                const dReal* f = feedback_[i].f1;
-                impulse = std::max(0.0, f[0] * c.normal.x() + f[1] * c.normal.y() + f[2] * c.normal.z()) * lastDt_;
-            }
-            out.addPoint({c.position, c.depth, impulse});
+            const dReal* f = feedback_[i].f1;  // dCalcVectorDot3, inline: the report visits every point every step
+            const Vec3& n = normals_[i];
+            out.points[base + i].normalImpulse = std::max(0.0, f[0] * n.x() + f[1] * n.y() + f[2] * n.z()) * lastDt_;
         }
     }
     out.sleepKnown = true;

@@ -171,6 +171,7 @@ void OdeWorld::step(double /*time: forces come evaluated from the layer*/, doubl
     if (!contacts) {
         pairs_.clear();
         points_.clear();
+        normals_.clear();
     }
     const bool joints = effects_.has(Effect::Joints) && !userJoints_.empty();
     {

@@ -74,12 +74,6 @@ private:
         std::uint32_t first;   // points_[first, first + count)
         std::uint32_t count;
     };
-    // One contact point of a recorded pair; its joint's feedback is feedback_ at the same index.
-    struct PointRecord {
-        Vec3 position;
-        Vec3 normal;  // ODE's: into body a
-        double depth;
-    };
 
     static void nearCallback(void* self, dGeomID o1, dGeomID o2);
     static void awakeGeomCallback(void* self, dGeomID o1, dGeomID o2);
@@ -88,7 +82,10 @@ private:
     void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count);
     /// The velocity gravity adds to the body over one ODE step (m/s): with its velocity now at a
     /// point, the point's velocity at the step's end before contacts (slip-aligned friction).
-    Vec3 stepFall(const OdeBody& body) const;
+    Vec3 stepFall(const OdeBody& body) const {
+        // A gravityScale of 0 (ODE's gravity mode off, OdeBody) gives 0 here without asking ODE.
+        return body.isDynamic() ? Vec3(body.gravityScale() * settings_.gravity * fallTime_) : Vec3::Zero();
+    }
     void continuousCollision(const std::vector<Vec3>& before);
     /// A joint with collideConnected false joins a and b (either order).
     bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
@@ -128,8 +125,13 @@ private:
 
     // Contacts of the last ODE step for events (recorded when events are on): the pairs, their
     // points, the joints and the joints' feedback.
+    // The points as the report hands them on (impulses filled in then), and beside them each
+    // point's normal as ODE gave it (into body a), which its feedback is projected on; its joint's
+    // feedback is feedback_ at the same index.
     std::vector<PairRecord> pairs_;
-    std::vector<PointRecord> points_;
+    std::vector<ContactPoint> points_;
+    std::vector<Vec3> normals_;
+    double fallTime_ = 0.0;  // s: the ODE step when gravity is on, else 0 (set by collide())
     std::vector<dJointID> joints_;
     std::vector<dJointFeedback> feedback_;
     bool feedbackValid_ = false;    // feedback_ holds the last ODE step's joint forces

@@ -61,7 +61,9 @@ struct ContactReport {
         std::uint32_t pointCount = 0;
     };
     std::vector<Pair> pairs;
-    std::vector<ContactPoint> points;   ///< world frame
+    /// World frame. Only the pairs' ranges are read: a peer may copy all its points at once and
+    /// leave those of pairs it skips unreferenced.
+    std::vector<ContactPoint> points;
     /// The peer flagged each pair `asleep` when one of its bodies is a dynamic or kinematic body
     /// that is not awake (BodyPeer::isAwake); otherwise the layer asks the bodies.
     bool sleepKnown = false;
