@@ -51,7 +51,9 @@ void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<cons
 void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
     // Normalise order (A < B, normal from A to B), sort by pair then listing order, and keep the
     // first listing of each pair.
-    listed_.clear();
+    listed_.resize(touching.size());  // written through a pointer, then trimmed (see diffFewChanges)
+    Listed* const listing = listed_.data();
+    std::size_t listedCount = 0;
     for (std::uint32_t i = 0; i < touching.size(); ++i) {
         TouchingRange& p = touching[i];
         if (p.bodyA == p.bodyB) continue;  // never itself
@@ -59,26 +61,163 @@ void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuer
             std::swap(p.bodyA, p.bodyB);
             p.normal = -p.normal;
         }
-        listed_.push_back({keyOf(p.bodyA), keyOf(p.bodyB), p.trigger, i});
+        listing[listedCount++] = {keyOf(p.bodyA), keyOf(p.bodyB), p.trigger, i};
     }
-    bool sameListing = false;
-    const std::vector<Listed>& sorted = sortedListing(sameListing);
+    listed_.resize(listedCount);
+    const auto equal = [](const Listed& x, const Listed& y) {
+        return x.a == y.a && x.b == y.b && x.trigger == y.trigger && x.index == y.index;
+    };
+    const bool sameListing = std::equal(listed_.begin(), listed_.end(), lastListing_.begin(), lastListing_.end(), equal);
 
     decisions_.clear();
     exits_.clear();
     if (sameListing && activeIsLastListing_) {
         // The pairs of the last step and no others: every pair stays (a resting pile, step
         // after step), and the touching set is the same.
-        for (std::size_t k = 0; k < sorted.size(); ++k) {
-            const TouchingRange& p = touching[sorted[k].index];
+        for (std::size_t k = 0; k < lastSorted_.size(); ++k) {
+            const TouchingRange& p = touching[lastSorted_[k].index];
             active_[k].trigger = p.trigger;
-            if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, sorted[k].index});
+            if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, lastSorted_[k].index});
         }
-    } else {
-        walk(touching, sorted, asleep);
+    } else if (sameListing || !activeIsLastListing_ || !lastListingUnique_ || !tryFewChanges(touching, asleep)) {
+        decisions_.clear();  // what diffFewChanges decided before it gave up
+        exits_.clear();
+        walk(touching, sameListing ? lastSorted_ : sortAnew(), asleep);
         active_.swap(next_);
     }
     matchSwappedCapacities();
+}
+
+bool ContactTracker::tryFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
+    // A backend whose listing order moves (ODE's hash space) makes every attempt fail: after each
+    // failure the next attempts wait, twice as many steps each time, up to kMostStepsBetweenTries.
+    constexpr std::uint32_t kMostStepsBetweenTries = 64;
+    if (stepsToNextTry_ > 0) {
+        --stepsToNextTry_;
+        return false;
+    }
+    if (diffFewChanges(touching, asleep)) {
+        stepsAfterFailure_ = 1;
+        return true;
+    }
+    stepsToNextTry_ = stepsAfterFailure_;
+    stepsAfterFailure_ = std::min(2 * stepsAfterFailure_, kMostStepsBetweenTries);
+    return false;
+}
+
+bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
+    // A pair gone or new shifts the listing from that place on, so the walk looks a few places
+    // ahead on both sides to find where the listings agree again; a pair that moved far counts
+    // as gone and new, and the merge below finds it in both.
+    constexpr std::size_t kLookAhead = 8;
+    // Past a quarter of the listing changed, sorting it whole costs less than the search.
+    const std::size_t budget = 16 + listed_.size() / 4;
+    const std::vector<Listed>& before = lastListing_;  // no pair twice: each is in lastSorted_
+    const std::vector<Listed>& now = listed_;
+    const auto samePair = [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.trigger == y.trigger; };
+    kept_.assign(lastSorted_.size(), 0);
+    keptIndex_.resize(lastSorted_.size());
+    added_.clear();
+    std::size_t i = 0, j = 0, changes = 0, keptCount = 0;
+    while (i < before.size() && j < now.size()) {
+        if (samePair(before[i], now[j])) {
+            const std::uint32_t slot = sortedSlot_[before[i++].index];
+            kept_[slot] = 1;
+            keptIndex_[slot] = now[j++].index;
+            ++keptCount;
+            continue;
+        }
+        std::size_t gone = 1;  // old pairs that this listing no longer has, before the next agreement
+        while (gone <= kLookAhead && i + gone < before.size() && !samePair(before[i + gone], now[j])) ++gone;
+        std::size_t fresh = 1;  // or new pairs, before it
+        if (gone <= kLookAhead && i + gone < before.size()) {
+            i += gone;
+            changes += gone;
+        } else {
+            while (fresh <= kLookAhead && j + fresh < now.size() && !samePair(before[i], now[j + fresh])) ++fresh;
+            if (fresh <= kLookAhead && j + fresh < now.size()) {
+                added_.insert(added_.end(), now.begin() + std::ptrdiff_t(j), now.begin() + std::ptrdiff_t(j + fresh));
+                j += fresh;
+                changes += fresh;
+            } else {  // one pair replaced by another
+                added_.push_back(now[j++]);
+                ++i;
+                changes += 2;
+            }
+        }
+        if (changes > budget) return false;
+    }
+    changes += (before.size() - i) + (now.size() - j);
+    if (changes > budget) return false;
+    added_.insert(added_.end(), now.begin() + std::ptrdiff_t(j), now.end());
+    const auto less = [](const Listed& x, const Listed& y) {
+        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger < y.trigger;
+    };
+    std::sort(added_.begin(), added_.end(), less);
+
+    // Merge the last sorted listing (its pairs kept, gone, or gone but asleep) with the new pairs,
+    // in pair order: the events, the next active pairs and this listing's sorted form (with
+    // where each of its pairs sits in it, for the next step) at once.
+    // Written through pointers into room for every pair (a push per pair costs as much as the
+    // rest of the merge), then trimmed: this listing's pairs, and the next active pairs, which
+    // may also keep old pairs gone but asleep.
+    sorting_.resize(now.size());
+    decisions_.resize(now.size());
+    next_.resize(now.size() + (lastSorted_.size() - keptCount));
+    Listed* const sorted = sorting_.data();
+    Active* const nextPairs = next_.data();
+    Decision* const decided = decisions_.data();
+    std::uint32_t sortedCount = 0, nextCount = 0, decidedCount = 0;
+    sortedSlot_.resize(now.empty() ? 0 : now.back().index + 1);
+    bool keptAsleep = false;
+    bool afterNew = false;  // the last pair listed came from added_: the next may repeat it
+    // Inlined: it runs for every pair, and a call costs more than its body.
+    const auto list = [&](const Listed& pair, std::uint32_t index, bool isNew, bool entered) __attribute__((always_inline)) {
+        // Kept pairs are distinct (the last listing named each once); a new pair may repeat one.
+        if ((isNew || afterNew) && sortedCount > 0 && samePair(sorted[sortedCount - 1], pair)) return false;  // listed twice
+        afterNew = isNew;
+        sortedSlot_[index] = sortedCount;
+        sorted[sortedCount++] = {pair.a, pair.b, pair.trigger, index};
+        nextPairs[nextCount++] = {pair.a, pair.b, pair.trigger};
+        const TouchingRange& p = touching[index];
+        if (entered)
+            decided[decidedCount++] = {Outcome::Enter, index};
+        else if (!p.trigger && !p.asleep)
+            decided[decidedCount++] = {Outcome::Stay, index};
+        return true;
+    };
+    const std::vector<Listed>& old = lastSorted_;
+    std::size_t p = 0, q = 0;
+    while (p < old.size() || q < added_.size()) {
+        if (q == added_.size() || (p < old.size() && less(old[p], added_[q]))) {
+            const Listed& o = old[p];
+            if (kept_[p]) {
+                if (!list(o, keptIndex_[p], false, false)) return false;
+            } else if (asleep && (asleep(idOf(o.a)) || asleep(idOf(o.b)))) {  // the contact persists silently
+                nextPairs[nextCount++] = {o.a, o.b, o.trigger};
+                keptAsleep = true;
+            } else {
+                exits_.push_back({o.a, o.b, o.trigger});
+            }
+            ++p;
+        } else if (p < old.size() && samePair(old[p], added_[q])) {  // moved in the listing: it stays
+            if (kept_[p] || !list(added_[q], added_[q].index, true, false)) return false;
+            ++p;
+            ++q;
+        } else {
+            if (!list(added_[q], added_[q].index, true, true)) return false;
+            ++q;
+        }
+    }
+    sorting_.resize(sortedCount);
+    next_.resize(nextCount);
+    decisions_.resize(decidedCount);
+    active_.swap(next_);
+    activeIsLastListing_ = !keptAsleep;
+    lastListing_.assign(listed_.begin(), listed_.end());
+    lastSorted_.swap(sorting_);
+    lastListingUnique_ = true;  // sortedSlot_ written above
+    return true;
 }
 
 void ContactTracker::writeEvents(const std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
@@ -133,6 +272,11 @@ void ContactTracker::matchSwappedCapacities() {
     };
     match(active_, next_, exits_);
     match(listed_, sorting_, lastSorted_);
+    // diffFewChanges' scratch holds at most a listing (and lastListing_ is one).
+    match(listed_, lastListing_, added_);
+    kept_.reserve(listed_.capacity());
+    keptIndex_.reserve(listed_.capacity());
+    decisions_.reserve(listed_.capacity());
 }
 
 void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted,
@@ -170,19 +314,23 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
     activeIsLastListing_ = next_.size() == sorted.size();  // no pair kept asleep besides
 }
 
-const std::vector<ContactTracker::Listed>& ContactTracker::sortedListing(bool& same) {
-    const auto equal = [](const Listed& x, const Listed& y) {
-        return x.a == y.a && x.b == y.b && x.trigger == y.trigger && x.index == y.index;
-    };
-    same = std::equal(listed_.begin(), listed_.end(), lastListing_.begin(), lastListing_.end(), equal);
-    if (same) return lastSorted_;
+const std::vector<ContactTracker::Listed>& ContactTracker::sortAnew() {
     lastListing_.assign(listed_.begin(), listed_.end());
     sortListed();
+    const std::size_t listedPairs = listed_.size();
     listed_.erase(std::unique(listed_.begin(), listed_.end(),
                               [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.trigger == y.trigger; }),
                   listed_.end());
     lastSorted_.swap(listed_);
+    noteSorted(lastSorted_.size() == listedPairs);
     return lastSorted_;
+}
+
+void ContactTracker::noteSorted(bool unique) {
+    lastListingUnique_ = unique;
+    if (!unique) return;
+    sortedSlot_.resize(lastListing_.empty() ? 0 : lastListing_.back().index + 1);
+    for (std::uint32_t k = 0; k < lastSorted_.size(); ++k) sortedSlot_[lastSorted_[k].index] = k;
 }
 
 void ContactTracker::sortListed() {

@@ -388,6 +388,77 @@ TEST(ContactTracker, FlatUpdateFollowsTheRulesOverRandomSteps) {
     }
 }
 
+// An engine's contact list keeps its order from step to step, and a pile gains and loses a few
+// pairs each step: the listings here change in a few places (pairs gone, new ones anywhere,
+// including first; one moved far; a pair listed twice now and then; bodies asleep or destroyed),
+// which the tracker diffs without sorting the whole listing (diffFewChanges), falling back to the
+// sort when a pair is listed twice or too much changed. Every step gives exactly the reference's
+// events.
+TEST(ContactTracker, ListingsChangingInAFewPlacesFollowTheRules) {
+    std::mt19937 random(2468);
+    constexpr std::uint32_t kBodies = 60;
+    std::vector<std::uint32_t> generation(kBodies);
+    for (auto& g : generation) g = random() % 3;
+    std::set<std::uint32_t> sleeping;
+    const ContactTracker::AsleepQuery asleep = [&](BodyId id) { return sleeping.contains(id.index); };
+    std::vector<TouchingPair> pairs;
+    const auto freshPair = [&](int step) {  // a pair not listed yet (duplicates are made on purpose below)
+        std::uint32_t a = 0, b = 0;
+        const auto listed = [&](const TouchingPair& p) {
+            return std::minmax(p.bodyA.index, p.bodyB.index) == std::minmax(a, b);
+        };
+        do {
+            a = random() % kBodies;
+            b = random() % kBodies;
+        } while (a == b || std::any_of(pairs.begin(), pairs.end(), listed));
+        TouchingPair p = touch(body(a, generation[a]), body(b, generation[b]), Vec3(double(random() % 5), 1.0, double(step)),
+                               random() % 20 == 0);
+        p.hasImpulses = random() % 2 == 0;
+        return p;
+    };
+    for (int k = 0; k < 400; ++k) pairs.push_back(freshPair(0));
+    ReferenceTracker reference;
+    ContactTracker tracker;
+    std::vector<ContactEvent> events;
+    const auto at = [&](std::size_t size) { return static_cast<std::ptrdiff_t>(random() % (size + 1)); };
+    for (int step = 0; step < 400; ++step) {
+        if (step > 0 && step % 5 != 0) {  // every fifth step lists what the last one did
+            for (int k = static_cast<int>(random() % 4); k > 0 && !pairs.empty(); --k)  // gone
+                pairs.erase(pairs.begin() + static_cast<std::ptrdiff_t>(random() % pairs.size()));
+            for (int k = static_cast<int>(random() % 4); k > 0; --k)  // new, anywhere
+                pairs.insert(pairs.begin() + at(pairs.size()), freshPair(step));
+            if (random() % 2 == 0) pairs.insert(pairs.begin(), freshPair(step));  // first, as Box2D adds them
+            if (random() % 4 == 0 && !pairs.empty()) {  // moved far
+                const TouchingPair moved = pairs[random() % pairs.size()];
+                std::erase_if(pairs, [&](const TouchingPair& p) { return p.bodyA == moved.bodyA && p.bodyB == moved.bodyB; });
+                pairs.insert(pairs.begin() + at(pairs.size()), moved);
+            }
+            std::erase_if(pairs, [](const TouchingPair& p) { return p.normal.y() < 0.0; });  // last step's repeat
+            if (random() % 10 == 0 && !pairs.empty()) {  // the same pair listed twice, the other way round, once
+                TouchingPair twice = pairs[random() % pairs.size()];
+                std::swap(twice.bodyA, twice.bodyB);
+                twice.normal = -twice.normal;
+                pairs.insert(pairs.begin() + at(pairs.size()), twice);
+            }
+            for (TouchingPair& p : pairs)  // new points on the same pairs
+                for (ContactPoint& c : p.points) c.depth = 0.001 * double(random() % 7);
+        }
+        sleeping.clear();
+        if (step % 3 == 0)
+            for (int k = 0; k < 3; ++k) sleeping.insert(random() % kBodies);
+        if (step % 11 == 6) {  // a body destroyed: its pairs end now, whatever the listing says next
+            const std::uint32_t gone = random() % kBodies;
+            expectSameEvents(tracker.removeBody(body(gone, generation[gone])), reference.removeBody(body(gone, generation[gone])),
+                             step);
+        }
+        const std::vector<ContactEvent> expected = reference.update(pairs, asleep);
+        FlatStep f = flatten(pairs, asleep);
+        tracker.update(f.ranges, f.points, events, asleep);
+        expectSameEvents(events, expected, step);
+        if (::testing::Test::HasFatalFailure()) return;
+    }
+}
+
 // A steady step writes over the last step's events in place: neither the event array nor any
 // event's points move (no allocation), and a step with fewer events keeps the storage for later.
 TEST(ContactTracker, FlatUpdateReusesEventStorage) {

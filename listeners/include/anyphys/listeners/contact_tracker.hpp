@@ -76,26 +76,48 @@ private:
         std::uint32_t ref;  // into `touching`
     };
 
-    /// listed_ in pair order, deduplicated: the last sort's result when the listing is the same
-    /// (`same`; a resting pile lists the same pairs in the same order every step), else sorted anew.
-    const std::vector<Listed>& sortedListing(bool& same);
+    /// listed_ sorted into pair order and deduplicated, kept as lastSorted_ (and listed_ as
+    /// lastListing_) for the next step.
+    const std::vector<Listed>& sortAnew();
     /// Merges the sorted listing with active_ into decisions_, exits_ and next_.
     void walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted, const AsleepQuery& asleep);
+    /// The diff of a listing that differs from the last one in a few places (an engine's contact
+    /// list keeps its order from step to step; a pile gains and loses a few pairs): finds the
+    /// changes by walking both listings, then merges the last sorted listing with the sorted new
+    /// pairs into the events and the next pairs, without sorting the whole listing. False, having
+    /// decided nothing, when the listings differ too much or the new one repeats a pair.
+    bool diffFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep);
+    /// diffFewChanges, unless it failed lately (then false without trying: stepsToNextTry_).
+    bool tryFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep);
     void sortListed();
+    /// After lastListing_ and lastSorted_ changed: whether the listing named each pair once, and
+    /// if so where each of its pairs sits in lastSorted_ (sortedSlot_).
+    void noteSorted(bool unique);
     std::vector<ContactPoint> takePointStorage();
     /// Gives every buffer that trades places with another (by swap) the larger capacity of the
     /// two, so a later step that lists fewer pairs than some earlier one never allocates; exits_
     /// too, which may have to hold every active pair.
     void matchSwappedCapacities();
 
-    // Sorted by (a, b): a step is one sort of the listed pairs and one merge walk. The other
-    // vectors are scratch kept between steps, so a steady step allocates nothing.
+    // Sorted by (a, b): a step is one sort of the listed pairs and one merge walk, or, when the
+    // listing differs from the last in a few places, one walk of both listings and one merge
+    // (diffFewChanges). The other vectors are scratch kept between steps, so a steady step
+    // allocates nothing.
     std::vector<Active> active_;
     std::vector<Active> next_;
     std::vector<Listed> listed_;
     std::vector<Listed> sorting_;  // radix sort's second buffer
-    std::vector<Listed> lastListing_, lastSorted_;  // the last sort's input and output
+    std::vector<Listed> lastListing_, lastSorted_;  // the last listing, and it sorted and deduplicated
+    bool lastListingUnique_ = false;    // the last listing named no pair twice
+    std::vector<std::uint32_t> sortedSlot_;  // a unique last listing's touching index -> lastSorted_ position
     bool activeIsLastListing_ = false;  // active_ holds exactly lastSorted_'s pairs
+    // diffFewChanges' scratch: per lastSorted_ entry, whether the new listing has it and where;
+    // the new listing's other pairs.
+    std::vector<std::uint8_t> kept_;
+    std::vector<std::uint32_t> keptIndex_;
+    std::vector<Listed> added_;
+    std::uint32_t stepsToNextTry_ = 0;    // steps tryFewChanges still skips
+    std::uint32_t stepsAfterFailure_ = 1; // steps it skips after its next failure
     std::vector<Decision> decisions_;  // the last diff's enters and stays, in pair order
     std::vector<Active> exits_;        // the last diff's exits, in pair order
     std::vector<std::vector<ContactPoint>> spare_;  // point storage of past events, for reuse
