@@ -331,18 +331,32 @@ FlatStep flatten(const std::vector<TouchingPair>& pairs, const ContactTracker::A
     return flat;
 }
 
+// The randomized cases' bodies: a generator, each body's generation (0 to 2), and the bodies
+// asleep this step with the query that asks about them.
+struct RandomBodies {
+    RandomBodies(std::mt19937::result_type seed, std::uint32_t count) : random(seed), generation(count) {
+        for (auto& g : generation) g = random() % 3;
+    }
+    RandomBodies(const RandomBodies&) = delete;  // `asleep` refers to this object's `sleeping`
+    RandomBodies& operator=(const RandomBodies&) = delete;
+    std::mt19937 random;
+    std::vector<std::uint32_t> generation;
+    std::set<std::uint32_t> sleeping;
+    ContactTracker::AsleepQuery asleep = [this](BodyId id) { return sleeping.contains(id.index); };
+};
+
 }  // namespace
 
 // Random steps (pairs coming, staying and going, in any order, reported twice, triggers, sleeping
 // bodies, generations, piles large enough for the radix sort, repeated listings, removed bodies):
 // both forms of update give exactly the events of the reference.
 TEST(ContactTracker, FlatUpdateFollowsTheRulesOverRandomSteps) {
-    std::mt19937 random(12345);
     constexpr std::uint32_t kBodies = 40;
-    std::vector<std::uint32_t> generation(kBodies);
-    for (auto& g : generation) g = random() % 3;
-    std::set<std::uint32_t> sleeping;
-    const ContactTracker::AsleepQuery asleep = [&](BodyId id) { return sleeping.contains(id.index); };
+    RandomBodies bodies(12345, kBodies);
+    std::mt19937& random = bodies.random;  // plain references: lambdas below capture them
+    const std::vector<std::uint32_t>& generation = bodies.generation;
+    std::set<std::uint32_t>& sleeping = bodies.sleeping;
+    const ContactTracker::AsleepQuery& asleep = bodies.asleep;
     ReferenceTracker reference;
     ContactTracker perPair, flat;
     std::vector<ContactEvent> events;
@@ -395,12 +409,8 @@ TEST(ContactTracker, FlatUpdateFollowsTheRulesOverRandomSteps) {
 // sort when a pair is listed twice or too much changed. Every step gives exactly the reference's
 // events.
 TEST(ContactTracker, ListingsChangingInAFewPlacesFollowTheRules) {
-    std::mt19937 random(2468);
     constexpr std::uint32_t kBodies = 60;
-    std::vector<std::uint32_t> generation(kBodies);
-    for (auto& g : generation) g = random() % 3;
-    std::set<std::uint32_t> sleeping;
-    const ContactTracker::AsleepQuery asleep = [&](BodyId id) { return sleeping.contains(id.index); };
+    RandomBodies bodies(2468, kBodies);
     std::vector<TouchingPair> pairs;
     const auto freshPair = [&](int step) {  // a pair not listed yet (duplicates are made on purpose below)
         std::uint32_t a = 0, b = 0;
@@ -408,52 +418,52 @@ TEST(ContactTracker, ListingsChangingInAFewPlacesFollowTheRules) {
             return std::minmax(p.bodyA.index, p.bodyB.index) == std::minmax(a, b);
         };
         do {
-            a = random() % kBodies;
-            b = random() % kBodies;
+            a = bodies.random() % kBodies;
+            b = bodies.random() % kBodies;
         } while (a == b || std::any_of(pairs.begin(), pairs.end(), listed));
-        TouchingPair p = touch(body(a, generation[a]), body(b, generation[b]), Vec3(double(random() % 5), 1.0, double(step)),
-                               random() % 20 == 0);
-        p.hasImpulses = random() % 2 == 0;
+        const Vec3 normal(double(bodies.random() % 5), 1.0, double(step));
+        TouchingPair p = touch(body(a, bodies.generation[a]), body(b, bodies.generation[b]), normal, bodies.random() % 20 == 0);
+        p.hasImpulses = bodies.random() % 2 == 0;
         return p;
     };
     for (int k = 0; k < 400; ++k) pairs.push_back(freshPair(0));
     ReferenceTracker reference;
     ContactTracker tracker;
     std::vector<ContactEvent> events;
-    const auto at = [&](std::size_t size) { return static_cast<std::ptrdiff_t>(random() % (size + 1)); };
+    const auto at = [&](std::size_t size) { return static_cast<std::ptrdiff_t>(bodies.random() % (size + 1)); };
     for (int step = 0; step < 400; ++step) {
         if (step > 0 && step % 5 != 0) {  // every fifth step lists what the last one did
-            for (int k = static_cast<int>(random() % 4); k > 0 && !pairs.empty(); --k)  // gone
-                pairs.erase(pairs.begin() + static_cast<std::ptrdiff_t>(random() % pairs.size()));
-            for (int k = static_cast<int>(random() % 4); k > 0; --k)  // new, anywhere
+            for (int k = static_cast<int>(bodies.random() % 4); k > 0 && !pairs.empty(); --k)  // gone
+                pairs.erase(pairs.begin() + static_cast<std::ptrdiff_t>(bodies.random() % pairs.size()));
+            for (int k = static_cast<int>(bodies.random() % 4); k > 0; --k)  // new, anywhere
                 pairs.insert(pairs.begin() + at(pairs.size()), freshPair(step));
-            if (random() % 2 == 0) pairs.insert(pairs.begin(), freshPair(step));  // first, as Box2D adds them
-            if (random() % 4 == 0 && !pairs.empty()) {  // moved far
-                const TouchingPair moved = pairs[random() % pairs.size()];
+            if (bodies.random() % 2 == 0) pairs.insert(pairs.begin(), freshPair(step));  // first, as Box2D adds them
+            if (bodies.random() % 4 == 0 && !pairs.empty()) {  // moved far
+                const TouchingPair moved = pairs[bodies.random() % pairs.size()];
                 std::erase_if(pairs, [&](const TouchingPair& p) { return p.bodyA == moved.bodyA && p.bodyB == moved.bodyB; });
                 pairs.insert(pairs.begin() + at(pairs.size()), moved);
             }
             std::erase_if(pairs, [](const TouchingPair& p) { return p.normal.y() < 0.0; });  // last step's repeat
-            if (random() % 10 == 0 && !pairs.empty()) {  // the same pair listed twice, the other way round, once
-                TouchingPair twice = pairs[random() % pairs.size()];
+            if (bodies.random() % 10 == 0 && !pairs.empty()) {  // the same pair listed twice, the other way round, once
+                TouchingPair twice = pairs[bodies.random() % pairs.size()];
                 std::swap(twice.bodyA, twice.bodyB);
                 twice.normal = -twice.normal;
                 pairs.insert(pairs.begin() + at(pairs.size()), twice);
             }
             for (TouchingPair& p : pairs)  // new points on the same pairs
-                for (ContactPoint& c : p.points) c.depth = 0.001 * double(random() % 7);
+                for (ContactPoint& c : p.points) c.depth = 0.001 * double(bodies.random() % 7);
         }
-        sleeping.clear();
+        bodies.sleeping.clear();
         if (step % 3 == 0)
-            for (int k = 0; k < 3; ++k) sleeping.insert(random() % kBodies);
+            for (int k = 0; k < 3; ++k) bodies.sleeping.insert(bodies.random() % kBodies);
         if (step % 11 == 6) {  // a body destroyed: its pairs end now, whatever the listing says next
-            const std::uint32_t gone = random() % kBodies;
-            expectSameEvents(tracker.removeBody(body(gone, generation[gone])), reference.removeBody(body(gone, generation[gone])),
-                             step);
+            const std::uint32_t gone = bodies.random() % kBodies;
+            const BodyId destroyed = body(gone, bodies.generation[gone]);
+            expectSameEvents(tracker.removeBody(destroyed), reference.removeBody(destroyed), step);
         }
-        const std::vector<ContactEvent> expected = reference.update(pairs, asleep);
-        FlatStep f = flatten(pairs, asleep);
-        tracker.update(f.ranges, f.points, events, asleep);
+        const std::vector<ContactEvent> expected = reference.update(pairs, bodies.asleep);
+        FlatStep f = flatten(pairs, bodies.asleep);
+        tracker.update(f.ranges, f.points, events, bodies.asleep);
         expectSameEvents(events, expected, step);
         if (::testing::Test::HasFatalFailure()) return;
     }
