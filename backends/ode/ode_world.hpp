@@ -123,11 +123,10 @@ private:
     std::size_t awakeBodies_ = 0;
     CollidePass lastPass_ = CollidePass::Skipped;
 
-    // Contacts of the last ODE step for events (recorded when events are on): the pairs, their
-    // points, the joints and the joints' feedback.
-    // The points as the report hands them on (impulses filled in then), and beside them each
-    // point's normal as ODE gave it (into body a), which its feedback is projected on; its joint's
-    // feedback is feedback_ at the same index.
+    // Contacts of the last ODE step for events (recorded when events are on): the pairs; their
+    // points as the report hands them on (it fills in the impulses), and beside them each point's
+    // normal as ODE gave it (into body a), which the feedback is projected on; the joints, and
+    // their feedback (a point's is feedback_ at the same index).
     std::vector<PairRecord> pairs_;
     std::vector<ContactPoint> points_;
     std::vector<Vec3> normals_;
