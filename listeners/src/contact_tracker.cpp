@@ -54,7 +54,8 @@ void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuer
     listed_.resize(touching.size());  // written through a pointer, then trimmed (see diffFewChanges)
     Listed* const listing = listed_.data();
     std::size_t listedCount = 0;
-    for (std::uint32_t i = 0; i < touching.size(); ++i) {
+    const auto pairCount = static_cast<std::uint32_t>(touching.size());  // read once (see diffFewChanges)
+    for (std::uint32_t i = 0; i < pairCount; ++i) {
         TouchingRange& p = touching[i];
         if (p.bodyA == p.bodyB) continue;  // never itself
         if (p.bodyB < p.bodyA) {
@@ -106,6 +107,7 @@ bool ContactTracker::tryFewChanges(const std::vector<TouchingRange>& touching, c
 }
 
 bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
+    constexpr std::uint32_t kGone = ~std::uint32_t(0);  // keptIndex_ of a pair this listing lacks
     // A pair gone or new shifts the listing from that place on, so the walk looks a few places
     // ahead on both sides to find where the listings agree again; a pair that moved far counts
     // as gone and new, and the merge below finds it in both.
@@ -115,27 +117,27 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     const std::vector<Listed>& before = lastListing_;  // no pair twice: each is in lastSorted_
     const std::vector<Listed>& now = listed_;
     const auto samePair = [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.trigger == y.trigger; };
-    kept_.assign(lastSorted_.size(), 0);
-    keptIndex_.resize(lastSorted_.size());
+    keptIndex_.assign(lastSorted_.size(), kGone);
     added_.clear();
+    // Sizes read once: the loops' stores through pointers keep the compiler from hoisting them.
+    const std::size_t beforeSize = before.size(), nowSize = now.size();
     std::size_t i = 0, j = 0, changes = 0, keptCount = 0;
-    while (i < before.size() && j < now.size()) {
+    while (i < beforeSize && j < nowSize) {
         if (samePair(before[i], now[j])) {
             const std::uint32_t slot = sortedSlot_[before[i++].index];
-            kept_[slot] = 1;
             keptIndex_[slot] = now[j++].index;
             ++keptCount;
             continue;
         }
         std::size_t gone = 1;  // old pairs that this listing no longer has, before the next agreement
-        while (gone <= kLookAhead && i + gone < before.size() && !samePair(before[i + gone], now[j])) ++gone;
+        while (gone <= kLookAhead && i + gone < beforeSize && !samePair(before[i + gone], now[j])) ++gone;
         std::size_t fresh = 1;  // or new pairs, before it
-        if (gone <= kLookAhead && i + gone < before.size()) {
+        if (gone <= kLookAhead && i + gone < beforeSize) {
             i += gone;
             changes += gone;
         } else {
-            while (fresh <= kLookAhead && j + fresh < now.size() && !samePair(before[i], now[j + fresh])) ++fresh;
-            if (fresh <= kLookAhead && j + fresh < now.size()) {
+            while (fresh <= kLookAhead && j + fresh < nowSize && !samePair(before[i], now[j + fresh])) ++fresh;
+            if (fresh <= kLookAhead && j + fresh < nowSize) {
                 added_.insert(added_.end(), now.begin() + std::ptrdiff_t(j), now.begin() + std::ptrdiff_t(j + fresh));
                 j += fresh;
                 changes += fresh;
@@ -147,7 +149,7 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
         }
         if (changes > budget) return false;
     }
-    changes += (before.size() - i) + (now.size() - j);
+    changes += (beforeSize - i) + (nowSize - j);
     if (changes > budget) return false;
     added_.insert(added_.end(), now.begin() + std::ptrdiff_t(j), now.end());
     const auto less = [](const Listed& x, const Listed& y) {
@@ -186,12 +188,14 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
             decided[decidedCount++] = {Outcome::Stay, index};
         return true;
     };
-    const std::vector<Listed>& old = lastSorted_;
+    const Listed* const old = lastSorted_.data();
+    const Listed* const newPairs = added_.data();
+    const std::size_t oldSize = lastSorted_.size(), newCount = added_.size();
     std::size_t p = 0, q = 0;
-    while (p < old.size() || q < added_.size()) {
-        if (q == added_.size() || (p < old.size() && less(old[p], added_[q]))) {
+    while (p < oldSize || q < newCount) {
+        if (q == newCount || (p < oldSize && less(old[p], newPairs[q]))) {
             const Listed& o = old[p];
-            if (kept_[p]) {
+            if (keptIndex_[p] != kGone) {
                 if (!list(o, keptIndex_[p], false, false)) return false;
             } else if (asleep && (asleep(idOf(o.a)) || asleep(idOf(o.b)))) {  // the contact persists silently
                 nextPairs[nextCount++] = {o.a, o.b, o.trigger};
@@ -200,12 +204,12 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
                 exits_.push_back({o.a, o.b, o.trigger});
             }
             ++p;
-        } else if (p < old.size() && samePair(old[p], added_[q])) {  // moved in the listing: it stays
-            if (kept_[p] || !list(added_[q], added_[q].index, true, false)) return false;
+        } else if (p < oldSize && samePair(old[p], newPairs[q])) {  // moved in the listing: it stays
+            if (keptIndex_[p] != kGone || !list(newPairs[q], newPairs[q].index, true, false)) return false;
             ++p;
             ++q;
         } else {
-            if (!list(added_[q], added_[q].index, true, true)) return false;
+            if (!list(newPairs[q], newPairs[q].index, true, true)) return false;
             ++q;
         }
     }
@@ -214,7 +218,7 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     decisions_.resize(decidedCount);
     active_.swap(next_);
     activeIsLastListing_ = !keptAsleep;
-    lastListing_.assign(listed_.begin(), listed_.end());
+    lastListing_.swap(listed_);  // diff() rebuilds listed_ whole
     lastSorted_.swap(sorting_);
     lastListingUnique_ = true;  // sortedSlot_ written above
     return true;
@@ -274,7 +278,6 @@ void ContactTracker::matchSwappedCapacities() {
     match(listed_, sorting_, lastSorted_);
     // diffFewChanges' scratch holds at most a listing (and lastListing_ is one).
     match(listed_, lastListing_, added_);
-    kept_.reserve(listed_.capacity());
     keptIndex_.reserve(listed_.capacity());
     decisions_.reserve(listed_.capacity());
 }
@@ -287,9 +290,10 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
     const auto less = [](const Active& x, const Listed& y) {
         return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger < y.trigger;
     };
+    const std::size_t activeCount = active_.size(), sortedCount = sorted.size();  // read once (see diffFewChanges)
     std::size_t i = 0, j = 0;
-    while (i < active_.size() || j < sorted.size()) {
-        const bool takeOld = j == sorted.size() || (i < active_.size() && less(active_[i], sorted[j]));
+    while (i < activeCount || j < sortedCount) {
+        const bool takeOld = j == sortedCount || (i < activeCount && less(active_[i], sorted[j]));
         if (takeOld) {  // touching before, not now: exit, unless asleep (the contact persists silently)
             const Active& old = active_[i];
             if (asleep && (asleep(idOf(old.a)) || asleep(idOf(old.b))))
@@ -303,7 +307,7 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
         const TouchingRange& p = touching[now.index];
         next_.push_back({now.a, now.b, p.trigger});
         const bool touchedBefore =
-            i < active_.size() && active_[i].a == now.a && active_[i].b == now.b && active_[i].trigger == now.trigger;
+            i < activeCount && active_[i].a == now.a && active_[i].b == now.b && active_[i].trigger == now.trigger;
         if (!touchedBefore) {
             decisions_.push_back({Outcome::Enter, now.index});
         } else {  // stay (triggers report only enter and exit; sleeping pairs nothing)

@@ -111,9 +111,8 @@ private:
     bool lastListingUnique_ = false;    // the last listing named no pair twice
     std::vector<std::uint32_t> sortedSlot_;  // a unique last listing's touching index -> lastSorted_ position
     bool activeIsLastListing_ = false;  // active_ holds exactly lastSorted_'s pairs
-    // diffFewChanges' scratch: per lastSorted_ entry, whether the new listing has it and where;
-    // the new listing's other pairs.
-    std::vector<std::uint8_t> kept_;
+    // diffFewChanges' scratch: per lastSorted_ entry, where the new listing has it (or that it
+    // does not); the new listing's other pairs.
     std::vector<std::uint32_t> keptIndex_;
     std::vector<Listed> added_;
     std::uint32_t stepsToNextTry_ = 0;    // steps tryFewChanges still skips
