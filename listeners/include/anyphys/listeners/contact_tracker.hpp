@@ -84,8 +84,9 @@ private:
     /// The diff of a listing that differs from the last one in a few places (an engine's contact
     /// list keeps its order from step to step; a pile gains and loses a few pairs): finds the
     /// changes by walking both listings, then merges the last sorted listing with the sorted new
-    /// pairs into the events and the next pairs, without sorting the whole listing. False, having
-    /// decided nothing, when the listings differ too much or the new one repeats a pair.
+    /// pairs into the events and the next pairs, without sorting the whole listing. False when the
+    /// listings differ too much or the new one repeats a pair: the caller then clears what it
+    /// decided and sorts (sortAnew rewrites sortedSlot_, which a failed merge leaves half written).
     bool diffFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep);
     /// diffFewChanges, unless it failed lately (then false without trying: stepsToNextTry_).
     bool tryFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep);
@@ -106,7 +107,7 @@ private:
     std::vector<Active> active_;
     std::vector<Active> next_;
     std::vector<Listed> listed_;
-    std::vector<Listed> sorting_;  // radix sort's second buffer
+    std::vector<Listed> sorting_;  // radix sort's second buffer; diffFewChanges' sorted listing
     std::vector<Listed> lastListing_, lastSorted_;  // the last listing, and it sorted and deduplicated
     bool lastListingUnique_ = false;    // the last listing named no pair twice
     std::vector<std::uint32_t> sortedSlot_;  // a unique last listing's touching index -> lastSorted_ position
