@@ -14,6 +14,17 @@ constexpr std::size_t kPointsPerEvent = 4;
 std::uint64_t keyOf(BodyId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
 BodyId idOf(std::uint64_t key) { return BodyId{std::uint32_t(key >> 32), std::uint32_t(key)}; }
 
+// Pairs are (a, b, trigger) and order by a, then b, then the flag: a collision before the same
+// bodies' trigger overlap. For any two records carrying those three fields (Active, Listed).
+template <class X, class Y>
+bool samePair(const X& x, const Y& y) {
+    return x.a == y.a && x.b == y.b && x.trigger == y.trigger;
+}
+template <class X, class Y>
+bool pairBefore(const X& x, const Y& y) {
+    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger < y.trigger;
+}
+
 ContactEvent exitEvent(BodyId a, BodyId b, bool trigger, bool removal) {
     ContactEvent e;
     e.bodyA = a;
@@ -65,9 +76,7 @@ void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuer
         listing[listedCount++] = {keyOf(p.bodyA), keyOf(p.bodyB), p.trigger, i};
     }
     listed_.resize(listedCount);
-    const auto equal = [](const Listed& x, const Listed& y) {
-        return x.a == y.a && x.b == y.b && x.trigger == y.trigger && x.index == y.index;
-    };
+    const auto equal = [](const Listed& x, const Listed& y) { return samePair(x, y) && x.index == y.index; };
     const bool sameListing = std::equal(listed_.begin(), listed_.end(), lastListing_.begin(), lastListing_.end(), equal);
 
     decisions_.clear();
@@ -116,7 +125,6 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     const std::size_t budget = 16 + listed_.size() / 4;
     const std::vector<Listed>& before = lastListing_;  // no pair twice: each is in lastSorted_
     const std::vector<Listed>& now = listed_;
-    const auto samePair = [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.trigger == y.trigger; };
     keptIndex_.assign(lastSorted_.size(), kGone);
     added_.clear();
     // Sizes read once: the loops' stores through pointers keep the compiler from hoisting them.
@@ -152,10 +160,7 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     changes += (beforeSize - i) + (nowSize - j);
     if (changes > budget) return false;
     added_.insert(added_.end(), now.begin() + std::ptrdiff_t(j), now.end());
-    const auto less = [](const Listed& x, const Listed& y) {
-        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger < y.trigger;
-    };
-    std::sort(added_.begin(), added_.end(), less);
+    std::sort(added_.begin(), added_.end(), [](const Listed& x, const Listed& y) { return pairBefore(x, y); });
 
     // Merge the last sorted listing (its pairs kept, gone, or gone but asleep) with the new pairs,
     // in pair order: the events, the next active pairs and this listing's sorted form (with
@@ -193,7 +198,7 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     const std::size_t oldSize = lastSorted_.size(), newCount = added_.size();
     std::size_t p = 0, q = 0;
     while (p < oldSize || q < newCount) {
-        if (q == newCount || (p < oldSize && less(old[p], newPairs[q]))) {
+        if (q == newCount || (p < oldSize && pairBefore(old[p], newPairs[q]))) {
             const Listed& o = old[p];
             if (keptIndex_[p] != kGone) {
                 if (!list(o, keptIndex_[p], false, false)) return false;
@@ -286,14 +291,10 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
                           const AsleepQuery& asleep) {
     // Merge walk of the two sorted lists: decide each pair's fate, and carry the touching ones over.
     next_.clear();
-    // Pairs order by (a, b, trigger): a collision before the same bodies' trigger overlap.
-    const auto less = [](const Active& x, const Listed& y) {
-        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger < y.trigger;
-    };
     const std::size_t activeCount = active_.size(), sortedCount = sorted.size();  // read once (see diffFewChanges)
     std::size_t i = 0, j = 0;
     while (i < activeCount || j < sortedCount) {
-        const bool takeOld = j == sortedCount || (i < activeCount && less(active_[i], sorted[j]));
+        const bool takeOld = j == sortedCount || (i < activeCount && pairBefore(active_[i], sorted[j]));
         if (takeOld) {  // touching before, not now: exit, unless asleep (the contact persists silently)
             const Active& old = active_[i];
             if (asleep && (asleep(idOf(old.a)) || asleep(idOf(old.b))))
@@ -306,8 +307,7 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
         const Listed& now = sorted[j++];
         const TouchingRange& p = touching[now.index];
         next_.push_back({now.a, now.b, p.trigger});
-        const bool touchedBefore =
-            i < activeCount && active_[i].a == now.a && active_[i].b == now.b && active_[i].trigger == now.trigger;
+        const bool touchedBefore = i < activeCount && samePair(active_[i], now);
         if (!touchedBefore) {
             decisions_.push_back({Outcome::Enter, now.index});
         } else {  // stay (triggers report only enter and exit; sleeping pairs nothing)
@@ -323,7 +323,7 @@ const std::vector<ContactTracker::Listed>& ContactTracker::sortAnew() {
     sortListed();
     const std::size_t listedPairs = listed_.size();
     listed_.erase(std::unique(listed_.begin(), listed_.end(),
-                              [](const Listed& x, const Listed& y) { return x.a == y.a && x.b == y.b && x.trigger == y.trigger; }),
+                              [](const Listed& x, const Listed& y) { return samePair(x, y); }),
                   listed_.end());
     lastSorted_.swap(listed_);
     noteSorted(lastSorted_.size() == listedPairs);
@@ -338,9 +338,7 @@ void ContactTracker::noteSorted(bool unique) {
 }
 
 void ContactTracker::sortListed() {
-    const auto before = [](const Listed& x, const Listed& y) {
-        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.trigger != y.trigger ? x.trigger < y.trigger : x.index < y.index;
-    };
+    const auto before = [](const Listed& x, const Listed& y) { return samePair(x, y) ? x.index < y.index : pairBefore(x, y); };
     if (std::is_sorted(listed_.begin(), listed_.end(), before)) return;
     if (listed_.size() < 64) {  // a few pairs: a comparison sort beats the radix passes
         std::sort(listed_.begin(), listed_.end(), before);
