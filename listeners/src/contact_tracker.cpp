@@ -54,12 +54,12 @@ std::vector<ContactEvent> ContactTracker::update(std::vector<TouchingPair> touch
 }
 
 void ContactTracker::update(std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
-                            std::vector<ContactEvent>& events, const AsleepQuery& asleep) {
-    diff(touching, asleep);
+                            std::vector<ContactEvent>& events, const AsleepQuery& asleep, const NearQuery& near) {
+    diff(touching, asleep, near);
     writeEvents(touching, points, events);
 }
 
-void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
+void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep, const NearQuery& near) {
     // Normalise order (A < B, normal from A to B), sort by pair then listing order, and keep the
     // first listing of each pair.
     listed_.resize(touching.size());  // written through a pointer, then trimmed (see diffFewChanges)
@@ -89,16 +89,17 @@ void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuer
             active_[k].trigger = p.trigger;
             if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, lastSorted_[k].index});
         }
-    } else if (sameListing || !activeIsLastListing_ || !lastListingUnique_ || !tryFewChanges(touching, asleep)) {
+    } else if (sameListing || !activeIsLastListing_ || !lastListingUnique_ || !tryFewChanges(touching, asleep, near)) {
         decisions_.clear();  // what diffFewChanges decided before it gave up
         exits_.clear();
-        walk(touching, sameListing ? lastSorted_ : sortAnew(), asleep);
+        touching.resize(pairCount);  // and the contacts its near queries appended
+        walk(touching, sameListing ? lastSorted_ : sortAnew(), asleep, near);
         active_.swap(next_);
     }
     matchSwappedCapacities();
 }
 
-bool ContactTracker::tryFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
+bool ContactTracker::tryFewChanges(std::vector<TouchingRange>& touching, const AsleepQuery& asleep, const NearQuery& near) {
     // A backend whose listing order moves (ODE's hash space) makes every attempt fail: after each
     // failure the next attempts wait, twice as many steps each time, up to kMostStepsBetweenTries.
     constexpr std::uint32_t kMostStepsBetweenTries = 64;
@@ -106,7 +107,7 @@ bool ContactTracker::tryFewChanges(const std::vector<TouchingRange>& touching, c
         --stepsToNextTry_;
         return false;
     }
-    if (diffFewChanges(touching, asleep)) {
+    if (diffFewChanges(touching, asleep, near)) {
         stepsAfterFailure_ = 1;
         return true;
     }
@@ -115,7 +116,7 @@ bool ContactTracker::tryFewChanges(const std::vector<TouchingRange>& touching, c
     return false;
 }
 
-bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep) {
+bool ContactTracker::diffFewChanges(std::vector<TouchingRange>& touching, const AsleepQuery& asleep, const NearQuery& near) {
     constexpr std::uint32_t kGone = ~std::uint32_t(0);  // keptIndex_ of a pair this listing lacks
     // A pair gone or new shifts the listing from that place on, so the walk looks a few places
     // ahead on both sides to find where the listings agree again; a pair that moved far counts
@@ -166,17 +167,18 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     // in pair order: the events, the next active pairs and this listing's sorted form (with
     // where each of its pairs sits in it, for the next step) at once.
     // Written through pointers into room for every pair (a push per pair costs as much as the
-    // rest of the merge), then trimmed: this listing's pairs, and the next active pairs, which
-    // may also keep old pairs gone but asleep.
+    // rest of the merge), then trimmed: this listing's pairs, and the next active pairs and
+    // decisions, which may also keep old pairs gone but asleep or still touching.
+    const std::size_t unlistedMost = lastSorted_.size() - keptCount;
     sorting_.resize(now.size());
-    decisions_.resize(now.size());
-    next_.resize(now.size() + (lastSorted_.size() - keptCount));
+    decisions_.resize(now.size() + unlistedMost);
+    next_.resize(now.size() + unlistedMost);
     Listed* const sorted = sorting_.data();
     Active* const nextPairs = next_.data();
     Decision* const decided = decisions_.data();
     std::uint32_t sortedCount = 0, nextCount = 0, decidedCount = 0;
     sortedSlot_.resize(now.empty() ? 0 : now.back().index + 1);
-    bool keptAsleep = false;
+    bool keptUnlisted = false;  // active pairs kept that this listing lacks
     bool afterNew = false;  // the last pair listed came from added_: the next may repeat it
     // Inlined: it runs for every pair, and a call costs more than its body.
     const auto list = [&](const Listed& pair, std::uint32_t index, bool isNew, bool entered) __attribute__((always_inline)) {
@@ -202,11 +204,17 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
             const Listed& o = old[p];
             if (keptIndex_[p] != kGone) {
                 if (!list(o, keptIndex_[p], false, false)) return false;
-            } else if (asleep && (asleep(idOf(o.a)) || asleep(idOf(o.b)))) {  // the contact persists silently
-                nextPairs[nextCount++] = {o.a, o.b, o.trigger};
-                keptAsleep = true;
             } else {
-                exits_.push_back({o.a, o.b, o.trigger});
+                const Active pair{o.a, o.b, o.trigger};
+                const Unlisted fate = unlisted(pair, touching, asleep, near);
+                if (fate == Unlisted::Exits) {
+                    exits_.push_back(pair);
+                } else {
+                    nextPairs[nextCount++] = pair;
+                    keptUnlisted = true;
+                    if (fate == Unlisted::StillTouches)
+                        decided[decidedCount++] = {Outcome::Stay, static_cast<std::uint32_t>(touching.size() - 1)};
+                }
             }
             ++p;
         } else if (p < oldSize && samePair(old[p], newPairs[q])) {  // moved in the listing: it stays
@@ -222,7 +230,7 @@ bool ContactTracker::diffFewChanges(const std::vector<TouchingRange>& touching, 
     next_.resize(nextCount);
     decisions_.resize(decidedCount);
     active_.swap(next_);
-    activeIsLastListing_ = !keptAsleep;
+    activeIsLastListing_ = !keptUnlisted;
     lastListing_.swap(listed_);  // diff() rebuilds listed_ whole
     lastSorted_.swap(sorting_);
     lastListingUnique_ = true;  // sortedSlot_ written above
@@ -287,20 +295,45 @@ void ContactTracker::matchSwappedCapacities() {
     decisions_.reserve(listed_.capacity());
 }
 
-void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted,
-                          const AsleepQuery& asleep) {
+ContactTracker::Unlisted ContactTracker::unlisted(const Active& old, std::vector<TouchingRange>& touching,
+                                                  const AsleepQuery& asleep, const NearQuery& near) {
+    const BodyId a = idOf(old.a), b = idOf(old.b);
+    if (asleep && (asleep(a) || asleep(b))) return Unlisted::Sleeps;  // the contact persists silently
+    if (old.trigger || !near) return Unlisted::Exits;
+    const std::size_t listed = touching.size();
+    if (!near(a, b, touching) || touching.size() == listed) {
+        touching.resize(listed);
+        return Unlisted::Exits;
+    }
+    touching.resize(listed + 1);  // one contact per pair
+    TouchingRange& contact = touching.back();
+    if (contact.bodyB < contact.bodyA) {  // the order the tracker keeps, whatever the query wrote
+        std::swap(contact.bodyA, contact.bodyB);
+        contact.normal = -contact.normal;
+    }
+    contact.trigger = false;
+    contact.asleep = false;
+    return Unlisted::StillTouches;
+}
+
+void ContactTracker::walk(std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted,
+                          const AsleepQuery& asleep, const NearQuery& near) {
     // Merge walk of the two sorted lists: decide each pair's fate, and carry the touching ones over.
     next_.clear();
     const std::size_t activeCount = active_.size(), sortedCount = sorted.size();  // read once (see diffFewChanges)
     std::size_t i = 0, j = 0;
     while (i < activeCount || j < sortedCount) {
         const bool takeOld = j == sortedCount || (i < activeCount && pairBefore(active_[i], sorted[j]));
-        if (takeOld) {  // touching before, not now: exit, unless asleep (the contact persists silently)
+        if (takeOld) {  // touching before, not listed now: exit, unless asleep or still touching
             const Active& old = active_[i];
-            if (asleep && (asleep(idOf(old.a)) || asleep(idOf(old.b))))
-                next_.push_back(old);
-            else
+            const Unlisted fate = unlisted(old, touching, asleep, near);
+            if (fate == Unlisted::Exits) {
                 exits_.push_back(old);
+            } else {
+                next_.push_back(old);
+                if (fate == Unlisted::StillTouches)
+                    decisions_.push_back({Outcome::Stay, static_cast<std::uint32_t>(touching.size() - 1)});
+            }
             ++i;
             continue;
         }
@@ -315,7 +348,7 @@ void ContactTracker::walk(const std::vector<TouchingRange>& touching, const std:
             if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, now.index});
         }
     }
-    activeIsLastListing_ = next_.size() == sorted.size();  // no pair kept asleep besides
+    activeIsLastListing_ = next_.size() == sorted.size();  // no pair kept asleep or still touching besides
 }
 
 const std::vector<ContactTracker::Listed>& ContactTracker::sortAnew() {

@@ -5,6 +5,8 @@
 //  - a pair touching now and not before: Enter; touching before and now: Stay (collisions only;
 //    triggers get no Stay); touching before, not now: Exit;
 //  - a pair whose bodies are (either) asleep keeps its contact: no Exit, no Stay;
+//  - a pair no longer listed that the near query finds still touching stays, with the query's
+//    contact (engines that report a pair only while its shapes overlap: ODE);
 //  - removing a body ends its pairs with an Exit flagged `removal`;
 //  - a pair reported twice in one step counts once (first report wins);
 //  - a body pair's collision and its trigger overlap are two pairs, each with its own enter and
@@ -22,6 +24,10 @@ namespace anyphys {
 class ContactTracker {
 public:
     using AsleepQuery = std::function<bool(BodyId)>;
+    /// Asked about a collision pair that touched before, is not listed now and does not sleep:
+    /// true when it still touches, after appending its contact to `touching` (bodyA, bodyB as
+    /// given, normal from A to B). The pair then stays, with that entry.
+    using NearQuery = std::function<bool(BodyId a, BodyId b, std::vector<TouchingRange>& touching)>;
 
     /// Diffs `touching` against the previous step. Events come out sorted by (bodyA, bodyB),
     /// exits first, then enters, then stays.
@@ -33,13 +39,14 @@ public:
     /// reusing their storage (pass the last step's events back in). `asleep` is asked only about
     /// pairs that touched before and are not listed now.
     void update(std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
-                std::vector<ContactEvent>& events, const AsleepQuery& asleep = {});
+                std::vector<ContactEvent>& events, const AsleepQuery& asleep = {}, const NearQuery& near = {});
 
     /// The step's diff alone: decides every pair's event and moves the tracker to this step's
     /// pairs (normalising `touching`'s order in place). What World runs every step; it writes the
     /// events only when someone reads them (a listener, World::lastEvents), since copying every
     /// staying pair's points is most of the tracker's cost.
-    void diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep = {});
+    /// `touching` may grow: the near query appends the pairs it keeps.
+    void diff(std::vector<TouchingRange>& touching, const AsleepQuery& asleep = {}, const NearQuery& near = {});
     /// Writes the last diff's events into `events` as update() does. `touching` and `points` must
     /// be what that diff was given (unchanged since); another diff in between replaces the events.
     void writeEvents(const std::vector<TouchingRange>& touching, std::span<const ContactPoint> points,
@@ -71,6 +78,8 @@ private:
         std::uint32_t index;  // into `touching`
     };
     enum class Outcome : std::uint8_t { Enter, Stay };
+    /// What becomes of an active pair the listing lacks.
+    enum class Unlisted : std::uint8_t { Exits, Sleeps, StillTouches };
     struct Decision {
         Outcome outcome;
         std::uint32_t ref;  // into `touching`
@@ -79,17 +88,23 @@ private:
     /// listed_ sorted into pair order and deduplicated, kept as lastSorted_ (and listed_ as
     /// lastListing_) for the next step.
     const std::vector<Listed>& sortAnew();
+    /// An active pair the listing lacks: kept silently while a body sleeps; kept as a Stay whose
+    /// contact is touching.back() while the near query finds it touching (collisions only);
+    /// otherwise it exits.
+    static Unlisted unlisted(const Active& old, std::vector<TouchingRange>& touching, const AsleepQuery& asleep,
+                             const NearQuery& near);
     /// Merges the sorted listing with active_ into decisions_, exits_ and next_.
-    void walk(const std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted, const AsleepQuery& asleep);
+    void walk(std::vector<TouchingRange>& touching, const std::vector<Listed>& sorted, const AsleepQuery& asleep,
+              const NearQuery& near);
     /// The diff of a listing that differs from the last one in a few places (an engine's contact
     /// list keeps its order from step to step; a pile gains and loses a few pairs): finds the
     /// changes by walking both listings, then merges the last sorted listing with the sorted new
     /// pairs into the events and the next pairs, without sorting the whole listing. False when the
     /// listings differ too much or the new one repeats a pair: the caller then clears what it
     /// decided and sorts (sortAnew rewrites sortedSlot_, which a failed merge leaves half written).
-    bool diffFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep);
+    bool diffFewChanges(std::vector<TouchingRange>& touching, const AsleepQuery& asleep, const NearQuery& near);
     /// diffFewChanges, unless it failed lately (then false without trying: stepsToNextTry_).
-    bool tryFewChanges(const std::vector<TouchingRange>& touching, const AsleepQuery& asleep);
+    bool tryFewChanges(std::vector<TouchingRange>& touching, const AsleepQuery& asleep, const NearQuery& near);
     void sortListed();
     /// After lastListing_ and lastSorted_ changed: whether the listing named each pair once, and
     /// if so where each of its pairs sits in lastSorted_ (sortedSlot_).
