@@ -193,6 +193,9 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
         const Slot& s = impl_->slots[id.index];
         return s.def.type != BodyType::Static && !s.peer->isAwake();
     };
+    impl_->stillTouching = [this](BodyId a, BodyId b, std::vector<TouchingRange>& touching) {
+        return stillTouching(a, b, touching);
+    };
     impl_->peer->setMaterialTable(buildMaterialTable());
     refreshEffects();
 }
@@ -742,12 +745,30 @@ void World::dispatchEvents() {
     // measured; the impulses above still decided what touches, so the events are the same.
     if (!settings_.contactImpulses)
         for (ContactPoint& p : i.contacts.points) p.normalImpulse = 0.0;
-    i.tracker.diff(i.touching, i.asleep);
+    i.tracker.diff(i.touching, i.asleep, i.stillTouching);
     i.eventsUnwritten = true;
     if (!i.listeners.empty())
         deliverEvents();
     else if (i.eventsRead)
         i.writtenEvents();
+}
+
+bool World::stillTouching(BodyId a, BodyId b, std::vector<TouchingRange>& touching) {
+    Impl& i = *impl_;
+    if (!isValid(a) || !isValid(b)) return false;
+    const double slop = settings_.linearSlop;
+    const std::size_t pair = i.contacts.pairs.size();
+    if (!i.peer->reportNearPair(*i.slots[a.index].peer, *i.slots[b.index].peer, slop, i.contacts)) return false;
+    // The same rule as for the listed pairs (dispatchEvents), by depth: a near pair has no impulse.
+    const ContactReport::Pair& c = i.contacts.pairs[pair];
+    bool touches = false;
+    for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
+        touches = i.contacts.points[k].depth > -slop;
+    if (touches)
+        touching.push_back({a, b, false, i.backend->capabilities.contactImpulses && settings_.contactImpulses, false,
+                            c.normal, c.firstPoint, c.pointCount});
+    i.contacts.pairs.resize(pair);  // the listing stays the peer's own (its points are kept)
+    return touches;
 }
 
 void World::deliverEvents() {

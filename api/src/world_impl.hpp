@@ -142,6 +142,7 @@ struct World::Impl {
     bool eventsUnwritten = false;            // the last diff is not in lastEvents yet
     bool eventsRead = false;                 // lastEvents() was called: write every step from now on
     ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
+    ContactTracker::NearQuery stillTouching; // a pair the peer no longer lists is within linearSlop
     std::vector<ContactListener*> listenersNow;  // the listeners one dispatch delivers to
     int dispatching = 0;                     // listener callbacks running (a callback may step)
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch

@@ -92,6 +92,12 @@ Backend makeBulletBackend() {
          "the 20-row pyramid comes apart with sleeping off: boxes drift 27 cm sideways within 5 s (as stability.pyramid20.pgs.s1)"},
         {"planar.stack10.top_drift",
          "as stack10.top_drift, planar: 2.0 cm over 10 s; 1.2 mm at 4 substeps"},
+        // tests/contract/test_events.cpp, 2026-12-02.
+        {"events.within_slop",
+         "two boxes 1 mm apart (a fifth of linearSlop) never touch: Bullet's box-box and sphere-sphere tests report a "
+         "pair only while the shapes overlap, where the layer's rule counts a gap under linearSlop as touching (its "
+         "GJK-based tests, capsules for one, report points within the breaking threshold: two capsules 1 mm apart touch)"},
+        {"planar.events.within_slop", "as events.within_slop, in a planar world"},
         {"stack10.top_drift",
          "the 10-box stack's top drifts 7.8 cm sideways over 10 s with sleeping off (1 substep, pgs, 30 iterations); 6 mm at 4 substeps"},
         // Joints and assemblies, measured by their contract at the defaults (one 1/60 s step).

@@ -89,6 +89,12 @@ Backend makeOdeBackend() {
          "an elbow bends 34 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations; 9 to 51 deg over eight starting turns of the pile, 2026-11-27); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg (measured before hull and capsule contacts were completed)"},
         {"planar.assemblies.ragdoll_limits",
          "as assemblies.ragdoll_limits, planar: 33.7 deg"},
+        // tests/contract/test_events.cpp, 2026-12-02.
+        {"events.within_slop",
+         "two boxes placed 1 mm apart (a fifth of linearSlop) never touch: ODE's colliders report a pair only while the "
+         "geoms overlap, where the layer's rule counts a gap under linearSlop as touching (a pair that has touched "
+         "keeps touching while within linearSlop: reportNearPair)"},
+        {"planar.events.within_slop", "as events.within_slop, in a planar world"},
         {"stack10.top_drift",
          "the 10-box stack's top drifts 1.7 cm sideways over 10 s with sleeping off (quickstep at 1 substep x 50 iterations); 0.5 mm at 4 substeps (as stability.stack10.pgs.s1)"},
         {"joints.wide_pendulum_energy",

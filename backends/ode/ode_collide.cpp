@@ -196,6 +196,34 @@ void OdeWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint64_t
     }
 }
 
+bool OdeWorld::reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) {
+    if (!effects_.has(Effect::Contacts)) return false;
+    const auto& bodyA = static_cast<const OdeBody&>(a);
+    const auto& bodyB = static_cast<const OdeBody&>(b);
+    if (jointExcludes(&bodyA, &bodyB)) return false;
+    bool found = false;
+    for (std::size_t i = 0; i < bodyA.shapeCount(); ++i)
+        for (std::size_t j = 0; j < bodyB.shapeCount(); ++j) {
+            // The pairs collidePair would collide, sensors aside (a trigger overlap is never near).
+            const OdeShape& shapeA = bodyA.shape(i);
+            const OdeShape& shapeB = bodyB.shape(j);
+            const GeomSurface& sa = shapeA.surface();
+            const GeomSurface& sb = shapeB.surface();
+            if (sa.trigger || sb.trigger || !layersCollide(sa.layer, sa.mask, sb.layer, sb.mask) ||
+                !collidable(shapeA.type(), shapeB.type()))
+                continue;
+            dContactGeom contacts[kMaxContactsPerPair];
+            const int n = nearProbe_.collide(shapeA, shapeB, reach, contacts, kMaxContactsPerPair);
+            for (int k = 0; k < n; ++k) {
+                // ODE's normal points into the first geom, A's; the layer's from A to B.
+                if (!found) out.addPair(bodyA.userData(), bodyB.userData(), false, -toVec3(contacts[k].normal));
+                found = true;
+                out.addPoint({toVec3(contacts[k].pos), contacts[k].depth, 0.0});
+            }
+        }
+    return found;
+}
+
 void OdeWorld::reportContacts(ContactReport& out) {
     // ODE reports each joint's constraint force averaged over the ODE step; over the anyphys step
     // the normal impulse is that force along the normal times dt (with substeps: the last

@@ -17,6 +17,7 @@
 #include "ode_body.hpp"
 #include "ode_direct_step.hpp"
 #include "ode_joints.hpp"
+#include "ode_near_pairs.hpp"
 
 namespace anyphys::ode {
 
@@ -35,6 +36,9 @@ public:
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
+    /// ODE's colliders find only overlapping shapes: a pair a hair apart is collided again with
+    /// one shape grown by `reach` (NearProbe).
+    bool reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) override;
     bool hasAwakeBodies() const override;
     void findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
@@ -143,6 +147,7 @@ private:
 
     std::uint64_t directSteps_ = 0, quickSteps_ = 0, directFallbacks_ = 0;
     DirectStepper directStepper_;
+    NearProbe nearProbe_;  // reportNearPair's grown shapes
     unsigned long randomSeed_ = 0;  // this world's stream of ODE's global generator (quickstep reorders rows)
 };
 

@@ -27,6 +27,11 @@ protected:
     void DestroyingAndCreatingBodiesInsideCallbackIsSafe();
     void RestingBoxImpulseCarriesItsWeightOverTheWholeStep();
     void EventsWithoutImpulsesAreTheSameEventsAndMotion();
+    void RowOfBoxesRestingSideBySideNeverExits();
+    void BoxesLessThanASlopApartTouch();
+
+    /// A contract criterion id, "planar." + id in planar worlds.
+    std::string criterion(const std::string& id) const { return planarWorld() ? "planar." + id : id; }
 
     std::string missingFor(std::initializer_list<ShapeType> shapes) const {
         return lacking(caps(), shapes, Effect::Contacts | Effect::Events);
@@ -480,6 +485,90 @@ void EventsTest::EventsWithoutImpulsesAreTheSameEventsAndMotion() {
     }
 }
 
+// Boxes placed side by side with no gap, on the ground, sleeping off: every side pair touches
+// (its gap is within linearSlop) from the first step and never exits while the row stands. A
+// pair whose gap hovers about zero must not blink in and out: a listener would hear a resting
+// row as a stream of impacts.
+void EventsTest::RowOfBoxesRestingSideBySideNeverExits() {
+    const std::string missing = missingFor({ShapeType::Box, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    world.createBody(groundDef());
+    constexpr int kBoxes = 5;
+    std::vector<BodyId> boxes;
+    for (int k = 0; k < kBoxes; ++k) {
+        BodyDef def = boxDef("box" + std::to_string(k), Vec3(0.5, 0.5, 0.5), Vec3(k, 0.5, 0));
+        def.allowSleep = false;  // a row that falls asleep would hide what its contacts do
+        boxes.push_back(world.createBody(def).id());
+    }
+    WorstCheck move;  // sideways (settling into the ground is not moving away); keeps a NaN
+    while (world.time() < 5.0) {
+        world.step();
+        for (int k = 0; k < kBoxes; ++k)
+            move.check((world.body(boxes[k]).position() - Vec3(k, 0.5, 0)).cwiseProduct(Vec3(1, 0, 1)).norm(),
+                       "box" + std::to_string(k) + " at t = " + std::to_string(world.time()));
+    }
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    // The row stands still (so every exit below is a blink, not a box moving away): 1 mm
+    // sideways is a fifth of linearSlop.
+    EXPECT_LE(move.value, 1e-3) << "a box of the resting row moved " << move.value << " m: " << move.what;
+    int sideEnters = 0, sideExits = 0;
+    std::set<std::pair<BodyId, BodyId>> sidePairs;
+    for (const auto& r : listener.records) {
+        const bool side = std::find(boxes.begin(), boxes.end(), r.event.bodyA) != boxes.end() &&
+                          std::find(boxes.begin(), boxes.end(), r.event.bodyB) != boxes.end();
+        if (!side) continue;
+        sidePairs.insert({r.event.bodyA, r.event.bodyB});
+        sideEnters += r.event.phase == ContactPhase::Enter;
+        sideExits += r.event.phase == ContactPhase::Exit;
+    }
+    std::ostringstream measured;
+    measured << sidePairs.size() << " of " << kBoxes - 1 << " side pairs seen, " << sideEnters << " enters and "
+             << sideExits << " exits in 5 s";
+    expectCriterion(criterion("events.resting_row"),
+                    sidePairs.size() == kBoxes - 1 && sideEnters == kBoxes - 1 && sideExits == 0, measured.str(),
+                    sideExits);
+}
+
+// Two boxes resting on the ground a fifth of linearSlop apart touch: the layer's rule is "closer
+// than linearSlop", so the side pair enters in the first step and stays for the whole run.
+void EventsTest::BoxesLessThanASlopApartTouch() {
+    const std::string missing = missingFor({ShapeType::Box, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const WorldSettings s = settings();
+    World world(s);
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    world.createBody(groundDef());
+    const double gap = 0.2 * s.linearSlop;
+    BodyDef left = boxDef("left", Vec3(0.5, 0.5, 0.5), Vec3(0, 0.5, 0));
+    BodyDef right = boxDef("right", Vec3(0.5, 0.5, 0.5), Vec3(1.0 + gap, 0.5, 0));
+    left.allowSleep = right.allowSleep = false;
+    const BodyId a = world.createBody(left).id();
+    const BodyId b = world.createBody(right).id();
+    int steps = 0, stepsTouching = 0;
+    WorstCheck widest;  // the widest gap; keeps a NaN
+    while (world.time() < 2.0) {
+        world.step();
+        ++steps;
+        widest.check(world.body(b).position().x() - world.body(a).position().x() - 1.0, "step " + std::to_string(steps));
+        const auto& events = world.lastEvents();
+        stepsTouching += std::any_of(events.begin(), events.end(), [&](const ContactEvent& e) {
+            return !e.trigger && e.phase != ContactPhase::Exit && ((e.bodyA == a && e.bodyB == b) || (e.bodyA == b && e.bodyB == a));
+        });
+    }
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    // Nothing pushes the boxes apart: the gap stays well inside linearSlop (half of it allows
+    // for settling on the ground), so the pair should touch throughout.
+    EXPECT_LE(widest.value, 0.5 * s.linearSlop) << "the boxes drifted apart: " << widest.value << " m at " << widest.what;
+    std::ostringstream measured;
+    measured << "the side pair touched in " << stepsTouching << " of " << steps << " steps at a gap of " << gap * 1e3
+             << " mm (widest " << widest.value * 1e3 << " mm)";
+    expectCriterion(criterion("events.within_slop"), stepsTouching == steps, measured.str(), steps - stepsTouching);
+}
+
 class PlanarEventsTest : public EventsTest {
 protected:
     bool planarTest() const override { return true; }
@@ -509,6 +598,11 @@ TEST_P(EventsTest, EventsWithoutImpulsesAreTheSameEventsAndMotion) { EventsWitho
 TEST_P(PlanarEventsTest, EventsWithoutImpulsesAreTheSameEventsAndMotion) {
     EventsWithoutImpulsesAreTheSameEventsAndMotion();
 }
+
+TEST_P(EventsTest, RowOfBoxesRestingSideBySideNeverExits) { RowOfBoxesRestingSideBySideNeverExits(); }
+TEST_P(PlanarEventsTest, RowOfBoxesRestingSideBySideNeverExits) { RowOfBoxesRestingSideBySideNeverExits(); }
+TEST_P(EventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
+TEST_P(PlanarEventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
 
 ANYPHYS_CONTRACT_SUITE(EventsTest);
 ANYPHYS_CONTRACT_SUITE(PlanarEventsTest);

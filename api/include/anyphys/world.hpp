@@ -253,6 +253,9 @@ private:
     void refreshEffects();
     void countBody(const BodyDef& def, int delta);  // effect-derivation counters
     void dispatchEvents();
+    /// The tracker's near query: whether the peer finds a pair it no longer lists within
+    /// linearSlop (appending its contact to `touching`).
+    bool stillTouching(BodyId a, BodyId b, std::vector<struct TouchingRange>& touching);
     void deliverEvents();  // the last step's events to the listeners
     struct MaterialTable buildMaterialTable();
     // Per-piece surfaces of a compound (a child's own material, density, filter, sensor flag).

@@ -197,6 +197,16 @@ public:
     /// Every pair in contact or overlap after the last step, appended to `out` (the layer
     /// clears it first), without a vector per pair.
     virtual void reportContacts(ContactReport& out) = 0;
+    /// For a collision pair that touched after the step before and that reportContacts no longer
+    /// lists: appends the pair (a then b, normal from a to b) with its closest points to `out`
+    /// and returns true when its shapes are within `reach` of each other, depths against the
+    /// true surfaces (negative: apart). For engines that report a pair only while its shapes
+    /// overlap, so that a pair a hair apart keeps touching as the layer's rule (closer than
+    /// linearSlop) says. The default: false (the engine's report already holds such pairs).
+    virtual bool reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) {
+        (void)a, (void)b, (void)reach, (void)out;
+        return false;
+    }
     /// False only when no dynamic or kinematic body is awake after the last step: then no
     /// contact can begin, stay or end (each has a sleeping body), and the layer skips the step's
     /// events. True when the peer cannot tell cheaply (the default).
