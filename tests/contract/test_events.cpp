@@ -516,14 +516,29 @@ void EventsTest::RowOfBoxesRestingSideBySideNeverExits() {
     EXPECT_LE(move.value, 1e-3) << "a box of the resting row moved " << move.value << " m: " << move.what;
     int sideEnters = 0, sideExits = 0;
     std::set<std::pair<BodyId, BodyId>> sidePairs;
+    WorstCheck normal, gap;  // -(normal along the row from A to B), and -depth, over every side event
+    normal.value = -1.0;
+    gap.value = -std::numeric_limits<double>::infinity();
     for (const auto& r : listener.records) {
         const bool side = std::find(boxes.begin(), boxes.end(), r.event.bodyA) != boxes.end() &&
                           std::find(boxes.begin(), boxes.end(), r.event.bodyB) != boxes.end();
         if (!side) continue;
         sidePairs.insert({r.event.bodyA, r.event.bodyB});
+        if (r.event.phase != ContactPhase::Exit) {
+            // Whoever reported it (the engine's listing, or a near query for a pair a hair
+            // apart): the normal runs from A to B along the row, and every point is within
+            // linearSlop of touching.
+            const double along = world.body(r.event.bodyB).position().x() - world.body(r.event.bodyA).position().x();
+            normal.check(-r.event.normal.x() * (along > 0 ? 1.0 : -1.0), "step " + std::to_string(r.step));
+            for (const ContactPoint& c : r.event.points) gap.check(-c.depth, "step " + std::to_string(r.step));
+        }
         sideEnters += r.event.phase == ContactPhase::Enter;
         sideExits += r.event.phase == ContactPhase::Exit;
     }
+    // The row's boxes stand where they were put (checked above), so a side normal is +-x to
+    // within the boxes' tilt: 0.99 allows 8 degrees.
+    EXPECT_LE(normal.value, -0.99) << "a side normal points off the row: " << normal.what;
+    EXPECT_LT(gap.value, world.settings().linearSlop) << "a side point lies farther apart than linearSlop: " << gap.what;
     std::ostringstream measured;
     measured << sidePairs.size() << " of " << kBoxes - 1 << " side pairs seen, " << sideEnters << " enters and "
              << sideExits << " exits in 5 s";
