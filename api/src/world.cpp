@@ -551,6 +551,7 @@ void World::step(double dt) {
         SteppingGuard guard(impl_->stepping);
         if (activeEffects_.has(Effect::Explosion)) fireExplosions(dt);
         if (impl_->layerForces && impl_->peerEffects.has(Effect::UserForces)) holdStepForces();
+        impl_->peer->setImpulsesRead(impl_->eventsRead || !impl_->listeners.empty());
         impl_->peer->step(time_, dt);
         if (activeEffects_.has(Effect::Fluid) || activeEffects_.has(Effect::Cloth)) stepParticles(dt);
     }
@@ -729,6 +730,9 @@ void World::dispatchEvents() {
     // before the surfaces meet, and a contact that changes a velocity is a contact. A trigger
     // pair touches when it overlaps.
     const bool impulses = i.backend->capabilities.contactImpulses;
+    // What the events carry: none when settings.contactImpulses is false, or when the peer
+    // skipped measuring them because nobody read events before this step (ODE).
+    const bool eventImpulses = impulses && settings_.contactImpulses && i.peer->measuredImpulses();
     const double slop = settings_.linearSlop;
     i.touching.clear();
     for (const ContactReport::Pair& c : i.contacts.pairs) {
@@ -738,7 +742,7 @@ void World::dispatchEvents() {
         if (!touches) continue;
         const BodyId a = unpackId(c.bodyA), b = unpackId(c.bodyB);
         const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);
-        i.touching.push_back({a, b, c.trigger, impulses && settings_.contactImpulses, asleep, c.normal, c.firstPoint,
+        i.touching.push_back({a, b, c.trigger, eventImpulses, asleep, c.normal, c.firstPoint,
                               c.pointCount});
     }
     // Events without impulses (settings.contactImpulses false) carry none, whatever the engine
@@ -765,7 +769,7 @@ bool World::stillTouching(BodyId a, BodyId b, std::vector<TouchingRange>& touchi
     for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
         touches = i.contacts.points[k].depth > -slop;
     if (touches)
-        touching.push_back({a, b, false, i.backend->capabilities.contactImpulses && settings_.contactImpulses, false,
+        touching.push_back({a, b, false, i.backend->capabilities.contactImpulses && settings_.contactImpulses && i.peer->measuredImpulses(), false,
                             c.normal, c.firstPoint, c.pointCount});
     i.contacts.pairs.resize(pair);  // the listing stays the peer's own (its points are kept)
     return touches;

@@ -120,13 +120,17 @@ World& bouncingBalls(World& world) {
     return world;
 }
 
-bool sameEvent(const ContactEvent& x, const ContactEvent& y) {
+/// Bit for bit; with `unmeasured`, x may instead carry no impulses where y does (hasImpulses
+/// false, every impulse 0), and is otherwise the same.
+bool sameEvent(const ContactEvent& x, const ContactEvent& y, bool unmeasured = false) {
+    const bool withoutImpulses = unmeasured && !x.hasImpulses;
     if (x.bodyA != y.bodyA || x.bodyB != y.bodyB || x.phase != y.phase || x.trigger != y.trigger ||
-        x.removal != y.removal || x.hasImpulses != y.hasImpulses || x.normal != y.normal || x.points.size() != y.points.size())
+        x.removal != y.removal || (!withoutImpulses && x.hasImpulses != y.hasImpulses) || x.normal != y.normal ||
+        x.points.size() != y.points.size())
         return false;
     for (std::size_t k = 0; k < x.points.size(); ++k)
         if (x.points[k].position != y.points[k].position || x.points[k].depth != y.points[k].depth ||
-            x.points[k].normalImpulse != y.points[k].normalImpulse)
+            x.points[k].normalImpulse != (withoutImpulses ? 0.0 : y.points[k].normalImpulse))
             return false;
     return true;
 }
@@ -135,7 +139,9 @@ TEST(EventDispatch, EventsFirstReadLateAreTheLastStepsEvents) {
     // A world whose events nobody reads only diffs its touching pairs each step and writes the
     // events when first asked. What it then returns must be exactly the last step's events, as a
     // world that read them every step has them (same backend, same scene: bit-identical), on
-    // every backend with the capabilities.
+    // every backend with the capabilities; except that an engine measuring impulses only for
+    // the events (ODE) may not have measured the first read step's (it then says so), and has
+    // the next step's.
     int backends = 0;
     for (const BackendInfo& info : availableBackends()) {
         const Capabilities& c = info.capabilities;
@@ -148,6 +154,7 @@ TEST(EventDispatch, EventsFirstReadLateAreTheLastStepsEvents) {
         World reading(settingsFor(info.name), bouncyMaterial());
         bouncingBalls(reading);
         std::vector<std::vector<ContactEvent>> everyStep;  // [n]: the events of step n + 1
+        (void)reading.lastEvents();  // read from before the first step
         for (int n = 0; n <= kSteps; ++n) {
             reading.step();
             everyStep.push_back(reading.lastEvents());
@@ -179,7 +186,7 @@ TEST(EventDispatch, EventsFirstReadLateAreTheLastStepsEvents) {
             const std::vector<ContactEvent>& expected = everyStep[static_cast<std::size_t>(firstRead - 1)];
             ASSERT_EQ(events.size(), expected.size()) << "first read after step " << firstRead;
             for (std::size_t k = 0; k < events.size(); ++k)
-                EXPECT_TRUE(sameEvent(events[k], expected[k])) << "event " << k << " after step " << firstRead;
+                EXPECT_TRUE(sameEvent(events[k], expected[k], true)) << "event " << k << " after step " << firstRead;
             // Read once, the reference follows every later step as well.
             late.step();
             const std::vector<ContactEvent>& next = everyStep[static_cast<std::size_t>(firstRead)];

@@ -196,7 +196,9 @@ public:
     /// The events of the last step (also what listeners received). Until the first call (and
     /// while no listener is added) steps do not write them, only track which pairs touch; the
     /// call writes the last step's, and from then on every step does, so the reference follows
-    /// every step.
+    /// every step. An engine that measures impulses only for the events (ODE) does so from the
+    /// step after the first call or listener: the step read first may carry none (hasImpulses
+    /// false). Call it once before stepping to have them from the first step.
     const std::vector<ContactEvent>& lastEvents() const;
     /// The joints that broke in the last step (also what listeners received through
     /// onJointBreak). Breaking is the layer's, the same on every backend: after each step, a

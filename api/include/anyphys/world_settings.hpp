@@ -81,7 +81,8 @@ struct WorldSettings {
     /// hasImpulses) on backends whose capabilities say contactImpulses; default true. false: the
     /// same events with no impulses (hasImpulses false, every normalImpulse 0), for a game that
     /// reads which pairs touch but not how hard; an engine that measures impulses only for the
-    /// events then skips that work (ODE: the contact joints' feedback).
+    /// events then skips that work (ODE: the contact joints' feedback). ODE skips it too until
+    /// events are first read or listened to (World::lastEvents).
     bool contactImpulses = true;
     // ---- sleeping (used when the sleeping effect is on) ----
     double sleepLinearVelocity = 0.05;              ///< m/s, slower bodies may sleep, >= 0; default 0.05

@@ -25,7 +25,7 @@ struct ContactEvent {
     ContactPhase phase = ContactPhase::Enter;
     bool trigger = false;       ///< a sensor overlap rather than a collision
     bool removal = false;       ///< exit caused by destroying one of the bodies
-    bool hasImpulses = false;   ///< normalImpulse values are real (backend capability, settings.contactImpulses)
+    bool hasImpulses = false;   ///< normalImpulse values are real (backend capability, settings.contactImpulses; ODE: from the step after events were first read)
     Vec3 normal = Vec3::Zero();
     std::vector<ContactPoint> points;  ///< empty for exits and triggers
 };

@@ -197,6 +197,15 @@ public:
     /// Every pair in contact or overlap after the last step, appended to `out` (the layer
     /// clears it first), without a vector per pair.
     virtual void reportContacts(ContactReport& out) = 0;
+    /// Whether anyone reads the events' impulses: false until a listener is added or the events
+    /// are read (World::lastEvents), told before each step. A backend that measures impulses
+    /// only for the events (ODE's joint feedback) may skip them until then, and says so through
+    /// measuredImpulses().
+    virtual void setImpulsesRead(bool read) { (void)read; }
+    /// False when the last step's report carries no impulses because setImpulsesRead(false)
+    /// let the backend skip them (its points then say 0); the layer's events then say
+    /// hasImpulses false.
+    virtual bool measuredImpulses() const { return true; }
     /// For a collision pair that touched after the step before and that reportContacts no longer
     /// lists: appends the pair (a then b, normal from a to b) with its closest points to `out`
     /// and returns true when its shapes are within `reach` of each other, depths against the
