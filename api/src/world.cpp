@@ -732,7 +732,7 @@ void World::dispatchEvents() {
     const bool impulses = i.backend->capabilities.contactImpulses;
     // What the events carry: none when settings.contactImpulses is false, or when the peer
     // skipped measuring them because nobody read events before this step (ODE).
-    const bool eventImpulses = impulses && settings_.contactImpulses && i.peer->measuredImpulses();
+    i.eventImpulses = impulses && settings_.contactImpulses && i.peer->measuredImpulses();
     const double slop = settings_.linearSlop;
     i.touching.clear();
     for (const ContactReport::Pair& c : i.contacts.pairs) {
@@ -742,8 +742,7 @@ void World::dispatchEvents() {
         if (!touches) continue;
         const BodyId a = unpackId(c.bodyA), b = unpackId(c.bodyB);
         const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);
-        i.touching.push_back({a, b, c.trigger, eventImpulses, asleep, c.normal, c.firstPoint,
-                              c.pointCount});
+        i.touching.push_back({a, b, c.trigger, i.eventImpulses, asleep, c.normal, c.firstPoint, c.pointCount});
     }
     // Events without impulses (settings.contactImpulses false) carry none, whatever the engine
     // measured; the impulses above still decided what touches, so the events are the same.
@@ -769,8 +768,7 @@ bool World::stillTouching(BodyId a, BodyId b, std::vector<TouchingRange>& touchi
     for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
         touches = i.contacts.points[k].depth > -slop;
     if (touches)
-        touching.push_back({a, b, false, i.backend->capabilities.contactImpulses && settings_.contactImpulses && i.peer->measuredImpulses(), false,
-                            c.normal, c.firstPoint, c.pointCount});
+        touching.push_back({a, b, false, i.eventImpulses, false, c.normal, c.firstPoint, c.pointCount});
     i.contacts.pairs.resize(pair);  // the listing stays the peer's own (its points are kept)
     return touches;
 }

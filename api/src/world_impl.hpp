@@ -143,6 +143,7 @@ struct World::Impl {
     bool eventsRead = false;                 // lastEvents() was called: write every step from now on
     ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
     ContactTracker::NearQuery stillTouching; // a pair the peer no longer lists is within linearSlop
+    bool eventImpulses = false;              // the step's events carry impulses (dispatchEvents)
     std::vector<ContactListener*> listenersNow;  // the listeners one dispatch delivers to
     int dispatching = 0;                     // listener callbacks running (a callback may step)
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch

@@ -665,11 +665,11 @@ TEST_P(PlanarEventsTest, EventsWithoutImpulsesAreTheSameEventsAndMotion) {
 TEST_P(EventsTest, RowOfBoxesRestingSideBySideNeverExits) { RowOfBoxesRestingSideBySideNeverExits(); }
 TEST_P(PlanarEventsTest, RowOfBoxesRestingSideBySideNeverExits) { RowOfBoxesRestingSideBySideNeverExits(); }
 TEST_P(EventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
+TEST_P(PlanarEventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
 TEST_P(EventsTest, EventsFirstReadLateCarryImpulsesFromTheNextStep) { EventsFirstReadLateCarryImpulsesFromTheNextStep(); }
 TEST_P(PlanarEventsTest, EventsFirstReadLateCarryImpulsesFromTheNextStep) {
     EventsFirstReadLateCarryImpulsesFromTheNextStep();
 }
-TEST_P(PlanarEventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
 
 ANYPHYS_CONTRACT_SUITE(EventsTest);
 ANYPHYS_CONTRACT_SUITE(PlanarEventsTest);
