@@ -728,18 +728,28 @@ void World::dispatchEvents() {
     // touches when some point is closer than linearSlop, or (where the backend reports impulses)
     // pushed the bodies apart: an engine may turn a fast body around on a speculative contact
     // before the surfaces meet, and a contact that changes a velocity is a contact. A trigger
-    // pair touches when it overlaps.
+    // pair touches when it overlaps. A collision pair that touched ends only once its shapes are
+    // farther apart than kExitSlops linearSlops (stillTouching): a gap that wanders about the
+    // linearSlop boundary (Box2D's resting piles sit there) does not blink in and out.
     const bool impulses = i.backend->capabilities.contactImpulses;
     // What the events carry: none when settings.contactImpulses is false, or when the peer
     // skipped measuring them because nobody read events before this step (ODE).
     i.eventImpulses = impulses && settings_.contactImpulses && i.peer->measuredImpulses();
-    const double slop = settings_.linearSlop;
+    const double slop = settings_.linearSlop, exitReach = kExitSlops * slop;
     i.touching.clear();
-    for (const ContactReport::Pair& c : i.contacts.pairs) {
-        bool touches = c.trigger;
-        for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
-            touches = i.contacts.points[k].depth > -slop || (impulses && i.contacts.points[k].normalImpulse > 0.0);
-        if (!touches) continue;
+    i.nearListed.clear();
+    for (std::uint32_t n = 0; n < i.contacts.pairs.size(); ++n) {
+        const ContactReport::Pair& c = i.contacts.pairs[n];
+        bool touches = c.trigger, near = false;
+        for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k) {
+            const ContactPoint& p = i.contacts.points[k];
+            touches = p.depth > -slop || (impulses && p.normalImpulse > 0.0);
+            near = near || p.depth > -exitReach;
+        }
+        if (!touches) {
+            if (near) i.nearListed.push_back({std::min(c.bodyA, c.bodyB), std::max(c.bodyA, c.bodyB), n});
+            continue;
+        }
         const BodyId a = unpackId(c.bodyA), b = unpackId(c.bodyB);
         const bool asleep = i.contacts.sleepKnown ? c.asleep : i.asleep(a) || i.asleep(b);
         i.touching.push_back({a, b, c.trigger, i.eventImpulses, asleep, c.normal, c.firstPoint, c.pointCount});
@@ -748,6 +758,7 @@ void World::dispatchEvents() {
     // measured; the impulses above still decided what touches, so the events are the same.
     if (!settings_.contactImpulses)
         for (ContactPoint& p : i.contacts.points) p.normalImpulse = 0.0;
+    std::sort(i.nearListed.begin(), i.nearListed.end());  // for stillTouching's search; first listing first
     i.tracker.diff(i.touching, i.asleep, i.stillTouching);
     i.eventsUnwritten = true;
     if (!i.listeners.empty())
@@ -759,14 +770,23 @@ void World::dispatchEvents() {
 bool World::stillTouching(BodyId a, BodyId b, std::vector<TouchingRange>& touching) {
     Impl& i = *impl_;
     if (!isValid(a) || !isValid(b)) return false;
-    const double slop = settings_.linearSlop;
+    const double reach = kExitSlops * settings_.linearSlop;
+    // Listed by the engine a little apart, within the exit band (dispatchEvents).
+    const std::uint64_t low = std::min(packId(a), packId(b)), high = std::max(packId(a), packId(b));
+    const auto listed = std::lower_bound(i.nearListed.begin(), i.nearListed.end(), Impl::NearListed{low, high, 0});
+    if (listed != i.nearListed.end() && listed->low == low && listed->high == high) {
+        const ContactReport::Pair& c = i.contacts.pairs[listed->pair];
+        touching.push_back({unpackId(c.bodyA), unpackId(c.bodyB), false, i.eventImpulses, false, c.normal, c.firstPoint,
+                            c.pointCount});
+        return true;
+    }
+    // Not listed: the peer may find it (ODE reports only overlapping shapes).
     const std::size_t pair = i.contacts.pairs.size();
-    if (!i.peer->reportNearPair(*i.slots[a.index].peer, *i.slots[b.index].peer, slop, i.contacts)) return false;
-    // The same rule as for the listed pairs (dispatchEvents), by depth: a near pair has no impulse.
+    if (!i.peer->reportNearPair(*i.slots[a.index].peer, *i.slots[b.index].peer, reach, i.contacts)) return false;
     const ContactReport::Pair& c = i.contacts.pairs[pair];
     bool touches = false;
     for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k)
-        touches = i.contacts.points[k].depth > -slop;
+        touches = i.contacts.points[k].depth > -reach;
     if (touches)
         touching.push_back({a, b, false, i.eventImpulses, false, c.normal, c.firstPoint, c.pointCount});
     i.contacts.pairs.resize(pair);  // the listing stays the peer's own (its points are kept)

@@ -100,6 +100,11 @@ struct World::JointSlot {
 };
 
 /// The key a peer echoes back for a body: its id packed in 64 bits.
+/// A collision pair that touched ends once its shapes are farther apart than this many
+/// linearSlops; it begins when they are closer than one. The band between keeps a gap that
+/// wanders about linearSlop (a resting Box2D pile's side contacts sit there) from blinking.
+inline constexpr double kExitSlops = 2.0;
+
 inline std::uint64_t packId(BodyId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
 inline BodyId unpackId(std::uint64_t key) { return BodyId{std::uint32_t(key >> 32), std::uint32_t(key)}; }
 inline std::uint64_t packId(JointId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
@@ -144,6 +149,14 @@ struct World::Impl {
     ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
     ContactTracker::NearQuery stillTouching; // a pair the peer no longer lists is within linearSlop
     bool eventImpulses = false;              // the step's events carry impulses (dispatchEvents)
+    // The step's listed collision pairs that do not touch but lie within the exit band, by body
+    // pair (packed ids, lower first), for stillTouching.
+    struct NearListed {
+        std::uint64_t low, high;
+        std::uint32_t pair;  // into contacts.pairs
+        auto operator<=>(const NearListed&) const = default;
+    };
+    std::vector<NearListed> nearListed;
     std::vector<ContactListener*> listenersNow;  // the listeners one dispatch delivers to
     int dispatching = 0;                     // listener callbacks running (a callback may step)
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 
+#include <box2d/b2_distance.h>
+
 #include "anyphys/defs.hpp"
 #include "box2d_body.hpp"
+#include "box2d_convert.hpp"
 
 namespace anyphys::box2d {
 
@@ -18,11 +21,51 @@ Box2dBody& bodyOf(const b2Fixture* fixture) { return *fixtureInfo(fixture).body;
 // Filter and materials are per fixture: a compound's children may carry their own.
 
 
-bool ContactRules::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
-    if (!effects_.has(Effect::Contacts)) return false;  // contacts off: nothing touches
+bool fixturesCollide(const b2Fixture* fixtureA, const b2Fixture* fixtureB) {
     const FixtureInfo& a = fixtureInfo(fixtureA);
     const FixtureInfo& b = fixtureInfo(fixtureB);
     return layersCollide(a.layer, a.mask, b.layer, b.mask);
+}
+
+bool ContactRules::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
+    if (!effects_.has(Effect::Contacts)) return false;  // contacts off: nothing touches
+    return fixturesCollide(fixtureA, fixtureB);
+}
+
+bool nearestSurfaces(const b2Body& a, const b2Body& b, double reach, b2Vec2& normal, b2Vec2& point, double& gap) {
+    gap = reach;
+    bool found = false;
+    for (const b2Fixture* fa = a.GetFixtureList(); fa; fa = fa->GetNext())
+        for (const b2Fixture* fb = b.GetFixtureList(); fb; fb = fb->GetNext()) {
+            if (fa->IsSensor() || fb->IsSensor() || !fixturesCollide(fa, fb)) continue;
+            const b2Shape* sa = fa->GetShape();
+            const b2Shape* sb = fb->GetShape();
+            for (int32 ca = 0; ca < sa->GetChildCount(); ++ca)
+                for (int32 cb = 0; cb < sb->GetChildCount(); ++cb) {
+                    // Between the cores (no radii): their closest points give the normal even
+                    // where the rounded shapes would touch.
+                    b2DistanceInput in;
+                    in.proxyA.Set(sa, ca);
+                    in.proxyB.Set(sb, cb);
+                    in.transformA = a.GetTransform();
+                    in.transformB = b.GetTransform();
+                    in.useRadii = false;
+                    b2SimplexCache cache;
+                    cache.count = 0;
+                    b2DistanceOutput out;
+                    b2Distance(&out, &cache, &in);
+                    if (out.distance <= b2_epsilon) continue;  // cores overlap: Box2D lists such a pair
+                    // Each true surface lies kSkin inside the rounded one (box2d_convert.hpp).
+                    const double insetA = sa->m_radius - kSkin, insetB = sb->m_radius - kSkin;
+                    const double g = out.distance - insetA - insetB;
+                    if (!(g < gap)) continue;
+                    gap = g;
+                    normal = (1.0f / out.distance) * (out.pointB - out.pointA);
+                    point = out.pointA + static_cast<float>(insetA + 0.5 * g) * normal;
+                    found = true;
+                }
+        }
+    return found;
 }
 
 void ContactRules::applyMaterial(b2Contact* contact) const {

@@ -16,6 +16,13 @@ class Box2dBody;
 
 /// The body a fixture belongs to (every fixture of this backend carries a FixtureInfo).
 Box2dBody& bodyOf(const b2Fixture* fixture);
+/// Whether two fixtures may touch by the layer's filter (ContactRules::ShouldCollide's test).
+bool fixturesCollide(const b2Fixture* a, const b2Fixture* b);
+
+/// The closest points of two bodies' solid fixtures, for a pair Box2D no longer lists (it lists
+/// one only while the skinned shapes overlap): true with the pair's normal (from a to b), the
+/// point midway between the true surfaces and its gap, when that gap is under `reach`.
+bool nearestSurfaces(const b2Body& a, const b2Body& b, double reach, b2Vec2& normal, b2Vec2& point, double& gap);
 
 /// One per world (no globals): Box2D asks it about each new pair and each touching contact.
 class ContactRules final : public b2ContactFilter, public b2ContactListener {

@@ -334,6 +334,18 @@ void Box2dWorld::reportContacts(ContactReport& out) {
     if (multiFixtureBodies_ > 0) out.mergeRepeatedPairs();
 }
 
+bool Box2dWorld::reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) {
+    if (!effects_.has(Effect::Contacts)) return false;
+    const Box2dBody& bodyA = static_cast<const Box2dBody&>(a);
+    const Box2dBody& bodyB = static_cast<const Box2dBody&>(b);
+    b2Vec2 normal, point;
+    double gap = 0.0;
+    if (!nearestSurfaces(*bodyA.b2(), *bodyB.b2(), reach, normal, point, gap)) return false;
+    out.addPair(bodyA.userData(), bodyB.userData(), false, fromB2(normal));
+    out.addPoint({fromB2(point), -gap, 0.0});
+    return true;
+}
+
 void* Box2dWorld::nativeObject(const std::type_info& pointerType) {
     return pointerType == typeid(b2World*) ? static_cast<void*>(world_.get()) : nullptr;
 }

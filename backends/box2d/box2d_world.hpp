@@ -39,6 +39,9 @@ public:
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
+    /// Box2D lists a pair only while its skinned shapes overlap: the layer's exit band needs the
+    /// gap beyond (nearestSurfaces, Box2D's own b2Distance).
+    bool reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) override;
     bool hasAwakeBodies() const override;
     void findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,

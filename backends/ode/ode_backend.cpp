@@ -93,7 +93,7 @@ Backend makeOdeBackend() {
         {"events.within_slop",
          "two boxes placed 1 mm apart (a fifth of linearSlop) never touch: ODE's colliders report a pair only while the "
          "geoms overlap, where the layer's rule counts a gap under linearSlop as touching (a pair that has touched "
-         "keeps touching while within linearSlop: reportNearPair)"},
+         "keeps touching while within twice linearSlop: reportNearPair)"},
         {"planar.events.within_slop", "as events.within_slop, in a planar world"},
         {"stack10.top_drift",
          "the 10-box stack's top drifts 1.7 cm sideways over 10 s with sleeping off (quickstep at 1 substep x 50 iterations); 0.5 mm at 4 substeps (as stability.stack10.pgs.s1)"},

@@ -1,7 +1,7 @@
 #pragma once
-// ODE's colliders find only shapes that overlap. The layer counts a pair as touching while its
-// shapes are closer than linearSlop, so a resting contact whose gap wanders about zero (an
-// unloaded side contact in a row of boxes) would blink in and out. NearProbe answers the layer's
+// ODE's colliders find only shapes that overlap. The layer keeps a touching pair until its
+// shapes are twice linearSlop apart, so that a resting contact whose gap wanders about zero (an
+// unloaded side contact in a row of boxes) does not blink in and out. NearProbe answers the layer's
 // question about such a pair (WorldPeer::reportNearPair): it collides the two shapes with one of
 // them grown by the reach, and reports the contacts against the true surfaces.
 #include <ode/ode.h>

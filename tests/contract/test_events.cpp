@@ -30,6 +30,7 @@ protected:
     void RowOfBoxesRestingSideBySideNeverExits();
     void BoxesLessThanASlopApartTouch();
     void EventsFirstReadLateCarryImpulsesFromTheNextStep();
+    void PairParting1MmAStepExitsPastTwiceLinearSlop();
 
     /// A contract criterion id, "planar." + id in planar worlds.
     std::string criterion(const std::string& id) const { return planarWorld() ? "planar." + id : id; }
@@ -632,6 +633,50 @@ void EventsTest::EventsFirstReadLateCarryImpulsesFromTheNextStep() {
     EXPECT_NEAR(total, weight, 0.02 * weight);  // as above
 }
 
+// A touching pair ends once its shapes are farther apart than twice linearSlop (it begins closer
+// than one): a box lifted off another at 1 mm a step, without gravity, stays until its gap passes
+// 10 mm and exits in the step that takes it past.
+void EventsTest::PairParting1MmAStepExitsPastTwiceLinearSlop() {
+    const std::string missing = missingFor({ShapeType::Box});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    WorldSettings s = settings();
+    s.gravity = Vec3::Zero();
+    World world(s);
+    CheckingListener listener(world);
+    world.addListener(&listener);
+    BodyDef floorDef = boxDef("floor", Vec3(2, 0.5, 2), Vec3(0, -0.5, 0));
+    floorDef.type = BodyType::Static;
+    world.createBody(floorDef);
+    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), Vec3(0, 0.499, 0));  // 1 mm in: every engine lists it
+    def.allowSleep = false;
+    Body box = world.createBody(def);
+    constexpr double kSpeed = 0.06;  // m/s: 1 mm a step at 60 Hz
+    const double slop = s.linearSlop;
+    double gapBefore = -0.001, gapAtExit = std::numeric_limits<double>::quiet_NaN();
+    int exitStep = 0;
+    for (int step = 1; step <= 40 && exitStep == 0; ++step) {
+        box.setLinearVelocity(Vec3(0, kSpeed, 0));  // whatever the contact did to it
+        box.setAngularVelocity(Vec3::Zero());
+        const std::size_t seen = listener.records.size();
+        world.step();
+        const double gap = box.position().y() - 0.5;
+        for (std::size_t k = seen; k < listener.records.size(); ++k)
+            if (listener.records[k].event.phase == ContactPhase::Exit) exitStep = step;
+        if (exitStep == 0) gapBefore = gap;
+        else gapAtExit = gap;
+    }
+    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+    EXPECT_EQ(listener.count(ContactPhase::Enter, false), 1) << listener.log();
+    ASSERT_GT(exitStep, 0) << "the box never left: " << listener.log();
+    report(backend() + " parting pair: gap at the exit step (mm), twice linearSlop = 10", gapAtExit * 1e3);
+    // Stayed while its gap was within 2 linearSlop, and exits in the step that passed it. 0.1 mm
+    // allows for a float engine's positions near y = 0.5 (6e-8 relative) and the contact's push
+    // out of the first millimetre of overlap, which leaves the box a little ahead of 1 mm a step.
+    EXPECT_LE(gapBefore, 2 * slop + 1e-4) << "stayed past the exit band";
+    EXPECT_GT(gapAtExit, 2 * slop - 1e-4) << "exited within the exit band";
+    EXPECT_LE(gapAtExit - gapBefore, kSpeed * s.timeStep + 1e-4) << "the last step moved more than 1 mm";
+}
+
 class PlanarEventsTest : public EventsTest {
 protected:
     bool planarTest() const override { return true; }
@@ -667,6 +712,8 @@ TEST_P(PlanarEventsTest, RowOfBoxesRestingSideBySideNeverExits) { RowOfBoxesRest
 TEST_P(EventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
 TEST_P(PlanarEventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApartTouch(); }
 TEST_P(EventsTest, EventsFirstReadLateCarryImpulsesFromTheNextStep) { EventsFirstReadLateCarryImpulsesFromTheNextStep(); }
+TEST_P(EventsTest, PairParting1MmAStepExitsPastTwiceLinearSlop) { PairParting1MmAStepExitsPastTwiceLinearSlop(); }
+TEST_P(PlanarEventsTest, PairParting1MmAStepExitsPastTwiceLinearSlop) { PairParting1MmAStepExitsPastTwiceLinearSlop(); }
 TEST_P(PlanarEventsTest, EventsFirstReadLateCarryImpulsesFromTheNextStep) {
     EventsFirstReadLateCarryImpulsesFromTheNextStep();
 }

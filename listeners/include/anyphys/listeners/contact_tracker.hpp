@@ -6,7 +6,7 @@
 //    triggers get no Stay); touching before, not now: Exit;
 //  - a pair whose bodies are (either) asleep keeps its contact: no Exit, no Stay;
 //  - a pair no longer listed that the near query finds still touching stays, with the query's
-//    contact (engines that report a pair only while its shapes overlap: ODE);
+//    contact (World keeps a pair until its shapes are twice linearSlop apart);
 //  - removing a body ends its pairs with an Exit flagged `removal`;
 //  - a pair reported twice in one step counts once (first report wins);
 //  - a body pair's collision and its trigger overlap are two pairs, each with its own enter and

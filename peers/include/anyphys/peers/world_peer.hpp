@@ -209,9 +209,10 @@ public:
     /// For a collision pair that touched after the step before and that reportContacts no longer
     /// lists: appends the pair (a then b, normal from a to b) with its closest points to `out`
     /// and returns true when its shapes are within `reach` of each other, depths against the
-    /// true surfaces (negative: apart). For engines that report a pair only while its shapes
-    /// overlap, so that a pair a hair apart keeps touching as the layer's rule (closer than
-    /// linearSlop) says. The default: false (the engine's report already holds such pairs).
+    /// true surfaces (negative: apart). The layer keeps a touching pair until its shapes are
+    /// farther apart than twice linearSlop; an engine that stops listing pairs sooner (ODE:
+    /// once the shapes no longer overlap; Box2D: once the skinned shapes part) answers here.
+    /// The default: false (the engine lists its pairs that far apart).
     virtual bool reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) {
         (void)a, (void)b, (void)reach, (void)out;
         return false;
