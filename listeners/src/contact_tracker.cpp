@@ -81,6 +81,7 @@ void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuer
 
     decisions_.clear();
     exits_.clear();
+    held_.clear();
     if (sameListing && activeIsLastListing_) {
         // The pairs of the last step and no others: every pair stays (a resting pile, step
         // after step), and the touching set is the same.
@@ -92,10 +93,12 @@ void ContactTracker::diff(std::vector<TouchingRange>& touching, const AsleepQuer
     } else if (sameListing || !activeIsLastListing_ || !lastListingUnique_ || !tryFewChanges(touching, asleep, near)) {
         decisions_.clear();  // what diffFewChanges decided before it gave up
         exits_.clear();
+        held_.clear();
         touching.resize(pairCount);  // and the contacts its near queries appended
         walk(touching, sameListing ? lastSorted_ : sortAnew(), asleep, near);
         active_.swap(next_);
     }
+    listHeld();
     matchSwappedCapacities();
 }
 
@@ -178,7 +181,7 @@ bool ContactTracker::diffFewChanges(std::vector<TouchingRange>& touching, const 
     Decision* const decided = decisions_.data();
     std::uint32_t sortedCount = 0, nextCount = 0, decidedCount = 0;
     sortedSlot_.resize(now.empty() ? 0 : now.back().index + 1);
-    bool keptUnlisted = false;  // active pairs kept that this listing lacks
+    bool keptAsleep = false;
     bool afterNew = false;  // the last pair listed came from added_: the next may repeat it
     // Inlined: it runs for every pair, and a call costs more than its body.
     const auto list = [&](const Listed& pair, std::uint32_t index, bool isNew, bool entered) __attribute__((always_inline)) {
@@ -209,11 +212,14 @@ bool ContactTracker::diffFewChanges(std::vector<TouchingRange>& touching, const 
                 const Unlisted fate = unlisted(pair, touching, asleep, near);
                 if (fate == Unlisted::Exits) {
                     exits_.push_back(pair);
-                } else {
+                } else if (fate == Unlisted::Sleeps) {  // the contact persists silently
                     nextPairs[nextCount++] = pair;
-                    keptUnlisted = true;
-                    if (fate == Unlisted::StillTouches)
-                        decided[decidedCount++] = {Outcome::Stay, static_cast<std::uint32_t>(touching.size() - 1)};
+                    keptAsleep = true;
+                } else {
+                    const auto contact = static_cast<std::uint32_t>(touching.size() - 1);
+                    nextPairs[nextCount++] = pair;
+                    decided[decidedCount++] = {Outcome::Stay, contact};
+                    held_.push_back({o.a, o.b, false, contact});
                 }
             }
             ++p;
@@ -230,7 +236,7 @@ bool ContactTracker::diffFewChanges(std::vector<TouchingRange>& touching, const 
     next_.resize(nextCount);
     decisions_.resize(decidedCount);
     active_.swap(next_);
-    activeIsLastListing_ = !keptUnlisted;
+    activeIsLastListing_ = !keptAsleep;  // the held pairs join the last listing (listHeld)
     lastListing_.swap(listed_);  // diff() rebuilds listed_ whole
     lastSorted_.swap(sorting_);
     lastListingUnique_ = true;  // sortedSlot_ written above
@@ -331,8 +337,11 @@ void ContactTracker::walk(std::vector<TouchingRange>& touching, const std::vecto
                 exits_.push_back(old);
             } else {
                 next_.push_back(old);
-                if (fate == Unlisted::StillTouches)
-                    decisions_.push_back({Outcome::Stay, static_cast<std::uint32_t>(touching.size() - 1)});
+                if (fate == Unlisted::StillTouches) {
+                    const auto contact = static_cast<std::uint32_t>(touching.size() - 1);
+                    decisions_.push_back({Outcome::Stay, contact});
+                    held_.push_back({old.a, old.b, false, contact});
+                }
             }
             ++i;
             continue;
@@ -348,7 +357,19 @@ void ContactTracker::walk(std::vector<TouchingRange>& touching, const std::vecto
             if (!p.trigger && !p.asleep) decisions_.push_back({Outcome::Stay, now.index});
         }
     }
-    activeIsLastListing_ = next_.size() == sorted.size();  // no pair kept asleep or still touching besides
+    // No pair kept asleep besides (the held pairs join the last listing: listHeld).
+    activeIsLastListing_ = next_.size() == sorted.size() + held_.size();
+}
+
+void ContactTracker::listHeld() {
+    if (held_.empty()) return;
+    // In pair order already (both diffs decide in pair order), and absent from the listing.
+    lastListing_.insert(lastListing_.end(), held_.begin(), held_.end());
+    sorting_.resize(lastSorted_.size() + held_.size());
+    std::merge(lastSorted_.begin(), lastSorted_.end(), held_.begin(), held_.end(), sorting_.begin(),
+               [](const Listed& x, const Listed& y) { return pairBefore(x, y); });
+    lastSorted_.swap(sorting_);
+    noteSorted(lastListingUnique_);
 }
 
 const std::vector<ContactTracker::Listed>& ContactTracker::sortAnew() {

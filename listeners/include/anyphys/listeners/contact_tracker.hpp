@@ -106,6 +106,11 @@ private:
     /// diffFewChanges, unless it failed lately (then false without trying: stepsToNextTry_).
     bool tryFewChanges(std::vector<TouchingRange>& touching, const AsleepQuery& asleep, const NearQuery& near);
     void sortListed();
+    /// The pairs the near query kept this step join the last listing (after its own pairs, with
+    /// the contacts the query appended) and its sorted form, as if the engine had listed them:
+    /// the next step asks about them again where the listing lacks them, and a steady pile
+    /// with such pairs keeps the few-changes diff.
+    void listHeld();
     /// After lastListing_ and lastSorted_ changed: whether the listing named each pair once, and
     /// if so where each of its pairs sits in lastSorted_ (sortedSlot_).
     void noteSorted(bool unique);
@@ -131,6 +136,7 @@ private:
     // does not); the new listing's other pairs.
     std::vector<std::uint32_t> keptIndex_;
     std::vector<Listed> added_;
+    std::vector<Listed> held_;  // the pairs the near query kept this step, in pair order (listHeld)
     std::uint32_t stepsToNextTry_ = 0;    // steps tryFewChanges still skips
     std::uint32_t stepsAfterFailure_ = 1; // steps it skips after its next failure
     std::vector<Decision> decisions_;  // the last diff's enters and stays, in pair order
