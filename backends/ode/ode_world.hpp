@@ -144,7 +144,8 @@ private:
     // Jacobian and multiplies it out after the solve). Without them nothing is lost to the layer's
     // touching rule: ODE makes contacts only where geoms overlap, so every point touches by depth.
     // Only once someone reads them (setImpulsesRead): the feedback costs a world with events on
-    // and nobody listening 1.7 % of its step (the 20-row pyramid, in instructions).
+    // and nobody listening 1.9 % of its step (the 20-row pyramid, in instructions: a listener with
+    // impulses 3.44 % over the raw program, without 1.53 %).
     bool wantsFeedback() const { return effects_.has(Effect::Events) && settings_.contactImpulses && impulsesRead_; }
     bool impulsesRead_ = false;
     double lastDt_ = 0.0;           // s, the last anyphys step (impulse = force x dt)

@@ -592,7 +592,7 @@ void EventsTest::BoxesLessThanASlopApartTouch() {
 }
 
 // Events first read after some steps: a backend may skip measuring impulses while nobody reads
-// events (ODE's joint feedback costs its step 1.7 %), so the step read first may carry none, and
+// events (ODE's joint feedback costs its step 1.9 %), so the step read first may carry none, and
 // then says so (hasImpulses false, every impulse 0); from the next step on the events carry the
 // impulses, which balance the resting box's weight.
 void EventsTest::EventsFirstReadLateCarryImpulsesFromTheNextStep() {
