@@ -99,12 +99,12 @@ struct World::JointSlot {
                                     breakTorque < std::numeric_limits<double>::infinity(); }
 };
 
-/// The key a peer echoes back for a body: its id packed in 64 bits.
 /// A collision pair that touched ends once its shapes are farther apart than this many
 /// linearSlops; it begins when they are closer than one. The band between keeps a gap that
 /// wanders about linearSlop (a resting Box2D pile's side contacts sit there) from blinking.
 inline constexpr double kExitSlops = 2.0;
 
+/// The key a peer echoes back for a body: its id packed in 64 bits.
 inline std::uint64_t packId(BodyId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
 inline BodyId unpackId(std::uint64_t key) { return BodyId{std::uint32_t(key >> 32), std::uint32_t(key)}; }
 inline std::uint64_t packId(JointId id) { return (std::uint64_t(id.index) << 32) | id.generation; }
@@ -147,7 +147,7 @@ struct World::Impl {
     bool eventsUnwritten = false;            // the last diff is not in lastEvents yet
     bool eventsRead = false;                 // lastEvents() was called: write every step from now on
     ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
-    ContactTracker::NearQuery stillTouching; // a pair the peer no longer lists is within linearSlop
+    ContactTracker::NearQuery stillTouching; // a pair no longer touching by the rule is within the exit band
     bool eventImpulses = false;              // the step's events carry impulses (dispatchEvents)
     // The step's listed collision pairs that do not touch but lie within the exit band, by body
     // pair (packed ids, lower first), for stillTouching.

@@ -45,7 +45,8 @@ dGeomID NearProbe::grown(const OdeShape& shape, double reach) {
         }
         default: return nullptr;
     }
-    dGeomSetPosition(probe, dGeomGetPosition(g)[0], dGeomGetPosition(g)[1], dGeomGetPosition(g)[2]);
+    const dReal* position = dGeomGetPosition(g);
+    dGeomSetPosition(probe, position[0], position[1], position[2]);
     dGeomSetRotation(probe, dGeomGetRotation(g));
     return probe;
 }
