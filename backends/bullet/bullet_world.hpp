@@ -44,6 +44,7 @@ public:
     void step(double time, double dt) override;
     void setMaterialTable(const MaterialTable& table) override;
     void reportContacts(ContactReport& out) override;
+    bool reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) override;  // bullet_near_pairs.cpp
     bool hasAwakeBodies() const override;
     void findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
