@@ -92,6 +92,16 @@ private:
     /// Brings the broad phase's bounds up to the poses a step left (queries see where bodies are).
     void refreshBounds();
     /// The manifolds holding contact points, in the dispatcher's order.
+    /// A convex shape of a body, in the world (reportNearPair, bullet_near_pairs.cpp).
+    struct ConvexPart {
+        const btConvexShape* shape;
+        btTransform pose;
+        int child;  // in the body's compound, else 0
+    };
+    /// The body's convex parts: its shape, or its compound's children. False when some part is
+    /// not convex (a plane or a mesh).
+    static bool convexParts(const btCollisionObject& object, std::vector<ConvexPart>& parts);
+    std::vector<ConvexPart> nearPartsA_, nearPartsB_;  // reportNearPair's, kept for their capacity
     const std::vector<const btPersistentManifold*>& manifoldsWithPoints();
 
     WorldSettings settings_;

@@ -107,7 +107,7 @@ double gapAtExit(const BodyDef& floor, BodyDef lifted, double bottom) {
     s.gravity = Vec3::Zero();
     World world(s);
     world.createBody(floor);
-    lifted.position = Vec3(0, bottom - 0.001, 0);  // 1 mm in
+    lifted.position = Vec3(0, bottom - 0.0005, 0);  // 0.5 mm in: no step ends on the band's edge
     lifted.allowSleep = false;
     Body body = world.createBody(lifted);
     int enters = 0;
@@ -138,19 +138,25 @@ TEST(BulletContacts, SmallBodiesPartingAnyFloorExitPastTwiceLinearSlop) {
     sensor.isTrigger = true;
     BodyDef compound;
     compound.shape = ShapeDef::compound({ShapeDef::box(Vec3(0.03, 0.03, 0.03)), sensor});
+    // A hull, whose margin Bullet's face clipping leaves out (BulletWorld::reportNearPair).
+    std::vector<Vec3> corners;
+    for (int i = 0; i < 8; ++i) corners.push_back(0.02 * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+    BodyDef hull;
+    hull.shape = ShapeDef::convex(corners);
     const std::vector<std::pair<const char*, BodyDef>> floors{{"plane", groundDef()}, {"mesh", mesh}, {"box", box}};
     const std::vector<std::tuple<const char*, BodyDef, double>> lifted{
         {"box 0.02", boxDef("", Vec3(0.02, 0.02, 0.02), Vec3::Zero()), 0.02},
         {"sphere 0.02", ballDef("", 0.02, Vec3::Zero()), 0.02},
-        {"compound", compound, 0.03}};
+        {"compound", compound, 0.03},
+        {"hull 0.02", hull, 0.02}};
     for (const auto& [floorName, floor] : floors)
         for (const auto& [name, def, bottom] : lifted) {
             SCOPED_TRACE(std::string(name) + " off a " + floorName);
             const double gap = gapAtExit(floor, def, bottom);
-            // Exits in the step that takes it past 10 mm (1 mm a step); 0.1 mm for the contact's
-            // push out of the first millimetre, which leaves the body a little ahead.
-            EXPECT_GT(gap, 0.01 - 1e-4);
-            EXPECT_LT(gap, 0.011 + 1e-4);
+            // Exits in the step that takes it past 10 mm (1 mm a step: at 10.5 mm), measured after
+            // the step; 0.1 mm for the contact's push out of the first half millimetre.
+            EXPECT_GT(gap, 0.01);
+            EXPECT_LT(gap, 0.0105 + 1e-4);
         }
 }
 
