@@ -31,6 +31,7 @@ protected:
     void BoxesLessThanASlopApartTouch();
     void EventsFirstReadLateCarryImpulsesFromTheNextStep();
     void PairParting1MmAStepExitsPastTwiceLinearSlop();
+    void SlidingAndRollingBodiesNeverExit();
 
     /// A contract criterion id, "planar." + id in planar worlds.
     std::string criterion(const std::string& id) const { return planarWorld() ? "planar." + id : id; }
@@ -708,6 +709,59 @@ void EventsTest::PairParting1MmAStepExitsPastTwiceLinearSlop() {
     }
 }
 
+// A body moving along the floor keeps touching it: small and large, sliding (frictionless) and
+// rolling, one body per world so that nothing else touches it. Enters once, never exits.
+void EventsTest::SlidingAndRollingBodiesNeverExit() {
+    const std::string missing = missingFor({ShapeType::Box, ShapeType::Sphere, ShapeType::Capsule, ShapeType::Convex});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    std::vector<Vec3> corners;
+    for (int i = 0; i < 8; ++i) corners.push_back(0.02 * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+    struct Moving {
+        const char* name;
+        ShapeDef shape;
+        double bottom;  // m, centre to lowest point
+        bool rolls;     // rolls along x (friction) rather than slides (none)
+    };
+    // A capsule on its side: in 3D its core along z, rolling along x; a planar world turns
+    // bodies about z only, so there its core lies along x and it slides.
+    ShapeDef lying = ShapeDef::capsule(0.02, 0.05);
+    const bool planar = planarWorld();
+    lying.orientation = Quat(Eigen::AngleAxisd(0.5 * kPi, planar ? Vec3::UnitZ() : Vec3::UnitX()));
+    const std::vector<Moving> bodies = {{"box 0.5 sliding", ShapeDef::box(Vec3(0.5, 0.5, 0.5)), 0.5, false},
+                                        {"box 0.02 sliding", ShapeDef::box(Vec3(0.02, 0.02, 0.02)), 0.02, false},
+                                        {"hull 0.02 sliding", ShapeDef::convex(corners), 0.02, false},
+                                        {"sphere 0.02 rolling", ShapeDef::sphere(0.02), 0.02, true},
+                                        {"sphere 0.5 rolling", ShapeDef::sphere(0.5), 0.5, true},
+                                        {planar ? "capsule 0.02 sliding" : "capsule 0.02 rolling",
+                                         ShapeDef::compound({lying}), 0.02, !planar}};
+    for (const Moving& m : bodies) {
+        SCOPED_TRACE(m.name);
+        MaterialLibrary materials;
+        materials.add("ice", {0.0, 0.0, 1000.0});
+        World world(settings(), materials);
+        CheckingListener listener(world);
+        world.addListener(&listener);
+        const std::string material = m.rolls ? "" : "ice";
+        BodyDef floorDef = boxDef("floor", Vec3(20, 0.5, 2), Vec3(0, -0.5, 0), material);
+        floorDef.type = BodyType::Static;
+        world.createBody(floorDef);
+        BodyDef def;
+        def.shape = m.shape;
+        def.position = Vec3(-5, m.bottom - 0.001, 0);
+        constexpr double kSpeed = 2.0;  // m/s along x: 3.3 cm a step
+        def.linearVelocity = Vec3(kSpeed, 0, 0);
+        if (m.rolls) def.angularVelocity = Vec3(0, 0, -kSpeed / m.bottom);
+        def.material = material;
+        def.allowSleep = false;
+        Body body = world.createBody(def);
+        while (world.time() < 2.0) world.step();
+        EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+        EXPECT_EQ(listener.count(ContactPhase::Enter, false), 1) << listener.log();
+        EXPECT_EQ(listener.count(ContactPhase::Exit, false), 0) << listener.log();
+        EXPECT_GT(body.position().x(), -5 + 0.5 * kSpeed * 2.0) << "it stopped";
+    }
+}
+
 class PlanarEventsTest : public EventsTest {
 protected:
     bool planarTest() const override { return true; }
@@ -745,6 +799,8 @@ TEST_P(PlanarEventsTest, BoxesLessThanASlopApartTouch) { BoxesLessThanASlopApart
 TEST_P(EventsTest, EventsFirstReadLateCarryImpulsesFromTheNextStep) { EventsFirstReadLateCarryImpulsesFromTheNextStep(); }
 TEST_P(EventsTest, PairParting1MmAStepExitsPastTwiceLinearSlop) { PairParting1MmAStepExitsPastTwiceLinearSlop(); }
 TEST_P(PlanarEventsTest, PairParting1MmAStepExitsPastTwiceLinearSlop) { PairParting1MmAStepExitsPastTwiceLinearSlop(); }
+TEST_P(EventsTest, SlidingAndRollingBodiesNeverExit) { SlidingAndRollingBodiesNeverExit(); }
+TEST_P(PlanarEventsTest, SlidingAndRollingBodiesNeverExit) { SlidingAndRollingBodiesNeverExit(); }
 TEST_P(PlanarEventsTest, EventsFirstReadLateCarryImpulsesFromTheNextStep) {
     EventsFirstReadLateCarryImpulsesFromTheNextStep();
 }
