@@ -140,6 +140,10 @@ void ContactManager::includePair(std::uint32_t a, std::uint32_t b) {
     if (it != excluded_.end() && --it->second == 0) excluded_.erase(it);
 }
 
+bool ContactManager::excludes(std::uint32_t a, std::uint32_t b) const {
+    return !excluded_.empty() && excluded_.contains(bodyPairKey(a, b));
+}
+
 void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies,
                              const MaterialTable& materials) {
     if (keyB < keyA) std::swap(keyA, keyB);
@@ -148,7 +152,7 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     const NativeBody &a = bodies[ia], &b = bodies[ib];
     const ShapeSurface &sa = a.surfaces[proxyShape(keyA)], &sb = b.surfaces[proxyShape(keyB)];
     if (!mayTouch(a, sa, b, sb)) return;
-    if (!excluded_.empty() && excluded_.contains(bodyPairKey(ia, ib))) return;
+    if (excludes(ia, ib)) return;
     const std::pair key{keyA, keyB};
     if (index_.contains(key)) return;  // already in contact
     std::uint32_t slot;

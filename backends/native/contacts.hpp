@@ -96,6 +96,8 @@ public:
     /// contacts they have are destroyed, new pairs refused. Counted: two joints need two includes.
     void excludePair(std::uint32_t a, std::uint32_t b);
     void includePair(std::uint32_t a, std::uint32_t b);
+    /// A joint with collideConnected false joins bodies a and b (either order).
+    bool excludes(std::uint32_t a, std::uint32_t b) const;
 
     /// Calls fn(contact) for every live contact, in slot order.
     template <class Fn>

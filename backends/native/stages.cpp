@@ -297,6 +297,8 @@ public:
                 world.broadPhase().query(swept, [&](std::uint64_t key) {
                     const NativeBody& other = bodies[proxyBody(key)];
                     if (proxyBody(key) == i || other.type != BodyType::Static) return true;
+                    // A joint that keeps the pair apart from contacts keeps it from sweeps too.
+                    if (world.contactManager().excludes(i, proxyBody(key))) return true;
                     const ShapeSurface& theirs = other.surfaces[proxyShape(key)];
                     if (theirs.trigger || !layersCollide(mine.layer, mine.mask, theirs.layer, theirs.mask)) return true;
                     const Shape& fixed = other.shapes[proxyShape(key)];

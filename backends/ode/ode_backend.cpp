@@ -86,9 +86,9 @@ Backend makeOdeBackend() {
          "torque through the pin at a lever 1 000 times the bob's own inertia (the direct solver turns it at 1 rad/s)"},
         {"planar.joints.motor_lever", "as joints.motor_lever, in a planar world (13.3 rad/s off, -0.80 rad after 2 s)"},
         {"assemblies.ragdoll_limits",
-         "an elbow bends 34 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations; 9 to 51 deg over eight starting turns of the pile, 2026-11-27); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg (measured before hull and capsule contacts were completed)"},
+         "an elbow bends 12.4 deg past its limit as a ragdoll lands (quickstep, 1 substep x 50 iterations; 34 deg before continuous collision ignored jointed partners, and 9 to 51 deg over eight starting turns of the pile then, 2026-11-27); 4 substeps: 7.4 deg, 200 iterations: 9.7 deg (measured before hull and capsule contacts were completed)"},
         {"planar.assemblies.ragdoll_limits",
-         "as assemblies.ragdoll_limits, planar: 33.7 deg"},
+         "as assemblies.ragdoll_limits, planar: 23.3 deg (33.7 before continuous collision ignored jointed partners)"},
         // tests/contract/test_events.cpp, 2026-12-02.
         {"events.within_slop",
          "two boxes placed 1 mm apart (a fifth of linearSlop) never touch: ODE's colliders report a pair only while the "
@@ -138,15 +138,13 @@ Backend makeOdeBackend() {
         {"planar.joints.chain_gap_heavy.direct",
          "as joints.chain_gap_heavy.direct, in a planar world"},
         {"assemblies.ragdoll_gap",
-         "joints of a pile of four ragdolls open by up to 214 mm as the ragdolls land on each other (bound 5 cm; 98 to 456 mm over eight starting turns of the pile, 80 to 420 without the completed capsule contacts): quickstep at one 1/60 s step yields under the impacts"},
-        {"assemblies.pinched_pile_gap",
-         "the soak run's pinched pile of ragdolls opens a joint 129 mm (median of nine nudged draws, all within 0.01 mm; bound 5 cm), as assemblies.ragdoll_gap"},
+         "joints of a pile of four ragdolls open by up to 160 mm as the ragdolls land on each other (bound 5 cm): quickstep at one 1/60 s step yields under the impacts. Before continuous collision ignored jointed partners (which froze a limb swept through its own chest) 214 mm, and 98 to 456 mm over eight starting turns of the pile"},
         {"planar.assemblies.ragdoll_gap",
-         "as assemblies.ragdoll_gap, in a planar world (52 mm)"},
+         "as assemblies.ragdoll_gap, in a planar world (107 mm; 52 before continuous collision ignored jointed partners: the pile is chaotic)"},
         {"assemblies.ragdoll_rest",
-         "a pile of four ragdolls still moves at 0.65 m/s after 10 s (sleeping off): quickstep leaves the pile's many joints and contacts jittering"},
+         "a pile of four ragdolls still moves at 0.21 m/s after 10 s (sleeping off; 0.65 before continuous collision ignored jointed partners): quickstep leaves the pile's many joints and contacts jittering"},
         {"planar.assemblies.ragdoll_rest",
-         "a planar pile of four ragdolls still moves at 0.22 m/s after 10 s (as assemblies.ragdoll_rest)"},
+         "a planar pile of four ragdolls still moves at 2.17 m/s after 10 s (as assemblies.ragdoll_rest): the top ragdoll, jittering, creeps off the pile from 8 s and falls (0.22 m/s before continuous collision ignored jointed partners, on another course of this chaotic pile)"},
     };
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
@@ -199,9 +197,9 @@ Backend makeOdeBackend() {
         {"planar.hard.overlap25.speed",
          "as hard.overlap25.speed, planar: 5.8 m/s"},
         {"hard.ragdoll_pile.joint_gap",
-         "joints of a pile of 10 ragdolls open by up to 28 cm (as assemblies.ragdoll_gap)"},
+         "joints of a pile of 10 ragdolls open by up to 13.8 cm (as assemblies.ragdoll_gap; 28 cm before continuous collision ignored jointed partners)"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "as hard.ragdoll_pile.joint_gap, planar: 14.4 cm"},
+         "as hard.ragdoll_pile.joint_gap, planar: 11.4 cm (14.4 before)"},
         {"friction.impact.default",
          "a ball landing at 3 m/s down, 0.3 of a step into a step, is 3.5 cm into the ground when ODE first sees the contact: ERP pushes that overlap out at 0.39 m/s (e = 0), and friction, mu times a normal impulse that includes the push, takes 13 % too much at mu 0.1. Landing at a step's end it is exact (2.143 m/s, -8.57 rad/s)"},
         {"friction.impact.pgs.s1", "as friction.impact.default: rebound 0.39 m/s"},
@@ -237,7 +235,6 @@ Backend makeOdeBackend() {
         {"planar.joints.wide_pendulum_energy", 0.217},
         {"assemblies.ragdoll_gap", 0.45},
         {"assemblies.ragdoll_rest", 0.544},
-        {"assemblies.pinched_pile_gap", 0.2},
         {"friction.impact.default", 12},  // in multiples of its bounds
         {"friction.impact.pgs.s1", 12},
         {"friction.impact.pgs.s4", 12},
@@ -245,7 +242,7 @@ Backend makeOdeBackend() {
         {"friction.impact.direct.s4", 13},
         {"planar.friction.impact", 12},
         {"planar.assemblies.ragdoll_gap", 0.179},
-        {"planar.assemblies.ragdoll_rest", 0.578},
+        {"planar.assemblies.ragdoll_rest", 3.0},
         {"hard.stack20.drift", 3.0},
         {"hard.column40.drift", 50},
         {"planar.hard.column40.drift", 130},
@@ -256,8 +253,8 @@ Backend makeOdeBackend() {
         {"planar.hard.heavy_plank.displacement", 0.04},
         {"hard.overlap25.speed", 8.0},
         {"planar.hard.overlap25.speed", 8.0},
-        {"hard.ragdoll_pile.joint_gap", 0.5},
-        {"planar.hard.ragdoll_pile.joint_gap", 0.3},
+        {"hard.ragdoll_pile.joint_gap", 0.3},
+        {"planar.hard.ragdoll_pile.joint_gap", 0.25},
     });
     return backend;
 }

@@ -16,6 +16,7 @@ namespace {
 
 struct SweepQuery {
     dGeomID ray;
+    const OdeWorld* world;
     const OdeBody* body;
     Vec3 start;
     double hit = std::numeric_limits<double>::infinity();  // m along the ray
@@ -38,6 +39,9 @@ void sweepCallback(void* data, dGeomID o1, dGeomID o2) {
     const OdeShape* shape = shapeOfGeom(other);
     const OdeBody* target = shape ? shape->owner() : nullptr;
     if (!target || target == q.body) return;
+    // A joint that keeps the pair apart from contacts keeps it from sweeps too: a limb pulled
+    // through its own chest was otherwise stopped at the chest's face every step, for good.
+    if (q.world->jointExcludes(q.body, target)) return;
     // The moving body's centre ray stands for all its geoms (their union of layers and masks).
     const GeomSurface& surface = shape->surface();
     if (surface.trigger || !layersCollide(q.body->layer(), q.body->mask(), surface.layer, surface.mask)) return;
@@ -68,7 +72,7 @@ void OdeWorld::continuousCollision(const std::vector<Vec3>& before) {
         dGeomRaySetFirstContact(ray_, 0);
         dGeomRaySetBackfaceCull(ray_, 1);  // mesh back faces are exits: culled
         dGeomRaySetClosestHit(ray_, 1);
-        SweepQuery q{ray_, &b, before[i]};
+        SweepQuery q{ray_, this, &b, before[i]};
         dSpaceCollide2(ray_, reinterpret_cast<dGeomID>(space_), &q, &sweepCallback);
         if (!std::isfinite(q.hit)) continue;
         const double stop = std::max(0.0, q.hit - core + overlap);

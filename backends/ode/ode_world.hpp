@@ -71,6 +71,9 @@ public:
     /// Wakes the moving bodies whose geoms touch `body`'s (after a static body moved).
     void wakeTouching(const OdeBody& body);
 
+    /// A joint with collideConnected false joins a and b (either order): no contacts, no sweeps.
+    bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
+
 private:
     // One geom pair found touching in the last ODE step (recorded for events only).
     struct PairRecord {
@@ -93,8 +96,6 @@ private:
         return body.isDynamic() ? Vec3(body.gravityScale() * settings_.gravity * fallTime_) : Vec3::Zero();
     }
     void continuousCollision(const std::vector<Vec3>& before);
-    /// A joint with collideConnected false joins a and b (either order).
-    bool jointExcludes(const OdeBody* a, const OdeBody* b) const;
     void applyDampingStep(double h);
     /// Gives each sprung joint the count of sprung joints on the busier of its bodies
     /// (anyphys/peers/springs_per_body.hpp).
