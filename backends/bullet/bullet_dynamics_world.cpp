@@ -134,8 +134,24 @@ void AnyphysDynamicsWorld::createPredictiveContacts(btScalar timeStep) {
     sweep([&] { btDiscreteDynamicsWorld::createPredictiveContacts(timeStep); });
 }
 
+// Bullet's motion clamp stops a fast body at its first hit along the step and moves it there
+// without its joints: in a falling pile of ragdolls, limbs stopped against each other opened
+// their joints (the 10-ragdoll pile's worst gap over four nudged layouts 0.13 to 0.18 m; 0.04 to
+// 0.07 without the clamp). A body held by an enabled joint keeps the predictive contacts of the
+// same sweep, which the solver meets together with its joints, and skips the clamp.
 void AnyphysDynamicsWorld::integrateTransforms(btScalar timeStep) {
+    unclamped_.clear();
+    for (int i = 0; i < getNumConstraints(); ++i) {
+        btTypedConstraint* c = getConstraint(i);
+        if (!c->isEnabled()) continue;
+        for (btRigidBody* body : {&c->getRigidBodyA(), &c->getRigidBodyB()})
+            if (body->getCcdMotionThreshold() > 0) {  // once per body: the threshold is 0 from here
+                unclamped_.emplace_back(body, body->getCcdMotionThreshold());
+                body->setCcdMotionThreshold(0);
+            }
+    }
     sweep([&] { btDiscreteDynamicsWorld::integrateTransforms(timeStep); });
+    for (const auto& [body, threshold] : unclamped_) body->setCcdMotionThreshold(threshold);
 }
 
 namespace {

@@ -17,7 +17,8 @@
 //    that the layer's filter keeps apart are dropped and those of sensor children taken out as
 //    trigger overlaps (Bullet's filter and contact response are per body, not per child);
 //  - createPredictiveContacts, integrateTransforms (continuous collision's sweeps): a compound of
-//    solid and sensor children shows only its solid part while they run;
+//    solid and sensor children shows only its solid part while they run; a body held by a joint
+//    is not clamped to its first hit (integrateTransforms), only held by its predictive contacts;
 //  - saveKinematicState: a no-op; Bullet would recompute a kinematic body's velocity from its
 //    last two poses, but anyphys moves kinematic bodies itself at their exact velocity.
 #include <vector>
@@ -115,6 +116,8 @@ private:
     template <class Phase>
     void sweep(Phase&& phase);
     std::vector<ChildOverlap> childOverlaps_;
+    /// Bodies held by joints whose motion clamp integrateTransforms suspends, with its threshold.
+    std::vector<std::pair<btRigidBody*, btScalar>> unclamped_;
 };
 
 }  // namespace anyphys::bullet

@@ -245,8 +245,9 @@ struct FastSphereRun {
 };
 /// With `dynamicWall` the wall is a free 1 000 kg body (the ball's 0.5 kg barely moves it):
 /// continuous collision must hold against moving bodies too, not only static geometry. The
-/// ball's farthest x is then measured against the wall's own x.
-inline FastSphereRun runFastSphereAtThinWall(WorldSettings s, bool dynamicWall = false) {
+/// ball's farthest x is then measured against the wall's own x. With `jointed` the ball runs on
+/// a slider along x held by the world: continuous collision must hold a body held by joints too.
+inline FastSphereRun runFastSphereAtThinWall(WorldSettings s, bool dynamicWall = false, bool jointed = false) {
     s.gravity = Vec3::Zero();  // the flight is straight, so "passed" means x beyond the wall
     World world(s);
     BodyDef wallDef = boxDef("wall", Vec3(0.05, 2, 2), Vec3(10, 0, 0));
@@ -257,6 +258,14 @@ inline FastSphereRun runFastSphereAtThinWall(WorldSettings s, bool dynamicWall =
     BodyDef bullet = ballDef("bullet", 0.05, Vec3(0.3, 0, 0));  // 9.7 m away: the first step does not reach
     bullet.linearVelocity = Vec3(200, 0, 0);
     Body ball = world.createBody(bullet);
+    if (jointed) {
+        JointDef slider;
+        slider.type = JointType::Slider;
+        slider.bodyB = ball;
+        slider.anchor = ball.position();
+        slider.axis = Vec3::UnitX();
+        world.createJoint(slider);
+    }
     FastSphereRun run{ball.position().x(), true};
     for (int i = 0; i < 60; ++i) {
         world.step();

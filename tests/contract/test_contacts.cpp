@@ -425,6 +425,21 @@ TEST_P(ContactsTest, FastSphereNeverTunnelsThroughThinDynamicWall) {
     EXPECT_TRUE(run.finite);
 }
 
+// A body held by a joint is no exception against static geometry: the same ball on a slider
+// along its flight. (Against other moving bodies each backend sweeps such a body its own way:
+// a stop that moves it without its joints opened a falling ragdoll pile's.)
+TEST_P(ContactsTest, FastSphereOnASliderNeverTunnelsThroughThinWall) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Box},
+                                        Effect::Contacts | Effect::ContinuousCollision | Effect::Joints);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    ANYPHYS_REQUIRE(caps().jointTypes.contains("slider"), "joint type slider");
+    const FastSphereRun run = runFastSphereAtThinWall(settings(), false, true);
+    report(backend() + " fast sphere on a slider: farthest centre x (wall face at 9.95)", run.farthest, "m");
+    expectCriterion("tunnelling.fast_sphere_jointed", run.farthest < kFastSphereBound,
+                    "farthest centre x " + std::to_string(run.farthest) + " m (wall face 9.95, middle 10)");
+    EXPECT_TRUE(run.finite);
+}
+
 ANYPHYS_CONTRACT_SUITE(ContactsTest);
 
 }  // namespace

@@ -150,6 +150,19 @@ TEST_P(PlanarTest, FastSphereNeverTunnelsThroughThinWall) {
     EXPECT_TRUE(run.finite);
 }
 
+// ... and on a slider along its flight (contact_helpers.hpp: a body held by joints too).
+TEST_P(PlanarTest, FastSphereOnASliderNeverTunnelsThroughThinWall) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Box},
+                                        Effect::Contacts | Effect::ContinuousCollision | Effect::Joints);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    ANYPHYS_REQUIRE(caps().jointTypes.contains("slider"), "joint type slider");
+    const FastSphereRun run = runFastSphereAtThinWall(settings(), false, true);
+    report(backend() + " planar fast sphere on a slider: farthest centre x (wall face at 9.95)", run.farthest, "m");
+    expectCriterion("planar.tunnelling.fast_sphere_jointed", run.farthest < kFastSphereBound,
+                    "farthest centre x " + std::to_string(run.farthest) + " m (wall face 9.95, middle 10)");
+    EXPECT_TRUE(run.finite);
+}
+
 // Motion stays in the plane: a box thrown spinning onto the ground, pushed out of the plane by a
 // force and an impulse (which the plane absorbs), keeps z = 0 and turns about Z only.
 TEST_P(PlanarTest, MotionStaysInThePlane) {
