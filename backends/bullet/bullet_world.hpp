@@ -91,7 +91,6 @@ private:
     EarlierImpulse* earlierImpulse(const btPersistentManifold& manifold);
     /// Brings the broad phase's bounds up to the poses a step left (queries see where bodies are).
     void refreshBounds();
-    /// The manifolds holding contact points, in the dispatcher's order.
     /// A convex shape of a body, in the world (reportNearPair, bullet_near_pairs.cpp).
     struct ConvexPart {
         const btConvexShape* shape;
@@ -102,6 +101,7 @@ private:
     /// not convex (a plane or a mesh).
     static bool convexParts(const btCollisionObject& object, std::vector<ConvexPart>& parts);
     std::vector<ConvexPart> nearPartsA_, nearPartsB_;  // reportNearPair's, kept for their capacity
+    /// The manifolds holding contact points, in the dispatcher's order.
     const std::vector<const btPersistentManifold*>& manifoldsWithPoints();
 
     WorldSettings settings_;
