@@ -80,6 +80,15 @@ struct EdgeBody {
 inline constexpr EdgeBody kEdgeBodies[] = {
     {"box", ShapeType::Box, 0.5}, {"hull", ShapeType::Convex, 0.5}, {"capsule", ShapeType::Capsule, 0.2}};
 
+/// A cube of half extent `half` as the hull of its eight corners.
+inline ShapeDef cubeHull(double half) {
+    std::vector<Vec3> corners;
+    for (double x : {-half, half})
+        for (double y : {-half, half})
+            for (double z : {-half, half}) corners.emplace_back(x, y, z);
+    return ShapeDef::convex(corners);
+}
+
 /// The static table of the edge tests: top y = 0, its edge through the origin across `outward`.
 inline void addTable(World& world, const Vec3& outward) {
     BodyDef table = boxDef("table", Vec3(5, 0.5, 5), -5.0 * outward - Vec3(0, 0.5, 0));
@@ -91,11 +100,7 @@ inline void addTable(World& world, const Vec3& outward) {
 inline BodyDef edgeBodyDef(const EdgeBody& shape, const Vec3& outward, double beyond) {
     BodyDef def = boxDef(shape.name, Vec3(0.5, 0.5, 0.5), beyond * outward + Vec3(0, shape.restHeight, 0));
     if (shape.type == ShapeType::Convex) {
-        std::vector<Vec3> corners;
-        for (double x : {-0.5, 0.5})
-            for (double y : {-0.5, 0.5})
-                for (double z : {-0.5, 0.5}) corners.emplace_back(x, y, z);
-        def.shape = ShapeDef::convex(corners);
+        def.shape = cubeHull(0.5);
     } else if (shape.type == ShapeType::Capsule) {
         def.shape = ShapeDef::capsule(0.2, 0.5);
         def.orientation = Quat::FromTwoVectors(Vec3::UnitY(), outward);  // its axis (body Y) along outward

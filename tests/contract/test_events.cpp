@@ -649,11 +649,8 @@ void EventsTest::PairParting1MmAStepExitsPastTwiceLinearSlop() {
         BodyDef def;
         double bottom;  // m, from the body's centre to its lowest point
     };
-    // A cube of half extent 0.05 as a hull of its corners.
-    std::vector<Vec3> corners;
-    for (int i = 0; i < 8; ++i) corners.push_back(0.05 * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
     BodyDef hull;
-    hull.shape = ShapeDef::convex(corners);
+    hull.shape = cubeHull(0.05);
     // A capsule of radius 0.03 lying on its side (its core turned onto x).
     BodyDef capsule;
     capsule.shape = ShapeDef::capsule(0.03, 0.1);
@@ -714,8 +711,6 @@ void EventsTest::PairParting1MmAStepExitsPastTwiceLinearSlop() {
 void EventsTest::SlidingAndRollingBodiesNeverExit() {
     const std::string missing = missingFor({ShapeType::Box, ShapeType::Sphere, ShapeType::Capsule, ShapeType::Convex});
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    std::vector<Vec3> corners;
-    for (int i = 0; i < 8; ++i) corners.push_back(0.02 * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
     struct Moving {
         const char* name;
         ShapeDef shape;
@@ -729,7 +724,7 @@ void EventsTest::SlidingAndRollingBodiesNeverExit() {
     lying.orientation = Quat(Eigen::AngleAxisd(0.5 * kPi, planar ? Vec3::UnitZ() : Vec3::UnitX()));
     const std::vector<Moving> bodies = {{"box 0.5 sliding", ShapeDef::box(Vec3(0.5, 0.5, 0.5)), 0.5, false},
                                         {"box 0.02 sliding", ShapeDef::box(Vec3(0.02, 0.02, 0.02)), 0.02, false},
-                                        {"hull 0.02 sliding", ShapeDef::convex(corners), 0.02, false},
+                                        {"hull 0.02 sliding", cubeHull(0.02), 0.02, false},
                                         {"sphere 0.02 rolling", ShapeDef::sphere(0.02), 0.02, true},
                                         {"sphere 0.5 rolling", ShapeDef::sphere(0.5), 0.5, true},
                                         {planar ? "capsule 0.02 sliding" : "capsule 0.02 rolling",

@@ -139,10 +139,8 @@ TEST(BulletContacts, SmallBodiesPartingAnyFloorExitPastTwiceLinearSlop) {
     BodyDef compound;
     compound.shape = ShapeDef::compound({ShapeDef::box(Vec3(0.03, 0.03, 0.03)), sensor});
     // A hull, whose margin Bullet's face clipping leaves out (BulletWorld::reportNearPair).
-    std::vector<Vec3> corners;
-    for (int i = 0; i < 8; ++i) corners.push_back(0.02 * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
     BodyDef hull;
-    hull.shape = ShapeDef::convex(corners);
+    hull.shape = cubeHull(0.02);
     const std::vector<std::pair<const char*, BodyDef>> floors{{"plane", groundDef()}, {"mesh", mesh}, {"box", box}};
     const std::vector<std::tuple<const char*, BodyDef, double>> lifted{
         {"box 0.02", boxDef("", Vec3(0.02, 0.02, 0.02), Vec3::Zero()), 0.02},
