@@ -1,54 +1,13 @@
 #include "ode_convex_sphere.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "ode_hull_geometry.hpp"
 #include "ode_math.hpp"
 #include "ode_shapes.hpp"
 
 namespace anyphys::ode {
-namespace {
-
-/// The point of segment ab nearest to p.
-Vec3 nearestOnSegment(const Vec3& a, const Vec3& b, const Vec3& p) {
-    const Vec3 ab = b - a;
-    const double length2 = ab.squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-    return a + t * ab;
-}
-
-/// The point of the hull's surface nearest to p, a point outside it (hull frame). The nearest
-/// point lies on a face p is in front of: inside that face, or on one of its edges.
-Vec3 nearestOnSurface(const HullData& hull, const Vec3& p) {
-    double best = std::numeric_limits<double>::infinity();
-    Vec3 nearest = p;
-    const auto consider = [&](const Vec3& q) {
-        if (const double d2 = (p - q).squaredNorm(); d2 < best) {
-            best = d2;
-            nearest = q;
-        }
-    };
-    for (std::size_t f = 0; f < hull.faces.size(); ++f) {
-        const Vec3& n = hull.faceNormals[f];
-        const double height = n.dot(p) - hull.faceOffsets[f];
-        if (height <= 0.0) continue;
-        const std::vector<int>& loop = hull.faces[f];
-        bool inside = true;
-        for (std::size_t k = 0; k < loop.size(); ++k) {
-            const Vec3& a = hull.vertices[loop[k]];
-            const Vec3& b = hull.vertices[loop[(k + 1) % loop.size()]];
-            if ((b - a).cross(p - a).dot(n) < 0.0) {  // beyond this edge (the loop is counter-clockwise)
-                inside = false;
-                consider(nearestOnSegment(a, b, p));
-            }
-        }
-        if (inside) consider(p - height * n);
-    }
-    return nearest;
-}
-
-}  // namespace
 
 int collideConvexSphere(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int /*skip: one contact*/) {
     const OdeShape* shape = shapeOfGeom(o1);

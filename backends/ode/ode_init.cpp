@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 
+#include "ode_convex_capsule.hpp"
 #include "ode_convex_sphere.hpp"
 
 namespace anyphys::ode {
@@ -50,6 +51,7 @@ void ensureOdeInitialised() {
         dInitODE2(0);
         dSetMessageHandler(&reportOnce);
         dSetColliderOverride(dConvexClass, dSphereClass, &collideConvexSphere);  // ode_convex_sphere.hpp
+        dSetColliderOverride(dConvexClass, dCapsuleClass, &collideConvexCapsule);  // ode_convex_capsule.hpp
         return true;
     }();
     (void)initialised;

@@ -134,7 +134,7 @@ TEST_P(ShapePairsTest, EveryShapeRestsOnEveryGround) {
             // held at one contact point at a time rocks from corner to corner for ever (ODE's
             // hulls on boxes and hulls, capsules on boxes: 0.17 to 0.5 m/s before the backend
             // completed those manifolds); resting pairs measure under 16 mm/s on every backend
-            // (the most: ODE's triangle meshes and its capsule on a hull, which rolls slowly).
+            // (the most: ODE's triangle meshes).
             const double fastest = fastestPointOver(world, {{b, dropped.reach}}, 30);
             std::cout << "[ MEASURED ] " << backend() << ": " << dropped.name << " on " << ground.name << " rests at y = "
                       << height << ", fastest point " << fastest << " m/s\n";
