@@ -57,6 +57,9 @@ void integratePositions(SolverState* states, int begin, int end, double h) {
         s.dq[1] = dq.x();
         s.dq[2] = dq.y();
         s.dq[3] = dq.z();
+        // As a turn about Z, dq = (cos t/2, 0, 0, sin t/2): cos t = 1 - 2 z^2, sin t = 2 w z.
+        s.turn[0] = 1.0 - 2.0 * dq.z() * dq.z();
+        s.turn[1] = 2.0 * dq.w() * dq.z();
     }
 }
 

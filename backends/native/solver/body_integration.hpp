@@ -9,7 +9,7 @@ namespace anyphys::native {
 
 /// v += h a, w += h alpha, gyroscopic term, damping (exact factor exp(-c h)). Dynamic bodies only.
 void integrateVelocities(const SolverBody* bodies, SolverState* states, int begin, int end, double h);
-/// dp += h v; dq = exp(h w / 2) dq. Dynamic and kinematic bodies.
+/// dp += h v; dq = exp(h w / 2) dq, and turn from dq. Dynamic and kinematic bodies.
 void integratePositions(SolverState* states, int begin, int end, double h);
 
 /// Rotation by the rotation vector r (angle |r| about r / |r|), exact for every angle.

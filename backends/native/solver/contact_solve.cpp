@@ -3,8 +3,10 @@
 // CPU picks at run time; both do the same four-lane arithmetic without fused multiply-add, so
 // they give the same bits (tested), and a binary built on one machine runs on any x86-64.
 #include <cmath>
+#include <cstddef>
 
 #include "solver/contact_constraint.hpp"
+#include "solver/state_runs.hpp"
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define ANYPHYS_HAS_AVX2_KERNELS 1
@@ -26,49 +28,34 @@ struct BodyW {
     QuatW dq;
 };
 
+// What the passes read of a body: runs of SolverState (state_runs.hpp).
+constexpr std::size_t kAngularRun = offsetof(SolverState, w);       // w[0..2], v[0]
+constexpr std::size_t kLinearRun = offsetof(SolverState, v) + kDouble;  // v[1..2], turn
+constexpr std::size_t kMotionRun = offsetof(SolverState, dp);       // dp[0..2], dq[0]
+constexpr std::size_t kTurnRun = offsetof(SolverState, dq) + kDouble;   // dq[1..3], spare
+static_assert(offsetof(SolverState, v) == kAngularRun + 3 * kDouble && offsetof(SolverState, dq) == kMotionRun + 3 * kDouble &&
+                  kTurnRun + 4 * kDouble == sizeof(SolverState),
+              "SolverState's runs moved");
+
 ANYPHYS_KERNEL BodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
     BodyW b{};
-    for (int lane = 0; lane < kLanes; ++lane) {
-        if (index[lane] == kStaticBody) continue;
-        const SolverState& s = states[index[lane]];
-        b.v.x[lane] = s.v[0];
-        b.v.y[lane] = s.v[1];
-        b.v.z[lane] = s.v[2];
-        b.w.x[lane] = s.w[0];
-        b.w.y[lane] = s.w[1];
-        b.w.z[lane] = s.w[2];
-    }
+    FloatW unused0, unused1;
+    gatherRuns(states, index, kAngularRun, b.w.x, b.w.y, b.w.z, b.v.x);
+    gatherRuns(states, index, kLinearRun, b.v.y, b.v.z, unused0, unused1);
     return b;
 }
 
 ANYPHYS_KERNEL BodyW gatherMotion(const SolverState* states, const std::int32_t* index) {
     BodyW b = gatherVelocities(states, index);
-    b.dq.w = splat(1.0);
-    for (int lane = 0; lane < kLanes; ++lane) {
-        if (index[lane] == kStaticBody) continue;
-        const SolverState& s = states[index[lane]];
-        b.dp.x[lane] = s.dp[0];
-        b.dp.y[lane] = s.dp[1];
-        b.dp.z[lane] = s.dp[2];
-        b.dq.w[lane] = s.dq[0];
-        b.dq.x[lane] = s.dq[1];
-        b.dq.y[lane] = s.dq[2];
-        b.dq.z[lane] = s.dq[3];
-    }
+    FloatW unused;
+    gatherRuns(states, index, kMotionRun, b.dp.x, b.dp.y, b.dp.z, b.dq.w);
+    gatherRuns(states, index, kTurnRun, b.dq.x, b.dq.y, b.dq.z, unused);
     return b;
 }
 
 ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write, const BodyW& b) {
-    for (int lane = 0; lane < kLanes; ++lane) {
-        if (!write[lane]) continue;
-        SolverState& s = states[index[lane]];
-        s.v[0] = b.v.x[lane];
-        s.v[1] = b.v.y[lane];
-        s.v[2] = b.v.z[lane];
-        s.w[0] = b.w.x[lane];
-        s.w[1] = b.w.y[lane];
-        s.w[2] = b.w.z[lane];
-    }
+    scatterRuns(states, index, write, kAngularRun, 4 * kDouble, b.w.x, b.w.y, b.w.z, b.v.x);
+    scatterRuns(states, index, write, kLinearRun, 2 * kDouble, b.v.y, b.v.z, zero(), zero());  // not turn
 }
 
 // Applies impulse P at anchors rA (on A, negated) and rB.

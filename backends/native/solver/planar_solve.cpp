@@ -3,6 +3,10 @@
 // degrees of freedom per body: x, y and the angle about Z (see planar_contact.hpp).
 #include "solver/planar_contact.hpp"
 
+#include <cstddef>
+
+#include "solver/state_runs.hpp"
+
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define ANYPHYS_HAS_AVX2_KERNELS 1
 #endif
@@ -17,47 +21,32 @@ namespace {
 
 struct PlanarBodyW {
     FloatW vx, vy, w;
+    FloatW vz;        // read with the others and written back as read (zero in a planar world)
     FloatW dpx, dpy;  // displacement since the step began
     FloatW c, s;      // cosine and sine of the turn since the step began
 };
 
+// What the passes read of a body: two runs of SolverState (state_runs.hpp).
+constexpr std::size_t kVelocityRun = offsetof(SolverState, w) + 2 * kDouble;  // w[2], v[0], v[1], v[2]
+constexpr std::size_t kMotionRun = offsetof(SolverState, turn);               // turn[0], turn[1], dp[0], dp[1]
+static_assert(offsetof(SolverState, v) == kVelocityRun + kDouble && offsetof(SolverState, dp) == kMotionRun + 2 * kDouble,
+              "SolverState's planar runs moved");
+
 ANYPHYS_KERNEL PlanarBodyW gatherPlanarVelocities(const SolverState* states, const std::int32_t* index) {
     PlanarBodyW b{};
-    for (int lane = 0; lane < kLanes; ++lane) {
-        if (index[lane] == kStaticBody) continue;
-        const SolverState& st = states[index[lane]];
-        b.vx[lane] = st.v[0];
-        b.vy[lane] = st.v[1];
-        b.w[lane] = st.w[2];
-    }
+    gatherRuns(states, index, kVelocityRun, b.w, b.vx, b.vy, b.vz);
     return b;
 }
 
 ANYPHYS_KERNEL PlanarBodyW gatherPlanarMotion(const SolverState* states, const std::int32_t* index) {
     PlanarBodyW b = gatherPlanarVelocities(states, index);
-    b.c = splat(1.0);
-    for (int lane = 0; lane < kLanes; ++lane) {
-        if (index[lane] == kStaticBody) continue;
-        const SolverState& st = states[index[lane]];
-        b.dpx[lane] = st.dp[0];
-        b.dpy[lane] = st.dp[1];
-        // dq = (cos t/2, 0, 0, sin t/2): cos t = 1 - 2 z^2, sin t = 2 w z.
-        const double qw = st.dq[0], qz = st.dq[3];
-        b.c[lane] = 1.0 - 2.0 * qz * qz;
-        b.s[lane] = 2.0 * qw * qz;
-    }
+    gatherRuns(states, index, kMotionRun, b.c, b.s, b.dpx, b.dpy);
     return b;
 }
 
 ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write,
                                       const PlanarBodyW& b) {
-    for (int lane = 0; lane < kLanes; ++lane) {
-        if (!write[lane]) continue;
-        SolverState& st = states[index[lane]];
-        st.v[0] = b.vx[lane];
-        st.v[1] = b.vy[lane];
-        st.w[2] = b.w[lane];
-    }
+    scatterRuns(states, index, write, kVelocityRun, 4 * kDouble, b.w, b.vx, b.vy, b.vz);
 }
 
 // Applies the impulse (px, py) at anchors r on A (negated) and on B.

@@ -1,0 +1,49 @@
+#pragma once
+// Loading and storing SolverState as runs of four doubles for the wide contact passes: a lane's
+// run is one load, and a transpose turns four lanes' runs into four fields of four lanes. Per
+// lane and per field, the gather cost the 5 050-box pyramid's passes more than their arithmetic.
+#include <cstddef>
+#include <cstring>
+
+#include "solver/solver_body.hpp"
+#include "solver/wide.hpp"
+
+namespace anyphys::native::wide {
+
+/// A static or sleeping partner's lane: at rest, not turned.
+inline const SolverState kStateAtRest{};
+
+[[gnu::always_inline]] inline const SolverState& stateOf(const SolverState* states, std::int32_t index) {
+    return index == kStaticBody ? kStateAtRest : states[index];
+}
+
+/// The four doubles of `state` from byte `offset`.
+[[gnu::always_inline]] inline FloatW loadRun(const SolverState& state, std::size_t offset) {
+    FloatW run;
+    std::memcpy(&run, reinterpret_cast<const char*>(&state) + offset, sizeof run);
+    return run;
+}
+
+/// The four lanes' runs at `offset`, as four fields of four lanes each.
+[[gnu::always_inline]] inline void gatherRuns(const SolverState* states, const std::int32_t* index, std::size_t offset,
+                                              FloatW& first, FloatW& second, FloatW& third, FloatW& fourth) {
+    first = loadRun(stateOf(states, index[0]), offset);
+    second = loadRun(stateOf(states, index[1]), offset);
+    third = loadRun(stateOf(states, index[2]), offset);
+    fourth = loadRun(stateOf(states, index[3]), offset);
+    transpose(first, second, third, fourth);
+}
+
+/// The inverse of gatherRuns for the lanes `write` marks, storing the first `bytes` of each run.
+[[gnu::always_inline]] inline void scatterRuns(SolverState* states, const std::int32_t* index, const bool* write,
+                                               std::size_t offset, std::size_t bytes, FloatW first, FloatW second,
+                                               FloatW third, FloatW fourth) {
+    transpose(first, second, third, fourth);
+    const FloatW runs[kLanes] = {first, second, third, fourth};
+    for (int lane = 0; lane < kLanes; ++lane)
+        if (write[lane]) std::memcpy(reinterpret_cast<char*>(&states[index[lane]]) + offset, &runs[lane], bytes);
+}
+
+constexpr std::size_t kDouble = sizeof(double);
+
+}  // namespace anyphys::native::wide
