@@ -9,6 +9,7 @@
 
 #include "anyphys/anyphys.hpp"
 #include "contact_helpers.hpp"
+#include "ode_test_helpers.hpp"
 
 namespace anyphys {
 namespace {
@@ -105,13 +106,7 @@ TEST(OdeConvexSphere, BallRestsOnAHullAndAHullProbeFindsABall) {
 // a 5 cm static sphere at its origin; libccd's MPR looped for ever in the first step.
 TEST(OdeConvexSphere, HullReachingTenThousandKilometresDoesNotHangTheStep) {
     World world(test::backendSettings("ode"));
-    BodyDef needle;
-    needle.position = Vec3(-5, -5, -5);
-    needle.shape = ShapeDef::convex({{-0.130045, 0.0762332, -0.058296}, {0.0313901, -0.991031, -1}, {-1, -1, -1},
-                                     {-1, -1, -0.55157}, {0.0224215, 0.605381, 0.0672646}, {-0.0403587, 1e7, -0.0852018},
-                                     {-0.748879, 0.2287, 0.192825}, {-0.0313901, -0.309417, -0.0493274},
-                                     {-0.0493274, -0.0493274, -0.0493274}, {0.0941704, -0.0493274, -0.0493274}});
-    const Body hull = world.createBody(needle);
+    const Body hull = world.createBody(ode::test::needleHullFromTheFuzzer());
     BodyDef ball = test::ballDef("ball", 0.05, Vec3(-5, -5, -5));
     ball.type = BodyType::Static;
     world.createBody(ball);
