@@ -27,26 +27,26 @@ struct PlanarBodyW {
 };
 
 // What the passes read of a body: two runs of SolverState (state_runs.hpp).
-constexpr std::size_t kVelocityRun = offsetof(SolverState, w) + 2 * kDouble;  // w[2], v[0], v[1], v[2]
-constexpr std::size_t kMotionRun = offsetof(SolverState, turn);               // turn[0], turn[1], dp[0], dp[1]
-static_assert(offsetof(SolverState, v) == kVelocityRun + kDouble && offsetof(SolverState, dp) == kMotionRun + 2 * kDouble,
+constexpr std::size_t kPlanarVelocityRun = offsetof(SolverState, w) + 2 * kDouble;  // w[2], v[0], v[1], v[2]
+constexpr std::size_t kPlanarMotionRun = offsetof(SolverState, turn);  // turn[0], turn[1], dp[0], dp[1]
+static_assert(offsetof(SolverState, v) == kPlanarVelocityRun + kDouble && offsetof(SolverState, dp) == kPlanarMotionRun + 2 * kDouble,
               "SolverState's planar runs moved");
 
 ANYPHYS_KERNEL PlanarBodyW gatherPlanarVelocities(const SolverState* states, const std::int32_t* index) {
     PlanarBodyW b{};
-    gatherRuns(states, index, kVelocityRun, b.w, b.vx, b.vy, b.vz);
+    gatherRuns(states, index, kPlanarVelocityRun, b.w, b.vx, b.vy, b.vz);
     return b;
 }
 
 ANYPHYS_KERNEL PlanarBodyW gatherPlanarMotion(const SolverState* states, const std::int32_t* index) {
     PlanarBodyW b = gatherPlanarVelocities(states, index);
-    gatherRuns(states, index, kMotionRun, b.c, b.s, b.dpx, b.dpy);
+    gatherRuns(states, index, kPlanarMotionRun, b.c, b.s, b.dpx, b.dpy);
     return b;
 }
 
 ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write,
                                       const PlanarBodyW& b) {
-    scatterRuns(states, index, write, kVelocityRun, 4 * kDouble, b.w, b.vx, b.vy, b.vz);
+    scatterRuns(states, index, write, kPlanarVelocityRun, 4 * kDouble, b.w, b.vx, b.vy, b.vz);
 }
 
 // Applies the impulse (px, py) at anchors r on A (negated) and on B.
