@@ -81,15 +81,15 @@ ANYPHYS_WIDE Vec3W rotate(const QuatW& q, const Vec3W& v) {
 }
 
 /// Rows to columns: on return r0 holds the first element of each row given, r1 the second, ...
-/// (eight shuffles; one AVX register per row, or two SSE2 registers).
+/// (eight shuffles; one AVX register per row, or two SSE2 registers). __builtin_shufflevector:
+/// GCC (12 on) and Clang both have it.
 ANYPHYS_WIDE void transpose(FloatW& r0, FloatW& r1, FloatW& r2, FloatW& r3) {
-    using Index = MaskW;
-    const FloatW t0 = __builtin_shuffle(r0, r1, Index{0, 4, 2, 6}), t1 = __builtin_shuffle(r0, r1, Index{1, 5, 3, 7});
-    const FloatW t2 = __builtin_shuffle(r2, r3, Index{0, 4, 2, 6}), t3 = __builtin_shuffle(r2, r3, Index{1, 5, 3, 7});
-    r0 = __builtin_shuffle(t0, t2, Index{0, 1, 4, 5});
-    r1 = __builtin_shuffle(t1, t3, Index{0, 1, 4, 5});
-    r2 = __builtin_shuffle(t0, t2, Index{2, 3, 6, 7});
-    r3 = __builtin_shuffle(t1, t3, Index{2, 3, 6, 7});
+    const FloatW t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6), t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+    const FloatW t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6), t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+    r0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+    r1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    r2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+    r3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 }  // namespace anyphys::native::wide
