@@ -508,6 +508,19 @@ struct CriterionResult {
     double value = 0.0;
 };
 
+/// The tunnelling case (runFastSphereAtThinWall) as criterion `id`, reported as `label`; the ball
+/// must stay finite.
+inline CriterionResult fastSphereResult(const WorldSettings& s, const std::string& id, const std::string& label,
+                                        bool dynamicWall = false, bool jointed = false) {
+    const FastSphereRun run = runFastSphereAtThinWall(s, dynamicWall, jointed);
+    report(label, run.farthest, "m");
+    EXPECT_TRUE(run.finite) << label;
+    return {id, run.farthest < kFastSphereBound,
+            "farthest centre x " + std::to_string(run.farthest) + " m" +
+                (dynamicWall ? " in the wall's frame (face 9.95, middle 10)" : " (wall face 9.95, middle 10)"),
+            run.farthest};
+}
+
 inline std::string alongText(const Vec3& outward) {
     return "along (" + std::to_string(outward.x()) + ", " + std::to_string(outward.z()) + ")";
 }
