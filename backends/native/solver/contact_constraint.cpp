@@ -112,7 +112,7 @@ struct BodyView {
            rb.dot(b.invI * rb);
 }
 
-void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
+void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
                  const ContactPrepareParams& params) {
     ContactManifold& m = *in.manifold;
     const BodyView a = viewOf(in.bodyA, bodies, states), b = viewOf(in.bodyB, bodies, states);
@@ -120,7 +120,7 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
     wc.bodyB[lane] = in.bodyB;
     wc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
     wc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
-    wc.manifold[lane] = &m;
+    cold.manifold[lane] = &m;
     wc.pointCount = std::max(wc.pointCount, m.pointCount);
 
     wc.invMassA[lane] = a.invMass.x();
@@ -131,9 +131,8 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
     const Vec3 t1 = perpendicular(n), t2 = n.cross(t1);
     setLane(wc.normal, lane, n);
     setLane(wc.tangent1, lane, t1);
-    setLane(wc.tangent2, lane, t2);
     wc.friction[lane] = in.friction;
-    wc.restitution[lane] = in.restitution;
+    cold.restitution[lane] = in.restitution;
     const bool againstStatic = a.invMass.isZero(0) || b.invMass.isZero(0);
     const Softness soft = contactSoftness(params, againstStatic, m, a.invMass.x(), b.invMass.x());
     wc.biasRate[lane] = soft.biasRate;
@@ -166,13 +165,13 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
         cp.stepImpulse[lane] = 0.0;
         cp.maxImpulse[lane] = 0.0;
         const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
-        wc.cold[i].relativeVelocity[lane] = vn;
+        cold.relativeVelocity[i][lane] = vn;
         // Gravity (or any relative acceleration) speeds the approach until the surfaces meet,
         // part way into the step: a bounce off the step-start speed rebounds low (2 % of the
         // height for a ball landing at 9 m/s, on every integrator).
         const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
         const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
-        wc.cold[i].restitutionTarget[lane] =
+        cold.restitutionTarget[i][lane] =
             bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact);
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.
@@ -212,28 +211,30 @@ void prepareLane(WideContact& wc, int lane, const ContactLane& in, const SolverB
 
 }  // namespace
 
-void prepareContacts(WideContact& wc, const ContactLane* lanes, int count, const SolverBody* bodies,
-                     const SolverState* states, const ContactPrepareParams& params) {
+void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* lanes, int count,
+                     const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params) {
     wc = WideContact{};
+    cold = WideContactCold{};
     for (int lane = 0; lane < kLanes; ++lane) {
         wc.bodyA[lane] = wc.bodyB[lane] = kStaticBody;
         wc.massScale[lane] = 1.0;
     }
-    for (int lane = 0; lane < count; ++lane) prepareLane(wc, lane, lanes[lane], bodies, states, params);
+    for (int lane = 0; lane < count; ++lane) prepareLane(wc, cold, lane, lanes[lane], bodies, states, params);
 }
 
-void storeImpulses(const WideContact* contacts, int count) {
+void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int count) {
     for (int i = 0; i < count; ++i) {
         const WideContact& c = contacts[i];
+        const Vec3W tangent2 = secondTangent(c);
         for (int lane = 0; lane < kLanes; ++lane) {
-            ContactManifold* m = c.manifold[lane];
+            ContactManifold* m = cold[i].manifold[lane];
             if (!m) continue;
             for (int j = 0; j < m->pointCount; ++j) {
                 m->points[j].normalImpulse = c.points[j].normalImpulse[lane];
                 m->points[j].stepImpulse = c.points[j].stepImpulse[lane];
             }
             const Vec3 t1(c.tangent1.x[lane], c.tangent1.y[lane], c.tangent1.z[lane]);
-            const Vec3 t2(c.tangent2.x[lane], c.tangent2.y[lane], c.tangent2.z[lane]);
+            const Vec3 t2(tangent2.x[lane], tangent2.y[lane], tangent2.z[lane]);
             m->frictionImpulse = c.frictionImpulse1[lane] * t1 + c.frictionImpulse2[lane] * t2;
             m->twistImpulse = c.twistImpulse[lane];
         }

@@ -88,8 +88,9 @@ ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b, const Floa
         a.w = a.w - c.invIA * L;
         b.w = b.w + c.invIB * L;
     }
+    const Vec3W tangent2 = secondTangent(c);
     const Vec3W vr = relativeVelocity(a, b, c.centerA, c.centerB);
-    const FloatW vt1 = dot(vr, c.tangent1), vt2 = dot(vr, c.tangent2);
+    const FloatW vt1 = dot(vr, c.tangent1), vt2 = dot(vr, tangent2);
     FloatW f1 = c.frictionImpulse1 - (c.tangentMass.xx * vt1 + c.tangentMass.xy * vt2);
     FloatW f2 = c.frictionImpulse2 - (c.tangentMass.xy * vt1 + c.tangentMass.yy * vt2);
     const FloatW maxImpulse = c.friction * totalNormal;
@@ -99,7 +100,7 @@ ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b, const Floa
     const FloatW factor = select(outside, maxImpulse / sqrt(select(outside, lengthSquared, splat(1.0))), splat(1.0));
     f1 = select(lanes, f1 * factor, c.frictionImpulse1);
     f2 = select(lanes, f2 * factor, c.frictionImpulse2);
-    const Vec3W P = (f1 - c.frictionImpulse1) * c.tangent1 + (f2 - c.frictionImpulse2) * c.tangent2;
+    const Vec3W P = (f1 - c.frictionImpulse1) * c.tangent1 + (f2 - c.frictionImpulse2) * tangent2;
     c.frictionImpulse1 = f1;
     c.frictionImpulse2 = f2;
     applyImpulse(a, b, c, c.centerA, c.centerB, P);
@@ -113,7 +114,7 @@ ANYPHYS_KERNEL void warmStartImpl(WideContact* contacts, int count, SolverState*
         // The manifold's accumulated impulses summed into one linear impulse and one angular
         // impulse per body, applied once: the inverse inertia is multiplied twice per manifold
         // instead of twice per point and row.
-        const Vec3W friction = c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * c.tangent2;
+        const Vec3W friction = c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * secondTangent(c);
         FloatW normalTotal = zero();
         Vec3W angularA = cross(c.centerA, friction), angularB = cross(c.centerB, friction);
         for (int j = 0; j < c.pointCount; ++j) {
@@ -158,7 +159,7 @@ ANYPHYS_KERNEL void clampFrictionToLoad(WideContact& c, BodyW& a, BodyW& b) {
     const FloatW factor = select(outside, maxImpulse / sqrt(select(outside, lengthSquared, splat(1.0))), splat(1.0));
     c.frictionImpulse1 = f1 * factor;
     c.frictionImpulse2 = f2 * factor;
-    const Vec3W P = (c.frictionImpulse1 - f1) * c.tangent1 + (c.frictionImpulse2 - f2) * c.tangent2;
+    const Vec3W P = (c.frictionImpulse1 - f1) * c.tangent1 + (c.frictionImpulse2 - f2) * secondTangent(c);
     applyImpulse(a, b, c, c.centerA, c.centerB, P);
 }
 
@@ -262,23 +263,25 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* sta
     }
 }
 
-ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold* colds, int count, SolverState* states,
+                                    const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
     for (int i = 0; i < count; ++i) {
         WideContact& c = contacts[i];
-        if (allZero(c.restitution)) continue;
+        const WideContactCold& cold = colds[i];
+        if (allZero(cold.restitution)) continue;
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         MaskW bounced = MaskW{};
         FloatW load[4];
         for (int j = 0; j < c.pointCount; ++j) {
             WideContactPoint& cp = c.points[j];
-            const WideContactPointCold& cold = c.cold[j];
             // Only where the approach was fast and the contact pushed (not speculative points
             // that never closed).
-            const MaskW bounces = (cold.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+            const MaskW bounces =
+                (cold.relativeVelocity[j] < threshold) & (cp.maxImpulse > zero()) & (cold.restitution > zero());
             bounced |= bounces;
             const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget), zero());
+            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
             const FloatW total = max(cp.normalImpulse + impulse, zero());
             const FloatW applied = total - cp.normalImpulse;
             cp.normalImpulse = total;
@@ -302,8 +305,9 @@ ANYPHYS_AVX2 void warmStartAvx2(WideContact* c, int n, SolverState* s) { warmSta
 ANYPHYS_AVX2 void solveAvx2(WideContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-ANYPHYS_AVX2 void restitutionAvx2(WideContact* c, int n, SolverState* s, const ContactSolveParams& p) {
-    restitutionImpl(c, n, s, p);
+ANYPHYS_AVX2 void restitutionAvx2(WideContact* c, const WideContactCold* cold, int n, SolverState* s,
+                                   const ContactSolveParams& p) {
+    restitutionImpl(c, cold, n, s, p);
 }
 #endif
 
@@ -311,7 +315,9 @@ void warmStartBase(WideContact* c, int n, SolverState* s) { warmStartImpl(c, n, 
 void solveBase(WideContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-void restitutionBase(WideContact* c, int n, SolverState* s, const ContactSolveParams& p) { restitutionImpl(c, n, s, p); }
+void restitutionBase(WideContact* c, const WideContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
+    restitutionImpl(c, cold, n, s, p);
+}
 
 bool detectAvx2() {
 #if ANYPHYS_HAS_AVX2_KERNELS
@@ -350,11 +356,12 @@ void solveContacts(WideContact* contacts, int count, SolverState* states, const 
     solveBase(contacts, count, states, params, useBias, endOfSubstep);
 }
 
-void applyRestitution(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+void applyRestitution(WideContact* contacts, const WideContactCold* cold, int count, SolverState* states,
+                      const ContactSolveParams& params) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (avx2Enabled()) return restitutionAvx2(contacts, count, states, params);
+    if (avx2Enabled()) return restitutionAvx2(contacts, cold, count, states, params);
 #endif
-    restitutionBase(contacts, count, states, params);
+    restitutionBase(contacts, cold, count, states, params);
 }
 
 }  // namespace anyphys::native

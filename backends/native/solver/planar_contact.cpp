@@ -39,7 +39,7 @@ PlanarView planarViewOf(std::int32_t index, const SolverBody* bodies, const Solv
 
 double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
-void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
+void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
                  const ContactPrepareParams& params) {
     ContactManifold& m = *in.manifold;
     const PlanarView a = planarViewOf(in.bodyA, bodies, states), b = planarViewOf(in.bodyB, bodies, states);
@@ -47,7 +47,7 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
     pc.bodyB[lane] = in.bodyB;
     pc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
     pc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
-    pc.manifold[lane] = &m;
+    cold.manifold[lane] = &m;
     pc.pointCount = std::max(pc.pointCount, m.pointCount);
     pc.invMassA[lane] = a.invMass;
     pc.invMassB[lane] = b.invMass;
@@ -59,7 +59,7 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
     pc.normalX[lane] = nx;
     pc.normalY[lane] = ny;
     pc.friction[lane] = in.friction;
-    pc.restitution[lane] = in.restitution;
+    cold.restitution[lane] = in.restitution;
     const bool againstStatic = a.invMass == 0.0 || b.invMass == 0.0;
     const Softness soft = contactSoftness(params, againstStatic, m, a.invMass, b.invMass);
     pc.biasRate[lane] = soft.biasRate;
@@ -72,7 +72,6 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
     for (int i = 0; i < m.pointCount; ++i) {
         const ContactPointState& mp = m.points[i];
         PlanarContactPoint& cp = pc.points[i];
-        PlanarContactPointCold& cold = pc.cold[i];
         const double px = mp.geometry.point.x(), py = mp.geometry.point.y();
         // A static body's anchor is the point itself (zero offset): it never moves or turns. A
         // round shape's anchor lies on its core, as in the 3D path (contact_constraint.cpp).
@@ -90,12 +89,12 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
         cp.normalMass[lane] = k > 0.0 ? 1.0 / k : 0.0;
         cp.normalImpulse[lane] = params.warmStart ? mp.normalImpulse : 0.0;
         cp.maxImpulse[lane] = 0.0;
-        cold.stepImpulse[lane] = 0.0;
+        cp.stepImpulse[lane] = 0.0;
         const double vn = nx * ((b.vx - b.w * rBy) - (a.vx - a.w * rAy)) + ny * ((b.vy + b.w * rBx) - (a.vy + a.w * rAx));
-        cold.relativeVelocity[lane] = vn;
+        cold.relativeVelocity[i][lane] = vn;
         const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
         const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
-        cold.restitutionTarget[lane] =
+        cold.restitutionTarget[i][lane] =
             bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact);
         // Points well beyond the speculative distance must not pull the friction centre around.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
@@ -123,25 +122,26 @@ void prepareLane(PlanarContact& pc, int lane, const ContactLane& in, const Solve
 
 }  // namespace
 
-void preparePlanarContacts(PlanarContact& pc, const ContactLane* lanes, int count, const SolverBody* bodies,
-                           const SolverState* states, const ContactPrepareParams& params) {
+void preparePlanarContacts(PlanarContact& pc, PlanarContactCold& cold, const ContactLane* lanes, int count,
+                           const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params) {
     pc = PlanarContact{};
+    cold = PlanarContactCold{};
     for (int lane = 0; lane < wide::kLanes; ++lane) {
         pc.bodyA[lane] = pc.bodyB[lane] = kStaticBody;
         pc.massScale[lane] = 1.0;
     }
-    for (int lane = 0; lane < count; ++lane) prepareLane(pc, lane, lanes[lane], bodies, states, params);
+    for (int lane = 0; lane < count; ++lane) prepareLane(pc, cold, lane, lanes[lane], bodies, states, params);
 }
 
-void storePlanarImpulses(const PlanarContact* contacts, int count) {
+void storePlanarImpulses(const PlanarContact* contacts, const PlanarContactCold* cold, int count) {
     for (int i = 0; i < count; ++i) {
         const PlanarContact& c = contacts[i];
         for (int lane = 0; lane < wide::kLanes; ++lane) {
-            ContactManifold* m = c.manifold[lane];
+            ContactManifold* m = cold[i].manifold[lane];
             if (!m) continue;
             for (int j = 0; j < m->pointCount; ++j) {
                 m->points[j].normalImpulse = c.points[j].normalImpulse[lane];
-                m->points[j].stepImpulse = c.cold[j].stepImpulse[lane];
+                m->points[j].stepImpulse = c.points[j].stepImpulse[lane];
             }
             const double f = c.frictionImpulse[lane];
             m->frictionImpulse = Vec3(-c.normalY[lane] * f, c.normalX[lane] * f, 0.0);

@@ -24,15 +24,11 @@ struct PlanarContactPoint {
     wide::FloatW normalMass;
     wide::FloatW normalImpulse;                            // accumulated within the substep, N s
     wide::FloatW maxImpulse;                               // largest accumulated impulse seen
+    wide::FloatW stepImpulse;                              // sum over the step's substeps (what events report)
 };
 
-/// Read or written once per substep or step.
-struct PlanarContactPointCold {
-    wide::FloatW stepImpulse;        // sum over the step's substeps (what events report)
-    wide::FloatW relativeVelocity;   // normal velocity at the step start
-    wide::FloatW restitutionTarget;  // normal velocity a bounce aims for
-};
-
+/// What every pass reads and writes of four manifolds (as WideContact, whatever the passes do not
+/// read is in PlanarContactCold).
 struct PlanarContact {
     std::int32_t bodyA[wide::kLanes];  // solver body index or kStaticBody
     std::int32_t bodyB[wide::kLanes];
@@ -46,19 +42,24 @@ struct PlanarContact {
     wide::FloatW tangentMass, friction, frictionImpulse;
     wide::FloatW biasRate, massScale, impulseScale;
     PlanarContactPoint points[4];
-    // Cold: restitution and the step's bookkeeping.
-    wide::FloatW restitution;
-    PlanarContactPointCold cold[4];
+};
+
+/// What only the prepare, restitution and store stages read, beside the PlanarContacts.
+struct PlanarContactCold {
     ContactManifold* manifold[wide::kLanes];
+    wide::FloatW restitution;
+    wide::FloatW relativeVelocity[4];   // per point: normal velocity at the step start
+    wide::FloatW restitutionTarget[4];  // per point: normal velocity a bounce aims for
 };
 
 /// Fills `pc` from up to four lanes (the rest are padding with no effect).
-void preparePlanarContacts(PlanarContact& pc, const ContactLane* lanes, int count, const SolverBody* bodies,
-                           const SolverState* states, const ContactPrepareParams& params);
+void preparePlanarContacts(PlanarContact& pc, PlanarContactCold& cold, const ContactLane* lanes, int count,
+                           const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params);
 void warmStartPlanarContacts(PlanarContact* contacts, int count, SolverState* states);
 void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
                          bool useBias, bool endOfSubstep);
-void applyPlanarRestitution(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params);
-void storePlanarImpulses(const PlanarContact* contacts, int count);
+void applyPlanarRestitution(PlanarContact* contacts, const PlanarContactCold* cold, int count, SolverState* states,
+                            const ContactSolveParams& params);
+void storePlanarImpulses(const PlanarContact* contacts, const PlanarContactCold* cold, int count);
 
 }  // namespace anyphys::native

@@ -204,7 +204,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
             const FloatW applied = total - cp.normalImpulse;
             cp.normalImpulse = total;
             cp.maxImpulse = max(cp.maxImpulse, total);
-            if (endOfSubstep) c.cold[k].stepImpulse += total;
+            if (endOfSubstep) cp.stepImpulse += total;
             applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                          applied * c.normalY);
         }
@@ -214,27 +214,27 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     }
 }
 
-ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, int count, SolverState* states,
+ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContactCold* colds, int count, SolverState* states,
                                     const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
-        if (allZero(c.restitution)) continue;
+        const PlanarContactCold& cold = colds[i];
+        if (allZero(cold.restitution)) continue;
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         MaskW bounced = MaskW{};
         FloatW load[4];
         for (int j = 0; j < c.pointCount; ++j) {
             PlanarContactPoint& cp = c.points[j];
-            PlanarContactPointCold& cold = c.cold[j];
             const MaskW bounces =
-                (cold.relativeVelocity < threshold) & (cp.maxImpulse > zero()) & (c.restitution > zero());
+                (cold.relativeVelocity[j] < threshold) & (cp.maxImpulse > zero()) & (cold.restitution > zero());
             bounced |= bounces;
             const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget), zero());
+            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
             const FloatW total = max(cp.normalImpulse + impulse, zero());
             const FloatW applied = total - cp.normalImpulse;
             cp.normalImpulse = total;
-            cold.stepImpulse += applied;
+            cp.stepImpulse += applied;
             load[j] = total;
             applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                          applied * c.normalY);
@@ -252,8 +252,9 @@ ANYPHYS_AVX2 void warmStartAvx2(PlanarContact* c, int n, SolverState* s) { warmS
 ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-ANYPHYS_AVX2 void restitutionAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p) {
-    restitutionImpl(c, n, s, p);
+ANYPHYS_AVX2 void restitutionAvx2(PlanarContact* c, const PlanarContactCold* cold, int n, SolverState* s,
+                                   const ContactSolveParams& p) {
+    restitutionImpl(c, cold, n, s, p);
 }
 #endif
 
@@ -261,7 +262,9 @@ void warmStartBase(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n
 void solveBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-void restitutionBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p) { restitutionImpl(c, n, s, p); }
+void restitutionBase(PlanarContact* c, const PlanarContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
+    restitutionImpl(c, cold, n, s, p);
+}
 
 }  // namespace
 
@@ -280,11 +283,12 @@ void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states
     solveBase(contacts, count, states, params, useBias, endOfSubstep);
 }
 
-void applyPlanarRestitution(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params) {
+void applyPlanarRestitution(PlanarContact* contacts, const PlanarContactCold* cold, int count, SolverState* states,
+                            const ContactSolveParams& params) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (contactKernelsUseAvx2()) return restitutionAvx2(contacts, count, states, params);
+    if (contactKernelsUseAvx2()) return restitutionAvx2(contacts, cold, count, states, params);
 #endif
-    restitutionBase(contacts, count, states, params);
+    restitutionBase(contacts, cold, count, states, params);
 }
 
 }  // namespace anyphys::native

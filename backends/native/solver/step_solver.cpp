@@ -240,10 +240,13 @@ void StepSolver::buildConstraints() {
         total += colorWideCount_[c];
     }
     wideCount_ = total;
-    if (planarWorld_)
+    if (planarWorld_) {
         planar_.resize(static_cast<std::size_t>(total));
-    else
+        planarCold_.resize(static_cast<std::size_t>(total));
+    } else {
         wide_.resize(static_cast<std::size_t>(total));
+        wideCold_.resize(static_cast<std::size_t>(total));
+    }
     wideSource_.resize(static_cast<std::size_t>(total));
     for (std::size_t c = 0; c < colorCount; ++c) {
         const bool overflow = graph_.hasOverflow() && c + 1 == colorCount;
@@ -379,7 +382,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             for (int w = begin; w < end; ++w) {
                 ContactLane lanes[wide::kLanes];
                 const int n = gatherLanes(w, lanes);
-                prepareContacts(wide_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
+                prepareContacts(wide_[w], wideCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
             break;
         case StageKind::IntegrateVelocities: integrateVelocities(bodies_.data(), states_.data(), begin, end, h_); break;
@@ -391,8 +394,8 @@ void StepSolver::runBlock(int stage, int block, int worker) {
         case StageKind::Relax:
             solveContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep);
             break;
-        case StageKind::Restitution: applyRestitution(colour, count, states_.data(), solveParams_); break;
-        case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, count); break;
+        case StageKind::Restitution: applyRestitution(colour, wideCold_.data() + first, count, states_.data(), solveParams_); break;
+        case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
         case StageKind::WarmStartJoints:
             for (const JointConstraint& c : joints_) warmStartJoint(c, bodies_.data(), states_.data(), jointParams_);
@@ -426,14 +429,14 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
             for (int w = begin; w < end; ++w) {
                 ContactLane lanes[wide::kLanes];
                 const int n = gatherLanes(w, lanes);
-                preparePlanarContacts(planar_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
+                preparePlanarContacts(planar_[w], planarCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
             return true;
         case StageKind::WarmStart: warmStartPlanarContacts(colour, count, states_.data()); return true;
         case StageKind::Solve: solvePlanarContacts(colour, count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
         case StageKind::Relax: solvePlanarContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
-        case StageKind::Restitution: applyPlanarRestitution(colour, count, states_.data(), solveParams_); return true;
-        case StageKind::StoreImpulses: storePlanarImpulses(planar_.data() + begin, count); return true;
+        case StageKind::Restitution: applyPlanarRestitution(colour, planarCold_.data() + first, count, states_.data(), solveParams_); return true;
+        case StageKind::StoreImpulses: storePlanarImpulses(planar_.data() + begin, planarCold_.data() + begin, count); return true;
         default: return false;  // body and joint stages are shared with 3D worlds
     }
 }
