@@ -8,7 +8,8 @@
 //
 // The stages, each over a range of WideContacts:
 //   prepareContacts     once per step: anchors, effective masses, warm-start impulses
-//   warmStartContacts   each substep: apply the accumulated impulses again
+//   warmStartContacts   each substep: apply the accumulated impulses again (as summed by
+//                       summarizeImpulses at the end of prepare and of each substep)
 //   solveContacts       each pass: friction, then non-penetration (with or without bias)
 //   applyRestitution    once per step, after the substeps
 //   storeImpulses       once per step: impulses back to the manifolds for the next step
@@ -62,6 +63,19 @@ struct WideContactCold {
     wide::FloatW restitution;
     wide::FloatW relativeVelocity[4];         // per point: normal velocity at the step start (< 0: approaching)
     wide::FloatW restitutionTarget[4];        // per point: normal velocity a bounce aims for
+};
+
+/// A record's accumulated impulses as each lane's change of velocity, written by the prepare stage
+/// and by the pass that ends each substep, for the next substep's warm start: the warm start reads
+/// these 448 bytes a record instead of the whole WideContact, whose impulses do not change between
+/// the two.
+struct WideWarmStart {
+    std::int32_t bodyA[wide::kLanes];
+    std::int32_t bodyB[wide::kLanes];
+    bool writeA[wide::kLanes];
+    bool writeB[wide::kLanes];
+    wide::Vec3W linearA, angularA;  // subtracted from body A's v and w
+    wide::Vec3W linearB, angularB;  // added to body B's
 };
 
 /// The second friction direction, normal x tangent1, as the prepare stage chose it.
@@ -128,11 +142,14 @@ struct ContactSolveParams {
     double restitutionThreshold = 0.0; // m/s
 };
 
-void warmStartContacts(WideContact* contacts, int count, SolverState* states);
+/// Sums each record's impulses into `warm` (the prepare stage's warm start).
+void summarizeImpulses(const WideContact* contacts, WideWarmStart* warm, int count);
+void warmStartContacts(const WideWarmStart* warm, int count, SolverState* states);
 /// One Gauss-Seidel pass. `useBias`: push overlap apart (soft or Baumgarte); false is the relax
-/// pass. `endOfSubstep`: this pass ends a substep, so its impulses add to the step's total.
-void solveContacts(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params, bool useBias,
-                   bool endOfSubstep);
+/// pass. `endOfSubstep`: this pass ends a substep, so its impulses add to the step's total and
+/// are summed into `warm` for the next substep.
+void solveContacts(WideContact* contacts, WideWarmStart* warm, int count, SolverState* states,
+                   const ContactSolveParams& params, bool useBias, bool endOfSubstep);
 void applyRestitution(WideContact* contacts, const WideContactCold* cold, int count, SolverState* states,
                       const ContactSolveParams& params);
 void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int count);

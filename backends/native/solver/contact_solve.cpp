@@ -107,31 +107,48 @@ ANYPHYS_KERNEL void solveFriction(WideContact& c, BodyW& a, BodyW& b, const Floa
 }
 
 
-ANYPHYS_KERNEL void warmStartImpl(WideContact* contacts, int count, SolverState* states) {
+// The record's accumulated impulses summed into one linear and one angular impulse per body, as
+// velocity changes: the inverse inertia is multiplied twice per manifold instead of twice per
+// point and row, and the next warm start applies them without reading the record.
+ANYPHYS_KERNEL void summarize(const WideContact& c, WideWarmStart& out) {
+    const Vec3W friction = c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * secondTangent(c);
+    FloatW normalTotal = zero();
+    Vec3W angularA = cross(c.centerA, friction), angularB = cross(c.centerB, friction);
+    for (int j = 0; j < c.pointCount; ++j) {
+        const WideContactPoint& cp = c.points[j];
+        const Vec3W P = cp.normalImpulse * c.normal;
+        normalTotal += cp.normalImpulse;
+        angularA = angularA + cross(cp.anchorA, P);
+        angularB = angularB + cross(cp.anchorB, P);
+    }
+    const Vec3W twist = c.twistImpulse * c.normal;
+    angularA = angularA + twist;
+    angularB = angularB + twist;
+    const Vec3W linear = friction + normalTotal * c.normal;
+    for (int lane = 0; lane < kLanes; ++lane) {
+        out.bodyA[lane] = c.bodyA[lane];
+        out.bodyB[lane] = c.bodyB[lane];
+        out.writeA[lane] = c.writeA[lane];
+        out.writeB[lane] = c.writeB[lane];
+    }
+    out.linearA = c.invMassA * linear;
+    out.angularA = c.invIA * angularA;
+    out.linearB = c.invMassB * linear;
+    out.angularB = c.invIB * angularB;
+}
+
+ANYPHYS_KERNEL void summarizeImpl(const WideContact* contacts, WideWarmStart* warm, int count) {
+    for (int i = 0; i < count; ++i) summarize(contacts[i], warm[i]);
+}
+
+ANYPHYS_KERNEL void warmStartImpl(const WideWarmStart* warm, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
-        WideContact& c = contacts[i];
+        const WideWarmStart& c = warm[i];
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
-        // The manifold's accumulated impulses summed into one linear impulse and one angular
-        // impulse per body, applied once: the inverse inertia is multiplied twice per manifold
-        // instead of twice per point and row.
-        const Vec3W friction = c.frictionImpulse1 * c.tangent1 + c.frictionImpulse2 * secondTangent(c);
-        FloatW normalTotal = zero();
-        Vec3W angularA = cross(c.centerA, friction), angularB = cross(c.centerB, friction);
-        for (int j = 0; j < c.pointCount; ++j) {
-            const WideContactPoint& cp = c.points[j];
-            const Vec3W P = cp.normalImpulse * c.normal;
-            normalTotal += cp.normalImpulse;
-            angularA = angularA + cross(cp.anchorA, P);
-            angularB = angularB + cross(cp.anchorB, P);
-        }
-        const Vec3W twist = c.twistImpulse * c.normal;
-        angularA = angularA + twist;
-        angularB = angularB + twist;
-        const Vec3W linear = friction + normalTotal * c.normal;
-        a.v = a.v - c.invMassA * linear;
-        a.w = a.w - c.invIA * angularA;
-        b.v = b.v + c.invMassB * linear;
-        b.w = b.w + c.invIB * angularB;
+        a.v = a.v - c.linearA;
+        a.w = a.w - c.angularA;
+        b.v = b.v + c.linearB;
+        b.w = b.w + c.angularB;
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
@@ -171,8 +188,8 @@ ANYPHYS_KERNEL FloatW separation(const WideContact& c, const WideContactPoint& c
     return dot(c.normal, moved) + cp.baseSeparation;
 }
 
-ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
-                              bool useBias, bool endOfSubstep) {
+ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int count, SolverState* states,
+                              const ContactSolveParams& params, bool useBias, bool endOfSubstep) {
     const FloatW invH = splat(params.invH);
     const FloatW maxPush = splat(-params.pushMaxVelocity);
     const FloatW one = splat(1.0);
@@ -260,6 +277,7 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, int count, SolverState* sta
         if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
+        if (endOfSubstep) summarize(c, warm[i]);
     }
 }
 
@@ -301,9 +319,11 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
 
 #if ANYPHYS_HAS_AVX2_KERNELS
 #define ANYPHYS_AVX2 __attribute__((target("avx2")))
-ANYPHYS_AVX2 void warmStartAvx2(WideContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
-ANYPHYS_AVX2 void solveAvx2(WideContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
-    solveImpl(c, n, s, p, bias, end);
+ANYPHYS_AVX2 void summarizeAvx2(const WideContact* c, WideWarmStart* w, int n) { summarizeImpl(c, w, n); }
+ANYPHYS_AVX2 void warmStartAvx2(const WideWarmStart* w, int n, SolverState* s) { warmStartImpl(w, n, s); }
+ANYPHYS_AVX2 void solveAvx2(WideContact* c, WideWarmStart* w, int n, SolverState* s, const ContactSolveParams& p, bool bias,
+                            bool end) {
+    solveImpl(c, w, n, s, p, bias, end);
 }
 ANYPHYS_AVX2 void restitutionAvx2(WideContact* c, const WideContactCold* cold, int n, SolverState* s,
                                    const ContactSolveParams& p) {
@@ -311,9 +331,10 @@ ANYPHYS_AVX2 void restitutionAvx2(WideContact* c, const WideContactCold* cold, i
 }
 #endif
 
-void warmStartBase(WideContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
-void solveBase(WideContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
-    solveImpl(c, n, s, p, bias, end);
+void summarizeBase(const WideContact* c, WideWarmStart* w, int n) { summarizeImpl(c, w, n); }
+void warmStartBase(const WideWarmStart* w, int n, SolverState* s) { warmStartImpl(w, n, s); }
+void solveBase(WideContact* c, WideWarmStart* w, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
+    solveImpl(c, w, n, s, p, bias, end);
 }
 void restitutionBase(WideContact* c, const WideContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
     restitutionImpl(c, cold, n, s, p);
@@ -341,19 +362,26 @@ bool setContactKernelsAvx2(bool enable) {
     return avx2Enabled();
 }
 
-void warmStartContacts(WideContact* contacts, int count, SolverState* states) {
+void summarizeImpulses(const WideContact* contacts, WideWarmStart* warm, int count) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (avx2Enabled()) return warmStartAvx2(contacts, count, states);
+    if (avx2Enabled()) return summarizeAvx2(contacts, warm, count);
 #endif
-    warmStartBase(contacts, count, states);
+    summarizeBase(contacts, warm, count);
 }
 
-void solveContacts(WideContact* contacts, int count, SolverState* states, const ContactSolveParams& params, bool useBias,
-                   bool endOfSubstep) {
+void warmStartContacts(const WideWarmStart* warm, int count, SolverState* states) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (avx2Enabled()) return solveAvx2(contacts, count, states, params, useBias, endOfSubstep);
+    if (avx2Enabled()) return warmStartAvx2(warm, count, states);
 #endif
-    solveBase(contacts, count, states, params, useBias, endOfSubstep);
+    warmStartBase(warm, count, states);
+}
+
+void solveContacts(WideContact* contacts, WideWarmStart* warm, int count, SolverState* states,
+                   const ContactSolveParams& params, bool useBias, bool endOfSubstep) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (avx2Enabled()) return solveAvx2(contacts, warm, count, states, params, useBias, endOfSubstep);
+#endif
+    solveBase(contacts, warm, count, states, params, useBias, endOfSubstep);
 }
 
 void applyRestitution(WideContact* contacts, const WideContactCold* cold, int count, SolverState* states,

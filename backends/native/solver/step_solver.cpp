@@ -246,6 +246,7 @@ void StepSolver::buildConstraints() {
     } else {
         wide_.resize(static_cast<std::size_t>(total));
         wideCold_.resize(static_cast<std::size_t>(total));
+        wideWarm_.resize(static_cast<std::size_t>(total));
     }
     wideSource_.resize(static_cast<std::size_t>(total));
     for (std::size_t c = 0; c < colorCount; ++c) {
@@ -377,6 +378,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     const int first = p.color < static_cast<int>(colorFirstWide_.size()) ? colorFirstWide_[p.color] + begin : 0;
     if (planarWorld_ && runPlanarBlock(p, first, begin, end)) return;
     WideContact* colour = wide_.data() + first;
+    WideWarmStart* warm = wideWarm_.data() + first;
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
@@ -384,15 +386,16 @@ void StepSolver::runBlock(int stage, int block, int worker) {
                 const int n = gatherLanes(w, lanes);
                 prepareContacts(wide_[w], wideCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
+            summarizeImpulses(wide_.data() + begin, wideWarm_.data() + begin, count);
             break;
         case StageKind::IntegrateVelocities: integrateVelocities(bodies_.data(), states_.data(), begin, end, h_); break;
-        case StageKind::WarmStart: warmStartContacts(colour, count, states_.data()); break;
+        case StageKind::WarmStart: warmStartContacts(warm, count, states_.data()); break;
         case StageKind::Solve:
-            solveContacts(colour, count, states_.data(), solveParams_, true, p.endOfSubstep);
+            solveContacts(colour, warm, count, states_.data(), solveParams_, true, p.endOfSubstep);
             break;
         case StageKind::IntegratePositions: integratePositions(states_.data(), begin, end, h_); break;
         case StageKind::Relax:
-            solveContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep);
+            solveContacts(colour, warm, count, states_.data(), solveParams_, false, p.endOfSubstep);
             break;
         case StageKind::Restitution: applyRestitution(colour, wideCold_.data() + first, count, states_.data(), solveParams_); break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;

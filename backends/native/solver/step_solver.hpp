@@ -111,6 +111,7 @@ private:
     ConstraintGraph graph_;
     std::vector<WideContact> wide_;       // 3D worlds
     std::vector<WideContactCold> wideCold_;  // beside wide_: what only prepare, restitution and store read
+    std::vector<WideWarmStart> wideWarm_;    // beside wide_: the impulses as velocity changes, for the warm start
     std::vector<PlanarContact> planar_;   // planar worlds: the same constraints with 3 degrees of freedom
     std::vector<PlanarContactCold> planarCold_;  // beside planar_
     int wideCount_ = 0;                   // of whichever is in use
