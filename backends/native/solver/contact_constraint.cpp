@@ -112,8 +112,8 @@ struct BodyView {
            rb.dot(b.invI * rb);
 }
 
-void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
-                 const ContactPrepareParams& params) {
+void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const ContactLane& in, const SolverBody* bodies,
+                 const SolverState* states, const ContactPrepareParams& params) {
     ContactManifold& m = *in.manifold;
     const BodyView a = viewOf(in.bodyA, bodies, states), b = viewOf(in.bodyB, bodies, states);
     wc.bodyA[lane] = in.bodyA;

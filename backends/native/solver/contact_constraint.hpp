@@ -56,8 +56,8 @@ struct WideContact {
 };
 
 /// What only the prepare, restitution and store stages read of the same four manifolds, in an
-/// array beside the WideContacts (the same index): keeping it out of the records the passes
-/// stream made a pass read 13 % fewer bytes.
+/// array beside the WideContacts (the same index), kept out of the records the passes stream (it
+/// made them 13 % larger).
 struct WideContactCold {
     ContactManifold* manifold[wide::kLanes];  // source of each lane; null in padding lanes
     wide::FloatW restitution;
@@ -129,8 +129,8 @@ Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic,
                          double invMassB);
 
 /// Fills `wc` and `cold` from up to four lanes (`count` of them; the rest are padding with no effect).
-void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* lanes, int count, const SolverBody* bodies,
-                     const SolverState* states, const ContactPrepareParams& params);
+void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* lanes, int count,
+                     const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params);
 
 struct ContactSolveParams {
     double invH = 0.0;                 // 1 / substep

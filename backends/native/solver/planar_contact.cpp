@@ -39,8 +39,8 @@ PlanarView planarViewOf(std::int32_t index, const SolverBody* bodies, const Solv
 
 double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
-void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const ContactLane& in, const SolverBody* bodies, const SolverState* states,
-                 const ContactPrepareParams& params) {
+void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const ContactLane& in, const SolverBody* bodies,
+                 const SolverState* states, const ContactPrepareParams& params) {
     ContactManifold& m = *in.manifold;
     const PlanarView a = planarViewOf(in.bodyA, bodies, states), b = planarViewOf(in.bodyB, bodies, states);
     pc.bodyA[lane] = in.bodyA;

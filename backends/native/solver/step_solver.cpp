@@ -397,7 +397,9 @@ void StepSolver::runBlock(int stage, int block, int worker) {
         case StageKind::Relax:
             solveContacts(colour, warm, count, states_.data(), solveParams_, false, p.endOfSubstep);
             break;
-        case StageKind::Restitution: applyRestitution(colour, wideCold_.data() + first, count, states_.data(), solveParams_); break;
+        case StageKind::Restitution:
+            applyRestitution(colour, wideCold_.data() + first, count, states_.data(), solveParams_);
+            break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
         case StageKind::WarmStartJoints:
@@ -438,8 +440,12 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
         case StageKind::WarmStart: warmStartPlanarContacts(colour, count, states_.data()); return true;
         case StageKind::Solve: solvePlanarContacts(colour, count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
         case StageKind::Relax: solvePlanarContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
-        case StageKind::Restitution: applyPlanarRestitution(colour, planarCold_.data() + first, count, states_.data(), solveParams_); return true;
-        case StageKind::StoreImpulses: storePlanarImpulses(planar_.data() + begin, planarCold_.data() + begin, count); return true;
+        case StageKind::Restitution:
+            applyPlanarRestitution(colour, planarCold_.data() + first, count, states_.data(), solveParams_);
+            return true;
+        case StageKind::StoreImpulses:
+            storePlanarImpulses(planar_.data() + begin, planarCold_.data() + begin, count);
+            return true;
         default: return false;  // body and joint stages are shared with 3D worlds
     }
 }
