@@ -3,7 +3,8 @@
 #   1. scripts/setup.sh (Debian packages; a no-op when installed)
 #   2. Release build into build/ and its ctest run
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build into build-asan/ and its ctest run
-#   4. ThreadSanitizer build of the library and the concurrent-worlds test (scripts/tsan.sh)
+#   4. ThreadSanitizer build of the library and the concurrent-worlds test (scripts/tsan.sh),
+#      unless the run has already used TSAN_BUDGET seconds (default 1 450) of CI's 30 minutes
 #   5. install check: `cmake --install build` into a temporary prefix, then configure, build and
 #      run the consumer project tests/consumer/ against it (find_package(anyphys)).
 # The fuzzers are not run here: their corpus and past crashes are replayed in both test runs
@@ -118,8 +119,19 @@ unset ASAN_OPTIONS UBSAN_OPTIONS
 stage "ThreadSanitizer (build-tsan/: the library and the concurrent-worlds test)"
 # Worlds of every backend stepped on two threads at once (docs/threads.md). Only the library and
 # that one test are built with -fsanitize=thread: the stage's cost is one more library build.
-bash scripts/tsan.sh
-done_stage tsan
+# CI has 30 minutes. On a slow machine (2026-12-02: 1 710 s had gone by here, 1 884 s in all)
+# this stage would cross them, so past TSAN_BUDGET seconds it is left out, loudly; the
+# concurrent-worlds test itself has run in both suites above. scripts/tsan.sh runs it alone.
+tsan_budget=${TSAN_BUDGET:-1450}
+if ((SECONDS - start > tsan_budget)); then
+  echo "test.sh: WARNING: ThreadSanitizer stage left out: $((SECONDS - start)) s gone of CI's 1 800," \
+       "past the ${tsan_budget} s budget for it (this machine is slow); run bash scripts/tsan.sh alone" >&2
+  timings+=("tsan LEFT-OUT")
+  current_stage=""
+else
+  bash scripts/tsan.sh
+  done_stage tsan
+fi
 
 # ---- install check ------------------------------------------------------------------------
 
