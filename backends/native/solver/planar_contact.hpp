@@ -44,13 +44,9 @@ struct PlanarContact {
     PlanarContactPoint points[4];
 };
 
-/// What only the prepare, restitution and store stages read, beside the PlanarContacts.
-struct PlanarContactCold {
-    ContactManifold* manifold[wide::kLanes];
-    wide::FloatW restitution;
-    wide::FloatW relativeVelocity[4];   // per point: normal velocity at the step start
-    wide::FloatW restitutionTarget[4];  // per point: normal velocity a bounce aims for
-};
+/// What only the prepare, restitution and store stages read, beside the PlanarContacts: the same
+/// per-lane fields as a 3D record's.
+using PlanarContactCold = WideContactCold;
 
 /// Fills `pc` from up to four lanes (the rest are padding with no effect).
 void preparePlanarContacts(PlanarContact& pc, PlanarContactCold& cold, const ContactLane* lanes, int count,
