@@ -377,8 +377,10 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     const int count = end - begin;
     const int first = p.color < static_cast<int>(colorFirstWide_.size()) ? colorFirstWide_[p.color] + begin : 0;
     if (planarWorld_ && runPlanarBlock(p, first, begin, end)) return;
-    WideContact* colour = wide_.data() + first;
-    WideWarmStart* warm = wideWarm_.data() + first;
+    // Only colour stages address a slice of the constraint arrays: the others also run in a world
+    // with no contact at all, where data() is null and null + offset is undefined.
+    const auto colour = [&] { return wide_.data() + first; };
+    const auto warm = [&] { return wideWarm_.data() + first; };
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
@@ -389,16 +391,16 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             summarizeImpulses(wide_.data() + begin, wideWarm_.data() + begin, count);
             break;
         case StageKind::IntegrateVelocities: integrateVelocities(bodies_.data(), states_.data(), begin, end, h_); break;
-        case StageKind::WarmStart: warmStartContacts(warm, count, states_.data()); break;
+        case StageKind::WarmStart: warmStartContacts(warm(), count, states_.data()); break;
         case StageKind::Solve:
-            solveContacts(colour, warm, count, states_.data(), solveParams_, true, p.endOfSubstep);
+            solveContacts(colour(), warm(), count, states_.data(), solveParams_, true, p.endOfSubstep);
             break;
         case StageKind::IntegratePositions: integratePositions(states_.data(), begin, end, h_); break;
         case StageKind::Relax:
-            solveContacts(colour, warm, count, states_.data(), solveParams_, false, p.endOfSubstep);
+            solveContacts(colour(), warm(), count, states_.data(), solveParams_, false, p.endOfSubstep);
             break;
         case StageKind::Restitution:
-            applyRestitution(colour, wideCold_.data() + first, count, states_.data(), solveParams_);
+            applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), solveParams_);
             break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
@@ -428,7 +430,7 @@ int StepSolver::gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const {
 
 bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int end) {
     const int count = end - begin;
-    PlanarContact* colour = planar_.data() + first;
+    const auto colour = [&] { return planar_.data() + first; };  // as in runBlock
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
@@ -437,11 +439,11 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
                 preparePlanarContacts(planar_[w], planarCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
             return true;
-        case StageKind::WarmStart: warmStartPlanarContacts(colour, count, states_.data()); return true;
-        case StageKind::Solve: solvePlanarContacts(colour, count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
-        case StageKind::Relax: solvePlanarContacts(colour, count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
+        case StageKind::WarmStart: warmStartPlanarContacts(colour(), count, states_.data()); return true;
+        case StageKind::Solve: solvePlanarContacts(colour(), count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
+        case StageKind::Relax: solvePlanarContacts(colour(), count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
         case StageKind::Restitution:
-            applyPlanarRestitution(colour, planarCold_.data() + first, count, states_.data(), solveParams_);
+            applyPlanarRestitution(colour(), planarCold_.data() + first, count, states_.data(), solveParams_);
             return true;
         case StageKind::StoreImpulses:
             storePlanarImpulses(planar_.data() + begin, planarCold_.data() + begin, count);
