@@ -190,40 +190,48 @@ TEST_P(ShapePairsTest, EveryShapeRestsOnABoxThatMoves) {
 // pushed in or out by up to 1e-5, 1e-4 and 1e-3 of its size, so its bottom is a few facets
 // tilted by less than a thousandth of a radian. It must rest on a box like a clean cube. (Found
 // on native: it clipped only the one facet most opposed to the ground, a different one each
-// step, and rocked: 0.27 m/s at the corners here with noise 1e-5; under 0.1 mm/s now.)
+// step, and rocked: 0.27 m/s at the corners here with noise 1e-5; under 0.1 mm/s now. Found
+// again on other draws: native left out facet corners higher than 1e-4 of its size, Box2D clips
+// one edge of a split face.)
 TEST_P(ShapePairsTest, NoisyCubeHullRestsLikeACube) {
     ANYPHYS_REQUIRE(caps().effects.has(Effect::Contacts), "effect contacts");
     ANYPHYS_REQUIRE(caps().shapes.contains(ShapeType::Convex), "shape convex");
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(-1, 1);
-    for (const double noise : {1e-5, 1e-4, 1e-3}) {
-        std::vector<Vec3> points;
-        for (int i = 0; i < 8; ++i) points.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
-        // A backend with few polygon vertices (Box2D: 8) gets its spare ones as noise on the
-        // bottom face, the face it rests on.
-        const int limit = caps().maxConvexVertices;
-        for (int i = 0; i < 30; ++i) {
-            Vec3 q(0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng));
-            const int axis = limit > 0 ? 1 : i % 3, side = limit > 0 ? 0 : i % 2;
-            q[axis] = (side ? 0.5 : -0.5) * (1 + noise * u(rng));
-            if (limit > 0 && static_cast<int>(points.size()) >= 8 + limit - 4) break;  // its outline: 4 corners
-            points.push_back(q);
+    // Twelve draws of the noise: the first alone passed on every backend, while of 40 draws x 3
+    // noise levels 5 cases rocked on native and 34 on Box2D. The coordinates are drawn one statement each: drawn as three
+    // arguments of one call their order is the compiler's (GCC and Clang drew different hulls).
+    for (int draw = 0; draw < 12; ++draw) {
+        std::mt19937 rng(5 + draw);
+        std::uniform_real_distribution<double> u(-1, 1);
+        for (const double noise : {1e-5, 1e-4, 1e-3}) {
+            std::vector<Vec3> points;
+            for (int i = 0; i < 8; ++i) points.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
+            // A backend with few polygon vertices (Box2D: 8) gets its spare ones as noise on the
+            // bottom face, the face it rests on.
+            const int limit = caps().maxConvexVertices;
+            for (int i = 0; i < 30; ++i) {
+                Vec3 q;
+                for (int a = 0; a < 3; ++a) q[a] = 0.5 * u(rng);
+                const int axis = limit > 0 ? 1 : i % 3, side = limit > 0 ? 0 : i % 2;
+                q[axis] = (side ? 0.5 : -0.5) * (1 + noise * u(rng));
+                if (limit > 0 && static_cast<int>(points.size()) >= 8 + limit - 4) break;  // its outline: 4 corners
+                points.push_back(q);
+            }
+            World world(settings());
+            addGround(world, boxGround());
+            BodyDef cube;
+            cube.shape = ShapeDef::convex(points);
+            cube.position = Vec3(0, 0.51, 0);
+            cube.allowSleep = false;
+            Body b = world.createBody(cube);
+            for (int i = 0; i < 120; ++i) world.step();
+            const double fastest = fastestPointOver(world, {{b, std::sqrt(3.0) / 2}}, 30);
+            std::cout << "[ MEASURED ] " << backend() << ": cube hull (draw " << draw << ") with noise " << noise
+                      << " of its size rests at y = " << b.position().y() << ", fastest point " << fastest << " m/s\n";
+            EXPECT_NEAR(b.position().y(), 0.5, 0.02);  // as EveryShapeRestsOnEveryGround
+            // As EveryShapeRestsOnEveryGround: a rocking cube moves its corners at decimetres per second.
+            expectCriterion("shape_pairs.noisy_hull_rests", fastest < 0.02, "fastest point " + std::to_string(fastest) + " m/s",
+                            fastest);
         }
-        World world(settings());
-        addGround(world, boxGround());
-        BodyDef cube;
-        cube.shape = ShapeDef::convex(points);
-        cube.position = Vec3(0, 0.51, 0);
-        cube.allowSleep = false;
-        Body b = world.createBody(cube);
-        for (int i = 0; i < 120; ++i) world.step();
-        const double fastest = fastestPointOver(world, {{b, std::sqrt(3.0) / 2}}, 30);
-        std::cout << "[ MEASURED ] " << backend() << ": cube hull with noise " << noise << " of its size rests at y = "
-                  << b.position().y() << ", fastest point " << fastest << " m/s\n";
-        EXPECT_NEAR(b.position().y(), 0.5, 0.02);  // as EveryShapeRestsOnEveryGround
-        // As EveryShapeRestsOnEveryGround: a rocking cube moves its corners at decimetres per second.
-        expectCriterion("shape_pairs.noisy_hull_rests", fastest < 0.02, "fastest point " + std::to_string(fastest) + " m/s",
-                        fastest);
     }
 }
 
