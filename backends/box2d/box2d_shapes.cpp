@@ -46,8 +46,9 @@ std::vector<Vec2> convexOutline(std::vector<Vec2> p) {
         hull[k++] = p[i];
     }
     hull.resize(k > 1 ? k - 1 : k);
-    // Weld as Box2D does, then drop the flattest vertex while it sits closer than kFlatVertex to
-    // the chord of its neighbours (flattest first, so a gentle arc loses no more than it must).
+    // Weld as Box2D does, then drop the flattest vertex while one lies within kFlatVertex of the
+    // chord of its neighbours (flattest first, so a gentle arc loses no more than it must). The
+    // outline moves by less than that (a right-angle corner with edges past kWeld stands 1.8 mm off).
     const double flatVertex = std::min(kFlatVertex, 0.02 * extent);
     while (hull.size() > 3) {
         std::size_t flattest = hull.size();
@@ -55,8 +56,11 @@ std::vector<Vec2> convexOutline(std::vector<Vec2> p) {
         for (std::size_t i = 0; i < hull.size(); ++i) {
             const Vec2& prev = hull[(i + hull.size() - 1) % hull.size()];
             const Vec2& next = hull[(i + 1) % hull.size()];
-            const double chord = (next - prev).norm();
-            const double height = (hull[i] - next).norm() < kWeld ? 0.0 : cross(prev, hull[i], next) / chord;
+            if ((hull[i] - next).norm() < kWeld) {
+                least = 0.0, flattest = i;
+                break;
+            }
+            const double height = cross(prev, hull[i], next) / (next - prev).norm();
             if (height < least) least = height, flattest = i;
         }
         if (flattest == hull.size()) break;

@@ -78,6 +78,43 @@ TEST(Box2dLayer, ConvexHullOfNineOutlineVerticesIsRefusedNamingTheLimit) {
     EXPECT_NEAR(b.position().y(), 0.5 * std::cos(std::numbers::pi / 8), 2e-3);  // resting on a flat side
 }
 
+// The vertex count of the polygon a body's one fixture collides with.
+int polygonVertexCount(Body& b) {
+    const b2Fixture* fixture = b.native<b2Body>()->GetFixtureList();
+    EXPECT_EQ(fixture->GetType(), b2Shape::e_polygon);
+    return static_cast<const b2PolygonShape*>(fixture->GetShape())->m_count;
+}
+
+// Outline vertices a hair off the line of their neighbours (a scanned or rounded hull) are left
+// out: Box2D clips against one edge, and a bottom split into facets rocked on one of them. A
+// plank's corners stay, however thin it is short of Box2D's weld distance.
+TEST(Box2dLayer, NearlyFlatOutlineVerticesAreDroppedButCornersKept) {
+    World world(planarSettings());
+    world.createBody(ground());
+    // An octagon whose flat bottom carries four points 10 um below it: twelve outline vertices in
+    // the points, eight in the polygon (before, refused as more than 8).
+    std::vector<Vec3> points = prism(8);
+    const double bottom = -0.5 * std::cos(std::numbers::pi / 8);
+    for (const double x : {-0.1, -0.05, 0.05, 0.1}) points.emplace_back(x, bottom - 1e-5 * (1 + std::abs(x)), 0.0);
+    BodyDef def;
+    def.shape = ShapeDef::convex(points);
+    def.position = Vec3(0, 1, 0);
+    def.allowSleep = false;
+    Body octagon = world.createBody(def);
+    EXPECT_EQ(polygonVertexCount(octagon), 8);
+    // A plank 1 m long and 3 mm thick (Box2D welds corners 2.5 mm apart) keeps its four corners.
+    const double t = 1.5e-3;
+    def.shape = ShapeDef::convex({{-0.5, -t, -0.5}, {0.5, -t, -0.5}, {0.5, t, -0.5}, {-0.5, t, -0.5},
+                                  {-0.5, -t, 0.5}, {0.5, -t, 0.5}, {0.5, t, 0.5}, {-0.5, t, 0.5}});
+    def.position = Vec3(3, 1, 0);
+    Body plank = world.createBody(def);
+    EXPECT_EQ(polygonVertexCount(plank), 4);
+    for (int i = 0; i < 120; ++i) world.step();
+    EXPECT_NEAR(octagon.position().y(), -bottom, 2e-3);  // resting on its flat side
+    EXPECT_NEAR(plank.position().y(), t, 2e-3);          // lying flat
+    EXPECT_LT(std::abs(octagon.angularVelocity().z()), 1e-3);  // not rocking
+}
+
 // A hull spanning 1e7 m with its other corners within a metre of each other: in double its XY
 // outline has four vertices and area, but in Box2D's floats the far corner rounds the near ones
 // onto one line, and b2PolygonShape::Set aborted the process (found by the API fuzzer). Refused
