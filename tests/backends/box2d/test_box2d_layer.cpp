@@ -95,7 +95,7 @@ TEST(Box2dLayer, NearlyFlatOutlineVerticesAreDroppedButCornersKept) {
     // the points, eight in the polygon (before, refused as more than 8).
     std::vector<Vec3> points = prism(8);
     const double bottom = -0.5 * std::cos(std::numbers::pi / 8);
-    for (const double x : {-0.1, -0.05, 0.05, 0.1}) points.emplace_back(x, bottom - 1e-5 * (1 + std::abs(x)), 0.0);
+    for (const double x : {-0.1, -0.05, 0.05, 0.1}) points.emplace_back(x, bottom - 1e-5 * (1 - std::abs(x)), 0.0);
     BodyDef def;
     def.shape = ShapeDef::convex(points);
     def.position = Vec3(0, 1, 0);
