@@ -17,8 +17,15 @@ std::vector<Vec3> sphereWithInterior(int n) {
     std::mt19937 rng(3);
     std::normal_distribution<double> gauss;
     std::vector<Vec3> points;
-    for (int i = 0; i < n; ++i) points.push_back(Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized());
-    for (int i = 0; i < n; ++i) points.push_back(0.5 * Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized());
+    // One draw per statement: the arguments of one call run in an order the compiler picks.
+    const auto direction = [&] {
+        const double x = gauss(rng);
+        const double y = gauss(rng);
+        const double z = gauss(rng);
+        return Vec3(x, y, z).normalized();
+    };
+    for (int i = 0; i < n; ++i) points.push_back(direction());
+    for (int i = 0; i < n; ++i) points.push_back(0.5 * direction());
     return points;
 }
 

@@ -11,9 +11,12 @@
 #include <gtest/gtest.h>
 
 #include "../../api/src/geometry/convex_hull.hpp"
+#include "../random_draws.hpp"
 #include "anyphys/error.hpp"
 
 using namespace anyphys;
+using anyphys::test::drawUnitQuat;
+using anyphys::test::drawVec3;
 
 namespace {
 
@@ -143,7 +146,7 @@ TEST(ConvexHull, PointsOnASphereAreAllVertices) {
     std::mt19937 rng(7);
     std::normal_distribution<double> gauss;
     std::vector<Vec3> points;
-    for (int i = 0; i < 300; ++i) points.push_back(Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized());
+    for (int i = 0; i < 300; ++i) points.push_back(drawVec3(gauss, rng).normalized());
     const auto hull = buildConvexHull(points);
     EXPECT_EQ(hull->vertices.size(), points.size());
     expectValidHull(*hull, points, 1e-12);
@@ -156,7 +159,7 @@ TEST(ConvexHull, RandomCloudContainsEveryInputPoint) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);
     std::vector<Vec3> points;
-    for (int i = 0; i < 2000; ++i) points.emplace_back(u(rng), 0.3 * u(rng), 2 * u(rng));
+    for (int i = 0; i < 2000; ++i) points.push_back(drawVec3(u, rng).cwiseProduct(Vec3(1, 0.3, 2)));
     const auto hull = buildConvexHull(points);
     expectValidHull(*hull, points, 1e-12);
     for (const Vec3& v : hull->vertices)
@@ -229,11 +232,14 @@ std::vector<std::vector<Vec3>> nearlyDegenerateClouds(int count) {
         const auto shake = [&] { return jitter * u(rng); };
         if (trial % 3 == 0) {
             std::uniform_int_distribution<int> g(0, 3);
-            for (int i = 0; i < 20; ++i) points.emplace_back(g(rng) + shake(), g(rng) + shake(), g(rng) + shake());
+            for (int i = 0; i < 20; ++i) {
+                const Vec3 gridPoint = drawVec3(g, rng);
+                points.push_back(gridPoint + jitter * drawVec3(u, rng));
+            }
         } else if (trial % 3 == 1) {
             points = cubeCorners(1);
             for (int i = 0; i < 30; ++i) {
-                Vec3 q(u(rng), u(rng), u(rng));
+                Vec3 q = drawVec3(u, rng);
                 q[i % 3] = (i % 2 ? 1 : -1) * (1 + shake());
                 points.push_back(q);
             }
@@ -246,7 +252,7 @@ std::vector<std::vector<Vec3>> nearlyDegenerateClouds(int count) {
             for (int i = 0; i < 10; ++i) {
                 const int k = static_cast<int>((u(rng) + 1) * 4) % 8;
                 const double t = (u(rng) + 1) / 2, y = u(rng) > 0 ? 1 : -1;
-                points.push_back((1 - t) * rim(k, y) + t * rim(k + 1, y) + Vec3(shake(), shake(), shake()));
+                points.push_back((1 - t) * rim(k, y) + t * rim(k + 1, y) + jitter * drawVec3(u, rng));
             }
         }
         clouds.push_back(std::move(points));
@@ -317,7 +323,7 @@ TEST(ConvexHull, NearlyDegenerateCloudsTurnedScaledAndMovedGiveSoundHulls) {
     std::vector<std::vector<Vec3>> clouds;
     for (int variant = 0; variant < 3; ++variant)
         for (std::vector<Vec3> points : nearlyDegenerateClouds(3000)) {
-            const Quat turn = Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized();
+            const Quat turn = drawUnitQuat(gauss, rng);
             const double scale = std::pow(10.0, 2 * variant - 2);
             const Vec3 offset = variant == 2 ? Vec3(1000, -500, 30) : Vec3::Zero();
             for (Vec3& q : points) q = scale * (turn * q) + offset;

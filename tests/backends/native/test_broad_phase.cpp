@@ -12,17 +12,19 @@
 
 #include "collision/broad_phase.hpp"
 #include "collision/mesh_data.hpp"
+#include "../../random_draws.hpp"
 
 namespace anyphys::native {
 namespace {
 
 using Pair = std::pair<std::uint64_t, std::uint64_t>;
+using anyphys::test::drawVec3;
 
 Aabb randomBox(std::mt19937& rng, double world, double maxSize) {
     std::uniform_real_distribution<double> pos(-world, world);
     std::uniform_real_distribution<double> size(0.01, maxSize);
-    const Vec3 c(pos(rng), pos(rng), pos(rng));
-    const Vec3 e(size(rng), size(rng), size(rng));
+    const Vec3 c = drawVec3(pos, rng);
+    const Vec3 e = drawVec3(size, rng);
     return {c - e, c + e};
 }
 
@@ -150,8 +152,8 @@ TEST(DynamicTree, RayCastEqualsBruteForce) {
     std::normal_distribution<double> gauss;
     std::uniform_real_distribution<double> pos(-40.0, 40.0);
     for (int r = 0; r < 200; ++r) {
-        const Vec3 o(pos(rng), pos(rng), pos(rng));
-        Vec3 d(gauss(rng), gauss(rng), gauss(rng));
+        const Vec3 o = drawVec3(pos, rng);
+        Vec3 d = drawVec3(gauss, rng);
         if (r % 10 == 0) d = Vec3(0, 0, r % 20 == 0 ? 1 : -1);  // axis-parallel rays too
         d.normalize();
         const double maxT = 60.0;
@@ -249,7 +251,7 @@ TEST(BroadPhase, LaterUpdatesReportPairsOfMovedProxiesOnly) {
         std::vector<bool> moved(n, false);
         for (int i = 100; i < n; ++i) {
             if ((i + round) % 3 != 0) continue;
-            const Vec3 dx(step(rng), step(rng), step(rng));
+            const Vec3 dx = drawVec3(step, rng);
             const Aabb before = bp.fatAabb(proxies[static_cast<std::size_t>(i)]);
             tight[static_cast<std::size_t>(i)] = {tight[static_cast<std::size_t>(i)].min + dx, tight[static_cast<std::size_t>(i)].max + dx};
             bp.moveProxy(proxies[static_cast<std::size_t>(i)], tight[static_cast<std::size_t>(i)], dx);

@@ -13,11 +13,14 @@
 #include "collision/manifold_builder.hpp"
 #include "collision/mesh_data.hpp"
 #include "native_test_shapes.hpp"
+#include "../../random_draws.hpp"
 
 namespace anyphys::native {
 namespace {
 
 using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
+using anyphys::test::drawTurn;
+using anyphys::test::drawVec3;
 
 // Exact configurations: only rounding separates the result from the closed form.
 constexpr double kTol = 1e-9;
@@ -28,6 +31,13 @@ Shape boxHull(const Vec3& half) {
     s.type = ShapeType::Convex;
     s.hull = std::make_shared<const HullData>(makeBoxHull(half));
     return s;
+}
+
+// A random pose: a position of up to `reach` along each axis, then a turn of up to 3 rad, drawn in
+// that order (random_draws.hpp).
+Transform randomPose(std::uniform_real_distribution<double>& u, std::mt19937& rng, double reach) {
+    const Vec3 position = reach * drawVec3(u, rng);
+    return at(position, drawTurn(u, rng, 3.0));
 }
 
 std::vector<Manifold> run(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double speculative = 0.0) {
@@ -425,8 +435,8 @@ TEST(Collide, HullsAgreeWithBoxesAcrossRandomPoses) {
     const Shape boxA = box(halfA), boxB = box(halfB), hullA = boxHull(halfA), hullB = boxHull(halfB);
     int compared = 0;
     for (int trial = 0; trial < 400; ++trial) {
-        const Transform xa = at(Vec3(u(rng), u(rng), u(rng)) * 0.2, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
-        const Transform xb = at(Vec3(u(rng), u(rng), u(rng)) * 1.2, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+        const Transform xa = randomPose(u, rng, 0.2);
+        const Transform xb = randomPose(u, rng, 1.2);
         const std::vector<Manifold> boxes = run(boxA, xa, boxB, xb, 0.05);
         const std::vector<Manifold> hulls = run(hullA, xa, hullB, xb, 0.05);
         const std::vector<Manifold> mixed = run(boxA, xa, hullB, xb, 0.05);
@@ -461,7 +471,7 @@ TEST(Collide, CapsuleDistanceMatchesSampling) {
     const Shape targetBox = box(Vec3(0.5, 0.3, 0.4));
     int checked = 0;
     for (int trial = 0; trial < 200; ++trial) {
-        const Transform xc = at(Vec3(u(rng), u(rng), u(rng)) * 1.5, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+        const Transform xc = randomPose(u, rng, 1.5);
         const Shape c = capsule(0.1, 0.6);
         const std::vector<Manifold> got = run(c, xc, target, at(Vec3::Zero()), 0.5);
         double sampled = std::numeric_limits<double>::infinity();
@@ -489,13 +499,13 @@ TEST(Collide, MovingBySeparationAlongTheNormalJustTouches) {
     std::uniform_real_distribution<double> u(-1, 1);
     std::normal_distribution<double> g;
     std::vector<Vec3> blob;
-    for (int i = 0; i < 30; ++i) blob.push_back(Vec3(g(rng), 0.6 * g(rng), g(rng)).normalized() * 0.6);
+    for (int i = 0; i < 30; ++i) blob.push_back(drawVec3(g, rng).cwiseProduct(Vec3(1, 0.6, 1)).normalized() * 0.6);
     const Shape shapes[] = {sphere(0.4), capsule(0.25, 0.6), box(Vec3(0.5, 0.3, 0.7)), convex(blob)};
     for (const Shape& a : shapes)
         for (const Shape& b : shapes)
             for (int trial = 0; trial < 150; ++trial) {
-                const Transform xa = at(Vec3(u(rng), u(rng), u(rng)) * 0.1, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
-                const Transform xb = at(Vec3(u(rng), u(rng), u(rng)), rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+                const Transform xa = randomPose(u, rng, 0.1);
+                const Transform xb = randomPose(u, rng, 1.0);
                 const std::vector<Manifold> before = run(a, xa, b, xb, 0.2);
                 if (before.empty()) continue;
                 const double d = deepest(before[0]);
@@ -526,8 +536,8 @@ TEST(Collide, HullWithAnEdgeOneFaceWalksCollidesLikeItsClosedTwin) {
     std::uniform_real_distribution<double> u(-1, 1);
     int touching = 0;
     for (int trial = 0; trial < 200; ++trial) {
-        const Transform xa = at(Vec3::Zero(), rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
-        const Transform xb = at(Vec3(u(rng), u(rng), u(rng)) * 0.9, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+        const Transform xa = at(Vec3::Zero(), drawTurn(u, rng, 3.0));
+        const Transform xb = randomPose(u, rng, 0.9);
         const std::vector<Manifold> expected = run(closed, xa, other, xb, 0.05);
         const std::vector<Manifold> got = run(tJunction, xa, other, xb, 0.05);
         ASSERT_EQ(expected.size(), got.size()) << trial;
@@ -602,8 +612,9 @@ TEST(Collide, NormalsPointFromAToBWhateverTheOrder) {
     for (const Shape& a : shapes)
         for (const Shape& b : shapes)
             for (int trial = 0; trial < 20; ++trial) {
-                const Transform xa = at(Vec3(u(rng), u(rng), u(rng)) * 0.1, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
-                const Transform xb = at(Vec3(u(rng), u(rng), u(rng)).normalized() * 0.8, rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+                const Transform xa = randomPose(u, rng, 0.1);
+                const Vec3 pb = 0.8 * drawVec3(u, rng).normalized();
+                const Transform xb = at(pb, drawTurn(u, rng, 3.0));
                 const std::vector<Manifold> ab = run(a, xa, b, xb, 0.1), ba = run(b, xb, a, xa, 0.1);
                 ASSERT_EQ(ab.size(), ba.size());
                 if (ab.empty()) continue;
@@ -718,7 +729,8 @@ TEST(Collide, FlatMeshFloorActsAsAPlane) {
     int checked = 0;
     for (const Shape& shape : shapes)
         for (int trial = 0; trial < 200; ++trial) {
-            const Transform xf = at(Vec3(0.6 * u(rng), 0.3 + 0.1 * u(rng), 0.6 * u(rng)), rotation(3 * u(rng), Vec3(u(rng), u(rng), u(rng))));
+            const Vec3 pf = Vec3(0, 0.3, 0) + drawVec3(u, rng).cwiseProduct(Vec3(0.6, 0.1, 0.6));
+            const Transform xf = at(pf, drawTurn(u, rng, 3.0));
             const std::vector<Manifold> onPlane = run(shape, xf, ground, at(Vec3::Zero()), 0.02);
             const std::vector<Manifold> onMesh = run(shape, xf, grid, at(Vec3::Zero()), 0.02);
             ASSERT_EQ(onPlane.empty(), onMesh.empty()) << toString(shape.type) << " trial " << trial;

@@ -12,11 +12,14 @@
 #include "collision/collide.hpp"
 #include "collision/mesh_data.hpp"
 #include "native_test_shapes.hpp"
+#include "../../random_draws.hpp"
 
 namespace anyphys::native {
 namespace {
 
 using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
+using anyphys::test::drawTurn;
+using anyphys::test::drawVec3;
 
 // A prism of 20 sides (larger than every fixed-size buffer: hull faces use the scratch buffers).
 Shape prism() {
@@ -53,19 +56,19 @@ struct Case {
 std::vector<Case> cases(const std::vector<Shape>& convexShapes, const Shape& ground, const Shape& terrain, int count) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-1, 1);
-    auto pose = [&](const Vec3& p) {
-        return Transform{p, Quat(Eigen::AngleAxisd(std::numbers::pi * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()))};
-    };
+    // Each number in its own statement (random_draws.hpp): the same cases under every compiler.
+    auto pose = [&](const Vec3& p) { return Transform{p, drawTurn(u, rng, std::numbers::pi)}; };
+    auto near = [&](const Vec3& centre, const Vec3& spread) -> Vec3 { return centre + drawVec3(u, rng).cwiseProduct(spread); };
     std::vector<Case> out;
     for (int i = 0; i < count; ++i) {
         const Shape* a = &convexShapes[static_cast<std::size_t>(i) % convexShapes.size()];
         const Shape* b = &convexShapes[static_cast<std::size_t>(i / 7) % convexShapes.size()];
         switch (i % 3) {
             case 0:
-                out.push_back({a, pose(Vec3(0.3 * u(rng), 0.9 + 0.1 * u(rng), 0.3 * u(rng))), b, pose(Vec3::Zero())});
+                out.push_back({a, pose(near(Vec3(0, 0.9, 0), Vec3(0.3, 0.1, 0.3))), b, pose(Vec3::Zero())});
                 break;
-            case 1: out.push_back({a, pose(Vec3(u(rng), 0.45 + 0.1 * u(rng), u(rng))), &ground, Transform{}}); break;
-            default: out.push_back({a, pose(Vec3(u(rng), 0.45 + 0.1 * u(rng), u(rng))), &terrain, Transform{}}); break;
+            case 1: out.push_back({a, pose(near(Vec3(0, 0.45, 0), Vec3(1, 0.1, 1))), &ground, Transform{}}); break;
+            default: out.push_back({a, pose(near(Vec3(0, 0.45, 0), Vec3(1, 0.1, 1))), &terrain, Transform{}}); break;
         }
     }
     return out;

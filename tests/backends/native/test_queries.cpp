@@ -11,11 +11,15 @@
 #include "collision/mesh_data.hpp"
 #include "collision/queries.hpp"
 #include "native_test_shapes.hpp"
+#include "../../random_draws.hpp"
 
 namespace anyphys::native {
 namespace {
 
 using namespace anyphys::native::test;  // shapes and poses (native_test_shapes.hpp)
+using anyphys::test::drawTurn;
+using anyphys::test::drawUnitQuat;
+using anyphys::test::drawVec3;
 
 constexpr double kTol = 1e-9;
 constexpr double kPi = std::numbers::pi;
@@ -156,8 +160,8 @@ TEST(Queries, RayBoxAndHullAgree) {
     const Shape cubeBox = box(Vec3::Constant(0.5));
     const Shape cubeHull = hullCube(0.5);
     for (int i = 0; i < 50; ++i) {
-        const Quat q = Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized();
-        const Transform pose = at(Vec3(gauss(rng), gauss(rng), gauss(rng)), q);
+        const Quat q = drawUnitQuat(gauss, rng);
+        const Transform pose = at(drawVec3(gauss, rng), q);
         const Vec3 faceNormal = q * Vec3::UnitY();
         const Vec3 origin = pose.position + 5.0 * faceNormal;
         for (const Shape* s : {&cubeBox, &cubeHull}) {
@@ -167,8 +171,8 @@ TEST(Queries, RayBoxAndHullAgree) {
             expectVec(hit->normal, faceNormal);
         }
         // A ray through a random point gives the same answer for both.
-        const Vec3 dir = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
-        const Vec3 o = pose.position - 3.0 * dir + 0.4 * Vec3(gauss(rng), gauss(rng), gauss(rng));
+        const Vec3 dir = drawVec3(gauss, rng).normalized();
+        const Vec3 o = pose.position - 3.0 * dir + 0.4 * drawVec3(gauss, rng);
         const auto hb = raycast(cubeBox, pose, o, dir, 10.0);
         const auto hh = raycast(cubeHull, pose, o, dir, 10.0);
         ASSERT_EQ(hb.has_value(), hh.has_value());
@@ -236,8 +240,12 @@ TEST(Queries, RayMeshIsTwoSidedAndMatchesBruteForce) {
     };
     std::uniform_real_distribution<double> xz(-8.0, 8.0);
     for (int r = 0; r < 100; ++r) {
-        const Vec3 o(xz(rng), 3.0, xz(rng));
-        const Vec3 d = Vec3(0.3 * bump(rng), -1.0, 0.3 * bump(rng)).normalized();
+        const double ox = xz(rng);
+        const double oz = xz(rng);
+        const Vec3 o(ox, 3.0, oz);
+        const double dx = bump(rng);
+        const double dz = bump(rng);
+        const Vec3 d = Vec3(0.3 * dx, -1.0, 0.3 * dz).normalized();
         hit = raycast(grid, Transform{}, o, d, 10.0);
         ASSERT_TRUE(hit);
         // The hit lies on the surface, and the ray stays above the surface before it.
@@ -314,16 +322,16 @@ TEST(Queries, DistanceHullEqualsBoxAndSphereBoxIsAnalytic) {
     const Shape cubeHull = hullCube(0.5);
     const Shape other = capsule(0.2, 0.4);
     for (int i = 0; i < 200; ++i) {
-        const Quat qa = Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized();
-        const Quat qb = Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized();
+        const Quat qa = drawUnitQuat(gauss, rng);
+        const Quat qb = drawUnitQuat(gauss, rng);
         const Transform xa = at(Vec3::Zero(), qa);
-        const Transform xb = at(1.5 * Vec3(gauss(rng), gauss(rng), gauss(rng)), qb);
+        const Transform xb = at(1.5 * drawVec3(gauss, rng), qb);
         const double viaBox = distance(cubeBox, xa, other, xb).distance;
         const double viaHull = distance(cubeHull, xa, other, xb).distance;
         EXPECT_NEAR(viaBox, viaHull, kTol);
 
         // Sphere vs box: distance from the centre to the box (clamped in the box frame) - r.
-        const Vec3 c = qa * (2.0 * Vec3(gauss(rng), gauss(rng), gauss(rng)));
+        const Vec3 c = qa * (2.0 * drawVec3(gauss, rng));
         const Vec3 local = qa.conjugate() * c;
         const double exact = std::max(0.0, (local - local.cwiseMax(Vec3::Constant(-0.5)).cwiseMin(Vec3::Constant(0.5))).norm() - 0.1);
         const auto r = distance(sphere(0.1), at(c), cubeHull, xa);
@@ -360,8 +368,11 @@ TEST(Queries, DistanceIsCertifiedBySeparatingPlanes) {
     auto randomShape = [&](int kind) {
         switch (kind % 4) {
             case 0: return sphere(size(rng));
-            case 1: return capsule(size(rng), size(rng));
-            case 2: return box(Vec3(size(rng), size(rng), size(rng)));
+            case 1: {
+                const double radius = size(rng);
+                return capsule(radius, size(rng));
+            }
+            case 2: return box(drawVec3(size, rng));
             default: return hullCube(size(rng));
         }
     };
@@ -369,9 +380,10 @@ TEST(Queries, DistanceIsCertifiedBySeparatingPlanes) {
     for (int i = 0; i < 2000; ++i) {
         const Shape a = randomShape(i);
         const Shape b = randomShape(i / 4);
-        const Transform xa = at(Vec3(gauss(rng), gauss(rng), gauss(rng)), Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized());
-        const Transform xb = at(xa.position + 2.5 * Vec3(gauss(rng), gauss(rng), gauss(rng)),
-                                Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized());
+        const Vec3 pa = drawVec3(gauss, rng);
+        const Transform xa = at(pa, drawUnitQuat(gauss, rng));
+        const Vec3 pb = xa.position + 2.5 * drawVec3(gauss, rng);
+        const Transform xb = at(pb, drawUnitQuat(gauss, rng));
         const auto r = distance(a, xa, b, xb);
         const auto swapped = distance(b, xb, a, xa);
         EXPECT_NEAR(r.distance, swapped.distance, 1e-9);
@@ -488,15 +500,17 @@ TEST(Queries, TimeOfImpactIsConservativeOnRandomMotions) {
     const double target = 0.01;
     int impacts = 0;
     for (int i = 0; i < 150; ++i) {
-        const Shape moving = i % 3 == 0 ? box(Vec3(size(rng), size(rng), size(rng)))
-                             : i % 3 == 1 ? capsule(size(rng), size(rng))
-                                          : hullCube(size(rng));
+        const auto drawCapsule = [&] {
+            const double radius = size(rng);
+            return capsule(radius, size(rng));
+        };
+        const Shape moving = i % 3 == 0 ? box(drawVec3(size, rng)) : i % 3 == 1 ? drawCapsule() : hullCube(size(rng));
         const Shape fixed = i % 2 ? box(Vec3(size(rng), 2.0, 2.0)) : sphere(1.0);
-        const Transform xb = at(Vec3::Zero(), Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized());
-        const Vec3 from = 4.0 * Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
-        const Transform start = at(from, Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized());
-        const Transform end = at(-from + 0.5 * Vec3(gauss(rng), gauss(rng), gauss(rng)),
-                                 start.orientation * rotation(2.0 * gauss(rng), Vec3(gauss(rng), gauss(rng), gauss(rng))));
+        const Transform xb = at(Vec3::Zero(), drawUnitQuat(gauss, rng));
+        const Vec3 from = 4.0 * drawVec3(gauss, rng).normalized();
+        const Transform start = at(from, drawUnitQuat(gauss, rng));
+        const Vec3 endPosition = -from + 0.5 * drawVec3(gauss, rng);
+        const Transform end = at(endPosition, start.orientation * drawTurn(gauss, rng, 2.0));
         if (distance(moving, start, fixed, xb).distance <= target) continue;
         const double t = timeOfImpact(moving, start, end, fixed, xb, target);
         auto poseAt = [&](double s) {
