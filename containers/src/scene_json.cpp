@@ -578,7 +578,13 @@ SceneJoint readJoint(const json& v, const std::string& path, const std::map<std:
             return "";
         }
         const std::string name = readString(*x, field);
-        if (!required && name == "world") return "";
+        if (!required && name == "world") {
+            if (bodies.contains(name))
+                throw Error(ErrorKind::InvalidArgument, field,
+                            field + ": \"world\" names both the static world and a body of the scene; omit " +
+                                std::string(key) + " to hold the joint to the world, or rename the body");
+            return "";
+        }
         if (!bodies.contains(name)) throw Error(ErrorKind::InvalidArgument, field, field + ": no body named \"" + name + "\"");
         return name;
     };
@@ -611,8 +617,19 @@ SceneJoint readJoint(const json& v, const std::string& path, const std::map<std:
     return out;
 }
 
+// Objects and arrays nested deeper than this are refused as they are read. A scene's own keys nest
+// six deep and userData is the game's, but each level's path names its parents, so without a
+// bound a file of 200 000 nested arrays (400 KB) took tens of gigabytes before it was refused.
+constexpr std::size_t kMaxJsonDepth = 256;
+
+// The path of a deeply nested value, shortened to its start: one line of error, not a page.
+std::string shortened(const std::string& path) {
+    constexpr std::size_t kShown = 80;
+    return path.size() <= kShown ? path : path.substr(0, kShown) + "...";
+}
+
 // nlohmann keeps the last of two equal keys silently; this callback refuses them instead,
-// naming the JSON path of the repeated key.
+// naming the JSON path of the repeated key. It also refuses nesting past kMaxJsonDepth.
 class DuplicateKeyCheck {
 public:
     bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
@@ -651,6 +668,12 @@ private:
             const Frame& parent = stack_.back();
             // Elements of a top-level array are named "scene[0]", never a bare "[0]".
             path = parent.object ? join(parent.path, parent.key) : at(label(parent.path), parent.index);
+        }
+        if (stack_.size() == kMaxJsonDepth) {
+            const std::string where = shortened(path);
+            throw Error(ErrorKind::Parse, where,
+                        where + ": objects and arrays nested more than " + std::to_string(kMaxJsonDepth) +
+                            " deep; a scene file may nest at most " + std::to_string(kMaxJsonDepth) + " (userData included)");
         }
         stack_.push_back(Frame{object, path, {}, {}, 0});
     }

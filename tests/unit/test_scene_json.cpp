@@ -491,6 +491,13 @@ TEST(SceneJson, JointErrorsNameTheJsonPath) {
     expectParseError(scene(R"({"name": "j", "type": "ball", "bodyB": "a"}, {"name": "j", "type": "ball", "bodyB": "b"})"),
                      {"joints[1].name", "must be unique"});
     expectParseError(R"({"joints": {}})", {"joints: must be an array"});
+    // "world" is the static world only while no body has that name: otherwise it would mean both.
+    const std::string withWorldBody = R"({"bodies": [{"name": "world", "shape": {"type": "sphere", "radius": 1}},
+                                                     {"name": "x", "shape": {"type": "sphere", "radius": 1}}], "joints": [)";
+    expectParseError(withWorldBody + R"({"type": "ball", "bodyA": "world", "bodyB": "x"}]})",
+                     {"joints[0].bodyA: \"world\" names both the static world and a body of the scene", "omit bodyA"});
+    EXPECT_EQ(parseScene(withWorldBody + R"({"type": "ball", "bodyA": "x", "bodyB": "world"}]})").joints[0].bodyB, "world");
+    EXPECT_EQ(parseScene(scene(R"({"type": "ball", "bodyA": "world", "bodyB": "a"})")).joints[0].bodyA, "");
     // A motor faster than the scene's ceilings (its settings' or the defaults, 1e5 m/s and rad/s).
     expectParseError(scene(R"({"type": "slider", "bodyB": "a", "motor": {"speed": 1e20, "maxForce": 1e20}})"),
                      {"joints[0].motor.speed", "maxSpeed", "1e+20"});
@@ -503,6 +510,20 @@ TEST(SceneJson, SyntaxErrorsGiveLineAndColumn) {
     expectParseError("{\n  \"bodies\": [\n    }\n", {"scene: invalid JSON at line 3, column 5"});
     expectParseError("", {"scene: invalid JSON at line 1, column 1"});
     expectParseError(R"({"settings": {"timeStep": 1e400}})", {"scene: invalid JSON", "1e400"});
+}
+
+// Nesting is bounded (256 levels, userData included): 200 000 nested arrays in a 400 KB file took
+// tens of gigabytes (each level's path names its parents) before the bound.
+TEST(SceneJson, DeepNestingIsRefusedWithoutReadingIt) {
+    const auto nested = [](int depth) { return std::string(static_cast<std::size_t>(depth), '[') + std::string(static_cast<std::size_t>(depth), ']'); };
+    const auto withUserData = [](const std::string& data) {
+        return R"({"bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 1}, "userData": )" + data + "}]}";
+    };
+    // The root object, "bodies", the body and userData's own array are 4 levels: 252 more fit.
+    EXPECT_EQ(parseScene(withUserData(nested(253))).bodyUserData.at("b").size(), 2u * 253u);
+    expectParseError(withUserData(nested(254)), {"bodies[0].userData[0][0]", "nested more than 256 deep"});
+    expectParseError(withUserData(nested(200000)), {"bodies[0].userData[0][0]", "...: objects and arrays nested more than 256"});
+    expectParseError(nested(100000), {"scene[0][0]", "nested more than 256 deep"});
 }
 
 TEST(SceneJson, SaveAndLoadFiles) {

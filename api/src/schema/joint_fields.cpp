@@ -37,7 +37,7 @@ const std::vector<Field<JointDef>>& jointDefFields() {
          .note = "backends list the types they run (`anyphys backends`: joint types)", .honour = Honour::Parent,
          .ownCode = true, .allowed = allowedNames<JointType>},
         {.key = "bodyA", .path = "joint.bodyA", .type = Type::String, .unit = "body name",
-         .defaultText = "omitted: the world", .note = "a body of the scene, or `\"world\"`", .honour = Honour::Parent,
+         .defaultText = "omitted: the world", .note = "a body of the scene, or `\"world\"` (refused when a body is named `\"world\"`: it would mean both)", .honour = Honour::Parent,
          .ownCode = true},
         {.key = "bodyB", .path = "joint.bodyB", .type = Type::String, .unit = "body name", .required = true,
          .note = "a body of the scene, not bodyA; one of the two dynamic", .honour = Honour::Parent, .ownCode = true},
