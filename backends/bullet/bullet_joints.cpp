@@ -137,6 +137,37 @@ btScalar DistanceConstraint::getParam(int num, int axis) const {
     return cfm_;
 }
 
+// ---- SlidingDofConstraint ------------------------------------------------------------------
+
+void SlidingDofConstraint::getInfo1(btConstraintInfo1* info) {
+    btGeneric6DofSpring2Constraint::getInfo1(info);
+    rows_ = info->m_numConstraintRows;
+}
+
+// Some linear axis is not locked (lower != upper; free is lower > upper): B can travel along it.
+bool SlidingDofConstraint::travels() const {
+    for (int i = 0; i < 3; ++i)
+        if (m_linearLimits.m_lowerLimit[i] != m_linearLimits.m_upperLimit[i]) return true;
+    return false;
+}
+
+void SlidingDofConstraint::getInfo2(btConstraintInfo2* info) {
+    btGeneric6DofSpring2Constraint::getInfo2(info);
+    // Without travel the anchors coincide but for the error the rows close: Bullet's rows stand.
+    // With a static B and locked rotations Bullet scales A's lever (by its m_factA, 0 then): left
+    // as it is, the static body taking the torque. Otherwise A's lever is unscaled.
+    if (!travels() || (m_hasStaticBody && m_factA < btScalar(1))) return;
+    const btVector3 lever = m_calculatedTransformB.getOrigin() - m_rbA.getCenterOfMassPosition();
+    for (int r = 0; r < rows_; ++r) {
+        const int s = r * info->rowskip;
+        const btVector3 axis(info->m_J1linearAxis[s], info->m_J1linearAxis[s + 1], info->m_J1linearAxis[s + 2]);
+        // Angular rows leave the linear Jacobian as the solver hands it over: zero.
+        if (axis.isZero()) continue;
+        const btVector3 angular = lever.cross(axis);
+        for (int k = 0; k < 3; ++k) info->m_J1angularAxis[s + k] = angular[k];
+    }
+}
+
 // ---- DecoupledConstraint -------------------------------------------------------------------
 
 DecoupledConstraint::DecoupledConstraint(btTypedConstraint& inner)
@@ -365,7 +396,7 @@ BulletJointPeer::BulletJointPeer(BulletWorld& world, const JointPeerDef& def) : 
             // The free rotation comes first in the Euler order, so its angle has the full range
             // (the middle one is limited to +-pi/2): X for a hinge, Y (the axle) for a wheel.
             const RotateOrder order = def.type == JointType::Wheel ? RO_YXZ : RO_XYZ;
-            auto dof = std::make_unique<btGeneric6DofSpring2Constraint>(a, b, fa, fb, order);
+            auto dof = std::make_unique<SlidingDofConstraint>(a, b, fa, fb, order);
             dof_ = dof.get();
             for (int axis = 0; axis < 6; ++axis) dof_->setLimit(axis, 0, 0);  // locked
             if (def.type == JointType::Wheel) freeAxis(*dof_, kAngY);

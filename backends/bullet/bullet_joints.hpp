@@ -9,6 +9,7 @@
 //   wheel     btGeneric6DofSpring2Constraint, translation along X (suspension: spring)
 //             and rotation about Y (the axle: motor) free, Euler order YXZ so the spin angle
 //             has the full range; steering turns frame A about X (setFrames)
+//             (hinge, slider and wheel: SlidingDofConstraint below, which moves A's lever where B travels)
 //   cone      btConeTwistConstraint (twist axis = frame X); asymmetric twist limits by turning
 //             B's frame about X to the middle of the range
 //   distance  DistanceConstraint below: one row along the line between the anchors (rigid,
@@ -53,6 +54,28 @@ private:
     btVector3 anchorA_, anchorB_;
     double length_;
     btScalar erp_ = -1, cfm_ = 0;  // erp < 0: the solver's
+};
+
+/// Bullet's 6-DOF spring 2 (hinge, slider, wheel) with, where B travels along a linear axis
+/// (slider, wheel), A's side of each linear row acting at B's anchor. Bullet puts each body's side
+/// at its own anchor, the Jacobian of keeping the two anchors together. Once B has slid along the
+/// axis they are apart, and a row across the axis then pushes A and B along parallel lines that
+/// do not meet: a torque on the pair from nowhere (a free pair turning while B slid out gained 90x
+/// its angular momentum in 10 s). The rows measure B's offset along axes turning with A, whose
+/// Jacobian acts on A at the point under B's anchor. A hinge's rows stay Bullet's: there the
+/// anchors part only by the error the rows close (moving its lever too opened a landing ragdoll
+/// pile's joints to 117 mm instead of 67).
+class SlidingDofConstraint final : public btGeneric6DofSpring2Constraint {
+public:
+    using btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint;
+
+    void getInfo1(btConstraintInfo1* info) override;
+    void getInfo2(btConstraintInfo2* info) override;
+
+private:
+    bool travels() const;
+
+    int rows_ = 0;  // this substep's, from getInfo1
 };
 
 /// Wraps a Bullet constraint and hands the solver its rigid rows (those without bounds) turned
@@ -168,7 +191,7 @@ private:
     double twistOffset_ = 0.0;  // cone: B's Bullet frame turned about X by this (rad)
     std::unique_ptr<btTypedConstraint> constraint_;     // Bullet's constraint of this type
     std::unique_ptr<DecoupledConstraint> decoupled_;    // what the world solves
-    btGeneric6DofSpring2Constraint* dof_ = nullptr;  // hinge, slider, wheel
+    SlidingDofConstraint* dof_ = nullptr;  // hinge, slider, wheel
     DistanceConstraint* distance_ = nullptr;
     btJointFeedback feedback_;
     Vec3 stepImpulse_ = Vec3::Zero(), stepAngularImpulse_ = Vec3::Zero();  // on B, about B's anchor
