@@ -17,8 +17,8 @@ namespace anyphys::ode {
 
 class OdeBody;
 
-/// Where a spring acts: about an axis (hinge), or along one, at a point of each body (slider: the
-/// centres; distance and wheel: the anchors).
+/// Where a spring acts: about an axis (hinge), or along one, at a point of each body (distance:
+/// the anchors; slider and wheel: B's anchor for both).
 struct SpringLine {
     Vec3 axis = Vec3::UnitX();  ///< unit; B's stretch grows along (or about) it
     bool angular = false;

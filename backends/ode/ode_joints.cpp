@@ -67,6 +67,39 @@ void feedStop(dJointID motor, int axis, bool upper, double angle, double bound, 
     dJointSetAMotorAngle(motor, axis, upper ? std::abs(gap) : -std::abs(gap));
 }
 
+// ODE's hinge2 acts its three point rows on body 1 at anchor 1 and on body 2 at anchor 2, both
+// fixed in their bodies: once the suspension travels they part along the axis, and the rows
+// across it push the bodies at two points, a couple on the pair (a free wheel sliding out on a
+// turning pair gained 90x its angular momentum in 10 s). Placed every ODE step, anchor 1 is A's
+// point at B's anchor and anchor 2 B's anchor: they part only by the drift to correct. ODE sets
+// both from one world point, so body 2 is moved by their difference for the call.
+void placeHinge2Anchors(dJointID joint, dBodyID body2, const Vec3& on1, const Vec3& on2) {
+    const dReal* p = dBodyGetPosition(body2);
+    const Vec3 held(p[0], p[1], p[2]);
+    const Vec3 moved = held - (on2 - on1);
+    dBodySetPosition(body2, moved.x(), moved.y(), moved.z());
+    dJointSetHinge2Anchor(joint, on1.x(), on1.y(), on1.z());
+    dBodySetPosition(body2, held.x(), held.y(), held.z());
+}
+
+// Placing the anchors makes ODE's angle 1 zero at the current pose, so the steering lock is fed
+// its error each step: lo = hi = the angle 1 at which B's axle is at the steering angle (ODE's
+// angle 1 is A's turn relative to B: the axle's error from A's steered axle, with its sign).
+// The upper stop opens first so ODE never holds lo above hi.
+void lockSteering(dJointID joint, const Transform& fa, const Transform& fb) {
+    const Vec3 x = fa.orientation * Vec3::UnitX();
+    const Vec3 yA = fa.orientation * Vec3::UnitY(), yB = fb.orientation * Vec3::UnitY();
+    const double error = std::atan2(x.dot(yA.cross(yB)), yA.dot(yB));
+    dJointSetHinge2Param(joint, dParamHiStop, dInfinity);
+    dJointSetHinge2Param(joint, dParamLoStop, error);
+    dJointSetHinge2Param(joint, dParamHiStop, error);
+}
+
+// A stiff (implicit) suspension spring is ODE's suspension row, whose target rate is
+// ERP / h times the anchors' distance along the axis: they are kept this fraction of the travel
+// apart, with the ERP scaled up by its inverse, so the row keeps its rate and its lever arms.
+constexpr double kSuspensionGapShare = 1e-3;
+
 // Without a spring a wheel's suspension is free: its row gets a CFM so large that it carries no
 // force (1e9 m/N: a 1 kN load moves it at 1e-6 m/s).
 constexpr double kFreeCfm = 1e9;
@@ -275,10 +308,8 @@ void OdeJoint::configureMotors() {
             // The spin motor on axis 2; ODE's rate there is w1 - w2 = A's spin relative to B.
             dJointSetHinge2Param(main_, dParamVel2, def_.motor ? -def_.motor->speed : 0.0);
             dJointSetHinge2Param(main_, dParamFMax2, def_.motor ? def_.motor->maxForce : 0.0);
-            // Steering: axis 1 locked at the steering angle (a stop with lo = hi holds both ways).
-            // ODE's angle 1 is A's turn about axis 1 relative to the wheel: minus the steering.
-            dJointSetHinge2Param(main_, dParamLoStop, -steering_);
-            dJointSetHinge2Param(main_, dParamHiStop, -steering_);
+            // Steering: axis 1 locked (a stop with lo = hi holds both ways), fed each ODE step
+            // (lockSteering).
             break;
         case JointType::Fixed:
         case JointType::Ball:
@@ -480,8 +511,13 @@ void OdeJoint::beforeOdeStep(double h) {
                 addStopRow(fb.position, x, offset - def_.limits->lower, h);
             }
             if (spring) {
-                // The LMotor's row moves the centres (no torque).
-                const SpringLine line{.axis = x, .atA = stateA().position, .atB = b_->state().position, .stretch = offset};
+                // The explicit force acts on both bodies at B's anchor: the offset is measured
+                // there, so that is where -k C does its work, and one line of action for the
+                // pair keeps its angular momentum (at the centres the pair of forces is a
+                // couple that stops the pair turning). The LMotor's row (damping, or a stiff
+                // spring) is consistent already: ODE acts it at the midpoint of the centres, on
+                // one line for both bodies, and with their turn locked its rate is the anchor's.
+                const SpringLine line{.axis = x, .atA = fb.position, .atB = fb.position, .stretch = offset};
                 soften(line, inverseMassAlong(line, a_, b_));
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamVel, -erp / h * offset);
                 dJointSetLMotorParam(lmotor_, group(kSpringAxis) + dParamCFM, cfm);
@@ -540,12 +576,17 @@ void OdeJoint::beforeOdeStep(double h) {
             if (spring) {
                 const SpringLine line{.axis = x, .atA = fb.position, .atB = fb.position, .stretch = travel};
                 soften(line, inverseMassAlong(line, a_, b_));
-                dJointSetHinge2Param(main_, dParamSuspensionERP, erp);
+                dJointSetHinge2Param(main_, dParamSuspensionERP, erp / kSuspensionGapShare);
                 dJointSetHinge2Param(main_, dParamSuspensionCFM, cfm);
             } else {
+                erp = 0.0;
                 dJointSetHinge2Param(main_, dParamSuspensionERP, 0.0);
                 dJointSetHinge2Param(main_, dParamSuspensionCFM, kFreeCfm);
             }
+            // With no stiffness in the row the anchors need not part along the axis at all.
+            const double gap = erp > 0.0 ? kSuspensionGapShare * travel : 0.0;
+            placeHinge2Anchors(main_, idB_, fa.position + (travel - gap) * x, fb.position);
+            lockSteering(main_, fa, fb);
             break;
         }
         case JointType::Fixed:

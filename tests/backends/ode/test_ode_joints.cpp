@@ -96,6 +96,53 @@ void run(OdeWorld& world, double seconds, const std::function<void(double)>& eac
     }
 }
 
+// ---- isolated pairs ---------------------------------------------------------------------------
+
+// A free body of `mass` kg with principal moments `inertia` (no shape), posed and moving.
+std::unique_ptr<BodyPeer> freeBody(OdeWorld& world, const Vec3& position, const Quat& orientation, double mass,
+                                   const Vec3& inertia, const Vec3& v = Vec3::Zero(), const Vec3& w = Vec3::Zero()) {
+    BodyPeerDef d;
+    d.def.position = position;
+    d.def.orientation = orientation;
+    d.def.linearVelocity = v;
+    d.def.angularVelocity = w;
+    d.def.allowSleep = false;
+    d.mass = {mass, inertia};
+    return world.createBody(d);
+}
+
+// Angular momentum about the origin and kinetic energy of a body (its principal inertia given).
+Vec3 angularMomentum(const BodyPeer& b, double mass, const Vec3& inertia) {
+    const BodyState s = b.state();
+    const Eigen::Matrix3d r = s.orientation.toRotationMatrix();
+    return r * inertia.asDiagonal() * r.transpose() * s.angularVelocity + mass * s.position.cross(s.linearVelocity);
+}
+double kineticEnergy(const BodyPeer& b, double mass, const Vec3& inertia) {
+    const BodyState s = b.state();
+    const Vec3 wBody = s.orientation.conjugate() * s.angularVelocity;
+    return 0.5 * mass * s.linearVelocity.squaredNorm() + 0.5 * wBody.dot(inertia.asDiagonal() * wBody);
+}
+
+// A joint between A and B with its frame at `anchor` in the world, X along `axis` and Y along
+// `axle` (unit, perpendicular).
+JointPeerDef pairJoint(JointType type, BodyPeer& a, BodyPeer& b, const Vec3& anchor, const Vec3& axis,
+                       const Vec3& axle) {
+    Eigen::Matrix3d m;
+    m << axis, axle, axis.cross(axle);
+    const Quat frame(m);
+    const auto local = [&](const BodyPeer& body) {
+        const BodyState s = body.state();
+        return Transform{s.orientation.conjugate() * (anchor - s.position), (s.orientation.conjugate() * frame).normalized()};
+    };
+    JointPeerDef d;
+    d.type = type;
+    d.bodyA = &a;
+    d.bodyB = &b;
+    d.frameA = local(a);
+    d.frameB = local(b);
+    return d;
+}
+
 // ---- hinge ----------------------------------------------------------------------------------
 
 // How far a rigid ODE joint lets a body at speed v on a radius L drift off its circle: each step
@@ -341,6 +388,64 @@ TEST(OdeJoints, SliderMotorAndLimits) {
     run(*world, 4.0);
     EXPECT_NEAR(slider->position(), -0.5, 1e-3);
     EXPECT_NEAR(b->state().position.x(), 1.0, 1e-9);
+}
+
+// A slider spring between two free bodies (no gravity): its force acts on both at B's anchor,
+// so the pair keeps its angular momentum, and the pair turns as B oscillates. A 3 kg ball at the
+// origin, a 2 kg ball at (1, 0, 0) moving 0.5 m/s along the axis (+Y): linearised, the period is
+// 2 pi / sqrt(k (mu + I) / (mu I)), mu the reduced mass and I the balls' own moments (the arm
+// turns with the pair): 0.2298 s; the spring pushing at the centres gave sqrt(mu / k)'s 1.088 s
+// and Lz from 1.0 down to -0.2. Then a box turned off the axes, on a diagonal axis.
+TEST(OdeJoints, SliderSpringBetweenTwoBodiesKeepsAngularMomentum) {
+    const double k = 40.0, mA = 3.0, mB = 2.0;
+    const Vec3 iA = Vec3::Constant(0.4 * mA * 0.2 * 0.2), iB = Vec3::Constant(0.4 * mB * 0.1 * 0.1);
+    {
+        auto world = jointWorld(Effect::Joints);
+        auto a = freeBody(*world, Vec3::Zero(), Quat::Identity(), mA, iA);
+        auto b = freeBody(*world, Vec3(1, 0, 0), Quat::Identity(), mB, iB, Vec3(0, 0.5, 0));
+        JointPeerDef d = pairJoint(JointType::Slider, *a, *b, Vec3(1, 0, 0), Vec3::UnitY(), -Vec3::UnitX());
+        d.spring = JointSpringSI{k, 0.0};
+        auto slider = world->createJoint(d);
+        const double l0 = (angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iB)).z();
+        double worst = 0.0;
+        PeriodMeter meter;
+        run(*world, 5.0, [&](double t) {
+            meter.add(t, slider->position());
+            const double l = (angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iB)).z();
+            worst = std::max(worst, std::abs(l - l0));
+        });
+        const double mu = mA * mB / (mA + mB), inertia = iA.z() + iB.z();
+        const double exact = 2.0 * kPi / std::sqrt(k * (mu + inertia) / (mu * inertia));
+        std::cout << "[ MEASURED ] ode pair slider spring: period " << meter.period() << " s (linearised " << exact
+                  << "), max |Lz - L0| " << worst << " (L0 " << l0 << ")\n";
+        // omega h = 0.46: semi-implicit Euler shortens the period by about 1 % (2 asin(omega h
+        // / 2) / h); the swing (2 cm on a 1 m arm) adds little nonlinearity: 2.5 %.
+        EXPECT_NEAR(meter.period(), exact, 0.025 * exact);
+        // L: only the rows' drift correction (ERP on gaps of 1e-6 m) moves it; 1e-3 of L0.
+        EXPECT_LT(worst, 1e-3 * std::abs(l0));
+    }
+    {
+        auto world = jointWorld(Effect::Joints);
+        const Vec3 iBox = mB / 3.0 * Vec3(0.2 * 0.2 + 0.3 * 0.3, 0.1 * 0.1 + 0.3 * 0.3, 0.1 * 0.1 + 0.2 * 0.2);
+        const Vec3 axis = Vec3(1, -2, 0.5).normalized();
+        const Quat turned(Eigen::AngleAxisd(1.0, Vec3(0.3, 0.7, -0.2).normalized()));
+        auto a = freeBody(*world, Vec3(0, 2, 3), Quat::Identity(), mA, iA);
+        auto b = freeBody(*world, Vec3(1, 2, 3), turned, mB, iBox, 0.5 * axis);
+        JointPeerDef d = pairJoint(JointType::Slider, *a, *b, Vec3(1, 2, 3), axis, axis.unitOrthogonal());
+        d.spring = JointSpringSI{k, 0.0};
+        auto slider = world->createJoint(d);
+        const Vec3 l0 = angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iBox);
+        double worst = 0.0;
+        run(*world, 10.0, [&](double) {
+            worst = std::max(worst, (angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iBox) - l0).norm());
+        });
+        std::cout << "[ MEASURED ] ode pair slider spring, diagonal: max |L - L0| " << worst << " (|L0| " << l0.norm()
+                  << ")\n";
+        // About 1.1 with the spring at the centres. Measured 0.033: ODE's implicit gyroscopic
+        // step of the box's own spin does not keep its L exactly (with an isotropic B this case
+        // keeps L to 1e-14); 2 % of |L0|.
+        EXPECT_LT(worst, 0.02 * l0.norm());
+    }
 }
 
 // ---- distance ---------------------------------------------------------------------------------
@@ -646,6 +751,51 @@ TEST(OdeJoints, WheelSagReactionAndTravelLimits) {
                   << highest << "]\n";
         EXPECT_NEAR(highest, 0.1, 1e-3) << toString(solver);
         EXPECT_NEAR(lowest, -0.1, 1e-3) << toString(solver);
+    }
+}
+
+// A free wheel between two free bodies (no gravity, no limits, motor or spring), co-rotating at
+// 0.3 rad/s about the spin axis while B slides out along the suspension axis at 0.5 m/s relative
+// to A. An ideal joint keeps L and the kinetic energy; ODE's hinge2 with its anchors fixed in
+// the bodies pushed them at points parting with the travel: at 10 s Lz 92.6 (from 0.977) and
+// 27 J (from 0.387 J). The suspension along Y and along Z, then resting against a travel limit.
+TEST(OdeJoints, WheelBetweenTwoBodiesKeepsAngularMomentumAndEnergy) {
+    const double mA = 3.0, mB = 2.0, w = 0.3;
+    const Vec3 iA = Vec3::Constant(0.4 * mA * 0.2 * 0.2), iB = Vec3::Constant(0.4 * mB * 0.1 * 0.1);
+    struct Case {
+        Vec3 axis, spinAxis;
+        bool limited;
+    };
+    for (const Case& c : {Case{Vec3::UnitY(), Vec3::UnitZ(), false}, Case{Vec3::UnitZ(), Vec3::UnitY(), false},
+                          Case{Vec3::UnitY(), Vec3::UnitZ(), true}}) {
+        auto world = jointWorld(Effect::Joints);
+        // Turning about the centre of mass at w about the spin axis, B sliding out along the axis.
+        const Vec3 spin = w * c.spinAxis, com(mB / (mA + mB), 0, 0);
+        const auto vAt = [&](const Vec3& p) { return Vec3(spin.cross(p - com)); };
+        auto a = freeBody(*world, Vec3::Zero(), Quat::Identity(), mA, iA, vAt(Vec3::Zero()) - 0.2 * c.axis, spin);
+        auto b = freeBody(*world, Vec3(1, 0, 0), Quat::Identity(), mB, iB, vAt(Vec3(1, 0, 0)) + 0.3 * c.axis, spin);
+        JointPeerDef d = pairJoint(JointType::Wheel, *a, *b, Vec3(1, 0, 0), c.axis, c.spinAxis);
+        if (c.limited) d.limits = JointLimits{-0.1, 0.1};
+        auto wheel = world->createJoint(d);
+        const Vec3 l0 = angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iB);
+        const double e0 = kineticEnergy(*a, mA, iA) + kineticEnergy(*b, mB, iB);
+        double worstL = 0.0, worstE = 0.0;
+        run(*world, 10.0, [&](double) {
+            worstL = std::max(worstL, (angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iB) - l0).norm());
+            if (!c.limited) worstE = std::max(worstE, std::abs(kineticEnergy(*a, mA, iA) + kineticEnergy(*b, mB, iB) - e0));
+        });
+        std::cout << "[ MEASURED ] ode pair wheel, axis " << c.axis.transpose() << (c.limited ? ", limited" : "")
+                  << ": max |L - L0| " << worstL << " (|L0| " << l0.norm() << "), max |KE - KE0| " << worstE
+                  << " J (KE0 " << e0 << ")\n";
+        // L: measured 1e-13, every row now pushes both bodies at one point (against the limit
+        // too, whose stop takes the impact inelastically: energy not checked there); 1e-3. The
+        // energy moves by the rows' drift correction in the turning pair (measured 2.4e-4 and
+        // 1.0e-3 of KE0, was 70x KE0); 3e-3.
+        EXPECT_LT(worstL, 1e-3 * l0.norm());
+        EXPECT_LT(worstE, 3e-3 * e0);
+        if (c.limited) {
+            EXPECT_LT(wheel->position(), 0.1 + 1e-3);
+        }
     }
 }
 
