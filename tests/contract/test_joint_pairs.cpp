@@ -8,6 +8,7 @@
 
 #include "contact_helpers.hpp"
 #include "contract_fixture.hpp"
+#include "period_meter.hpp"
 
 namespace anyphys::test {
 namespace {
@@ -177,23 +178,15 @@ void JointPairTest::SliderSpringCase() {
     const Pair p = makePair(world, d, -kReduced * slide / (kReduced + kSpins), slide);
     const double effective = kReduced * kSpins / (kReduced + kSpins);
     const double exact = 2.0 * kPi * std::sqrt(effective / k);
-    double previous = 0.0, first = -1, last = -1, momentum = 0.0;
-    int crossings = 0;
-    const double dt = world.settings().timeStep;
+    PeriodMeter meter;
+    double momentum = 0.0;
     while (world.time() < 10.0) {
         world.step();
-        const double x = p.joint.position();
-        if (previous > 0.0 && x <= 0.0) {
-            const double t = world.time() - dt * x / (x - previous);
-            if (first < 0) first = t;
-            last = t;
-            ++crossings;
-        }
-        previous = x;
+        meter.add(world.time(), world.settings().timeStep, p.joint.position());
         momentum = std::max(momentum, angularMomentum(p).norm());
     }
-    ASSERT_GE(crossings, 2) << "the spring did not swing";
-    const double period = (last - first) / (crossings - 1);
+    ASSERT_GE(meter.crossings(), 2) << "the spring did not swing";
+    const double period = meter.period();
     std::cout << "[ MEASURED ] " << backend() << " slider spring on a pair: period " << period << " s (exact " << exact
               << ", the pair held from turning " << 2.0 * kPi * std::sqrt(kReduced / k) << "), largest |L| " << momentum << "\n";
     // 2 %: (omega h)^2 = 0.010 at 60 Hz; an implicitly stepped spring's period is long by about a

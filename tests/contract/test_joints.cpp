@@ -10,6 +10,7 @@
 #include "anyphys/joint_capabilities.hpp"
 #include "contract_fixture.hpp"
 #include "contact_helpers.hpp"
+#include "period_meter.hpp"
 
 namespace anyphys::test {
 namespace {
@@ -103,23 +104,15 @@ protected:
         };
         const auto energy = [&] { return energyOf(bob) + (partner ? energyOf(*partner) : 0.0); };
         const double e0 = energy();
-        double previousX = bob.position().x(), first = -1, last = -1;
-        int crossings = 0;
-        const double dt = world.settings().timeStep;
+        PeriodMeter meter;
+        meter.add(world.time(), world.settings().timeStep, bob.position().x());
         while (world.time() < duration) {
             world.step();
-            const double x = bob.position().x();
-            if (previousX > 0.0 && x <= 0.0) {
-                const double t = world.time() - dt * x / (x - previousX);
-                if (first < 0) first = t;
-                last = t;
-                ++crossings;
-            }
-            previousX = x;
+            meter.add(world.time(), world.settings().timeStep, bob.position().x());
             out.maxGap = std::max(out.maxGap, std::abs(bob.position().norm() - length));
             out.energyDrift = std::max(out.energyDrift, std::abs(energy() - e0) / energyScale);
         }
-        out.period = crossings > 1 ? (last - first) / (crossings - 1) : 0.0;
+        out.period = meter.period();
         return out;
     }
 
@@ -248,23 +241,15 @@ protected:
         World world(jointSettings(false));
         const auto [body, joint] = springOnSlider(world);
         const double k = kSpringK, m = kSpringMass;
-        double previous = 0.0, first = -1, last = -1, offAxis = 0.0;
-        int crossings = 0;
-        const double dt = world.settings().timeStep;
+        PeriodMeter meter;
+        double offAxis = 0.0;
         while (world.time() < 10.0) {
             world.step();
-            const double x = joint.position();
-            if (previous > 0.0 && x <= 0.0) {
-                const double t = world.time() - dt * x / (x - previous);
-                if (first < 0) first = t;
-                last = t;
-                ++crossings;
-            }
-            previous = x;
+            meter.add(world.time(), world.settings().timeStep, joint.position());
             offAxis = std::max(offAxis, std::hypot(body.position().y(), body.position().z()));
         }
         const double exact = 2.0 * kPi * std::sqrt(m / k);
-        const double period = (last - first) / (crossings - 1);
+        const double period = meter.period();
         std::cout << "[ MEASURED ] " << backend() << " slider spring period " << period << " s (exact " << exact << ")\n";
         // 1 %: (omega dt)^2 = 3e-3 at 60 Hz bounds an implicit or explicit spring's period error.
         EXPECT_NEAR(period, exact, 0.01 * exact);
