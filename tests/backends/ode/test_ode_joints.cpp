@@ -12,9 +12,12 @@
 #include "anyphys/backends.hpp"
 #include "ode_tuning.hpp"
 #include "ode_world.hpp"
+#include "../../period_meter.hpp"
 
 namespace anyphys::ode {
 namespace {
+
+using anyphys::test::PeriodMeter;  // the period from downward zero crossings
 
 constexpr double kG = 9.81;
 constexpr double kPi = std::numbers::pi;
@@ -69,24 +72,6 @@ double ellipticK(double k) {
     }
     return kPi / (2.0 * a);
 }
-
-// Period of a signal from its downward zero crossings (linear interpolation inside the step).
-struct PeriodMeter {
-    double previous = 0.0, first = -1.0, last = -1.0;
-    int crossings = 0;
-    bool started = false;
-    void add(double t, double value) {
-        if (started && previous > 0.0 && value <= 0.0) {
-            const double crossing = t - kDt * value / (value - previous);
-            if (first < 0.0) first = crossing;
-            last = crossing;
-            ++crossings;
-        }
-        previous = value;
-        started = true;
-    }
-    double period() const { return crossings > 1 ? (last - first) / (crossings - 1) : 0.0; }
-};
 
 void run(OdeWorld& world, double seconds, const std::function<void(double)>& each = {}) {
     const int steps = static_cast<int>(std::lround(seconds / kDt));
@@ -168,7 +153,7 @@ TEST(OdeJoints, HingePendulumPeriodMatchesEllipticIntegral) {
                 double worstRadius = 0.0, worstZ = 0.0, lowest = 0.0;
                 run(*world, 20.0, [&](double t) {
                     const Vec3 p = bob->state().position;
-                    meter.add(t, p.x());
+                    meter.add(t, kDt, p.x());
                     worstRadius = std::max(worstRadius, std::abs(p.norm() - L));
                     worstZ = std::max(worstZ, std::abs(p.z()));
                     lowest = std::min(lowest, hinge->position());
@@ -295,7 +280,7 @@ TEST(OdeJoints, HingeSpringFrequency) {
     auto hinge = world->createJoint(d);
     wheel->setAngularVelocity({0, 0, 0.5});
     PeriodMeter meter;
-    run(*world, 10.0, [&](double t) { meter.add(t, hinge->position()); });
+    run(*world, 10.0, [&](double t) { meter.add(t, kDt, hinge->position()); });
     const double exact = 2.0 * kPi * std::sqrt(I / k);
     std::cout << "[ MEASURED ] ode hinge spring: period " << meter.period() << " s (exact " << exact << ")\n";
     // The spring is ODE's implicit ERP / CFM row: implicit Euler lengthens the period by
@@ -349,7 +334,7 @@ TEST(OdeJoints, SliderSpringFrequency) {
         PeriodMeter meter;
         double amplitude = 0.0;
         run(*world, 10.0, [&](double t) {
-            meter.add(t, slider->position());
+            meter.add(t, kDt, slider->position());
             amplitude = std::max(amplitude, slider->position());
         });
         const double exact = 2.0 * kPi * std::sqrt(m / k);
@@ -410,7 +395,7 @@ TEST(OdeJoints, SliderSpringBetweenTwoBodiesKeepsAngularMomentum) {
         double worst = 0.0;
         PeriodMeter meter;
         run(*world, 5.0, [&](double t) {
-            meter.add(t, slider->position());
+            meter.add(t, kDt, slider->position());
             const double l = (angularMomentum(*a, mA, iA) + angularMomentum(*b, mB, iB)).z();
             worst = std::max(worst, std::abs(l - l0));
         });
@@ -488,7 +473,7 @@ TEST(OdeJoints, DistanceRodKeepsLengthAndSpringOscillates) {
         auto spring = world->createJoint(d);
         bob->setLinearVelocity({0.3, 0, 0});
         PeriodMeter meter;
-        run(*world, 10.0, [&](double t) { meter.add(t, spring->position()); });
+        run(*world, 10.0, [&](double t) { meter.add(t, kDt, spring->position()); });
         const double exact = 2.0 * kPi * std::sqrt(m / k);
         std::cout << "[ MEASURED ] ode distance spring: period " << meter.period() << " s (exact " << exact << ")\n";
         // Implicit Euler: O((omega h)^2) = 3e-3; 1 %.
@@ -703,7 +688,7 @@ TEST(OdeJoints, WheelSuspensionSpinAndSteering) {
     PeriodMeter meter;
     run(*world, 0.1);
     EXPECT_NEAR(joint->speed(), 2.0, 1e-6);  // tau t / I at the torque limit
-    run(*world, 5.0, [&](double t) { meter.add(t, joint->position()); });
+    run(*world, 5.0, [&](double t) { meter.add(t, kDt, joint->position()); });
     const double exact = 2.0 * kPi * std::sqrt(m / k);
     std::cout << "[ MEASURED ] ode wheel suspension: period " << meter.period() << " s (exact " << exact << ")\n";
     // Implicit Euler: O((omega h)^2) = 3e-3; 1 %.
@@ -813,7 +798,7 @@ TEST(OdeJoints, PlanarHingePendulum) {
     PeriodMeter meter;
     double lowest = 0.0;
     run(world, 10.0, [&](double t) {
-        meter.add(t, bob->state().position.x());
+        meter.add(t, kDt, bob->state().position.x());
         lowest = std::min(lowest, hinge->position());
     });
     const double exact = 4.0 * std::sqrt((I + L * L) / L / kG) * ellipticK(std::sin(0.5 * amplitude));
