@@ -76,6 +76,8 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     world_->setMaterials(&materials_);
     world_->setTimeToSleep(settings.timeToSleep);
     world_->setRestitutionThreshold(settings.restitutionThreshold);
+    // A sliding box keeps its whole face of contact on a box (bullet_box_box.hpp).
+    dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &boxBox_);
     planeMultipoint_ = planeMultipoint(settings);  // its refresh pass runs while a plane is here (createBody)
     if (planeMultipoint_) {  // a capsule's whole line of contact too (bullet_capsule_plane.hpp)
         dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &capsulePlane_);

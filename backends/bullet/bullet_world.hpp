@@ -17,6 +17,7 @@
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "bullet_body.hpp"
+#include "bullet_box_box.hpp"
 #include "bullet_capsule_plane.hpp"
 #include "bullet_dynamics_world.hpp"
 #include "bullet_joints.hpp"
@@ -143,6 +144,7 @@ private:
     // Destroyed in reverse order of declaration: world_ first.
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
     CapsulePlaneAlgorithm::CreateFunc capsulePlane_{false}, planeCapsule_{true};  // the dispatcher uses them
+    BoxBoxAlgorithm::CreateFunc boxBox_;                                           // the same
     std::unique_ptr<btCollisionDispatcher> dispatcher_;
     std::unique_ptr<btBroadphaseInterface> broadphase_;
     std::unique_ptr<btDantzigSolver> mlcpInterface_;

@@ -63,19 +63,27 @@ TEST_P(ContactsTest, GlancingBallsLeaveInTheElasticDirections) {
     expectCriterion("restitution.glancing_direction", worst.value <= 4.0, worst.what, worst.value);
 }
 
-// A box on a plane tilted by `angle` about a horizontal `axis`. Friction mu on both materials
-// (geometric mean mu).
+// A box on a plane tilted by `angle` about a horizontal `axis`, or on a static slab tilted so
+// (`Ground::Slab`, 10 m x 1 m x 10 m, its top face through the origin). Friction mu on both
+// materials (geometric mean mu).
 struct Slope {
     Body box;
     Vec3 downhill;
     Vec3 normal;
 };
+enum class Ground { Plane, Slab };
 
-Slope makeSlope(World& world, double angle, const Vec3& axis = Vec3::UnitZ()) {
+Slope makeSlope(World& world, double angle, const Vec3& axis = Vec3::UnitZ(), Ground ground = Ground::Plane) {
     const Quat tilt(Eigen::AngleAxisd(angle, axis.normalized()));
     const Vec3 normal = tilt * Vec3::UnitY();
     BodyDef plane = groundDef("slope");
-    plane.shape = ShapeDef::plane(normal, 0.0);
+    if (ground == Ground::Slab) {
+        plane.shape = ShapeDef::box(Vec3(5, 0.5, 5));
+        plane.position = -0.5 * normal;
+        plane.orientation = tilt;
+    } else {
+        plane.shape = ShapeDef::plane(normal, 0.0);
+    }
     world.createBody(plane);
     BodyDef box = boxDef("box", Vec3(0.25, 0.25, 0.25), normal * 0.25, "box");  // resting on the plane, flat
     box.orientation = tilt;
@@ -124,9 +132,10 @@ struct SlopeSlide {
     double acceleration = 0.0;
     double height = 0.0;
 };
-SlopeSlide slideDownSlope(const WorldSettings& settings, double angle, const TiltAxis& tilt) {
+SlopeSlide slideDownSlope(const WorldSettings& settings, double angle, const TiltAxis& tilt,
+                          Ground ground = Ground::Plane) {
     World world(settings, slopeMaterials(kMu));
-    const Slope slope = makeSlope(world, angle, tilt.axis);
+    const Slope slope = makeSlope(world, angle, tilt.axis, ground);
     for (int i = 0; i < 30; ++i) world.step();
     const double v0 = slope.box.linearVelocity().dot(slope.downhill);
     for (int i = 0; i < 60; ++i) world.step();
@@ -216,6 +225,38 @@ TEST_P(ContactsTest, BoxSlidesAboveFrictionAngleWithKineticAcceleration) {
                             std::abs(slide.height - 0.25) <= kHeightBound,
                             std::string("tilted about ") + tilt.name + ": centre " + std::to_string(slide.height) +
                                 " m above the plane, exact 0.25 +- 0.01",
+                            std::abs(slide.height - 0.25));
+        }
+}
+
+// The same slides on a tilted static box instead of a plane: box against box is its own test in
+// engines. Bullet's box-box manifold matched points within its breaking threshold (8.7 mm for
+// this box) and dropped corners that lay a rounding above the slope, so the box slid on two or
+// three points, rocked and hopped (bullet_box_box.hpp): 1.0 to 2.9 % off here, and a 0.4 m cube
+// on a 30 deg slope 9.7 % slow. 1 %, tighter than on a plane: a box sliding flat on a face feels
+// a constant force, which a step integrates exactly (measured: native and Bullet exact to 1e-6,
+// ODE within 0.03 %).
+constexpr double kSlabAccelerationBound = 0.01;
+TEST_P(ContactsTest, BoxSlidesDownATiltedBoxAsDownAPlane) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    for (const TiltAxis& tilt : kTiltAxes)
+        for (const auto& [angle, criterion] : kSlideAngles) {
+            SCOPED_TRACE("slab sloped " + std::to_string(angle / kDegree) + " deg, tilted about " + tilt.name);
+            const SlopeSlide slide = slideDownSlope(settings(), angle, tilt, Ground::Slab);
+            const double exact = kineticAcceleration(angle);
+            report(backend() + " slide acceleration on a slab tilted about " + tilt.name + " (exact " +
+                       std::to_string(exact) + ")",
+                   slide.acceleration, "m/s^2");
+            const double error = std::abs(slide.acceleration - exact) / exact;
+            expectCriterion(std::string(criterion) + ".on_a_box" + tilt.criterionSuffix, error <= kSlabAccelerationBound,
+                            std::string("on a slab tilted about ") + tilt.name + ": a = " +
+                                std::to_string(slide.acceleration) + " m/s^2, exact " + std::to_string(exact) + " +- 1 %",
+                            error);
+            expectCriterion(std::string(criterion) + ".on_a_box.resting_height" + tilt.criterionSuffix,
+                            std::abs(slide.height - 0.25) <= kHeightBound,
+                            std::string("on a slab tilted about ") + tilt.name + ": centre " +
+                                std::to_string(slide.height) + " m above its face, exact 0.25 +- 0.01",
                             std::abs(slide.height - 0.25));
         }
 }
