@@ -9,6 +9,8 @@ trap 'rm -rf "$work"' EXIT
 
 printf '{ "settings": { "gravity": [0, -10, 0] }, "bodies": [ \n' > "$work/truncated.json"
 printf '{ "bodies": [ { "name": "ball", "shape": { "type": "sphere", "radius": -1 } } ] }\n' > "$work/negative_radius.json"
+printf '{ "settings": { "backend": "no_such_engine" }, "bodies": [] }\n' > "$work/file_backend.json"
+printf '{ "settings": { "backendOptions": { "no_such_option": 1 } }, "bodies": [] }\n' > "$work/file_option.json"
 
 failures=0
 expect_error() {  # description, command...
@@ -44,6 +46,18 @@ expect_error "unknown scene"       "$anyphys" scene no_such_scene
 expect_error "compare bad backend" "$anyphys" compare --backends no_such_engine
 expect_error "compare bad scene"   "$anyphys" compare --scenes no_such_scene
 expect_error "compare bad integrator" "$anyphys" compare --integrators foo
+expect_error "file's unknown backend" "$anyphys" run "$work/file_backend.json"
+expect_error "file's unknown backend option" "$anyphys" run "$work/file_option.json"
+
+# Errors about a scene file's settings name the file and the value's JSON path in it, as its
+# parse errors do (the API's own names are WorldSettings.backend and backend).
+expect_naming() {  # file, text the one line must hold
+    "$anyphys" run "$work/$1" 2> "$work/err" > /dev/null || true
+    grep -qF "$2" "$work/err" || { echo "FAIL: $1: want \"$2\" in: $(cat "$work/err")"; failures=$((failures + 1)); }
+}
+expect_naming file_backend.json "file_backend.json: settings.backend: must be one of the built backends"
+expect_naming file_option.json "file_option.json: settings: backend"
+expect_naming negative_radius.json "negative_radius.json: bodies[0].shape.radius"
 
 # The unknown-backend message lists the known backends.
 "$anyphys" run "$scene" --backend no_such_engine 2> "$work/err" || true
