@@ -3,8 +3,9 @@
 // the layer alone:
 //   raw/<scene>/bullet        drop1000, drop10000, pyramid20, pyramid3d
 //   overhead/<scene>/bullet   drop1000, pyramid20 (see raw_benchmarks.hpp)
-// A plain btDiscreteDynamicsWorld with the backend's solver subclass (bullet_solver.hpp: it changes
-// the physics, so both sides must run it to simulate the same pile), no contact events, one
+// A plain btDiscreteDynamicsWorld with the backend's solver subclass (bullet_solver.hpp) and box-box
+// algorithm (bullet_box_box.hpp): they change the physics, so both sides must run them to simulate
+// the same pile. No contact events, one
 // internal step per step. Friction 0.6 on
 // every body, mixed by Bullet's friction callback set to the minimum: exactly the 0.6 the backend
 // writes into each contact point (Bullet's default product of sqrt(0.6) twice is one ulp off, and
@@ -19,7 +20,8 @@
 
 #include "../bench_main.hpp"
 #include "anyphys/world_settings.hpp"
-#include "bullet_solver.hpp"  // backends/bullet: the backend's solver, part of the physics
+#include "bullet_box_box.hpp"  // backends/bullet: the backend's box pairs, part of the physics
+#include "bullet_solver.hpp"   // backends/bullet: the backend's solver, part of the physics
 #include "raw_benchmarks.hpp"
 
 namespace anyphys::bench {
@@ -59,6 +61,7 @@ public:
           solver_(std::make_unique<bullet::AnyphysSequentialImpulseSolver>()),
           world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                            configuration_.get())) {
+        dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &boxBox_);
         const WorldSettings defaults;  // what the backend reads from the settings
         world_->setGravity(btVector3(0, 0, 0));  // per body, as the backend does
         world_->setForceUpdateAllAabbs(false);
@@ -129,6 +132,7 @@ private:
     }
 
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+    bullet::BoxBoxAlgorithm::CreateFunc boxBox_;  // the dispatcher uses it
     std::unique_ptr<btCollisionDispatcher> dispatcher_;
     std::unique_ptr<btDbvtBroadphase> broadphase_;
     std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
