@@ -105,9 +105,9 @@ void BoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* body0, co
     const int oldCount = found.count >= kWholeFace ? manifold_->getNumContacts() : 0;
     for (int i = 0; i < oldCount; ++i) old[i] = manifold_->getContactPoint(i);
     if (found.count >= kWholeFace) manifold_->clearManifold();
-    // Bullet's depth is negative for overlap (a distance); the larger box made it deeper by reach.
-    // The point on B is on the second box's face, or on the first's moved out by reach: either way
-    // the true point on B, as the point on A is taken along the normal from it.
+    // Bullet's depth is a distance (negative for overlap), deeper by the reach for the larger box.
+    // The point is on the second box's surface either way (a point of the first box's face is
+    // moved onto the second's face), so only the depth carries the reach.
     for (int i = 0; i < found.count; ++i)
         result->addContactPoint(found.points[i].normalOnB, found.points[i].pointOnB, found.points[i].depth + reach);
     if (oldCount > 0) carryImpulses(*manifold_, old.data(), oldCount);
