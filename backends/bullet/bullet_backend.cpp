@@ -133,12 +133,10 @@ Backend makeBulletBackend() {
          "as joints.chain_gap.direct, in a planar world"},
         {"planar.joints.chain_gap_heavy.direct",
          "as joints.chain_gap_heavy.direct, in a planar world"},
-        {"assemblies.ragdoll_gap",
-         "joints of a pile of four ragdolls open by up to 67 mm as the ragdolls land on each other (bound 5 cm): Baumgarte joint rows at one 1/60 s step yield under the impacts (13 cm while Bullet's motion clamp also stopped limbs against each other without their joints)"},
+        {"planar.assemblies.ragdoll_gap",
+         "joints of a planar pile of four ragdolls open by up to 91 mm as the ragdolls land on each other (bound 5 cm): Baumgarte joint rows at one 1/60 s step yield under the impacts. A chaotic pile: the 3D pile passes (36 mm), and the 10-ragdoll piles over 12 nudged runs spread from 4.3 to 7.1 cm (3D) and 5.1 to 9.8 cm (planar)"},
         {"assemblies.pinched_pile_gap",
-         "the soak run's pinched pile of ragdolls opens a joint 109 mm (median of nine nudged draws, all within 0.01 mm; bound 5 cm; 116 mm while limbs were clamped), as assemblies.ragdoll_gap"},
-        {"assemblies.ragdoll_rest",
-         "a pile of four ragdolls still moves at 0.16 m/s after 10 s (sleeping off; bound 0.1): its joints and contacts keep jittering. The 10-ragdoll pile over four nudged layouts ends between 0.10 and 0.21 m/s; 0.06 to 0.17 while Bullet's motion clamp stopped fast limbs, which damped the jitter and tore the joints (this pile was at 0.006 then)"},
+         "the soak run's pinched pile of ragdolls opens a joint 100 mm (median of nine nudged draws, all within 0.01 mm; bound 5 cm; 116 mm while limbs were clamped), as planar.assemblies.ragdoll_gap"},
     };
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
@@ -188,22 +186,18 @@ Backend makeBulletBackend() {
     caps.knownDeviations.insert({
         {"hard.stack20.drift",
          "the 20-box stack's top drifts 28 cm over 10 s with sleeping off (as stack10.top_drift, worse with height)"},
-        {"hard.column40.drift", "the 40-box column falls (its top box ends 95 m away within 30 s): as hard.stack20.drift, worse with height"},
-        {"planar.hard.column40.drift", "as hard.column40.drift, planar: the top box ends 49 m away"},
+        {"hard.column40.drift", "the 40-box column falls (its top box ends 65 m away within 30 s): as hard.stack20.drift, worse with height"},
+        {"planar.hard.column40.drift", "as hard.column40.drift, planar: the top box ends 40 m away"},
         {"planar.hard.pyramid100.drift",
          "the 5050-box planar pyramid collapses (boxes 10 m from where they started within 5 s; as pyramid20.drift)"},
         {"hard.arch.displacement",
          "the arch's crown drops 1.55 cm in its first 4 steps (native: 2.2 mm over 5 s). Measured, the cause not wholly found: each joint is first found 2 mm open with one contact point (the two 1 mm hull margins: Bullet's face clipping sees the shrunk cores, and starts only once they overlap), the crown falls freely for two steps, and its joints, leaning 10 deg from vertical, hold from step 3, 2 to 4 mm deep; a 0.1 mm margin still drops it 7 mm, then the blocks creep (the crown 2 cm out of the arch's plane by 5 s); 300 iterations or the direct solver change nothing, 4 substeps give 1.1 cm, SAT normals (m_enableSatConvex) 2.7 cm"},
         {"planar.hard.arch.displacement",
          "as hard.arch.displacement, planar: 1.4 cm"},
-        {"hard.heavy_plank.displacement",
-         "the 1 kg boxes under the 100 kg plank give 3.7 cm over 5 s (5.9 mm in a planar world, within the bound): at a mass ratio of 100 the 30 sequential-impulse iterations do not converge. Verified: 300 iterations leave 1.0 mm, the direct (MLCP) solver 5.4 mm"},
         {"hard.mixed_pile_mesh.sink",
-         "a tumbling octahedron sinks 10.5 cm into the floor (9.0 before box pairs kept their whole face, 5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size (6 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
-        {"hard.ragdoll_pile.joint_gap",
-         "joints of a pile of 10 ragdolls open by up to 6.7 cm (as assemblies.ragdoll_gap; 18.5 cm while limbs were clamped)"},
+         "a tumbling octahedron sinks 4.9 cm into the floor (over six nudged runs 3.0 to 9.2 cm; 4.6 to 10.5 before contacts were kept out to twice linearSlop, and 10.5 in the unnudged run; 5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size and at least twice linearSlop (10 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "as hard.ragdoll_pile.joint_gap, planar: 5.4 cm (21 cm while limbs were clamped)"},
+         "joints of a planar pile of 10 ragdolls open by up to 5.1 cm (as planar.assemblies.ragdoll_gap; over 12 nudged runs 5.1 to 9.8 cm; 21 cm while limbs were clamped). The 3D pile passes in its own run (4.3 cm) but is as chaotic: 4.3 to 7.1 cm over the same nudges"},
         {"compound.fast_body_passes_filtered_child",
          "a body fast enough for continuous collision (over half its inner radius per step) is held at a compound "
          "child whose filter lets it through: a 40 m/s ball is 1.01 m behind free flight after passing it (then lands "
@@ -243,9 +237,8 @@ Backend makeBulletBackend() {
         {"planar.joints.pendulum_energy", 0.123},
         {"planar.joints.wide_pendulum_energy", 0.951},
         {"planar.joints.wide_pendulum_period", 0.0897},
-        {"assemblies.ragdoll_gap", 0.328},
+        {"planar.assemblies.ragdoll_gap", 0.18},
         {"assemblies.pinched_pile_gap", 0.15},
-        {"assemblies.ragdoll_rest", 0.5},
         {"friction.impact.default", 12.5},  // in multiples of its bounds
         {"friction.impact.pgs.s1", 12.5},
         {"friction.impact.direct.s1", 12.5},
@@ -256,11 +249,9 @@ Backend makeBulletBackend() {
         {"planar.hard.pyramid100.drift", 15},
         {"hard.arch.displacement", 0.03},
         {"planar.hard.arch.displacement", 0.025},
-        {"hard.heavy_plank.displacement", 0.06},
         {"hard.mixed_pile_mesh.sink", 0.13},
         {"contacts.rests_short_of_edge.capsule", 0.05},  // m below its resting height, measured 0.0165
         {"planar.contacts.rests_short_of_edge.capsule", 0.05},
-        {"hard.ragdoll_pile.joint_gap", 0.15},
         {"planar.hard.ragdoll_pile.joint_gap", 0.15},
     });
     return backend;

@@ -28,8 +28,8 @@ struct FoundPoints final : btDiscreteCollisionDetectorInterface::Result {
     }
 };
 
-// Of the manifold's breaking threshold: how far apart the boxes' points still count (1.7 mm for
-// a 0.4 m cube).
+// Of the manifold's breaking threshold: how far apart the boxes' points still count (4.3 mm for
+// a 1 m cube), and at least the touching band.
 constexpr btScalar kReachShare = 0.25;
 
 // A whole face: Bullet's test clips one box's face against the other's and keeps up to 4 points.
@@ -72,8 +72,8 @@ void carryImpulses(btPersistentManifold& manifold, const btManifoldPoint* old, i
 }  // namespace
 
 BoxBoxAlgorithm::BoxBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
-                                 const btCollisionObjectWrapper* body1)
-    : btActivatingCollisionAlgorithm(info, body0, body1) {
+                                 const btCollisionObjectWrapper* body1, btScalar touchingBand)
+    : btActivatingCollisionAlgorithm(info, body0, body1), touchingBand_(touchingBand) {
     if (m_dispatcher->needsCollision(body0->getCollisionObject(), body1->getCollisionObject()))
         manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
 }
@@ -90,7 +90,7 @@ void BoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* body0, co
     // its two lower corners while the upper ones' old points slid away. The first box is tested a
     // reach larger, and the reach taken off every depth: points within it count, as Bullet's
     // other convex tests keep points within the breaking threshold.
-    const btScalar reach = kReachShare * manifold_->getContactBreakingThreshold();
+    const btScalar reach = btMax(kReachShare * manifold_->getContactBreakingThreshold(), touchingBand_);
     const auto* box0 = static_cast<const btBoxShape*>(body0->getCollisionShape());
     const auto* box1 = static_cast<const btBoxShape*>(body1->getCollisionShape());
     const btBoxShape reachingBox0(box0->getHalfExtentsWithMargin() + btVector3(reach, reach, reach));
@@ -122,7 +122,7 @@ btCollisionAlgorithm* BoxBoxAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCo
                                                                             const btCollisionObjectWrapper* body0,
                                                                             const btCollisionObjectWrapper* body1) {
     void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxBoxAlgorithm));
-    return new (memory) BoxBoxAlgorithm(info, body0, body1);
+    return new (memory) BoxBoxAlgorithm(info, body0, body1, touchingBand);
 }
 
 }  // namespace anyphys::bullet

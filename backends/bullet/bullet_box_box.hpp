@@ -10,7 +10,8 @@
 // corner matched an old point, so the new and old points competed for the four places. A 0.4 m
 // cube sliding down a 30 deg box slope (mu 0.5) accelerated at 0.59 m/s^2 instead of 0.657,
 // where on a plane, and on native and ODE, it was exact. Here the first box is tested a little
-// larger (a quarter of the breaking threshold, taken off every depth), and when the test finds
+// larger (a quarter of the breaking threshold, and at least the layer's linearSlop, so that boxes
+// closer than that touch at every size; taken off every depth), and when the test finds
 // a whole face (four points) they replace the manifold's, each keeping the impulses of the old
 // point at the same place on either box, so resting contact still warm-starts. A partial result
 // (an edge's single point, a face with a corner lifted) merges with the old points as Bullet does.
@@ -23,8 +24,9 @@ namespace anyphys::bullet {
 
 class BoxBoxAlgorithm final : public btActivatingCollisionAlgorithm {
 public:
+    /// `touchingBand`: the layer's linearSlop; points at least that far apart are found.
     BoxBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
-                    const btCollisionObjectWrapper* body1);
+                    const btCollisionObjectWrapper* body1, btScalar touchingBand);
     ~BoxBoxAlgorithm() override;
     BoxBoxAlgorithm(const BoxBoxAlgorithm&) = delete;
     BoxBoxAlgorithm& operator=(const BoxBoxAlgorithm&) = delete;
@@ -38,6 +40,8 @@ public:
     void getAllContactManifolds(btManifoldArray& manifolds) override;
 
     struct CreateFunc final : btCollisionAlgorithmCreateFunc {
+        explicit CreateFunc(btScalar band) : touchingBand(band) {}
+        btScalar touchingBand;
         btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                        const btCollisionObjectWrapper* body0,
                                                        const btCollisionObjectWrapper* body1) override;
@@ -45,6 +49,7 @@ public:
 
 private:
     btPersistentManifold* manifold_ = nullptr;  // owned
+    btScalar touchingBand_;
 };
 
 }  // namespace anyphys::bullet

@@ -57,7 +57,9 @@ std::unique_ptr<btDefaultCollisionConfiguration> makeCollisionConfiguration(cons
 BulletWorld::BulletWorld(const WorldSettings& settings)
     : settings_(settings),
       configuration_(makeCollisionConfiguration(settings)),
-      dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
+      boxBox_(static_cast<btScalar>(settings.linearSlop)),
+      // Pairs closer than linearSlop touch, at every size (bullet_touching.hpp).
+      dispatcher_(std::make_unique<TouchingDispatcher>(configuration_.get(), static_cast<btScalar>(2 * settings.linearSlop))),
       broadphase_(std::make_unique<btDbvtBroadphase>()) {
     const Solver solver = resolvedSolver(settings);
     if (solver == Solver::Direct) {
@@ -78,6 +80,7 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     world_->setRestitutionThreshold(settings.restitutionThreshold);
     // A sliding box keeps its whole face of contact on a box (bullet_box_box.hpp).
     dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &boxBox_);
+    dispatcher_->registerCollisionCreateFunc(SPHERE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE, &sphereSphere_);
     planeMultipoint_ = planeMultipoint(settings);  // its refresh pass runs while a plane is here (createBody)
     if (planeMultipoint_) {  // a capsule's whole line of contact too (bullet_capsule_plane.hpp)
         dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &capsulePlane_);

@@ -21,6 +21,7 @@
 #include "bullet_capsule_plane.hpp"
 #include "bullet_dynamics_world.hpp"
 #include "bullet_joints.hpp"
+#include "bullet_touching.hpp"
 
 namespace anyphys::bullet {
 
@@ -145,7 +146,8 @@ private:
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
     CapsulePlaneAlgorithm::CreateFunc capsulePlane_{false}, planeCapsule_{true};  // the dispatcher uses them
     BoxBoxAlgorithm::CreateFunc boxBox_;                                           // the same
-    std::unique_ptr<btCollisionDispatcher> dispatcher_;
+    SphereSphereAlgorithm::CreateFunc sphereSphere_;                               // the same
+    std::unique_ptr<TouchingDispatcher> dispatcher_;
     std::unique_ptr<btBroadphaseInterface> broadphase_;
     std::unique_ptr<btDantzigSolver> mlcpInterface_;
     std::unique_ptr<btConstraintSolver> solver_;

@@ -91,7 +91,7 @@ Backend makeOdeBackend() {
          "as assemblies.ragdoll_limits, planar: 23.3 deg (33.7 before continuous collision ignored jointed partners)"},
         // tests/contract/test_events.cpp, 2026-12-02.
         {"events.within_slop",
-         "two boxes placed 1 mm apart (a fifth of linearSlop) never touch: ODE's colliders report a pair only while the "
+         "bodies placed 1 mm apart (a fifth of linearSlop) never touch, whatever their shapes and sizes: ODE's colliders report a pair only while the "
          "geoms overlap, where the layer's rule counts a gap under linearSlop as touching (a pair that has touched "
          "keeps touching while within twice linearSlop: reportNearPair)"},
         {"planar.events.within_slop", "as events.within_slop, in a planar world"},

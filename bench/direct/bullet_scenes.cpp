@@ -3,9 +3,9 @@
 // the layer alone:
 //   raw/<scene>/bullet        drop1000, drop10000, pyramid20, pyramid3d
 //   overhead/<scene>/bullet   drop1000, pyramid20 (see raw_benchmarks.hpp)
-// A plain btDiscreteDynamicsWorld with the backend's solver subclass (bullet_solver.hpp) and box-box
-// algorithm (bullet_box_box.hpp): they change the physics, so both sides must run them to simulate
-// the same pile. No contact events, one
+// A plain btDiscreteDynamicsWorld with the backend's solver subclass (bullet_solver.hpp), box-box
+// algorithm (bullet_box_box.hpp) and dispatcher (bullet_touching.hpp): they change the physics, so
+// both sides must run them to simulate the same pile. No contact events, one
 // internal step per step. Friction 0.6 on
 // every body, mixed by Bullet's friction callback set to the minimum: exactly the 0.6 the backend
 // writes into each contact point (Bullet's default product of sqrt(0.6) twice is one ulp off, and
@@ -22,6 +22,7 @@
 #include "anyphys/world_settings.hpp"
 #include "bullet_box_box.hpp"  // backends/bullet: the backend's box pairs, part of the physics
 #include "bullet_solver.hpp"   // backends/bullet: the backend's solver, part of the physics
+#include "bullet_touching.hpp"  // backends/bullet: the backend's contact reach, part of the physics
 #include "raw_benchmarks.hpp"
 
 namespace anyphys::bench {
@@ -56,7 +57,8 @@ class BulletSimulation final : public Simulation {
 public:
     explicit BulletSimulation(const ScenePlan& plan)
         : configuration_(makeConfiguration()),
-          dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
+          dispatcher_(std::make_unique<bullet::TouchingDispatcher>(configuration_.get(),
+                                                                   static_cast<btScalar>(2 * WorldSettings{}.linearSlop))),
           broadphase_(std::make_unique<btDbvtBroadphase>()),
           solver_(std::make_unique<bullet::AnyphysSequentialImpulseSolver>()),
           world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
@@ -132,8 +134,8 @@ private:
     }
 
     std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
-    bullet::BoxBoxAlgorithm::CreateFunc boxBox_;  // the dispatcher uses it
-    std::unique_ptr<btCollisionDispatcher> dispatcher_;
+    bullet::BoxBoxAlgorithm::CreateFunc boxBox_{static_cast<btScalar>(WorldSettings{}.linearSlop)};  // the dispatcher uses it
+    std::unique_ptr<bullet::TouchingDispatcher> dispatcher_;
     std::unique_ptr<btDbvtBroadphase> broadphase_;
     std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
     std::unique_ptr<btDiscreteDynamicsWorld> world_;

@@ -124,8 +124,9 @@ double gapAtExit(const BodyDef& floor, BodyDef lifted, double bottom) {
 }
 
 TEST(BulletContacts, SmallBodiesPartingAnyFloorExitPastTwiceLinearSlop) {
-    // Bullet drops these pairs' points 2 to 3 mm apart (the breaking threshold scales with the
-    // shapes); the layer holds them to twice linearSlop (10 mm) on a plane, a mesh and a box alike.
+    // Bullet's breaking threshold scales with the shapes (2 to 3 mm for these); the backend keeps
+    // it at least twice linearSlop (bullet_touching.hpp), so the pair holds to 10 mm on a plane, a
+    // mesh and a box alike, and the layer's near-pair query takes over only past a threshold.
     const std::vector<Vec3> square{Vec3(-10, 0, -10), Vec3(10, 0, -10), Vec3(10, 0, 10), Vec3(-10, 0, 10)};
     BodyDef mesh;
     mesh.type = BodyType::Static;
@@ -151,10 +152,12 @@ TEST(BulletContacts, SmallBodiesPartingAnyFloorExitPastTwiceLinearSlop) {
         for (const auto& [name, def, bottom] : lifted) {
             SCOPED_TRACE(std::string(name) + " off a " + floorName);
             const double gap = gapAtExit(floor, def, bottom);
-            // Exits in the step that takes it past 10 mm (1 mm a step: at 10.5 mm), measured after
-            // the step; 0.1 mm for the contact's push out of the first half millimetre.
+            // Exits past 10 mm (1 mm a step). Bullet measures its points before the step moves
+            // the body, so a pair its manifold holds exits one step later than one the layer
+            // measures after the step (the contract's parting case allows that step): at 11.5 mm,
+            // not 10.5; 0.1 mm for the contact's push out of the first half millimetre.
             EXPECT_GT(gap, 0.01);
-            EXPECT_LT(gap, 0.0105 + 1e-4);
+            EXPECT_LT(gap, 0.0115 + 1e-4);
         }
 }
 
