@@ -58,6 +58,15 @@ expect_naming() {  # file, text the one line must hold
 expect_naming file_backend.json "file_backend.json: settings.backend: must be one of the built backends"
 expect_naming file_option.json "file_option.json: settings: backend"
 expect_naming negative_radius.json "negative_radius.json: bodies[0].shape.radius"
+# A flag's bad value is named by the flag.
+expect_flag() {  # text the one line must hold, command...
+    local want="$1"; shift
+    "$@" 2> "$work/err" > /dev/null || true
+    grep -qF "$want" "$work/err" || { echo "FAIL: $*: want \"$want\" in: $(cat "$work/err")"; failures=$((failures + 1)); }
+}
+expect_flag "anyphys: --backend: must be one of the built backends" "$anyphys" run "$scene" --backend no_such_engine
+expect_flag "anyphys: --backends: must be one of the built backends" "$anyphys" compare --backends no_such_engine
+expect_flag "anyphys: --backends: must be one of the built backends" "$anyphys" hardcases --backends no_such_engine
 
 # The unknown-backend message lists the known backends.
 "$anyphys" run "$scene" --backend no_such_engine 2> "$work/err" || true

@@ -28,6 +28,17 @@ TEST(Error, WithinAddsContextAndKeepsKindAndField) {
     EXPECT_EQ(e.field(), "settings.gravityy");
 }
 
+TEST(Error, RenamedNamesTheNewFieldInItsPlace) {
+    const Error e = Error::invalid("backend", "\"x\"", "must be one of native, ode").renamed("--backends");
+    EXPECT_STREQ(e.what(), "--backends: must be one of native, ode, got \"x\"");
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidArgument);
+    EXPECT_EQ(e.field(), "--backends");
+    // A message that does not begin with its field keeps all of it, after the new field.
+    const Error plain = Error(ErrorKind::Io, "path", "cannot open").renamed("--out");
+    EXPECT_STREQ(plain.what(), "--out: cannot open");
+    EXPECT_EQ(plain.kind(), ErrorKind::Io);
+}
+
 TEST(Error, EveryKindHasAName) {
     for (ErrorKind k : {ErrorKind::InvalidArgument, ErrorKind::InvalidState, ErrorKind::StaleHandle, ErrorKind::Unsupported,
                         ErrorKind::Parse, ErrorKind::Diverged, ErrorKind::Io, ErrorKind::Internal})

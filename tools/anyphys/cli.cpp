@@ -21,6 +21,14 @@ Integrator parseIntegrator(const std::string& option, const std::string& name) {
     throw Error::invalid(option, "\"" + name + "\"", "must be one of " + allowedNames<Integrator>());
 }
 
+BackendInfo parseBackend(const std::string& option, const std::string& name) {
+    try {
+        return backendInfo(name);
+    } catch (const Error& e) {
+        throw e.renamed(option);
+    }
+}
+
 std::string exactNumber(double value) {
     char buffer[32];
     const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;

@@ -44,6 +44,10 @@ std::vector<std::string> enumNames(const std::set<E>& values) {
 /// The integrator of that scene-file name; throws anyphys::Error naming `option` otherwise.
 Integrator parseIntegrator(const std::string& option, const std::string& name);
 
+/// The built backend of that name; throws anyphys::Error naming `option` (e.g. "--backends")
+/// otherwise, where the library's error names the settings field "backend".
+BackendInfo parseBackend(const std::string& option, const std::string& name);
+
 /// The shortest text that reads back to the same double ("0.2", "0.016666666666666666"; "nan",
 /// "inf" for a blow-up), for results files.
 std::string exactNumber(double value);

@@ -43,7 +43,7 @@ Selection select(const CompareOptions& o) {
     for (const std::string& name : o.scenes) s.scenes.push_back(&catalogueScene(name));
 
     if (o.backends.empty()) s.backends = availableBackends();
-    for (const std::string& name : o.backends) s.backends.push_back(backendInfo(name));
+    for (const std::string& name : o.backends) s.backends.push_back(parseBackend("--backends", name));
 
     // Default: each backend runs the integrators it offers (the union is listed; combinations a
     // backend lacks are left out). Named with --integrators: a backend lacking one shows an

@@ -165,7 +165,7 @@ int hardcases(const HardCaseOptions& o) {
     }
     std::vector<BackendInfo> backends;
     if (o.backends.empty()) backends = availableBackends();
-    for (const std::string& name : o.backends) backends.push_back(backendInfo(name));
+    for (const std::string& name : o.backends) backends.push_back(parseBackend("--backends", name));
 
     std::vector<std::vector<Cell>> cells;
     for (const CatalogueScene* c : cases) {

@@ -184,7 +184,7 @@ void validateFlags(const RunOptions& o) {
     if (o.dtOption->count() && !(std::isfinite(o.dt) && o.dt > 0))
         throw Error::invalid("--dt", o.dt, "must be a finite time step > 0 (seconds)");
     if (o.integratorOption->count()) parseIntegrator("--integrator", o.integrator);
-    if (o.backendOption->count()) backendInfo(o.backend);  // throws listing the known backends
+    if (o.backendOption->count()) parseBackend("--backend", o.backend);  // throws listing the known backends
 }
 
 // An error the world raised about the scene's settings or objects, as the scene file names them:

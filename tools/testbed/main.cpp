@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
             try {
                 anyphys::backendInfo(b);
             } catch (const anyphys::Error& e) {
-                throw anyphys::Error(std::string("--backends: ") + e.what());
+                throw e.renamed("--backends");
             }
         }
         if (o.backends.size() > 4)

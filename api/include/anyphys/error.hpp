@@ -66,6 +66,14 @@ public:
     Error within(const std::string& prefix) const { return Error(kind_, field_, prefix + ": " + what()); }
     /// The same error with the message replaced; kind and field are kept.
     Error reworded(const std::string& message) const { return Error(kind_, field_, message); }
+    /// The same error about `field` (a tool's flag, a file's key), where the value came from: the
+    /// message's leading "<old field>: " becomes "<field>: "; the kind is kept.
+    Error renamed(const std::string& field) const {
+        const std::string message = what();
+        const std::string lead = field_ + ": ";
+        const bool leads = !field_.empty() && message.compare(0, lead.size(), lead) == 0;
+        return Error(kind_, field, field + ": " + (leads ? message.substr(lead.size()) : message));
+    }
 
 private:
     ErrorKind kind_ = ErrorKind::InvalidArgument;
