@@ -134,7 +134,9 @@ Backend makeBulletBackend() {
         {"planar.joints.chain_gap_heavy.direct",
          "as joints.chain_gap_heavy.direct, in a planar world"},
         {"planar.assemblies.ragdoll_gap",
-         "joints of a planar pile of four ragdolls open by up to 91 mm as the ragdolls land on each other (bound 5 cm): Baumgarte joint rows at one 1/60 s step yield under the impacts. A chaotic pile: the 3D pile passes (36 mm), and the 10-ragdoll piles over 12 nudged runs spread from 4.3 to 7.1 cm (3D) and 5.1 to 9.8 cm (planar)"},
+         "joints of a planar pile of four ragdolls open by up to 60 mm as the ragdolls land on each other (bound 5 cm): Baumgarte joint rows at one 1/60 s step yield under the impacts. A chaotic pile: the 3D pile passes (40 mm), and the 10-ragdoll piles over 12 nudged runs spread from 4.2 to 8.8 cm (3D) and 5.1 to 5.7 cm (planar)"},
+        {"assemblies.ragdoll_rest",
+         "a pile of four ragdolls still moves at 0.34 m/s after 10 s (sleeping off; bound 0.1): its joints and contacts keep jittering. The 10-ragdoll pile over 12 nudged runs ends between 0.11 and 0.82 m/s (median 0.30), planar between 0.21 and 4.8 m/s; before capsules lying on boxes kept both ends, 0.17 to 0.63 and 0.24 to 6.3, and this pile 0.031"},
         {"assemblies.pinched_pile_gap",
          "the soak run's pinched pile of ragdolls opens a joint 100 mm (median of nine nudged draws, all within 0.01 mm; bound 5 cm; 116 mm while limbs were clamped), as planar.assemblies.ragdoll_gap"},
     };
@@ -196,8 +198,10 @@ Backend makeBulletBackend() {
          "as hard.arch.displacement, planar: 1.4 cm"},
         {"hard.mixed_pile_mesh.sink",
          "a tumbling octahedron sinks 4.9 cm into the floor (over six nudged runs 3.0 to 9.2 cm; 4.6 to 10.5 before contacts were kept out to twice linearSlop, and 10.5 in the unnudged run; 5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size and at least twice linearSlop (10 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
+        {"hard.ragdoll_pile.joint_gap",
+         "joints of a pile of 10 ragdolls open by up to 5.2 cm (as planar.assemblies.ragdoll_gap; a chaotic pile: over 12 nudged runs 4.2 to 8.8 cm, median 5.1; 18.5 cm while limbs were clamped)"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "joints of a planar pile of 10 ragdolls open by up to 5.1 cm (as planar.assemblies.ragdoll_gap; over 12 nudged runs 5.1 to 9.8 cm; 21 cm while limbs were clamped). The 3D pile passes in its own run (4.3 cm) but is as chaotic: 4.3 to 7.1 cm over the same nudges"},
+         "as hard.ragdoll_pile.joint_gap, planar: 5.3 cm (over 12 nudged runs 5.1 to 5.7 cm; 21 cm while limbs were clamped)"},
         {"compound.fast_body_passes_filtered_child",
          "a body fast enough for continuous collision (over half its inner radius per step) is held at a compound "
          "child whose filter lets it through: a 40 m/s ball is 1.01 m behind free flight after passing it (then lands "
@@ -210,9 +214,6 @@ Backend makeBulletBackend() {
         {"friction.impact.pgs.s1", "as friction.impact.default: rebound 0.42 m/s"},
         {"friction.impact.direct.s1", "as friction.impact.default: rebound 0.42 m/s"},
         {"planar.friction.impact", "as friction.impact.default, planar: rebound 0.42 m/s"},
-        {"contacts.rests_short_of_edge.capsule",
-         "a capsule lying across a table's edge with its centre 5 cm over the table walks off it: 1.65 cm down after 2 s, fallen by 3 s (a box and a hull rest). Bullet's capsule-box pair gains one contact point per step; its convex-convex perturbation (setConvexConvexMultipointIterations) holds the capsule, but sets balls and capsules resting on boxes rocking at 0.1 to 0.7 m/s"},
-        {"planar.contacts.rests_short_of_edge.capsule", "as contacts.rests_short_of_edge.capsule, planar: 1.65 cm"},
     });
     caps.deviationCeilings.insert({
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
@@ -238,6 +239,7 @@ Backend makeBulletBackend() {
         {"planar.joints.wide_pendulum_energy", 0.951},
         {"planar.joints.wide_pendulum_period", 0.0897},
         {"planar.assemblies.ragdoll_gap", 0.18},
+        {"assemblies.ragdoll_rest", 1.0},
         {"assemblies.pinched_pile_gap", 0.15},
         {"friction.impact.default", 12.5},  // in multiples of its bounds
         {"friction.impact.pgs.s1", 12.5},
@@ -250,8 +252,7 @@ Backend makeBulletBackend() {
         {"hard.arch.displacement", 0.03},
         {"planar.hard.arch.displacement", 0.025},
         {"hard.mixed_pile_mesh.sink", 0.13},
-        {"contacts.rests_short_of_edge.capsule", 0.05},  // m below its resting height, measured 0.0165
-        {"planar.contacts.rests_short_of_edge.capsule", 0.05},
+        {"hard.ragdoll_pile.joint_gap", 0.15},
         {"planar.hard.ragdoll_pile.joint_gap", 0.15},
     });
     return backend;

@@ -9,6 +9,8 @@
 #include <array>
 #include <new>
 
+#include "bullet_carry_impulses.hpp"
+
 namespace anyphys::bullet {
 namespace {
 
@@ -39,6 +41,9 @@ constexpr btScalar kReachShare = 0.25;
 // 0.12 rad/s).
 constexpr int kWholeFace = 4;
 
+
+}  // namespace
+
 // Gives each new point the accumulated impulses of the old point at the same place on either
 // body (the sliding box's corner stays put in its own frame; the slope's point stays put in its),
 // so resting and sliding contact warm-start as before.
@@ -68,8 +73,6 @@ void carryImpulses(btPersistentManifold& manifold, const btManifoldPoint* old, i
         fresh.m_lifeTime = match.m_lifeTime;
     }
 }
-
-}  // namespace
 
 BoxBoxAlgorithm::BoxBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                                  const btCollisionObjectWrapper* body1, btScalar touchingBand)
