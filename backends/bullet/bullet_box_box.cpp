@@ -3,6 +3,7 @@
 #include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 
@@ -124,6 +125,8 @@ void BoxBoxAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 btCollisionAlgorithm* BoxBoxAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                             const btCollisionObjectWrapper* body0,
                                                                             const btCollisionObjectWrapper* body1) {
+    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
+    static_assert(sizeof(BoxBoxAlgorithm) <= sizeof(btConvexConvexAlgorithm));
     void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxBoxAlgorithm));
     return new (memory) BoxBoxAlgorithm(info, body0, body1, touchingBand);
 }

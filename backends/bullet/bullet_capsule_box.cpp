@@ -52,11 +52,17 @@ CapsuleBoxAlgorithm::CapsuleBoxAlgorithm(const btCollisionAlgorithmConstructionI
     // every point in the manifold's order: body0's point, and the normal on body1).
     manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
     // Bullet's defaults: no perturbation (round shapes take none), 3 points before it would start.
-    general_.emplace(manifold_, info, body0, body1, depthSolver, 0, 3);
+    // From the dispatcher's pool, as Bullet makes its algorithms: a member would make this one too
+    // large for the pool's blocks.
+    void* memory = m_dispatcher->allocateCollisionAlgorithm(sizeof(btConvexConvexAlgorithm));
+    general_ = new (memory) btConvexConvexAlgorithm(manifold_, info, body0, body1, depthSolver, 0, 3);
 }
 
 CapsuleBoxAlgorithm::~CapsuleBoxAlgorithm() {
-    general_.reset();  // it refers to the manifold
+    if (general_) {  // first: it refers to the manifold
+        general_->~btConvexConvexAlgorithm();
+        m_dispatcher->freeCollisionAlgorithm(general_);
+    }
     if (manifold_) m_dispatcher->releaseManifold(manifold_);
 }
 
@@ -146,6 +152,8 @@ void CapsuleBoxAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 btCollisionAlgorithm* CapsuleBoxAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                                 const btCollisionObjectWrapper* body0,
                                                                                 const btCollisionObjectWrapper* body1) {
+    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
+    static_assert(sizeof(CapsuleBoxAlgorithm) <= sizeof(btConvexConvexAlgorithm));
     void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(CapsuleBoxAlgorithm));
     return new (memory) CapsuleBoxAlgorithm(info, body0, body1, m_swapped, &depthSolver);
 }

@@ -19,8 +19,6 @@
 #include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 
-#include <optional>
-
 class btPersistentManifold;
 
 namespace anyphys::bullet {
@@ -55,7 +53,7 @@ private:
 
     btPersistentManifold* manifold_ = nullptr;  // in the dispatcher's order, owned
     bool boxFirst_ = false;
-    std::optional<btConvexConvexAlgorithm> general_;  // Bullet's test for every other pose, on manifold_
+    btConvexConvexAlgorithm* general_ = nullptr;  // Bullet's test for every other pose, on manifold_; owned
 };
 
 }  // namespace anyphys::bullet

@@ -1,6 +1,7 @@
 #include "bullet_touching.hpp"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
@@ -53,6 +54,8 @@ void SphereSphereAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 btCollisionAlgorithm* SphereSphereAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                                   const btCollisionObjectWrapper* body0,
                                                                                   const btCollisionObjectWrapper* body1) {
+    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
+    static_assert(sizeof(SphereSphereAlgorithm) <= sizeof(btConvexConvexAlgorithm));
     void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(SphereSphereAlgorithm));
     return new (memory) SphereSphereAlgorithm(info, body0, body1);
 }
