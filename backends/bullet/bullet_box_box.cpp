@@ -3,7 +3,6 @@
 #include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
-#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 
@@ -77,14 +76,7 @@ void carryImpulses(btPersistentManifold& manifold, const btManifoldPoint* old, i
 
 BoxBoxAlgorithm::BoxBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                                  const btCollisionObjectWrapper* body1, btScalar touchingBand)
-    : btActivatingCollisionAlgorithm(info, body0, body1), touchingBand_(touchingBand) {
-    if (m_dispatcher->needsCollision(body0->getCollisionObject(), body1->getCollisionObject()))
-        manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
-}
-
-BoxBoxAlgorithm::~BoxBoxAlgorithm() {
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
-}
+    : OwnManifoldAlgorithm(info, body0, body1), touchingBand_(touchingBand) {}
 
 void BoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                        const btDispatcherInfo& dispatchInfo, btManifoldResult* result) {
@@ -118,17 +110,10 @@ void BoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* body0, co
     result->refreshContactPoints();
 }
 
-void BoxBoxAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-    if (manifold_) manifolds.push_back(manifold_);
-}
-
 btCollisionAlgorithm* BoxBoxAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                             const btCollisionObjectWrapper* body0,
                                                                             const btCollisionObjectWrapper* body1) {
-    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
-    static_assert(sizeof(BoxBoxAlgorithm) <= sizeof(btConvexConvexAlgorithm));
-    void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxBoxAlgorithm));
-    return new (memory) BoxBoxAlgorithm(info, body0, body1, touchingBand);
+    return newPooledAlgorithm<BoxBoxAlgorithm>(info, body0, body1, touchingBand);
 }
 
 }  // namespace anyphys::bullet

@@ -15,21 +15,19 @@
 // a whole face (four points) they replace the manifold's, each keeping the impulses of the old
 // point at the same place on either box, so resting contact still warm-starts. A partial result
 // (an edge's single point, a face with a corner lifted) merges with the old points as Bullet does.
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
+
+#include "bullet_own_manifold.hpp"
 
 class btPersistentManifold;
 
 namespace anyphys::bullet {
 
-class BoxBoxAlgorithm final : public btActivatingCollisionAlgorithm {
+class BoxBoxAlgorithm final : public OwnManifoldAlgorithm {
 public:
     /// `touchingBand`: the layer's linearSlop; points at least that far apart are found.
     BoxBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                     const btCollisionObjectWrapper* body1, btScalar touchingBand);
-    ~BoxBoxAlgorithm() override;
-    BoxBoxAlgorithm(const BoxBoxAlgorithm&) = delete;
-    BoxBoxAlgorithm& operator=(const BoxBoxAlgorithm&) = delete;
 
     void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                           const btDispatcherInfo& dispatchInfo, btManifoldResult* result) override;
@@ -37,7 +35,6 @@ public:
                                    btManifoldResult*) override {
         return 1;  // as Bullet's own box-box algorithm
     }
-    void getAllContactManifolds(btManifoldArray& manifolds) override;
 
     struct CreateFunc final : btCollisionAlgorithmCreateFunc {
         explicit CreateFunc(btScalar band) : touchingBand(band) {}
@@ -48,7 +45,6 @@ public:
     };
 
 private:
-    btPersistentManifold* manifold_ = nullptr;  // owned
     btScalar touchingBand_;
 };
 

@@ -46,11 +46,8 @@ bool clipToFace(const btVector3& e0, const btVector3& e1, const btVector3& half,
 CapsuleBoxAlgorithm::CapsuleBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info,
                                          const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                          bool boxFirst, btConvexPenetrationDepthSolver* depthSolver)
-    : btActivatingCollisionAlgorithm(info, body0, body1), boxFirst_(boxFirst) {
-    if (!m_dispatcher->needsCollision(body0->getCollisionObject(), body1->getCollisionObject())) return;
-    // In the dispatcher's order, as Bullet's convex-convex test speaks (btManifoldResult takes
-    // every point in the manifold's order: body0's point, and the normal on body1).
-    manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
+    : OwnManifoldAlgorithm(info, body0, body1), boxFirst_(boxFirst) {
+    if (!manifold_) return;
     // Bullet's defaults: no perturbation (round shapes take none), 3 points before it would start.
     // From the dispatcher's pool, as Bullet makes its algorithms: a member would make this one too
     // large for the pool's blocks.
@@ -59,11 +56,10 @@ CapsuleBoxAlgorithm::CapsuleBoxAlgorithm(const btCollisionAlgorithmConstructionI
 }
 
 CapsuleBoxAlgorithm::~CapsuleBoxAlgorithm() {
-    if (general_) {  // first: it refers to the manifold
+    if (general_) {  // before the base releases the manifold it refers to
         general_->~btConvexConvexAlgorithm();
         m_dispatcher->freeCollisionAlgorithm(general_);
     }
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
 }
 
 bool CapsuleBoxAlgorithm::collideOverFace(const btCollisionObjectWrapper* capsuleWrap, const btCollisionObjectWrapper* boxWrap,
@@ -145,17 +141,10 @@ btScalar CapsuleBoxAlgorithm::calculateTimeOfImpact(btCollisionObject* body0, bt
     return general_ ? general_->calculateTimeOfImpact(body0, body1, dispatchInfo, result) : 1;
 }
 
-void CapsuleBoxAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-    if (manifold_) manifolds.push_back(manifold_);
-}
-
 btCollisionAlgorithm* CapsuleBoxAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                                 const btCollisionObjectWrapper* body0,
                                                                                 const btCollisionObjectWrapper* body1) {
-    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
-    static_assert(sizeof(CapsuleBoxAlgorithm) <= sizeof(btConvexConvexAlgorithm));
-    void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(CapsuleBoxAlgorithm));
-    return new (memory) CapsuleBoxAlgorithm(info, body0, body1, m_swapped, &depthSolver);
+    return newPooledAlgorithm<CapsuleBoxAlgorithm>(info, body0, body1, m_swapped, &depthSolver);
 }
 
 }  // namespace anyphys::bullet

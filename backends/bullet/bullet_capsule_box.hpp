@@ -14,28 +14,26 @@
 // one merges as Bullet's test does. Any other pose (an end through the face, a capsule beside the
 // box touching an edge, one tipping over an edge) is left to Bullet's convex-convex test, on the
 // same manifold.
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
 #include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+
+#include "bullet_own_manifold.hpp"
 
 class btPersistentManifold;
 
 namespace anyphys::bullet {
 
-class CapsuleBoxAlgorithm final : public btActivatingCollisionAlgorithm {
+class CapsuleBoxAlgorithm final : public OwnManifoldAlgorithm {
 public:
     CapsuleBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1, bool boxFirst, btConvexPenetrationDepthSolver* depthSolver);
     ~CapsuleBoxAlgorithm() override;
-    CapsuleBoxAlgorithm(const CapsuleBoxAlgorithm&) = delete;
-    CapsuleBoxAlgorithm& operator=(const CapsuleBoxAlgorithm&) = delete;
 
     void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                           const btDispatcherInfo& dispatchInfo, btManifoldResult* result) override;
     btScalar calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1, const btDispatcherInfo& dispatchInfo,
                                    btManifoldResult* result) override;
-    void getAllContactManifolds(btManifoldArray& manifolds) override;
 
     /// Creates the algorithm for (capsule, box), or for (box, capsule) when `boxFirst`.
     struct CreateFunc final : btCollisionAlgorithmCreateFunc {
@@ -51,7 +49,6 @@ private:
     bool collideOverFace(const btCollisionObjectWrapper* capsuleWrap, const btCollisionObjectWrapper* boxWrap,
                          btManifoldResult* result);
 
-    btPersistentManifold* manifold_ = nullptr;  // in the dispatcher's order, owned
     bool boxFirst_ = false;
     btConvexConvexAlgorithm* general_ = nullptr;  // Bullet's test for every other pose, on manifold_; owned
 };

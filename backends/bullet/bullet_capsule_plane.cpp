@@ -2,12 +2,13 @@
 
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
-#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 
 #include <new>
+
+#include "bullet_own_manifold.hpp"
 
 namespace anyphys::bullet {
 
@@ -57,10 +58,7 @@ void CapsulePlaneAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
 btCollisionAlgorithm* CapsulePlaneAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                                   const btCollisionObjectWrapper* body0,
                                                                                   const btCollisionObjectWrapper* body1) {
-    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
-    static_assert(sizeof(CapsulePlaneAlgorithm) <= sizeof(btConvexConvexAlgorithm));
-    void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(CapsulePlaneAlgorithm));
-    return new (memory) CapsulePlaneAlgorithm(info, body0, body1, m_swapped);
+    return newPooledAlgorithm<CapsulePlaneAlgorithm>(info, body0, body1, m_swapped);
 }
 
 }  // namespace anyphys::bullet

@@ -1,7 +1,6 @@
 #include "bullet_touching.hpp"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
-#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
@@ -14,17 +13,6 @@ btPersistentManifold* TouchingDispatcher::getNewManifold(const btCollisionObject
     btPersistentManifold* manifold = btCollisionDispatcher::getNewManifold(body0, body1);
     if (manifold->getContactBreakingThreshold() < minimumBreaking_) manifold->setContactBreakingThreshold(minimumBreaking_);
     return manifold;
-}
-
-SphereSphereAlgorithm::SphereSphereAlgorithm(const btCollisionAlgorithmConstructionInfo& info,
-                                             const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1)
-    : btActivatingCollisionAlgorithm(info, body0, body1) {
-    if (m_dispatcher->needsCollision(body0->getCollisionObject(), body1->getCollisionObject()))
-        manifold_ = m_dispatcher->getNewManifold(body0->getCollisionObject(), body1->getCollisionObject());
-}
-
-SphereSphereAlgorithm::~SphereSphereAlgorithm() {
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
 }
 
 void SphereSphereAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
@@ -47,17 +35,10 @@ void SphereSphereAlgorithm::processCollision(const btCollisionObjectWrapper* bod
     result->refreshContactPoints();
 }
 
-void SphereSphereAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-    if (manifold_) manifolds.push_back(manifold_);
-}
-
 btCollisionAlgorithm* SphereSphereAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                                                   const btCollisionObjectWrapper* body0,
                                                                                   const btCollisionObjectWrapper* body1) {
-    // Bullet's pool hands out blocks the size of its largest algorithm, at least this one.
-    static_assert(sizeof(SphereSphereAlgorithm) <= sizeof(btConvexConvexAlgorithm));
-    void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(SphereSphereAlgorithm));
-    return new (memory) SphereSphereAlgorithm(info, body0, body1);
+    return newPooledAlgorithm<SphereSphereAlgorithm>(info, body0, body1);
 }
 
 }  // namespace anyphys::bullet

@@ -10,9 +10,10 @@
 // threshold and reports only overlap, so two spheres 1 mm apart never touched at any size:
 // SphereSphereAlgorithm reports their one point within the threshold, as Bullet's other convex
 // tests do.
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+
+#include "bullet_own_manifold.hpp"
 
 namespace anyphys::bullet {
 
@@ -29,13 +30,11 @@ private:
 };
 
 /// Sphere against sphere, with points kept within the manifold's breaking threshold.
-class SphereSphereAlgorithm final : public btActivatingCollisionAlgorithm {
+class SphereSphereAlgorithm final : public OwnManifoldAlgorithm {
 public:
     SphereSphereAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
-                          const btCollisionObjectWrapper* body1);
-    ~SphereSphereAlgorithm() override;
-    SphereSphereAlgorithm(const SphereSphereAlgorithm&) = delete;
-    SphereSphereAlgorithm& operator=(const SphereSphereAlgorithm&) = delete;
+                          const btCollisionObjectWrapper* body1)
+        : OwnManifoldAlgorithm(info, body0, body1) {}
 
     void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                           const btDispatcherInfo& dispatchInfo, btManifoldResult* result) override;
@@ -43,16 +42,12 @@ public:
                                    btManifoldResult*) override {
         return 1;  // as Bullet's own sphere-sphere algorithm
     }
-    void getAllContactManifolds(btManifoldArray& manifolds) override;
 
     struct CreateFunc final : btCollisionAlgorithmCreateFunc {
         btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,
                                                        const btCollisionObjectWrapper* body0,
                                                        const btCollisionObjectWrapper* body1) override;
     };
-
-private:
-    btPersistentManifold* manifold_ = nullptr;  // owned
 };
 
 }  // namespace anyphys::bullet
