@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -132,9 +133,22 @@ bool readBool(const json& v, const std::string& path) {
     return v.get<bool>();
 }
 
+// Names, references and paths: none holds a control character. A name is written into the
+// tools' CSV and reports as it is, where a NUL or an escape sequence would corrupt the output.
 std::string readString(const json& v, const std::string& path) {
     if (!v.is_string()) malformed(path, v, "must be a string");
-    return v.get<std::string>();
+    std::string text = v.get<std::string>();
+    const auto control = std::find_if(text.begin(), text.end(), [](char c) {
+        const auto u = static_cast<unsigned char>(c);
+        return u < 0x20 || u == 0x7F;
+    });
+    if (control != text.end()) {
+        char code[8];
+        std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(static_cast<unsigned char>(*control)));
+        fail(path, v, "must not hold control characters (found " + std::string(code) + " at byte " +
+                          std::to_string(control - text.begin()) + ")");
+    }
+    return text;
 }
 
 Vec3 readVec3(const json& v, const std::string& path) {

@@ -11,6 +11,8 @@ printf '{ "settings": { "gravity": [0, -10, 0] }, "bodies": [ \n' > "$work/trunc
 printf '{ "bodies": [ { "name": "ball", "shape": { "type": "sphere", "radius": -1 } } ] }\n' > "$work/negative_radius.json"
 printf '{ "settings": { "backend": "no_such_engine" }, "bodies": [] }\n' > "$work/file_backend.json"
 printf '{ "settings": { "backendOptions": { "no_such_option": 1 } }, "bodies": [] }\n' > "$work/file_option.json"
+# A NUL in a name would go raw into the CSV: refused, the one stderr line escaping it.
+printf '{ "bodies": [ { "name": "a\\u0000b", "shape": { "type": "sphere", "radius": 1 } } ] }\n' > "$work/nul_name.json"
 
 failures=0
 expect_error() {  # description, command...
@@ -48,6 +50,7 @@ expect_error "compare bad scene"   "$anyphys" compare --scenes no_such_scene
 expect_error "compare bad integrator" "$anyphys" compare --integrators foo
 expect_error "file's unknown backend" "$anyphys" run "$work/file_backend.json"
 expect_error "file's unknown backend option" "$anyphys" run "$work/file_option.json"
+expect_error "NUL in a body name"  "$anyphys" run "$work/nul_name.json"
 
 # Errors about a scene file's settings name the file and the value's JSON path in it, as its
 # parse errors do (the API's own names are WorldSettings.backend and backend).
@@ -58,6 +61,7 @@ expect_naming() {  # file, text the one line must hold
 expect_naming file_backend.json "file_backend.json: settings.backend: must be one of the built backends"
 expect_naming file_option.json "file_option.json: settings: backend"
 expect_naming negative_radius.json "negative_radius.json: bodies[0].shape.radius"
+expect_naming nul_name.json 'nul_name.json: bodies[0].name: must not hold control characters (found U+0000 at byte 1), got "a\u0000b"'
 # A flag's bad value is named by the flag.
 expect_flag() {  # text the one line must hold, command...
     local want="$1"; shift

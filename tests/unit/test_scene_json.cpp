@@ -376,6 +376,25 @@ TEST(SceneJson, NamesAreRequiredNonEmptyAndUnique) {
                      {"bodies[0].shape.type: required key is missing", "sphere, box, capsule, plane"});
 }
 
+// Names are written as they are into the tool's CSV and reports: a NUL or a line break there would
+// corrupt the output, so the loader refuses control characters in every string it reads.
+TEST(SceneJson, NamesHoldNoControlCharacters) {
+    expectParseError(withBody(R"({"name": "a\u0000b", "shape": {"type": "sphere", "radius": 0.5}})"),
+                     {"bodies[0].name: must not hold control characters (found U+0000 at byte 1), got \"a\\u0000b\""});
+    expectParseError(withBody(R"({"name": "a\n", "shape": {"type": "sphere", "radius": 0.5}})"),
+                     {"bodies[0].name", "found U+000A at byte 1"});
+    expectParseError(withBody(R"({"name": "\u007f", "shape": {"type": "sphere", "radius": 0.5}})"),
+                     {"bodies[0].name", "found U+007F at byte 0"});
+    expectParseError(R"({"bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.5}}],
+                         "joints": [{"name": "j\t", "type": "ball", "bodyB": "a"}]})",
+                     {"joints[0].name", "found U+0009 at byte 1"});
+    expectParseError(R"({"instances": [{"scene": "ragdoll", "prefix": "r\u001b/"}]})",
+                     {"instances[0].prefix", "found U+001B at byte 1"});
+    // Text beyond ASCII (UTF-8 bytes >= 0x80) and spaces stay names.
+    const Scene s = parseScene(withBody(R"({"name": "Kiste \u00e4 1", "shape": {"type": "sphere", "radius": 0.5}})"));
+    EXPECT_EQ(s.bodies.at(0).name, "Kiste \u00e4 1");
+}
+
 TEST(SceneJson, UnknownAndDuplicateKeysAreErrors) {
     expectParseError(withBody(R"({"name": "b", "radius": 1, "shape": {"type": "sphere", "radius": 0.5}})"),
                      {"bodies[0].radius: unknown key; allowed keys are name, type, position"});
