@@ -593,6 +593,17 @@ bool collideCapsulePolytope(const CapsuleGeom& a, const Polytope& b, double spec
                           feature::id(feature::Kind::FaceOfB, aligned.face), builder);
             // Only if the closest points lie over the face (see separatedPolytopes).
             if (builder.deepest() <= g.distance - r + tol) return builder.finish(m);
+            // They lie beside it: the capsule's low end hangs over an edge of the face while part
+            // of it lies over the face, nearly parallel (within kFaceAlignment). On a mesh triangle
+            // that edge is usually shared, and the part over this face is then the only support
+            // there: the closest point alone let a capsule lying along an internal edge, tilted by
+            // 3e-5 rad, fall for a step at its raised end. Both hold it up. (A closed polytope's edge
+            // is a real edge: the closest point alone lets the capsule pivot on it.)
+            if (b.oneSided && !builder.empty()) {
+                builder.add(0.5 * (g.pointA + n * r + g.pointB), g.distance - r,
+                            feature::id(feature::Kind::Closest, featureCode(g.featureA), featureCode(g.featureB)));
+                return builder.finish(m);
+            }
         }
         ManifoldBuilder builder(n);
         builder.add(0.5 * (g.pointA + n * r + g.pointB), g.distance - r,
