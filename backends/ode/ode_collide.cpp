@@ -10,6 +10,7 @@
 
 #include "ode_contact_completion.hpp"
 #include "ode_math.hpp"
+#include "ode_mesh_edges.hpp"
 #include "ode_slip_friction.hpp"
 #include "ode_tuning.hpp"
 #include "ode_world.hpp"
@@ -86,7 +87,10 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     }
     // Collide into a stack buffer: most candidate pairs from the broad phase have no points.
     dContact found[kMaxContactsPerPair];
-    int n = dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
+    // A mesh (static: geom 2) through the backend's culling and edge correction (ode_mesh_edges.hpp).
+    int n = !trigger && shapeB->type() == ShapeType::Mesh
+                ? collideWithMesh(o1, o2, *shapeA, *shapeB, nearProbe_, found, kMaxContactsPerPair)
+                : dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
     n = dropDegenerateContacts(found, n);
     if (n <= 0) return;
     if (n == 1 && !trigger) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);

@@ -1,7 +1,8 @@
 #pragma once
 // ODE 0.16 (Debian's, whose hull pairs go through libccd's MPR) gives one contact point for a hull
-// against a box or a hull, and for a capsule against a box (a capsule against a hull is the
-// backend's own collider, ode_convex_capsule.hpp, with two): a face resting on a face is
+// against a box or a hull (a capsule against a hull or a box is the backend's own collider,
+// ode_convex_capsule.hpp, with two where it lies on a face; one where it leans off it, which
+// this still completes): a face resting on a face is
 // then held at one corner per step and rocks from corner to corner for ever (a unit cube hull on
 // a box: its corners at 0.5 m/s after 2 s, 1.2 cm deep; a 2 m one 1.8 cm deep). The backend completes such a manifold
 // with ODE's own collider: it tilts a twin of the moving geom slightly about axes across the

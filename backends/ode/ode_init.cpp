@@ -52,6 +52,7 @@ void ensureOdeInitialised() {
         dSetMessageHandler(&reportOnce);
         dSetColliderOverride(dConvexClass, dSphereClass, &collideConvexSphere);  // ode_convex_sphere.hpp
         dSetColliderOverride(dConvexClass, dCapsuleClass, &collideConvexCapsule);  // ode_convex_capsule.hpp
+        dSetColliderOverride(dBoxClass, dCapsuleClass, &collideBoxCapsule);  // ode_convex_capsule.hpp
         return true;
     }();
     (void)initialised;

@@ -72,7 +72,11 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
             dGeomTriMeshDataBuildDouble(meshData_, meshVertices_.data(), 3 * sizeof(dReal),
                                         static_cast<int>(d.vertices.size()), meshIndices_.data(),
                                         static_cast<int>(meshIndices_.size()), 3 * sizeof(dTriIndex));
+            // ODE's own edge flags: the capsule-trimesh collider then tests each shared edge and
+            // corner once and a concave one never (its only reader; ode_mesh_edges.hpp).
+            dGeomTriMeshDataPreprocess2(meshData_, 1u << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES, nullptr);
             geom_ = dCreateTriMesh(space, meshData_, nullptr, nullptr, nullptr);
+            meshEdges_ = std::make_unique<const MeshEdges>(d.vertices, d.indices);
             break;
         }
         case ShapeType::Compound: break;  // the layer flattens compounds: never reaches a backend
@@ -82,6 +86,7 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
 }
 
 OdeShape::~OdeShape() {
+    if (probeRay_) dGeomDestroy(probeRay_);
     if (twin_) dGeomDestroy(twin_);
     if (geom_) dGeomDestroy(geom_);
     if (meshData_) dGeomTriMeshDataDestroy(meshData_);  // after the geom that reads it
@@ -111,6 +116,11 @@ dGeomID OdeShape::twin() const {
     }
     if (twin_) dGeomSetData(twin_, const_cast<OdeShape*>(this));
     return twin_;
+}
+
+dGeomID OdeShape::probeRay() const {
+    if (!probeRay_ && type_ == ShapeType::Mesh) probeRay_ = dCreateRay(nullptr, 1.0);  // placed at each use
+    return probeRay_;
 }
 
 bool OdeShape::hasFaceAlong(const Vec3& direction, double cosine) const {

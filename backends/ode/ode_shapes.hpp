@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "anyphys/peers/shape_data.hpp"
+#include "ode_mesh_edges.hpp"
 
 namespace anyphys::ode {
 
@@ -51,6 +52,12 @@ public:
     /// that never need one (spheres, planes, meshes).
     dGeomID twin() const;
 
+    /// Meshes: which of their triangles' edges are real (ode_mesh_edges.hpp); null for other shapes.
+    const MeshEdges* meshEdges() const { return meshEdges_.get(); }
+    /// Meshes: a ray in no space and on no body, made on first use, that measures how far a
+    /// shape reaches below a triangle (collideWithMesh); null for other shapes.
+    dGeomID probeRay() const;
+
     /// Whether a face of the shape, where its geom is now, has an outward normal within
     /// `cosine` of `direction` (world frame, unit). Boxes and hulls; false for other shapes.
     bool hasFaceAlong(const Vec3& direction, double cosine) const;
@@ -89,6 +96,8 @@ private:
     std::vector<dReal> meshVertices_;
     std::vector<dTriIndex> meshIndices_;
     dTriMeshDataID meshData_ = nullptr;
+    std::unique_ptr<const MeshEdges> meshEdges_;
+    mutable dGeomID probeRay_ = nullptr;
 };
 
 /// The shape whose geom (or twin) `geom` is; null for other geoms (rays).

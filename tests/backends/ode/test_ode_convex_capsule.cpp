@@ -1,5 +1,5 @@
 // The ODE backend's own hull-against-capsule collider (ode_convex_capsule.hpp), which replaces
-// libccd's MPR: the contacts it lists in the step they are made (a capsule lying on a face, on
+// libccd's MPR (and, over a box's corners, ODE's box-capsule): the contacts it lists in the step they are made (a capsule lying on a face, on
 // one end, sunk into a face, across an edge, beside an edge and at a corner), exact touching
 // in every region both ways round, a capsule resting still on a hull, and a hull reaching 1e7 m
 // that no longer hangs the step.
@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "anyphys/anyphys.hpp"
@@ -40,18 +41,18 @@ struct Expected {
 TEST(OdeConvexCapsule, ContactsAreTheGeometrysInEveryRegion) {
     const double r = 0.1, s2 = std::sqrt(0.5), s3 = std::sqrt(1.0 / 3.0);
     const std::vector<Expected> cases{
-        // Lying on the top face, its lowest line 1 cm into it: a contact under each end, midway
-        // between the face (y = 0.5) and the capsule's bottom (y = 0.49).
+        // Lying on the top face, its lowest line 1 cm into it: a contact under each end, at the
+        // capsule's bottom (y = 0.49; the face is at y = 0.5).
         {"lying on a face", Vec3(-0.3, 0.59, 0.2), Vec3(0.3, 0.59, 0.2), Vec3::UnitY(),
-         {Vec3(-0.3, 0.495, 0.2), Vec3(0.3, 0.495, 0.2)}, 0.01},
+         {Vec3(-0.3, 0.49, 0.2), Vec3(0.3, 0.49, 0.2)}, 0.01},
         // Past the face's edge at x = 0.5: the second contact where the core leaves the face.
         {"lying over a face's edge", Vec3(0.2, 0.59, 0), Vec3(0.8, 0.59, 0), Vec3::UnitY(),
-         {Vec3(0.2, 0.495, 0), Vec3(0.5, 0.495, 0)}, 0.01},
+         {Vec3(0.2, 0.49, 0), Vec3(0.5, 0.49, 0)}, 0.01},
         // Standing on one end (the other 0.3 m above): the lower end only.
-        {"on one end", Vec3(0.1, 0.58, -0.1), Vec3(0.1, 0.88, -0.1), Vec3::UnitY(), {Vec3(0.1, 0.49, -0.1)}, 0.02},
+        {"on one end", Vec3(0.1, 0.58, -0.1), Vec3(0.1, 0.88, -0.1), Vec3::UnitY(), {Vec3(0.1, 0.48, -0.1)}, 0.02},
         // Sunk: the core 5 cm below the top face, the shortest way out is up by 15 cm.
         {"sunk into a face", Vec3(-0.2, 0.45, 0), Vec3(0.2, 0.45, 0), Vec3::UnitY(),
-         {Vec3(-0.2, 0.425, 0), Vec3(0.2, 0.425, 0)}, 0.15},
+         {Vec3(-0.2, 0.35, 0), Vec3(0.2, 0.35, 0)}, 0.15},
         // Across the edge x = y = 0.5, sunk: the core from (0.6, 0.3) to (0.3, 0.6) passes
         // 0.0707 m inside the edge, the faces would need 0.2 m: out along the edge's bisector.
         {"sunk across an edge", Vec3(0.6, 0.3, 0), Vec3(0.3, 0.6, 0), Vec3(s2, s2, 0),
@@ -63,27 +64,30 @@ TEST(OdeConvexCapsule, ContactsAreTheGeometrysInEveryRegion) {
         {"at a corner", Vec3(0.5, 0.5, 0.5) + 0.09 * Vec3(s3, s3, s3), Vec3(0.5, 0.5, 0.5) + 0.49 * Vec3(s3, s3, s3),
          Vec3(s3, s3, s3), {Vec3(0.5, 0.5, 0.5) - 0.005 * Vec3(s3, s3, s3)}, 0.01},
     };
-    for (const Expected& c : cases) {
-        SCOPED_TRACE(c.name);
-        WorldSettings settings = test::backendSettings("ode");
-        settings.gravity = Vec3::Zero();
-        World world(settings);
-        BodyDef cube;
-        cube.type = BodyType::Static;
-        cube.shape = test::cubeHull(0.5);
-        world.createBody(cube);  // first: the events' body A, their normal from it to the capsule
-        world.createBody(capsuleBetween(c.a, c.b, r));
-        world.step();
-        ASSERT_EQ(world.lastEvents().size(), 1u);
-        const ContactEvent& e = world.lastEvents()[0];
-        // 1e-9: each figure is a few products of the step's poses; a wrong feature is centimetres off.
-        EXPECT_LT((e.normal - c.outward).norm(), 1e-9) << e.normal.transpose();
-        ASSERT_EQ(e.points.size(), c.at.size());
-        for (const ContactPoint& p : e.points) {
-            EXPECT_NEAR(p.depth, c.depth, 1e-9);
-            double nearest = INFINITY;
-            for (const Vec3& q : c.at) nearest = std::min(nearest, (p.position - q).norm());
-            EXPECT_LT(nearest, 1e-9) << p.position.transpose();
+    // The same cube as a box: the same collider over the box's corners (collideBoxCapsule).
+    for (const ShapeDef& shape : {test::cubeHull(0.5), ShapeDef::box(Vec3(0.5, 0.5, 0.5))}) {
+        for (const Expected& c : cases) {
+            SCOPED_TRACE(std::string(c.name) + (shape.type == ShapeType::Box ? " on a box" : " on a hull"));
+            WorldSettings settings = test::backendSettings("ode");
+            settings.gravity = Vec3::Zero();
+            World world(settings);
+            BodyDef cube;
+            cube.type = BodyType::Static;
+            cube.shape = shape;
+            world.createBody(cube);  // first: the events' body A, their normal from it to the capsule
+            world.createBody(capsuleBetween(c.a, c.b, r));
+            world.step();
+            ASSERT_EQ(world.lastEvents().size(), 1u);
+            const ContactEvent& e = world.lastEvents()[0];
+            // 1e-9: each figure is a few products of the step's poses; a wrong feature is centimetres off.
+            EXPECT_LT((e.normal - c.outward).norm(), 1e-9) << e.normal.transpose();
+            ASSERT_EQ(e.points.size(), c.at.size());
+            for (const ContactPoint& p : e.points) {
+                EXPECT_NEAR(p.depth, c.depth, 1e-9);
+                double nearest = INFINITY;
+                for (const Vec3& q : c.at) nearest = std::min(nearest, (p.position - q).norm());
+                EXPECT_LT(nearest, 1e-9) << p.position.transpose();
+            }
         }
     }
 }
