@@ -1,5 +1,8 @@
 #include "bullet_dynamics_world.hpp"
 
+#include <BulletCollision/CollisionDispatch/btInternalEdgeUtility.h>
+#include <BulletCollision/CollisionShapes/btTriangleShape.h>
+
 #include <cmath>
 
 #include "anyphys/peers/gyroscopic.hpp"
@@ -156,12 +159,55 @@ void AnyphysDynamicsWorld::integrateTransforms(btScalar timeStep) {
 
 namespace {
 
+// Bullet's internal-edge utility (btAdjustInternalEdgeContacts, with the edge angles ShapeSet
+// stored for the mesh): near an edge shared with a flat or concave neighbour the normal becomes
+// the triangle's own; near a convex one it is kept between the two faces' normals. The mesh is
+// always body 1 (Bullet's convex-concave algorithm builds its manifold convex shape first), and
+// the point's normal is on the triangle, as the utility expects. Two additions:
+//  - The utility changes only points whose normal leans to the triangle's front (flags 0: the
+//    layer's triangles face where they are counter-clockwise, and the back of a mesh keeps
+//    Bullet's contacts). A body sunk a few mm meets the next triangle's edge side-on, with a
+//    normal a hair behind the plane (a hull sliding at 5 m/s: (1, -0.002, 0)): while the body's
+//    centre is in front, such a normal is mirrored to the front for the utility, and kept as it
+//    was where the utility then changes nothing (no shared edge near).
+//  - The utility keeps the depth measured along the old normal (a side-on hit's 0.6 mm where the
+//    body is level with the face); the depth is measured again along the new normal, from the
+//    old point on the triangle (on a flat or concave edge: the distance to the triangle's plane).
+void correctMeshEdge(btManifoldPoint& p, const btCollisionObjectWrapper* obj0, const btCollisionObjectWrapper* obj1,
+                     int partId1, int index1) {
+    if (obj1->getCollisionShape()->getShapeType() != TRIANGLE_SHAPE_PROXYTYPE ||
+        obj1->getCollisionObject()->getCollisionShape()->getShapeType() != TRIANGLE_MESH_SHAPE_PROXYTYPE)
+        return;
+    const btManifoldPoint found = p;
+    btVector3 face;
+    static_cast<const btTriangleShape*>(obj1->getCollisionShape())->calcNormal(face);
+    face = obj1->getWorldTransform().getBasis() * face;
+    const btVector3 triangleCorner =
+        obj1->getWorldTransform() * static_cast<const btTriangleShape*>(obj1->getCollisionShape())->m_vertices1[0];
+    const btScalar behind = p.m_normalWorldOnB.dot(face);
+    const bool mirrored = behind < 0 && (obj0->getWorldTransform().getOrigin() - triangleCorner).dot(face) > 0;
+    if (mirrored) p.m_normalWorldOnB -= 2 * behind * face;
+    const btVector3 before = p.m_normalWorldOnB;
+    btAdjustInternalEdgeContacts(p, obj1, obj0, partId1, index1);
+    if (p.m_normalWorldOnB == before) {  // not near a shared edge, or already within its range
+        p = found;
+        return;
+    }
+    p.m_distance1 = (found.m_positionWorldOnA - found.m_positionWorldOnB).dot(p.m_normalWorldOnB);
+    p.m_positionWorldOnB = p.m_positionWorldOnA - p.m_normalWorldOnB * p.m_distance1;
+    p.m_localPointB = obj1->getWorldTransform().invXform(p.m_positionWorldOnB);
+}
+
 // Bullet calls this for every point the narrow phase adds or replaces, right after it wrote its
 // own product of the two bodies' frictions into it, when one of the bodies has
 // CF_CUSTOM_MATERIAL_CALLBACK (every anyphys body does). The point names its compound children
 // (m_index0 / m_index1) and follows the manifold's body order, as obj0 and obj1 do.
+// A point on a mesh triangle also gets its normal corrected near the edges the triangle shares
+// with its neighbours (correctMeshEdge): Bullet collides the triangles one by one, and a body
+// sliding across a flat mesh met the edges ahead as walls.
 bool materialOnContactAdded(btManifoldPoint& p, const btCollisionObjectWrapper* obj0, int, int,
-                            const btCollisionObjectWrapper* obj1, int, int) {
+                            const btCollisionObjectWrapper* obj1, int partId1, int index1) {
+    correctMeshEdge(p, obj0, obj1, partId1, index1);
     const auto* a = static_cast<const BulletBodyPeer*>(obj0->getCollisionObject()->getUserPointer());
     const auto* b = static_cast<const BulletBodyPeer*>(obj1->getCollisionObject()->getUserPointer());
     if (a != nullptr && b != nullptr) a->world().dynamicsWorld().writeMaterial(p, *a, *b);

@@ -1,5 +1,6 @@
 #include "bullet_shapes.hpp"
 
+#include <BulletCollision/CollisionDispatch/btInternalEdgeUtility.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <LinearMath/btGeometryUtil.h>
 
@@ -128,17 +129,34 @@ btCollisionShape* ShapeSet::build(const PeerShape& ps, bool& absorbedPose) {
             break;
         }
         case ShapeType::Mesh: {
+            // The local pose folds into the vertices, so the mesh is always the body's own shape,
+            // never a compound's child: Bullet's edge adjustment finds the triangles' edge info
+            // through the collision object's shape.
             auto mesh = std::make_unique<Mesh>();
             mesh->vertices.reserve(d.vertices.size() * 3);
-            for (const Vec3& v : d.vertices)
-                for (int k = 0; k < 3; ++k) mesh->vertices.push_back(static_cast<btScalar>(v[k]));
+            for (const Vec3& v : d.vertices) {
+                const Vec3 placed = ps.local.orientation * v + ps.local.position;
+                for (int k = 0; k < 3; ++k) mesh->vertices.push_back(static_cast<btScalar>(placed[k]));
+            }
             mesh->indices.assign(d.indices.begin(), d.indices.end());
             mesh->array = std::make_unique<btTriangleIndexVertexArray>(
                 static_cast<int>(mesh->indices.size() / 3), mesh->indices.data(), static_cast<int>(3 * sizeof(int)),
                 static_cast<int>(d.vertices.size()), mesh->vertices.data(), static_cast<int>(3 * sizeof(btScalar)));
             auto bvh = std::make_unique<btBvhTriangleMeshShape>(mesh->array.get(), /*useQuantizedAabbCompression=*/true);
             bvh->setMargin(0);  // triangles are exact; the other shape's margin keeps GJK robust
+            // Bullet collides each triangle alone, so a body sliding over a flat mesh meets the
+            // shared edges ahead of it as walls (a 0.5 m box at 5 m/s kept 1.0 m/s after 2 s, spun
+            // at 9.7 rad/s and was thrown 16 cm up). The angle at every shared edge lets the
+            // contact callback correct those normals; edges with no neighbour keep theirs.
+            mesh->edges = std::make_unique<btTriangleInfoMap>();
+            // Only bends under 60 deg: sharper creases are walls and steps, where each triangle's
+            // own contacts are right, and at a right angle Bullet read a concave crease as convex:
+            // the floor's points beside a mesh wall were turned along the floor, into the wall (a
+            // box sliding into it at 5 m/s went 11 cm deep, 6 cm with the wall's own contacts).
+            mesh->edges->m_maxEdgeAngleThreshold = static_cast<btScalar>(SIMD_PI / 3);
+            btGenerateInternalEdgeInfo(bvh.get(), mesh->edges.get());
             meshes_.push_back(std::move(mesh));
+            absorbedPose = true;
             hasMesh_ = true;
             shape = std::move(bvh);
             break;

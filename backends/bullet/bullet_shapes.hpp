@@ -43,6 +43,9 @@ private:
         std::vector<btScalar> vertices;  // x, y, z per vertex
         std::vector<int> indices;        // three per triangle
         std::unique_ptr<btTriangleIndexVertexArray> array;
+        // The angle at each triangle's shared edges, for btAdjustInternalEdgeContacts (see
+        // correctMeshEdge in bullet_dynamics_world.cpp); the mesh shape points to it, not owning it.
+        std::unique_ptr<btTriangleInfoMap> edges;
     };
     btCollisionShape* build(const PeerShape& shape, bool& absorbedPose);
 

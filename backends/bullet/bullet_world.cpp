@@ -81,9 +81,15 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     // A sliding box keeps its whole face of contact on a box (bullet_box_box.hpp).
     dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &boxBox_);
     dispatcher_->registerCollisionCreateFunc(SPHERE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE, &sphereSphere_);
-    // A capsule lying on a box keeps its whole line of contact (bullet_capsule_box.hpp).
-    dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &capsuleBox_);
-    dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, &boxCapsule_);
+    // A sliding hull keeps its whole face of contact on a box or a hull (bullet_hull_pairs.hpp).
+    dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE, &hullPairs_);
+    dispatcher_->registerCollisionCreateFunc(CONVEX_HULL_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &hullPairs_);
+    dispatcher_->registerCollisionCreateFunc(CONVEX_HULL_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE, &hullPairs_);
+    // A capsule lying on a box or a hull keeps its whole line of contact (bullet_capsule_polyhedron.hpp).
+    dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &capsulePolyhedron_);
+    dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, &polyhedronCapsule_);
+    dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE, &capsulePolyhedron_);
+    dispatcher_->registerCollisionCreateFunc(CONVEX_HULL_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, &polyhedronCapsule_);
     planeMultipoint_ = planeMultipoint(settings);  // its refresh pass runs while a plane is here (createBody)
     if (planeMultipoint_) {  // a capsule's whole line of contact too (bullet_capsule_plane.hpp)
         dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &capsulePlane_);

@@ -18,9 +18,10 @@
 #include "anyphys/world_settings.hpp"
 #include "bullet_body.hpp"
 #include "bullet_box_box.hpp"
-#include "bullet_capsule_box.hpp"
 #include "bullet_capsule_plane.hpp"
+#include "bullet_capsule_polyhedron.hpp"
 #include "bullet_dynamics_world.hpp"
+#include "bullet_hull_pairs.hpp"
 #include "bullet_joints.hpp"
 #include "bullet_touching.hpp"
 
@@ -148,7 +149,8 @@ private:
     CapsulePlaneAlgorithm::CreateFunc capsulePlane_{false}, planeCapsule_{true};  // the dispatcher uses them
     BoxBoxAlgorithm::CreateFunc boxBox_;                                           // the same
     SphereSphereAlgorithm::CreateFunc sphereSphere_;                               // the same
-    CapsuleBoxAlgorithm::CreateFunc capsuleBox_{false}, boxCapsule_{true};         // the same
+    HullPairAlgorithm::CreateFunc hullPairs_;                                      // the same
+    CapsulePolyhedronAlgorithm::CreateFunc capsulePolyhedron_{false}, polyhedronCapsule_{true};  // the same
     std::unique_ptr<TouchingDispatcher> dispatcher_;
     std::unique_ptr<btBroadphaseInterface> broadphase_;
     std::unique_ptr<btDantzigSolver> mlcpInterface_;
