@@ -22,7 +22,7 @@ namespace {
 // points, resting on a box, rocked at 0.17 m/s when taking three as whole): those merge with the
 // old points as Bullet does, which keeps the other triangles' points while within the breaking
 // threshold.
-constexpr int kWholeFace = 4;
+constexpr int kWholeHullFace = 4;
 
 // GJK's closest points: the normal on the second body (towards the first), the point on its
 // surface and their distance, margins included (negative when overlapping).
@@ -167,7 +167,7 @@ bool HullPairAlgorithm::collidePolyhedra(const btCollisionObjectWrapper* body0, 
     }
 
     result->setPersistentManifold(manifold_);
-    const bool wholeFace = found.size() >= kWholeFace;
+    const bool wholeFace = found.size() >= kWholeHullFace;
     std::array<btManifoldPoint, MANIFOLD_CACHE_SIZE> old;
     const int oldCount = wholeFace ? manifold_->getNumContacts() : 0;
     for (int i = 0; i < oldCount; ++i) old[i] = manifold_->getContactPoint(i);

@@ -18,7 +18,7 @@ namespace {
 // while any fold a body could catch on (a ridge, a step, a cube's edge) stays real.
 const double kFlatEdgeSine = std::sin(1.0 * std::numbers::pi / 180.0);
 // A contact normal within this of its triangle's face normal is a face contact: left as ODE gave it.
-const double kFaceNormalCosine = std::cos(0.5 * std::numbers::pi / 180.0);
+const double kOnFaceCosine = std::cos(0.5 * std::numbers::pi / 180.0);
 // Below this the normal's tilt from the face no longer widens the band kept around real edges.
 const double kLeastTiltSine = std::sin(0.5 * std::numbers::pi / 180.0);
 // m: the band kept around a real edge or corner is at least this wide (rounding in ODE's clipping).
@@ -124,7 +124,7 @@ int collideWithMesh(dGeomID o1, dGeomID o2, const OdeShape& shape, const OdeShap
         const Vec3 area = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
         if (!(area.norm() > 0.0)) return true;
         const Vec3 face = area.normalized();
-        if (out.dot(face) >= kFaceNormalCosine) {  // the face's but for ODE's rounding: made exactly the face's
+        if (out.dot(face) >= kOnFaceCosine) {  // the face's but for ODE's rounding: made exactly the face's
             for (int k = 0; k < 3; ++k) g.normal[k] = face[k];
             return true;
         }
