@@ -3,6 +3,7 @@
 // materials, sleeping, queries).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <limits>
 #include <numbers>
@@ -87,6 +88,26 @@ inline ShapeDef cubeHull(double half) {
         for (double y : {-half, half})
             for (double z : {-half, half}) corners.emplace_back(x, y, z);
     return ShapeDef::convex(corners);
+}
+
+/// A 20 m square floor at y = 0 of 1 m cells, two triangles each, the cells' diagonals alternating
+/// (counter-clockwise seen from above): flat, but with internal edges every metre in three
+/// directions. The floor of the mesh-sliding tests (contract and backends alike).
+inline ShapeDef tessellatedFloor() {
+    constexpr int kCells = 20;
+    std::vector<Vec3> vertices;
+    for (int j = 0; j <= kCells; ++j)
+        for (int i = 0; i <= kCells; ++i) vertices.emplace_back(i - kCells / 2.0, 0.0, j - kCells / 2.0);
+    std::vector<std::uint32_t> indices;
+    for (int j = 0; j < kCells; ++j)
+        for (int i = 0; i < kCells; ++i) {
+            const auto a = static_cast<std::uint32_t>(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1, d = c + 1;
+            if ((i + j) % 2 == 0)
+                indices.insert(indices.end(), {a, c, d, a, d, b});
+            else
+                indices.insert(indices.end(), {a, c, b, b, c, d});
+        }
+    return ShapeDef::mesh(vertices, indices);
 }
 
 /// The static table of the edge tests: top y = 0, its edge through the origin across `outward`.

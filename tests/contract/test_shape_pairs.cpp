@@ -282,26 +282,6 @@ TEST_P(ShapePairsTest, EveryGroundCatchesALandingAlike) {
     }
 }
 
-/// A 20 m square floor at y = 0 of 1 m cells, two triangles each, the cells' diagonals alternating
-/// (counter-clockwise seen from above): flat, but with internal edges every metre in three
-/// directions.
-ShapeDef tessellatedFloor() {
-    constexpr int kCells = 20;
-    std::vector<Vec3> vertices;
-    for (int j = 0; j <= kCells; ++j)
-        for (int i = 0; i <= kCells; ++i) vertices.emplace_back(i - kCells / 2.0, 0.0, j - kCells / 2.0);
-    std::vector<std::uint32_t> indices;
-    for (int j = 0; j < kCells; ++j)
-        for (int i = 0; i < kCells; ++i) {
-            const auto a = static_cast<std::uint32_t>(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1, d = c + 1;
-            if ((i + j) % 2 == 0)
-                indices.insert(indices.end(), {a, c, d, a, d, b});
-            else
-                indices.insert(indices.end(), {a, c, b, b, c, d});
-        }
-    return ShapeDef::mesh(vertices, indices);
-}
-
 // A body sliding without friction over a flat floor keeps its velocity, whether the floor is one
 // box or a triangle mesh: the mesh's internal edges lie in the surface, and a contact on one must
 // push along the face normal, never against the motion. (Found on Bullet and ODE, 2026-12-03: on

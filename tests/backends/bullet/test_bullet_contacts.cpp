@@ -233,25 +233,12 @@ TEST(BulletContacts, AMeshPlacedByItsShapePoseHasItsInternalEdgesCorrected) {
     // compound's child) has the pose folded into its vertices. A ball sliding without friction
     // across a floor of 1 m cells, turned and lowered by the shape's pose, keeps its velocity (with
     // no edge corrected, the floor unposed: 3.9 of its 5 m/s left after 2 s, thrown 2.6 cm up).
-    constexpr int kCells = 20;
-    std::vector<Vec3> vertices;
-    for (int j = 0; j <= kCells; ++j)
-        for (int i = 0; i <= kCells; ++i) vertices.emplace_back(i - kCells / 2.0, 0.0, j - kCells / 2.0);
-    std::vector<std::uint32_t> indices;  // counter-clockwise seen from above, diagonals alternating
-    for (int j = 0; j < kCells; ++j)
-        for (int i = 0; i < kCells; ++i) {
-            const auto a = static_cast<std::uint32_t>(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1, d = c + 1;
-            if ((i + j) % 2 == 0)
-                indices.insert(indices.end(), {a, c, d, a, d, b});
-            else
-                indices.insert(indices.end(), {a, c, b, b, c, d});
-        }
     MaterialLibrary materials;
     materials.add("ice", Material{0.0, 0.0, 1000.0});  // friction, restitution, density
     World world(backendSettings("bullet"), materials);
     BodyDef floor;
     floor.type = BodyType::Static;
-    floor.shape = ShapeDef::mesh(vertices, indices);
+    floor.shape = tessellatedFloor();  // contact_helpers.hpp: 1 m cells, diagonals alternating
     floor.shape.position = Vec3(0, -1, 0);
     floor.shape.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY()));
     floor.position = Vec3(0, 1, 0);  // the top at y = 0

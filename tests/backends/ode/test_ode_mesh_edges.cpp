@@ -60,19 +60,6 @@ World iceWorld() {
 // that alternates (the contract's floor): before the correction it spun at 39 rad/s and kept
 // 4.28 of its 5 m/s.
 TEST(OdeMeshEdges, SmallBoxAndCapsuleSlideDiagonallyAcrossATriangulatedFloor) {
-    constexpr int kCells = 20;
-    std::vector<Vec3> vertices;
-    for (int j = 0; j <= kCells; ++j)
-        for (int i = 0; i <= kCells; ++i) vertices.emplace_back(i - kCells / 2.0, 0.0, j - kCells / 2.0);
-    std::vector<std::uint32_t> indices;
-    for (int j = 0; j < kCells; ++j)
-        for (int i = 0; i < kCells; ++i) {
-            const auto a = static_cast<std::uint32_t>(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1, d = c + 1;
-            if ((i + j) % 2 == 0)
-                indices.insert(indices.end(), {a, c, d, a, d, b});
-            else
-                indices.insert(indices.end(), {a, c, b, b, c, d});
-        }
     struct Slider {
         const char* name;
         ShapeDef shape;
@@ -82,7 +69,8 @@ TEST(OdeMeshEdges, SmallBoxAndCapsuleSlideDiagonallyAcrossATriangulatedFloor) {
                             Slider{"capsule", ShapeDef::capsule(0.1, 0.3), 0.1, 0.4}}) {
         SCOPED_TRACE(s.name);
         World world = iceWorld();
-        addMesh(world, vertices, indices, "ice");
+        const ShapeDef floor = test::tessellatedFloor();  // contact_helpers.hpp
+        addMesh(world, floor.vertices, floor.indices, "ice");
         BodyDef def;
         def.shape = s.shape;
         def.material = "ice";
