@@ -187,21 +187,7 @@ CapsulePolyhedronAlgorithm::CapsulePolyhedronAlgorithm(const btCollisionAlgorith
                                                        const btCollisionObjectWrapper* body0,
                                                        const btCollisionObjectWrapper* body1, bool polyhedronFirst,
                                                        btConvexPenetrationDepthSolver* depthSolver)
-    : OwnManifoldAlgorithm(info, body0, body1), polyhedronFirst_(polyhedronFirst) {
-    if (!manifold_) return;
-    // Bullet's defaults: no perturbation (round shapes take none), 3 points before it would start.
-    // From the dispatcher's pool, as Bullet makes its algorithms: a member would make this one too
-    // large for the pool's blocks.
-    void* memory = m_dispatcher->allocateCollisionAlgorithm(sizeof(btConvexConvexAlgorithm));
-    general_ = new (memory) btConvexConvexAlgorithm(manifold_, info, body0, body1, depthSolver, 0, 3);
-}
-
-CapsulePolyhedronAlgorithm::~CapsulePolyhedronAlgorithm() {
-    if (general_) {  // before the base releases the manifold it refers to
-        general_->~btConvexConvexAlgorithm();
-        m_dispatcher->freeCollisionAlgorithm(general_);
-    }
-}
+    : OwnManifoldWithFallback(info, body0, body1, depthSolver), polyhedronFirst_(polyhedronFirst) {}
 
 bool CapsulePolyhedronAlgorithm::collideOverFace(const btCollisionObjectWrapper* capsuleWrap,
                                                  const btCollisionObjectWrapper* polyhedronWrap, btManifoldResult* result) {
@@ -258,14 +244,9 @@ void CapsulePolyhedronAlgorithm::processCollision(const btCollisionObjectWrapper
     if (!manifold_) return;
     const btCollisionObjectWrapper* capsuleWrap = polyhedronFirst_ ? body1 : body0;
     const btCollisionObjectWrapper* polyhedronWrap = polyhedronFirst_ ? body0 : body1;
-    if (!collideOverFace(capsuleWrap, polyhedronWrap, result)) general_->processCollision(body0, body1, dispatchInfo, result);
+    if (!collideOverFace(capsuleWrap, polyhedronWrap, result)) fallback_->processCollision(body0, body1, dispatchInfo, result);
     result->setPersistentManifold(manifold_);
     result->refreshContactPoints();
-}
-
-btScalar CapsulePolyhedronAlgorithm::calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1,
-                                                           const btDispatcherInfo& dispatchInfo, btManifoldResult* result) {
-    return general_ ? general_->calculateTimeOfImpact(body0, body1, dispatchInfo, result) : 1;
 }
 
 btCollisionAlgorithm* CapsulePolyhedronAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,

@@ -30,17 +30,14 @@ class btPersistentManifold;
 
 namespace anyphys::bullet {
 
-class CapsulePolyhedronAlgorithm final : public OwnManifoldAlgorithm {
+class CapsulePolyhedronAlgorithm final : public OwnManifoldWithFallback {
 public:
     CapsulePolyhedronAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                                const btCollisionObjectWrapper* body1, bool polyhedronFirst,
                                btConvexPenetrationDepthSolver* depthSolver);
-    ~CapsulePolyhedronAlgorithm() override;
 
     void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                           const btDispatcherInfo& dispatchInfo, btManifoldResult* result) override;
-    btScalar calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1, const btDispatcherInfo& dispatchInfo,
-                                   btManifoldResult* result) override;
 
     /// Creates the algorithm for (capsule, box or hull), or for (box or hull, capsule) when
     /// `polyhedronFirst`.
@@ -58,7 +55,6 @@ private:
                          btManifoldResult* result);
 
     bool polyhedronFirst_ = false;
-    btConvexConvexAlgorithm* general_ = nullptr;  // Bullet's test for every other pose, on manifold_; owned
 };
 
 }  // namespace anyphys::bullet

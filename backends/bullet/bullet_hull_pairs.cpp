@@ -86,20 +86,7 @@ btVector3 faceMostAlong(const btConvexPolyhedron& p, const btTransform& t, const
 HullPairAlgorithm::HullPairAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                                      const btCollisionObjectWrapper* body1, btConvexPenetrationDepthSolver* depthSolver,
                                      Scratch* scratch)
-    : OwnManifoldAlgorithm(info, body0, body1), depthSolver_(depthSolver), scratch_(scratch) {
-    if (!manifold_) return;
-    // From the dispatcher's pool, as Bullet makes its algorithms (a member would make this one too
-    // large for the pool's blocks); Bullet's defaults: no perturbation, 3 points before it starts.
-    void* memory = m_dispatcher->allocateCollisionAlgorithm(sizeof(btConvexConvexAlgorithm));
-    general_ = new (memory) btConvexConvexAlgorithm(manifold_, info, body0, body1, depthSolver, 0, 3);
-}
-
-HullPairAlgorithm::~HullPairAlgorithm() {
-    if (general_) {  // before the base releases the manifold it refers to
-        general_->~btConvexConvexAlgorithm();
-        m_dispatcher->freeCollisionAlgorithm(general_);
-    }
-}
+    : OwnManifoldWithFallback(info, body0, body1, depthSolver), depthSolver_(depthSolver), scratch_(scratch) {}
 
 bool HullPairAlgorithm::collidePolyhedra(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                          const btDispatcherInfo& dispatchInfo, btManifoldResult* result) {
@@ -186,14 +173,9 @@ bool HullPairAlgorithm::collidePolyhedra(const btCollisionObjectWrapper* body0, 
 void HullPairAlgorithm::processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                                          const btDispatcherInfo& dispatchInfo, btManifoldResult* result) {
     if (!manifold_) return;
-    if (!collidePolyhedra(body0, body1, dispatchInfo, result)) general_->processCollision(body0, body1, dispatchInfo, result);
+    if (!collidePolyhedra(body0, body1, dispatchInfo, result)) fallback_->processCollision(body0, body1, dispatchInfo, result);
     result->setPersistentManifold(manifold_);
     result->refreshContactPoints();
-}
-
-btScalar HullPairAlgorithm::calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1,
-                                                  const btDispatcherInfo& dispatchInfo, btManifoldResult* result) {
-    return general_ ? general_->calculateTimeOfImpact(body0, body1, dispatchInfo, result) : 1;
 }
 
 btCollisionAlgorithm* HullPairAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& info,

@@ -28,7 +28,7 @@
 
 namespace anyphys::bullet {
 
-class HullPairAlgorithm final : public OwnManifoldAlgorithm {
+class HullPairAlgorithm final : public OwnManifoldWithFallback {
 public:
     /// What the world's hull-pair algorithms reuse from pair to pair (the dispatcher tests one
     /// pair at a time), so a steady step allocates nothing.
@@ -43,12 +43,9 @@ public:
 
     HullPairAlgorithm(const btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* body0,
                       const btCollisionObjectWrapper* body1, btConvexPenetrationDepthSolver* depthSolver, Scratch* scratch);
-    ~HullPairAlgorithm() override;
 
     void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                           const btDispatcherInfo& dispatchInfo, btManifoldResult* result) override;
-    btScalar calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1, const btDispatcherInfo& dispatchInfo,
-                                   btManifoldResult* result) override;
 
     /// Registered for (box, hull), (hull, box) and (hull, hull).
     struct CreateFunc final : btCollisionAlgorithmCreateFunc {
@@ -66,7 +63,6 @@ private:
 
     btConvexPenetrationDepthSolver* depthSolver_;
     Scratch* scratch_;
-    btConvexConvexAlgorithm* general_ = nullptr;  // Bullet's test, on manifold_; owned
 };
 
 }  // namespace anyphys::bullet
