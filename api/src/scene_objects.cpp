@@ -73,4 +73,16 @@ SceneObjects createSceneObjects(World& world, const Scene& scene) {
     return made;
 }
 
+Error asSceneFileError(const Error& error, const std::string& file) {
+    std::string field = error.field();
+    std::string message = error.what();
+    const auto rename = [&](const std::string& from, const std::string& to) {
+        field = to + field.substr(from.size());
+        if (message.rfind(from, 0) == 0) message = to + message.substr(from.size());
+    };
+    if (field.rfind("WorldSettings", 0) == 0) rename("WorldSettings", "settings");
+    else if (field == "backend") rename("backend", "settings.backend");
+    return Error(error.kind(), field, file + ": " + message);
+}
+
 }  // namespace anyphys

@@ -27,6 +27,14 @@ refuse 1 --scene --headless --frames 2 --scene nosuch
 refuse 1 --size --headless --frames 2 --size 10x10
 refuse 2 --frames --frames -3
 
+# A scene file's setting the world refuses is named as the file names it (settings, not the API's
+# WorldSettings), after the file's name, as `anyphys run` reports it.
+printf '{ "settings": { "backendOptions": { "no_such_option": 1 } }, "bodies": [] }\n' > "$work/option.json"
+"$testbed" --scene "$work/option.json" --backends native --headless --frames 2 --size 320x200 2> "$work/err.txt" > /dev/null || true
+grep -qF "option.json: settings" "$work/err.txt" || { echo "FAIL: the file's setting is not named as the file names it: $(cat "$work/err.txt")"; exit 1; }
+grep -q "WorldSettings" "$work/err.txt" && { echo "FAIL: the API's name shows: $(cat "$work/err.txt")"; exit 1; }
+echo "ok a scene file's refused setting: $(head -1 "$work/err.txt")"
+
 # The record folder gets one PNG per frame; the GIF is made by ffmpeg.
 "$testbed" --scene bouncing_ball --headless --frames 3 --size 320x200 --record "$work/frames" > /dev/null
 [[ $(ls "$work/frames" | grep -c '^frame_0000[0-2]\.png$') -eq 3 ]] || { echo "FAIL: --record wrote $(ls "$work/frames")"; exit 1; }

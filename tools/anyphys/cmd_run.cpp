@@ -187,21 +187,6 @@ void validateFlags(const RunOptions& o) {
     if (o.backendOption->count()) parseBackend("--backend", o.backend);  // throws listing the known backends
 }
 
-// An error the world raised about the scene's settings or objects, as the scene file names them:
-// the file first (as a parse error has it), and the settings' JSON path ("settings.backend",
-// where the API says "WorldSettings.backend" or "backend").
-Error inSceneFile(const Error& e, const std::string& file) {
-    std::string field = e.field();
-    std::string message = e.what();
-    const auto rename = [&](const std::string& from, const std::string& to) {
-        field = to + field.substr(from.size());
-        if (message.rfind(from, 0) == 0) message = to + message.substr(from.size());
-    };
-    if (field.rfind("WorldSettings", 0) == 0) rename("WorldSettings", "settings");
-    else if (field == "backend") rename("backend", "settings.backend");
-    return Error(e.kind(), field, file + ": " + message);
-}
-
 int run(const RunOptions& o) {
     validateFlags(o);  // before touching the file, so a bad flag is reported as such
     Scene scene = loadScene(o.sceneFile);
@@ -214,14 +199,14 @@ int run(const RunOptions& o) {
         try {
             return World(scene.settings, scene.materials);
         } catch (const Error& e) {
-            throw inSceneFile(e, o.sceneFile);
+            throw asSceneFileError(e, o.sceneFile);
         }
     }();
     const SceneObjects objects = [&] {
         try {
             return createSceneObjects(world, scene);
         } catch (const Error& e) {
-            throw inSceneFile(e, o.sceneFile);
+            throw asSceneFileError(e, o.sceneFile);
         }
     }();
     const std::vector<Body>& bodies = objects.bodies;

@@ -55,6 +55,7 @@ SceneSource loadSceneSource(const std::string& nameOrFile) {
         SceneSource s;
         s.name = nameOrFile;
         s.description = "scene file " + nameOrFile;
+        s.file = nameOrFile;
         s.scene = loadScene(nameOrFile);
         return s;
     }

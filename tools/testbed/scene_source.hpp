@@ -14,6 +14,7 @@ namespace anyphys::testbed {
 struct SceneSource {
     std::string name;                ///< catalogue or assembly name, or the file path
     std::string description;         ///< one line
+    std::string file;                ///< the scene file's path; empty for a built-in scene
     Scene scene;
     std::optional<SceneCheck> check; ///< the catalogue scene's own measure, if it has one
 };

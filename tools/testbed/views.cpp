@@ -54,6 +54,7 @@ void Views::open(const SceneSource& source, const std::vector<std::string>& back
         try {
             const SceneSource own = sceneForBackend(source, backendInfo(v.backend).capabilities);
             v.sceneName = own.name;
+            v.sceneFile = own.file;
             v.scene = own.scene;
             v.check = own.check;
         } catch (const Error& e) {
@@ -119,7 +120,8 @@ void Views::build(View& v, const std::vector<BodyState>* states) {
         }
         measure(v);
     } catch (const Error& e) {
-        v.error = e.what();
+        // A scene file's settings are named as the file names them, as `anyphys run` does.
+        v.error = v.sceneFile.empty() ? e.what() : asSceneFileError(e, v.sceneFile).what();
         v.world.reset();
         v.bodies.clear();
     }

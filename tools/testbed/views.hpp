@@ -34,6 +34,7 @@ struct View {
     std::string backend;
     std::string sceneName;       ///< the scene this view runs (a planar variant on a 2D engine)
     std::string error;           ///< why this view does not run; empty when it does
+    std::string sceneFile;       ///< where the scene came from; empty for a built-in scene
     Scene scene;
     std::optional<SceneCheck> check;
     std::unique_ptr<World> world;

@@ -6,6 +6,7 @@
 
 #include "anyphys/body.hpp"
 #include "anyphys/containers/scene.hpp"
+#include "anyphys/error.hpp"
 #include "anyphys/joint.hpp"
 #include "anyphys/world.hpp"
 
@@ -26,5 +27,11 @@ struct SceneObjects {
 /// materials, or compatible ones). An error names the scene entry ("bodies[2] \"ball\": ...",
 /// "joints[1] \"knee\": ..."); what was created before it stays in the world.
 SceneObjects createSceneObjects(World& world, const Scene& scene);
+
+/// An error the world raised while making a scene file's world or objects, as the file names
+/// things: the file first (as its parse errors have it), and a setting by its JSON path
+/// ("settings.backend" where the API says "WorldSettings.backend" or "backend"). Tools that open
+/// scene files report errors through this, so a user reads the names of the file they wrote.
+Error asSceneFileError(const Error& error, const std::string& file);
 
 }  // namespace anyphys
