@@ -90,6 +90,17 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, &polyhedronCapsule_);
     dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE, &capsulePolyhedron_);
     dispatcher_->registerCollisionCreateFunc(CONVEX_HULL_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE, &polyhedronCapsule_);
+    // A box, a hull, a capsule or a sphere lying on a mesh triangle keeps its whole face, line or
+    // point of contact (bullet_face_on_triangle.hpp); btConvexTriangleCallback asks for (convex,
+    // triangle) only.
+    const auto onTriangle = [this](FaceOnTriangleAlgorithm::CreateFunc& mine, int convex) {
+        mine.bullets = configuration_->getCollisionAlgorithmCreateFunc(convex, TRIANGLE_SHAPE_PROXYTYPE);
+        dispatcher_->registerCollisionCreateFunc(convex, TRIANGLE_SHAPE_PROXYTYPE, &mine);
+    };
+    onTriangle(boxOnTriangle_, BOX_SHAPE_PROXYTYPE);
+    onTriangle(hullOnTriangle_, CONVEX_HULL_SHAPE_PROXYTYPE);
+    onTriangle(capsuleOnTriangle_, CAPSULE_SHAPE_PROXYTYPE);
+    onTriangle(sphereOnTriangle_, SPHERE_SHAPE_PROXYTYPE);
     planeMultipoint_ = planeMultipoint(settings);  // its refresh pass runs while a plane is here (createBody)
     if (planeMultipoint_) {  // a capsule's whole line of contact too (bullet_capsule_plane.hpp)
         dispatcher_->registerCollisionCreateFunc(CAPSULE_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &capsulePlane_);

@@ -21,6 +21,7 @@
 #include "bullet_capsule_plane.hpp"
 #include "bullet_capsule_polyhedron.hpp"
 #include "bullet_dynamics_world.hpp"
+#include "bullet_face_on_triangle.hpp"
 #include "bullet_hull_pairs.hpp"
 #include "bullet_joints.hpp"
 #include "bullet_touching.hpp"
@@ -151,6 +152,7 @@ private:
     SphereSphereAlgorithm::CreateFunc sphereSphere_;                               // the same
     HullPairAlgorithm::CreateFunc hullPairs_;                                      // the same
     CapsulePolyhedronAlgorithm::CreateFunc capsulePolyhedron_{false}, polyhedronCapsule_{true};  // the same
+    FaceOnTriangleAlgorithm::CreateFunc boxOnTriangle_, hullOnTriangle_, capsuleOnTriangle_, sphereOnTriangle_;  // the same
     std::unique_ptr<TouchingDispatcher> dispatcher_;
     std::unique_ptr<btBroadphaseInterface> broadphase_;
     std::unique_ptr<btDantzigSolver> mlcpInterface_;
