@@ -16,6 +16,9 @@ constexpr double kRecycleRestFraction = 0.1;
 // Recycled manifolds keep their world normal: neither body may have turned by more than this
 // (rad, about 1 degree) since the narrow phase, however small the shapes.
 constexpr double kRecycleMaxTurn = 0.02;
+// A manifold of another key continues an old one whose normal is this close (cosine of 1 mrad):
+// the same flat stretch of a mesh, whose merged manifold took another triangle's key.
+constexpr double kSameNormalCos = 1.0 - 5e-7;
 
 // Per shape pair: a compound's children may differ in filter and sensor flag.
 bool mayTouch(const NativeBody& a, const ShapeSurface& sa, const NativeBody& b, const ShapeSurface& sb) {
@@ -24,13 +27,29 @@ bool mayTouch(const NativeBody& a, const ShapeSurface& sa, const NativeBody& b, 
     return a.isDynamic() || b.isDynamic();                       // something must respond
 }
 
+// The old manifold that `fresh` continues: the one of the same key, else (a mesh manifold's key is
+// its lowest triangle's, which changes as the shape slides onto other triangles) the one whose
+// normal is closest to fresh's within kSameNormalCos. Null if none.
+const ContactManifold* predecessor(const std::vector<ContactManifold>& old, const ContactManifold& fresh) {
+    for (const ContactManifold& m : old)
+        if (m.key == fresh.key) return &m;
+    const ContactManifold* best = nullptr;
+    double bestCos = kSameNormalCos;
+    for (const ContactManifold& m : old)
+        if (const double c = m.normal.dot(fresh.normal); c > bestCos) {
+            best = &m;
+            bestCos = c;
+        }
+    return best;
+}
+
 // Carries accumulated impulses over to the new manifolds: by (manifold key, point id) first;
 // a point whose features changed (a resting box rocking by a hair can swap the reference face)
 // takes the impulse of the old point nearest to it, if within `matchDistance`. Losing warm
 // starts on such flips makes stacks rock and creep.
 void warmStartFrom(const std::vector<ContactManifold>& old, ContactManifold& fresh, double matchDistance) {
-    for (const ContactManifold& m : old) {
-        if (m.key != fresh.key) continue;
+    if (const ContactManifold* previous = predecessor(old, fresh)) {
+        const ContactManifold& m = *previous;
         bool taken[4] = {false, false, false, false};
         bool matched[4] = {false, false, false, false};
         const auto copy = [&](ContactPointState& to, int from) {
@@ -58,7 +77,6 @@ void warmStartFrom(const std::vector<ContactManifold>& old, ContactManifold& fre
             }
             if (best >= 0) copy(fresh.points[i], best);
         }
-        return;
     }
 }
 
