@@ -1,8 +1,10 @@
 #include "ode_shapes.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "ode_math.hpp"
 
@@ -31,6 +33,27 @@ double innerRadius(const PeerShape& s) {
             return std::max(0.0, inner);
         }
         default: return 0.0;
+    }
+}
+
+// The mesh as ODE gets it: only the vertices some triangle uses, numbered in the order the
+// triangles first use them (the triangles keep their order, so ODE's triangle indices are the
+// layer's). ODE's edge preprocessing (dGeomTriMeshDataPreprocess2) asserts that a mesh has no
+// more vertices than triangle corners and aborts the process otherwise, and a layer mesh may list
+// vertices no triangle uses (the API fuzzer found one).
+void keepReferencedVertices(const std::vector<Vec3>& vertices, const std::vector<std::uint32_t>& indices,
+                            std::vector<dReal>& odeVertices, std::vector<dTriIndex>& odeIndices) {
+    constexpr dTriIndex kUnused = std::numeric_limits<dTriIndex>::max();
+    std::vector<dTriIndex> renumbered(vertices.size(), kUnused);
+    odeVertices.clear();
+    odeIndices.clear();
+    odeIndices.reserve(indices.size());
+    for (const std::uint32_t i : indices) {
+        if (renumbered[i] == kUnused) {
+            renumbered[i] = static_cast<dTriIndex>(odeVertices.size() / 3);
+            odeVertices.insert(odeVertices.end(), {vertices[i].x(), vertices[i].y(), vertices[i].z()});
+        }
+        odeIndices.push_back(renumbered[i]);
     }
 }
 
@@ -66,11 +89,10 @@ OdeShape::OdeShape(const PeerShape& shape, dSpaceID space)
             break;
         }
         case ShapeType::Mesh: {
-            for (const Vec3& v : d.vertices) meshVertices_.insert(meshVertices_.end(), {v.x(), v.y(), v.z()});
-            meshIndices_.assign(d.indices.begin(), d.indices.end());
+            keepReferencedVertices(d.vertices, d.indices, meshVertices_, meshIndices_);
             meshData_ = dGeomTriMeshDataCreate();
             dGeomTriMeshDataBuildDouble(meshData_, meshVertices_.data(), 3 * sizeof(dReal),
-                                        static_cast<int>(d.vertices.size()), meshIndices_.data(),
+                                        static_cast<int>(meshVertices_.size() / 3), meshIndices_.data(),
                                         static_cast<int>(meshIndices_.size()), 3 * sizeof(dTriIndex));
             // ODE's own edge flags: the capsule-trimesh collider then tests each shared edge and
             // corner once and a concave one never (its only reader; ode_mesh_edges.hpp).
