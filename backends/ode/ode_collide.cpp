@@ -36,17 +36,13 @@ int dropDegenerateContacts(dContact* contacts, int count) {
     // are finite when their sum is: a NaN or infinity carries into it. Finite values sum to an
     // infinity only near 1e308, far past kMaxCoordinate, where a body is already diverged.
     constexpr double kLeastSquaredNorm = (1.0 - 1e-6) * (1.0 - 1e-6), kMostSquaredNorm = (1.0 + 1e-6) * (1.0 + 1e-6);
-    int kept = 0;
-    for (int i = 0; i < count; ++i) {
-        const dContactGeom& g = contacts[i].geom;
+    const auto degenerate = [&](const dContact& c) {
+        const dContactGeom& g = c.geom;
         const double squaredNorm = toVec3(g.normal).squaredNorm();  // NaN fails both comparisons
-        const bool valid = std::isfinite(g.pos[0] + g.pos[1] + g.pos[2] + g.depth) && squaredNorm > kLeastSquaredNorm &&
-                           squaredNorm < kMostSquaredNorm;
-        if (!valid) continue;
-        if (kept != i) contacts[kept] = contacts[i];  // a dContact is 200-odd bytes: no copy onto itself
-        ++kept;
-    }
-    return kept;
+        return !(std::isfinite(g.pos[0] + g.pos[1] + g.pos[2] + g.depth) && squaredNorm > kLeastSquaredNorm &&
+                 squaredNorm < kMostSquaredNorm);
+    };
+    return static_cast<int>(std::remove_if(contacts, contacts + count, degenerate) - contacts);
 }
 
 // Whether ODE collides this pair with libccd's MPR (a hull against a box or a hull): the colliders
@@ -69,13 +65,8 @@ constexpr double kLeastMprDepth = 1e-9;  // m
 
 int dropUntouchingMprContacts(dGeomID o1, dGeomID o2, dContact* contacts, int count) {
     if (!collidesThroughMpr(o1, o2)) return count;
-    int kept = 0;
-    for (int i = 0; i < count; ++i) {
-        if (!(contacts[i].geom.depth > kLeastMprDepth)) continue;
-        if (kept != i) contacts[kept] = contacts[i];
-        ++kept;
-    }
-    return kept;
+    const auto untouching = [](const dContact& c) { return !(c.geom.depth > kLeastMprDepth); };
+    return static_cast<int>(std::remove_if(contacts, contacts + count, untouching) - contacts);
 }
 
 }  // namespace
