@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "solver/body_integration.hpp"
+
 namespace anyphys::native {
 namespace {
 
@@ -59,7 +61,10 @@ void semiImplicitEuler(double t, double h, std::span<BodyState> x, AccelerationF
         b.linearVelocity += h * s.k1[i].linear;
         b.angularVelocity += h * s.k1[i].angular;
         b.position += h * b.linearVelocity;
-        b.orientation = addScaled(b.orientation, orientationRate(b.angularVelocity, b.orientation), h).normalized();
+        // Turned by the new spin exactly, as the contact solver turns its bodies: the first-order
+        // update q + h dq/dt, normalised, turns by 2 atan(w h / 2) rather than w h, so a body
+        // spinning at 20 rad/s at 60 Hz fell 0.18 rad behind in a second.
+        b.orientation = rotateBy(b.orientation, b.angularVelocity, h);
     }
 }
 
@@ -133,9 +138,7 @@ Quat orientationRate(const Vec3& w, const Quat& q) {
 }
 
 Quat rotateBy(const Quat& q, const Vec3& w, double h) {
-    const double angle = w.norm() * h;
-    if (angle < 1e-300) return q;
-    return (Quat(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
+    return (rotationFromVector(h * w) * q).normalized();
 }
 
 void integrate(Integrator method, double t, double h, std::span<BodyState> states, AccelerationFn accelerations,

@@ -116,7 +116,10 @@ TEST_P(ConvergenceTest, DampedTranslationAndRotation) {
         }
         const double slope = fittedSlope(kSteps, errors);
         std::cout << "  " << toString(m.integrator) << ": measured order " << slope << '\n';
-        EXPECT_NEAR(slope, m.order, kSlopeTolerance) << toString(m.integrator);
+        // The method's order is a floor here, not a value: a backend may take damping as its
+        // exact factor (native's semi-implicit Euler splits it around the step, which makes this
+        // motion second order); the error must still fall at least as fast as the method's.
+        EXPECT_GE(slope, m.order - kSlopeTolerance) << toString(m.integrator);
     }
 }
 

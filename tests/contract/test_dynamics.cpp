@@ -108,6 +108,47 @@ TEST_P(DynamicsTest, DampingDecaysExponentially) {
     EXPECT_NEAR(b.linearVelocity().x(), 5.0 * std::exp(-0.8 * 2.0), 1e-8);
 }
 
+// Damping at c h = 0.05 on the default integrator (semi-implicit Euler), the rate a game uses:
+// every engine scales the velocity by the exact decay, so after 2 s it is v0 exp(-c t). Native
+// once damped free bodies as a force, (1 - c h) per step: 14 % short after these 120 steps.
+TEST_P(DynamicsTest, DampingOnTheDefaultIntegratorDecaysByTheExactFactor) {
+    ANYPHYS_REQUIRE(caps().parameters.count("body.linearDamping") && caps().parameters.count("body.angularDamping"),
+                    "parameters body.linearDamping and body.angularDamping");
+    const double c = 3.0;
+    World world(weightless());
+    BodyDef def = sphereDef(0.5);  // isotropic: the spin keeps its axis
+    def.linearVelocity = Vec3(4, 0, 0);
+    def.angularVelocity = Vec3(0, 0, 2);
+    def.linearDamping = c;
+    def.angularDamping = c;
+    Body b = world.createBody(def);
+    const int steps = 120;
+    for (int i = 0; i < steps; ++i) world.step();
+    const double decay = std::exp(-c * steps * world.settings().timeStep);
+    // 1e-5 relative: the factor is exact; a float engine rounds it by about 1e-7 a step.
+    EXPECT_NEAR(b.linearVelocity().x(), 4 * decay, 1e-5 * 4 * decay);
+    EXPECT_NEAR(b.angularVelocity().z(), 2 * decay, 1e-5 * 2 * decay);
+}
+
+// A free body spinning at 20 rad/s (1/3 rad a step at 60 Hz) about a fixed axis turns by w t:
+// the rotation over a step at constant spin is exact in every engine's update (exponential
+// map), where the first-order quaternion update q + h dq/dt turns by 2 atan(w h / 2) a step,
+// 0.18 rad short after this second (native did, before it took the exact rotation).
+TEST_P(DynamicsTest, AFreeSpinTurnsByTheSpinTimesTheTime) {
+    const double w = 20.0;
+    World world(weightless());
+    BodyDef def = sphereDef(0.5);
+    def.angularVelocity = Vec3(0, 0, w);
+    Body b = world.createBody(def);
+    const int steps = 60;
+    for (int i = 0; i < steps; ++i) world.step();
+    const double t = steps * world.settings().timeStep;
+    const Quat exact(Eigen::AngleAxisd(w * t, Vec3::UnitZ()));
+    // 1e-4 rad: exact up to rounding; a float engine's angle (about 20 rad) carries a few 1e-6 rad
+    // a step.
+    EXPECT_LT(b.orientation().angularDistance(exact), 1e-4) << "angular speed " << b.angularVelocity().z();
+}
+
 // Damping far stiffer than the step, dv/dt = -c v with c h = 0.67 and 2.5 at 60 Hz: an explicit
 // update (v *= 1 - c h) flips the velocity's sign and grows it 1.5x per step at c = 150, and
 // Bullet's own damping (1 - d)^h freezes the body once d = 1 - exp(-c) rounds to 1 (c > 37).

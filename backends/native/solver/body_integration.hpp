@@ -7,7 +7,8 @@
 
 namespace anyphys::native {
 
-/// v += h a, w += h alpha, gyroscopic term, damping (exact factor exp(-c h)). Dynamic bodies only.
+/// v += h a, w += h alpha, gyroscopic term, damping (exact factor exp(-c h), half before and half
+/// after the forces). Dynamic bodies only.
 void integrateVelocities(const SolverBody* bodies, SolverState* states, int begin, int end, double h);
 /// dp += h v; dq = exp(h w / 2) dq, and turn from dq. Dynamic and kinematic bodies.
 void integratePositions(SolverState* states, int begin, int end, double h);

@@ -39,8 +39,8 @@ struct SolverBody {
     Quat orientation0 = Quat::Identity();  // at the step start
     Vec3 linearAcceleration = Vec3::Zero();  // gravity and user force, constant over the step
     Vec3 angularAcceleration = Vec3::Zero(); // user torque, world frame
-    double linearDampingFactor = 1.0;      // velocity factor per substep, exp(-c h)
-    double angularDampingFactor = 1.0;
+    double linearHalfDampingFactor = 1.0;  // velocity factor per half substep, exp(-c h / 2)
+    double angularHalfDampingFactor = 1.0;
     GyroscopicMode gyroscopic = GyroscopicMode::None;  // None unless the effect applies to this body
 };
 

@@ -172,9 +172,9 @@ void StepSolver::buildBody(std::uint32_t index, const NativeBody& nb, SolverBody
             sb.linearAcceleration += sb.invMass.cwiseProduct(nb.force);
             sb.angularAcceleration = sb.invInertia * nb.torque;
         }
-        if (damping) {  // exact decay of dv/dt = -c v over a substep: stable for any c
-            sb.linearDampingFactor = std::exp(-nb.linearDamping * h_);
-            sb.angularDampingFactor = std::exp(-nb.angularDamping * h_);
+        if (damping) {  // exact decay of dv/dt = -c v over half a substep: stable for any c
+            sb.linearHalfDampingFactor = std::exp(-0.5 * nb.linearDamping * h_);
+            sb.angularHalfDampingFactor = std::exp(-0.5 * nb.angularDamping * h_);
         }
         if (gyroscopic && gyroscopic::isAnisotropic(nb.inertia)) sb.gyroscopic = nb.gyroscopic;
     }
