@@ -16,10 +16,11 @@
 namespace anyphys::bullet {
 namespace {
 
-// The most a capsule lying over a face may lean towards it (the sine of its angle to the face):
-// a point on the cylinder between the ends is measured straight down from the core, r (1/cos - 1)
-// short of its surface when leaning, 0.25 mm for a 0.2 m radius at this limit. Leaning more (a
-// capsule tipping off an edge), it goes to Bullet's test, whose point follows the edge.
+// The most a capsule reaching over a face's edge may lean towards the face (the sine of its angle
+// to it): the point over the edge, between the ends, is measured straight down from the core,
+// r (1/cos - 1) short of its surface when leaning, 0.25 mm for a 0.2 m radius at this limit.
+// Leaning more (a capsule tipping off an edge), it goes to Bullet's test, whose point follows the
+// edge. Over the face whole, a capsule's lowest points are its ends' at any lean.
 constexpr btScalar kMostLean = 0.05;
 
 // A hull's neighbouring face closer to this one's direction than twice the most lean (the cosine
@@ -151,8 +152,8 @@ private:
 
 // Where a capsule, its core from e0 to e1 and its centre in the shape's frame, lies over `face`:
 // the points on the face under both ends of the part of its core over the face, those within
-// `threshold`, and their distances. -1 when it does not lie over the face (or lies deep in it);
-// else the number of points, 0 to 2.
+// `threshold`, and their distances. -1 when it does not lie over the face (or its core goes
+// through it); else the number of points, 0 to 2.
 struct Line {
     std::array<btVector3, 2> onFace;
     std::array<btScalar, 2> distance;
@@ -160,11 +161,16 @@ struct Line {
 template <class Face>
 int lineOverFace(const Face& face, const btVector3& e0, const btVector3& e1, const btVector3& centre, btScalar radius,
                  btScalar threshold, Line& line) {
-    // Above the face, neither end of its core through it, nearly parallel to it.
+    // Above the face, neither end of its core through it.
     if (face.height(centre) <= 0 || face.height(e0) <= -radius || face.height(e1) <= -radius) return -1;
-    if (btFabs(face.normal().dot(e1 - e0)) > kMostLean * (e1 - e0).length()) return -1;
     btScalar t0 = 0, t1 = 0;
     if (!face.clip(e0, e1, t0, t1)) return -1;
+    // Both ends over the face: the face is the nearest part of the shape to each, and the ends'
+    // spheres hold the capsule's lowest points however it leans, so a capsule landing on one end
+    // gets the point under its other end as that end swings down. Clipped at an edge, the core
+    // beyond the edge may come nearer the edge than its point over the edge: nearly parallel only.
+    const bool clipped = t0 > 0 || t1 < 1;
+    if (clipped && btFabs(face.normal().dot(e1 - e0)) > kMostLean * (e1 - e0).length()) return -1;
     if ((t0 > 0 && !face.clearBeyondEdge(e0, radius + threshold)) || (t1 < 1 && !face.clearBeyondEdge(e1, radius + threshold)))
         return -1;
     int count = 0;
@@ -173,7 +179,9 @@ int lineOverFace(const Face& face, const btVector3& e0, const btVector3& e1, con
         const btVector3 core = e0 + t * (e1 - e0);
         const btScalar distance = face.height(core) - radius;
         if (distance >= threshold) continue;
-        if (distance < -threshold) return -1;  // deep in: Bullet's penetration test knows better
+        // However deep its sphere, a core point above the face is nearest the point below it
+        // (GJK's one deepest point would leave the other end none); through it, Bullet's test.
+        if (face.height(core) <= 0) return -1;
         line.onFace[count] = face.onFace(core);
         line.distance[count] = distance;
         ++count;
