@@ -9,7 +9,9 @@
 // again for Bullet's matching of old and new points). Bullet's sphere-sphere test ignores the
 // threshold and reports only overlap, so two spheres 1 mm apart never touched at any size:
 // SphereSphereAlgorithm reports their one point within the threshold, as Bullet's other convex
-// tests do.
+// tests do. A raised threshold would also widen Bullet's matching of a new point to an old one
+// (the same spot within the threshold) past a small shape's face: a 1 cm box's four corners
+// merged into one point. The dispatcher's results match within the shapes' own spacing too.
 #include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 
@@ -20,8 +22,7 @@ namespace anyphys::bullet {
 /// Bullet's dispatcher, whose manifolds keep points at least `minimumBreaking` apart.
 class TouchingDispatcher final : public btCollisionDispatcher {
 public:
-    TouchingDispatcher(btCollisionConfiguration* configuration, btScalar minimumBreaking)
-        : btCollisionDispatcher(configuration), minimumBreaking_(minimumBreaking) {}
+    TouchingDispatcher(btCollisionConfiguration* configuration, btScalar minimumBreaking);
 
     btPersistentManifold* getNewManifold(const btCollisionObject* body0, const btCollisionObject* body1) override;
 
