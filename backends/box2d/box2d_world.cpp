@@ -1,6 +1,7 @@
 #include "box2d_world.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 
@@ -214,20 +215,24 @@ void Box2dWorld::setMaterialTable(const MaterialTable& table) {
 }
 
 void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
-    const double h = dt / substeps_;
+    const bool userForces = effects_.has(Effect::UserForces);
+    for (Box2dBody* b : bodies_) b->flushForces(userForces);
+    // Below the caps this is substeps_, and the step is what it was without them, bit for bit.
+    const int substeps = substepsFor(dt);
+    lastStepSubsteps_ = substeps;
+    const double h = dt / substeps;
     if (h != dampingStep_) {  // Box2D's damping factor depends on the step: convert again
         dampingStep_ = h;
         for (Box2dBody* b : bodies_) b->applyDamping(effects_.has(Effect::Damping), h);
     }
     const bool continuous = effects_.has(Effect::ContinuousCollision) && effects_.has(Effect::Contacts);
-    const bool userForces = effects_.has(Effect::UserForces);
-    for (Box2dBody* b : bodies_) {
-        b->updateBullet(continuous, h);
-        b->flushForces(userForces);
-    }
-    rules_.clearSolvedImpulses(substeps_ > 1);
+    for (Box2dBody* b : bodies_) b->updateBullet(continuous, h);
+    // Split or not, the layer sees one step: forces held over every Box2D step (flushForces),
+    // contacts reported once after the last, impulses and joint reactions summed over all of
+    // them, restitution aimed per Box2D step (markStepStart), joint springs set for h.
+    rules_.clearSolvedImpulses(substeps > 1);
     beginJointSteps(h);
-    for (int i = 0; i < substeps_; ++i) {
+    for (int i = 0; i < substeps; ++i) {
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
         // Soft springs' pulls first: the step start's velocities include them (markStepStart).
         for (Box2dJoint* j : joints_) j->beforeSubstep(h);
@@ -239,6 +244,38 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
     world_->ClearForces();
     for (Box2dJoint* j : joints_) j->endStep(dt);
     sumImpulses();
+}
+
+// The worst fraction of a cap that one Box2D step of dt would use, over the awake bodies that
+// Box2D moves (dynamic and kinematic: Box2D clamps both), each at its speed and spin now plus what
+// the step's gravity and held forces add by its end (bounds by the triangle inequality; damping
+// ignored, it only slows). Contact and joint impulses are not known before the solve: the headroom
+// covers them (kCapHeadroom). A non-finite velocity is the layer's to catch (findUnsound): left
+// out here (a NaN fails every comparison, so std::max keeps the other).
+int Box2dWorld::substepsFor(double dt) const {
+    const b2Vec2 gravity = world_->GetGravity();
+    double worst = 0.0;
+    for (const Box2dBody* body : bodies_) {
+        const b2Body& b = *body->b2();
+        if (b.GetType() == b2_staticBody || !b.IsAwake()) continue;
+        const b2Vec2 v = b.GetLinearVelocity();
+        double speed = std::sqrt(static_cast<double>(v.x) * v.x + static_cast<double>(v.y) * v.y);
+        double spin = std::abs(static_cast<double>(b.GetAngularVelocity()));
+        if (b.GetType() == b2_dynamicBody) {
+            const double m = b.GetMass(), inertia = b.GetInertia();  // centre of mass at the origin (createBody)
+            const b2Vec2 f = body->stepForce();
+            const double ax = gravity.x * b.GetGravityScale() + (m > 0.0 ? f.x / m : 0.0);
+            const double ay = gravity.y * b.GetGravityScale() + (m > 0.0 ? f.y / m : 0.0);
+            speed += dt * std::sqrt(ax * ax + ay * ay);
+            if (inertia > 0.0) spin += dt * std::abs(static_cast<double>(body->stepTorque())) / inertia;
+        }
+        worst = std::max(worst, std::max(speed * dt / b2_maxTranslation, spin * dt / b2_maxRotation));
+    }
+    const int most = std::max(substeps_, kMaxCapSubsteps);
+    const double needed = worst / kCapHeadroom;  // Box2D steps of dt / needed keep the worst at the headroom
+    if (needed <= substeps_) return substeps_;
+    if (!(needed < most)) return most;  // also infinity
+    return static_cast<int>(std::ceil(needed));
 }
 
 void Box2dWorld::beginJointSteps(double h) {

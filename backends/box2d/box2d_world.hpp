@@ -27,6 +27,20 @@ public:
     static constexpr int kDefaultIterations = 8;
     static constexpr int kDefaultSubsteps = 1;
     static constexpr int kDefaultPositionIterations = 3;
+    /// Box2D 2.4 clamps every body's motion per b2World::Step to b2_maxTranslation (2 m) and
+    /// b2_maxRotation (pi/2 rad), compile-time constants: at 60 Hz no body would move faster than
+    /// 120 m/s or spin faster than 94.2 rad/s (a 5 mm ball could not roll past 0.47 m/s). A step
+    /// whose fastest awake body would use more than kCapHeadroom of either cap is split into the
+    /// fewest equal Box2D steps that keep it within kCapHeadroom (substepsFor); others step as
+    /// configured, bit for bit. Half: the prediction knows the step's gravity and forces but not
+    /// its contact and joint impulses, which can double a body's speed within one Box2D step
+    /// (an elastic blow from a heavier body) or spin a small ball up (rolling 5/7 g sin 20 deg
+    /// adds 0.13 rad per 1/60 s step to a 5 mm ball's w h, a twelfth of the cap).
+    static constexpr double kCapHeadroom = 0.5;
+    /// At most this many Box2D steps per step (or the configured substeps, if more): beyond it
+    /// the cap applies again, at 64 times its one-step value (7 680 m/s and 6 032 rad/s at
+    /// 60 Hz), so that one runaway body cannot make a step cost thousands of Box2D steps.
+    static constexpr int kMaxCapSubsteps = 64;
 
     explicit Box2dWorld(const WorldSettings& settings);
     ~Box2dWorld() override;
@@ -43,6 +57,8 @@ public:
     /// gap beyond (nearestSurfaces, Box2D's own b2Distance).
     bool reportNearPair(BodyPeer& a, BodyPeer& b, double reach, ContactReport& out) override;
     bool hasAwakeBodies() const override;
+    /// The Box2D steps the last step took (substepsFor's count).
+    int lastStepSubsteps() const { return lastStepSubsteps_; }
     void findUnsound(const MotionLimits& limits, std::vector<std::uint64_t>& out) const override;
     std::vector<PeerRayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance, bool closestOnly,
                                     std::uint32_t mask) override;
@@ -71,11 +87,15 @@ private:
     /// Begins every joint's step: each sprung joint with the most sprung joints on either of its
     /// moving bodies (springs on one body share its stable range: see Box2dJoint::beginStep).
     void beginJointSteps(double h);
+    /// The Box2D steps this step of dt takes: substeps_, or more where the caps need them (see
+    /// kCapHeadroom). After flushForces: a body's step forces are part of its motion.
+    int substepsFor(double dt) const;
 
     WorldSettings settings_;
     int velocityIterations_;
     int positionIterations_;
     int substeps_;
+    int lastStepSubsteps_ = 0;
     Effects effects_;
     ContactRules rules_;
     std::unique_ptr<b2World> world_;

@@ -457,7 +457,7 @@ CatalogueScene hangingChain() {
     }
     SceneCheck check{"max joint gap", "m", 0.0, 0.02,
                      "2 cm, a fifth of a link: stretched but holding; iterative solvers stretch on heavy ends",
-                     {}, "joints.chain_gap"};
+                     {}, "hard.chain40.gap"};
     check.makeProbe = [links, spacing = kSpacing] { return std::make_unique<ChainGapProbe>(links, Vec3::Zero(), spacing); };
     c.check = check;
     return c;
