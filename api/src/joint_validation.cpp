@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <string_view>
 
@@ -51,13 +50,6 @@ namespace {
 constexpr double kJointAxisTolerance = 1e-4;
 /// Anchors of a distance joint closer than this have no direction.
 constexpr double kMinAnchorDistance = 1e-9;
-
-std::string formatNumber(double v) {
-    std::ostringstream os;
-    os.precision(17);
-    os << v;
-    return os.str();
-}
 
 std::string formatLimits(const JointLimits& l) {
     return "[" + formatNumber(l.lower) + ", " + formatNumber(l.upper) + "]";
@@ -113,16 +105,16 @@ void validateJointMotorSpeed(const JointMotor& m, JointType type, double maxSpee
     if (std::abs(m.speed) <= ceiling) return;
     throw Error::invalid(field + ".speed", m.speed,
                          std::string("must lie within the world's ") + (angular ? "maxAngularSpeed" : "maxSpeed") + ", +-" +
-                             detail::formatNumber(ceiling) + (angular ? " rad/s" : " m/s") +
+                             formatNumber(ceiling) + (angular ? " rad/s" : " m/s") +
                              " (the motor drives body B at this speed; faster, the body has diverged)");
 }
 
 void validateJointSpring(const JointSpring& s, const std::string& field) {
     schema::checkFields(schema::jointSpringFields(), s, field, [](const auto&) { return true; });
-    const auto both = [](double a, double b) { return detail::formatNumber(a) + " and " + detail::formatNumber(b); };
+    const auto both = [](double a, double b) { return formatNumber(a) + " and " + formatNumber(b); };
     if (s.hertz > 0 && (s.stiffness > 0 || s.damping > 0))
         throw Error::invalid(field, "stiffness and damping " + both(s.stiffness, s.damping) + " with hertz " +
-                                        detail::formatNumber(s.hertz),
+                                        formatNumber(s.hertz),
                              "give either stiffness and damping, or hertz and dampingRatio, not both");
     if (s.hertz == 0 && s.dampingRatio > 0)
         throw Error::invalid(field + ".dampingRatio", s.dampingRatio,

@@ -351,10 +351,20 @@ Body World::createBody(const BodyDef& input) {
 
     const Capabilities& caps = impl_->backend->capabilities;
     std::vector<std::string> missing;
-    if (!caps.shapes.count(input.shape.type)) missing.push_back("shape type " + std::string(toString(input.shape.type)));
-    if (!caps.bodyTypes.count(input.type)) missing.push_back("body type " + std::string(toString(input.type)));
+    // Each names the field and what the backend has instead, so the message says what to change.
+    const auto offered = [](const auto& set) {
+        std::vector<std::string> names;
+        for (const auto& item : set) names.emplace_back(toString(item));
+        return detail::commaList(names);
+    };
+    if (!caps.shapes.count(input.shape.type))
+        missing.push_back("shape type " + std::string(toString(input.shape.type)) + " (BodyDef.shape.type; it has " +
+                          offered(caps.shapes) + ")");
+    if (!caps.bodyTypes.count(input.type))
+        missing.push_back("body type " + std::string(toString(input.type)) + " (BodyDef.type; it has " + offered(caps.bodyTypes) + ")");
     if (input.type == BodyType::Dynamic && !caps.gyroscopicModes.count(input.gyroscopic))
-        missing.push_back("gyroscopic mode " + std::string(toString(input.gyroscopic)));
+        missing.push_back("gyroscopic mode " + std::string(toString(input.gyroscopic)) + " (BodyDef.gyroscopic; it has " +
+                          offered(caps.gyroscopicModes) + ")");
     const BodyDef defaults;
     const auto checkParameter = [&](bool used, const char* parameter) {
         if (used && !caps.parameters.count(parameter)) missing.push_back(parameter);

@@ -322,7 +322,7 @@ void readMaterials(const json& doc, MaterialLibrary& lib) {
             const std::string b = readMaterialName(pair["b"], join(path, "b"), lib);
             const auto key = a < b ? std::pair(a, b) : std::pair(b, a);
             if (const auto it = seen.find(key); it != seen.end())
-                throw Error(ErrorKind::InvalidArgument, path, path + ": duplicate pair (" + a + ", " + b + "); already given at " +
+                throw Error(ErrorKind::InvalidArgument, path, path + ": duplicate pair (\"" + a + "\", \"" + b + "\"); already given at " +
                             at("materialPairs", it->second));
             seen.emplace(key, i);
             PairOverride o;

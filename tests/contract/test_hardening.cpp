@@ -56,6 +56,15 @@ TEST_P(HardeningTest, ErrorsCarryKindAndField) {
     s.backendOptions["no_such_option"] = 1.0;  // no backend has it: a missing capability
     expectError([&] { World w(s); }, ErrorKind::Unsupported, "WorldSettings", {"no_such_option"});
 
+    // A mode the backend lacks is named with its field and the modes it has instead.
+    for (const GyroscopicMode mode : {GyroscopicMode::None, GyroscopicMode::Implicit, GyroscopicMode::Explicit}) {
+        if (caps().gyroscopicModes.count(mode)) continue;
+        BodyDef def = ball("g", Vec3(0, 1, 0));
+        def.gyroscopic = mode;
+        expectError([&] { world.createBody(def); }, ErrorKind::Unsupported, "BodyDef",
+                    {"gyroscopic mode", "(BodyDef.gyroscopic; it has "});
+    }
+
     expectError([&] { world.step(-0.5); }, ErrorKind::InvalidArgument, "World.step.dt");
     expectError([&] { Body().position(); }, ErrorKind::StaleHandle, "", {"null body handle"});
 

@@ -341,6 +341,9 @@ TEST(SceneJson, ErrorsNamePathValueAndRule) {
     expectParseError(R"({"settings": {"backendOptions": {"erp": "high"}}})",
                      {"settings.backendOptions.erp: must be a number, got \"high\""});
     expectParseError(R"({"materials": {"rubber": {"friction": -0.5}}})", {"materials.rubber.friction: must be >= 0, got -0.5"});
+    // A value is quoted as the file gave it, the shortest text of the same double (17 digits
+    // printed -0.10000000000000001).
+    expectParseError(R"({"materials": {"rubber": {"friction": -0.1}}})", {"materials.rubber.friction: must be >= 0, got -0.1"});
     expectParseError(R"({"materials": {"rubber": {"restitution": 1.5}}})",
                      {"materials.rubber.restitution: must be in [0, 1], got 1.5"});
     expectParseError(R"({"materials": {"rubber": {"density": 0}}})", {"materials.rubber.density: must be > 0, got 0"});
@@ -420,7 +423,11 @@ TEST(SceneJson, MaterialReferencesMustBeKnown) {
                      {"materialPairs[0].friction: must be >= 0, got -1"});
     expectParseError(R"({"materials": {"rubber": {}, "ice": {}},
                         "materialPairs": [{"a": "rubber", "b": "ice"}, {"a": "ice", "b": "rubber"}]})",
-                     {"materialPairs[1]: duplicate pair", "materialPairs[0]"});
+                     {"materialPairs[1]: duplicate pair (\"ice\", \"rubber\")", "materialPairs[0]"});
+    // The default material's empty name is quoted too, not left as "(, rubber)".
+    expectParseError(R"({"materials": {"rubber": {}},
+                        "materialPairs": [{"a": "", "b": "rubber"}, {"a": "rubber", "b": ""}]})",
+                     {"materialPairs[1]: duplicate pair (\"rubber\", \"\")"});
     // The default material "" is always known, and may be redefined.
     const Scene s = parseScene(R"({"materials": {"": {"friction": 0.2}},
                                    "bodies": [{"name": "b", "material": "", "shape": {"type": "sphere", "radius": 0.5}}]})");

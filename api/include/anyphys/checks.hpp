@@ -12,17 +12,11 @@
 namespace anyphys {
 
 inline std::string formatVec3(const Vec3& v) {
-    std::ostringstream os;
-    os.precision(17);
-    os << '[' << v.x() << ", " << v.y() << ", " << v.z() << ']';
-    return os.str();
+    return '[' + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + ']';
 }
 
 inline std::string formatQuat(const Quat& q) {
-    std::ostringstream os;
-    os.precision(17);
-    os << '[' << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << ']';
-    return os.str();
+    return '[' + formatNumber(q.w()) + ", " + formatNumber(q.x()) + ", " + formatNumber(q.y()) + ", " + formatNumber(q.z()) + ']';
 }
 
 /// Largest WorldSettings::workers accepted.

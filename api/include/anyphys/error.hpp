@@ -1,12 +1,22 @@
 #pragma once
 // The one exception type of anyphys. A rejected call changes nothing (World::step's Diverged is
 // the exception: the step has run; see docs/errors.md).
+#include <charconv>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace anyphys {
+
+/// The shortest text that reads back as the same double: "0.1", not "0.10000000000000001" (what
+/// 17 significant digits print), as the tool writes its CSV.
+inline std::string formatNumber(double v) {
+    char text[32];
+    const std::to_chars_result end = std::to_chars(text, text + sizeof text, v);
+    return std::string(text, end.ptr);
+}
 
 /// What went wrong, for code that reacts to errors (the message is for people). See docs/errors.md.
 enum class ErrorKind {
@@ -56,8 +66,11 @@ public:
     static Error invalid(const std::string& field, const T& value, const std::string& rule,
                          ErrorKind kind = ErrorKind::InvalidArgument) {
         std::ostringstream os;
-        os.precision(17);
-        os << field << ": " << rule << ", got " << value;
+        os << field << ": " << rule << ", got ";
+        if constexpr (std::is_floating_point_v<T>)
+            os << formatNumber(static_cast<double>(value));
+        else
+            os << value;
         return Error(kind, field, os.str());
     }
 
