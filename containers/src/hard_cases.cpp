@@ -319,6 +319,30 @@ CatalogueScene lightOnHeavy() {
     return c;
 }
 
+// The mirror of the above, and the harder one: the light body carries the heavy one, so its
+// contacts hold a thousand times its own weight (Box2D v3's and Jolt's "heavy on light" samples).
+// A solver whose contact stiffness or iteration budget is sized by the light body's mass lets the
+// heavy box sink into it, or through it and the ground.
+CatalogueScene heavyOnLight() {
+    CatalogueScene c = hardCase("hard_heavy_on_light",
+                                "1000 kg unit cube on a 1 kg unit cube on the ground: mass ratio 1000; largest "
+                                "displacement over 5 s",
+                                5.0);
+    c.scene.bodies.push_back(groundPlane());
+    BodyDef light = unitBox("light", Vec3(0, 0.5, 0));
+    light.mass = 1.0;
+    c.scene.bodies.push_back(light);
+    BodyDef heavy = unitBox("heavy", Vec3(0, 1.5, 0));
+    heavy.mass = 1000.0;
+    c.scene.bodies.push_back(heavy);
+    keepAwake(c.scene);
+    c.check = worstCheck("max displacement", "m", 0.01,
+                         "1 cm at any time, as light-on-heavy: both rest; two contacts of 5 mm slop each. A heavy box "
+                         "through the light one falls a metre",
+                         "hard.heavy_on_light.displacement", maxDisplacement(dynamicBodies(c.scene)));
+    return c;
+}
+
 // ---- recovery, precision, speed ----------------------------------------------------------------
 
 CatalogueScene overlap25() {
@@ -510,6 +534,8 @@ std::vector<CatalogueScene> hardCaseScenes() {
     all.push_back(planarCase(plankOnBoxes()));
     all.push_back(lightOnHeavy());
     all.push_back(planarCase(lightOnHeavy()));
+    all.push_back(heavyOnLight());
+    all.push_back(planarCase(heavyOnLight()));
     all.push_back(overlap25());
     all.push_back(planarCase(overlap25()));
     all.push_back(farStack(false));
