@@ -345,6 +345,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
                            effects.has(Effect::Gravity) ? settings.gravity.norm() : 0.0};
     prepareParams_.speculativeDistance = settings.speculativeDistance;
     prepareParams_.velocityTimeOffset = velocityTimeOffset(settings.integrator, step.dt);
+    prepareParams_.solverVelocityTimeOffset = velocityTimeOffset(Integrator::SemiImplicitEuler, h_);
     prepareParams_.stepTime = step.dt;
     prepareParams_.warmStart = true;
     solveParams_.invH = 1.0 / h_;
