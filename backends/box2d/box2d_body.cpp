@@ -133,11 +133,11 @@ void Box2dBody::updateBullet(bool continuous, double h) {
         if (body_->IsBullet()) body_->SetBullet(false);
         return;
     }
-    const double travel = static_cast<double>(body_->GetLinearVelocity().Length()) * h;
+    const double travel2 = static_cast<double>(body_->GetLinearVelocity().LengthSquared()) * h * h;
     // Not a body held by joints: Box2D's time-of-impact solve moves bullets without their joints,
     // which tore a falling ragdoll's limbs 87 cm from their sockets. Such a body keeps Box2D's
     // own time of impact against static geometry.
-    const bool fast = continuous && travel > 0.5 * innerRadius_ && body_->GetJointList() == nullptr;
+    const bool fast = continuous && travel2 > 0.25 * innerRadius_ * innerRadius_ && body_->GetJointList() == nullptr;
     if (fast != body_->IsBullet()) body_->SetBullet(fast);
 }
 
