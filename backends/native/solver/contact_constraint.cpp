@@ -173,7 +173,9 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
         const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
         cold.restitutionTarget[i][lane] =
             bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact,
-                           params.solverVelocityTimeOffset, params.speculativeDistance, params.stepTime);
+                           params.solverVelocityTimeOffset, params.speculativeDistance, params.stepTime,
+                           substepGapAtStepEnd(s, vn, normalAcceleration, params.stepTime, params.substep),
+                           gapAtStepEnd(s, -trueApproach, -normalAcceleration, params.stepTime));
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);

@@ -118,6 +118,7 @@ struct ContactPrepareParams {
     double velocityTimeOffset = 0.0;   // s: where the integrator's velocity sits in time (restitution)
     double solverVelocityTimeOffset = 0.0;  // s: the same for the solver's substeps (semi-implicit: -h/2)
     double stepTime = 0.0;             // s: the whole step (an impact falls within it)
+    double substep = 0.0;              // s: the solver's substep
     bool warmStart = true;
 };
 

@@ -96,7 +96,9 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
         const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
         cold.restitutionTarget[i][lane] =
             bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact,
-                           params.solverVelocityTimeOffset, params.speculativeDistance, params.stepTime);
+                           params.solverVelocityTimeOffset, params.speculativeDistance, params.stepTime,
+                           substepGapAtStepEnd(s, vn, normalAcceleration, params.stepTime, params.substep),
+                           gapAtStepEnd(s, -trueApproach, -normalAcceleration, params.stepTime));
         // Points well beyond the speculative distance must not pull the friction centre around.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
         centerX += weight * px;

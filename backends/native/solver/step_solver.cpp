@@ -347,6 +347,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     prepareParams_.velocityTimeOffset = velocityTimeOffset(settings.integrator, step.dt);
     prepareParams_.solverVelocityTimeOffset = velocityTimeOffset(Integrator::SemiImplicitEuler, h_);
     prepareParams_.stepTime = step.dt;
+    prepareParams_.substep = h_;
     prepareParams_.warmStart = true;
     solveParams_.invH = 1.0 / h_;
     solveParams_.pushMaxVelocity = settings.contactPushMaxVelocity;

@@ -1,7 +1,8 @@
-// Native restitution on a low bounce: one whose rise stays within the contact's speculative
-// margin keeps its contact, so the solver's substeps carry its whole flight. Its rebound speed
-// must then be stored with the substeps' half-substep lag, not the integrator's half step: with
-// the latter a ball landing at 3.1 m/s with e = 0.2 rose 2.47 cm instead of 2.0 at 60 Hz.
+// Native restitution on a low bounce, one whose rise stays within the contact's speculative
+// margin: the contact keeps it, so the solver's substeps carry its whole flight, and its rebound
+// speed must be stored with their half-substep lag, not the integrator's half step (with the latter
+// a ball landing at 3.1 m/s with e = 0.2 rose 2.47 cm instead of 2.0 at 60 Hz). And a ball that
+// meets the ground just after a step's end, bounced a step early from the gap, must rise no higher.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,9 +17,9 @@ namespace {
 
 using test::backendSettings;
 
-// Rise of a 0.25 m ball dropped from `drop` (bottom above the ground) with restitution e, over
-// the (e^2 drop) of the continuous bounce.
-double lowBounceRatio(const WorldSettings& base, double e, double drop) {
+// Rise of a 0.25 m ball dropped from `drop` (bottom above the ground) with restitution e: its
+// first rebound's highest step-end position above its resting height.
+double lowBounceRise(const WorldSettings& base, double e, double drop) {
     constexpr double kRadius = 0.25;
     WorldSettings settings = base;
     settings.restitutionThreshold = 0.1;  // the slowest impact here is 3.1 m/s: every one bounces
@@ -30,15 +31,17 @@ double lowBounceRatio(const WorldSettings& base, double e, double drop) {
     def.allowSleep = false;
     Body ball = world.createBody(def);
     const double apex = test::firstReboundApex(world, ball, 3.0);
-    return (apex - kRadius) / (e * e * drop);
+    return apex - kRadius;
 }
 
-// Drops of 0.5 and 1 m (impacts at 3.1 and 4.4 m/s) with e = 0.1 and 0.2 where the rise is at most
-// 2 cm, the speculative distance, in 3D and planar worlds and with both solvers. Bound 3 %: the substeps
-// (1/480 s) leave the rebound speed off by g h_sub / 2, 0.33 % of the slowest rebound's square
-// when doubled; the apex is sampled at step ends (off by at most g dt^2 / 8, 0.17 mm, 1.7 % of the
-// 1 cm rise); the impact time is found within the step to the same order. The integrator's half
-// step gave +24 % to +48 %.
+// Drops of 0.5, 0.522 and 1 m (impacts at 3.1, 3.2 and 4.4 m/s) with e = 0.1 and 0.2 where the
+// rise e^2 drop is at most 2 cm, the speculative distance, in 3D and planar worlds and with both
+// solvers. At 3.2 m/s the ball meets the ground just after the step's end, and the soft step's
+// last relax bounces it from 5.4 mm up (bounceVelocity). Bound 3 % of the rise plus g dt^2 / 8
+// (0.17 mm): the substeps (1/480 s) leave the rebound speed off by g h_sub / 2, 0.33 % of the
+// slowest rebound's square when doubled, the impact time is found within the step to the same
+// order, and the apex is sampled at step ends, up to g dt^2 / 8 below the true one. The
+// integrator's half step gave +24 % to +48 %, the bounce from 5.4 mm up +102 %.
 TEST(NativeLowBounce, RisesToRestitutionSquaredOfTheDrop) {
     for (const bool planar : {false, true}) {
         for (const Solver solver : {Solver::SoftStep, Solver::ProjectedGaussSeidel}) {
@@ -47,12 +50,14 @@ TEST(NativeLowBounce, RisesToRestitutionSquaredOfTheDrop) {
             settings.planar = planar;
             const std::string variant = std::string(planar ? "planar " : "") + (solver == Solver::SoftStep ? "soft_step" : "pgs");
             for (const double e : {0.1, 0.2}) {
-                for (const double drop : {0.5, 1.0}) {
+                for (const double drop : {0.5, 0.522, 1.0}) {
                     if (e * e * drop > 0.03) continue;  // a 4 cm rise leaves the contact: free flight
-                    const double ratio = lowBounceRatio(settings, e, drop);
-                    std::cout << "[ MEASURED ] " << variant << " e " << e << " drop " << drop << " m: rise / (e^2 drop) "
-                              << ratio << "\n";
-                    EXPECT_NEAR(ratio, 1.0, 0.03) << variant << ", e " << e << ", drop " << drop << " m";
+                    const double expected = e * e * drop, dt = settings.timeStep;
+                    const double rise = lowBounceRise(settings, e, drop);
+                    std::cout << "[ MEASURED ] " << variant << " e " << e << " drop " << drop << " m: rise " << rise
+                              << " m for " << expected << "\n";
+                    EXPECT_NEAR(rise, expected, 0.03 * expected + 9.81 * dt * dt / 8)
+                        << variant << ", e " << e << ", drop " << drop << " m";
                 }
             }
         }
