@@ -33,6 +33,18 @@ Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic,
     return makeSoftness(std::min(load.maxHertz, load.hertz * std::sqrt(ratio)), load.dampingRatio, load.h);
 }
 
+double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an) {
+    // Gravity (or any relative acceleration) speeds the approach until the surfaces meet, part way
+    // into the step: a bounce off the step-start speed rebounds low (2 % of the height for a ball
+    // landing at 9 m/s, on every integrator).
+    const double trueApproach = vn - an * params.velocityTimeOffset;
+    const double impact = timeToImpact(s, -trueApproach, -an, params.stepTime);
+    return bounceVelocity(e, vn, an, params.velocityTimeOffset, impact, params.solverVelocityTimeOffset,
+                          params.speculativeDistance, params.stepTime,
+                          substepGapAtStepEnd(s, vn, an, params.stepTime, params.substep),
+                          gapAtStepEnd(s, -trueApproach, -an, params.stepTime));
+}
+
 namespace {
 
 // ---- preparing one lane (scalar) ---------------------------------------------------------------
@@ -166,16 +178,7 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
         cp.maxImpulse[lane] = 0.0;
         const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
         cold.relativeVelocity[i][lane] = vn;
-        // Gravity (or any relative acceleration) speeds the approach until the surfaces meet,
-        // part way into the step: a bounce off the step-start speed rebounds low (2 % of the
-        // height for a ball landing at 9 m/s, on every integrator).
-        const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
-        const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
-        cold.restitutionTarget[i][lane] =
-            bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact,
-                           params.solverVelocityTimeOffset, params.speculativeDistance, params.stepTime,
-                           substepGapAtStepEnd(s, vn, normalAcceleration, params.stepTime, params.substep),
-                           gapAtStepEnd(s, -trueApproach, -normalAcceleration, params.stepTime));
+        cold.restitutionTarget[i][lane] = restitutionTarget(params, in.restitution, s, vn, normalAcceleration);
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);

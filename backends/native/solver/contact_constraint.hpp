@@ -130,6 +130,11 @@ struct ContactPrepareParams {
 Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic, const ContactManifold& m, double invMassA,
                          double invMassB);
 
+/// The normal velocity a point `s` apart should leave a bounce of restitution e with, from its
+/// step-start normal velocity vn under the relative normal acceleration an (bounceVelocity, with the
+/// step's timing from params). Shared by the 3D and the planar prepares.
+double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an);
+
 /// Fills `wc` and `cold` from up to four lanes (`count` of them; the rest are padding with no effect).
 void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* lanes, int count,
                      const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params);

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "contacts.hpp"
-#include "solver/restitution_math.hpp"
 
 namespace anyphys::native {
 
@@ -92,13 +91,7 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
         cp.stepImpulse[lane] = 0.0;
         const double vn = nx * ((b.vx - b.w * rBy) - (a.vx - a.w * rAy)) + ny * ((b.vy + b.w * rBx) - (a.vy + a.w * rAx));
         cold.relativeVelocity[i][lane] = vn;
-        const double trueApproach = vn - normalAcceleration * params.velocityTimeOffset;
-        const double impact = timeToImpact(s, -trueApproach, -normalAcceleration, params.stepTime);
-        cold.restitutionTarget[i][lane] =
-            bounceVelocity(in.restitution, vn, normalAcceleration, params.velocityTimeOffset, impact,
-                           params.solverVelocityTimeOffset, params.speculativeDistance, params.stepTime,
-                           substepGapAtStepEnd(s, vn, normalAcceleration, params.stepTime, params.substep),
-                           gapAtStepEnd(s, -trueApproach, -normalAcceleration, params.stepTime));
+        cold.restitutionTarget[i][lane] = restitutionTarget(params, in.restitution, s, vn, normalAcceleration);
         // Points well beyond the speculative distance must not pull the friction centre around.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
         centerX += weight * px;
