@@ -40,7 +40,7 @@ protected:
         reboundSweep(criterion, settings(), 0.1, 0.2, 2.5, 4.0);
     }
 
-    void reboundSweep(const std::string& criterion, const WorldSettings& base, double impactStep, double kE = 0.7,
+    void reboundSweep(const std::string& criterion, const WorldSettings& base, double impactStep, double e = 0.7,
                       double slowest = 3.0, double fastest = 7.0) {
         constexpr double kRadius = 0.25;
         double worst = 0.0, worstRatio = 1.0, worstImpact = 0.0;
@@ -52,21 +52,21 @@ protected:
             WorldSettings s = base;
             s.restitutionThreshold = 1.0;  // every impact here bounces
             MaterialLibrary materials;
-            materials.add("ball", Material{0.6, kE, 1000.0});
+            materials.add("ball", Material{0.6, e, 1000.0});
             World world(s, materials);
             world.createBody(groundDef());
             BodyDef def = ballDef("ball", kRadius, Vec3(0, kRadius + h, 0), "ball");
             def.allowSleep = false;
             Body ball = world.createBody(def);
             const double apex = firstReboundApex(world, ball, 3.0);
-            const double ratio = (std::isnan(apex) ? 0.0 : apex - kRadius) / (kE * kE * h);
+            const double ratio = (std::isnan(apex) ? 0.0 : apex - kRadius) / (e * e * h);
             // Bound from the method: at step dt a semi-implicit Euler flight sees speeds up to
             // g dt off the continuous one at a given height, once falling and once rising, so the
             // rebound height (prop. to the square of the speed) may be off by 2 g dt / v on the
             // way down and g dt / (2 e v) on the way up; 1 % more for contact margins and the
             // apex sampled at step ends. At 3 m/s that is 15 %, at 7 m/s 7 %.
             const double dt = s.timeStep, g = kG;
-            const double bound = 2 * g * dt / impact + g * dt / (2 * kE * impact) + 0.01;
+            const double bound = 2 * g * dt / impact + g * dt / (2 * e * impact) + 0.01;
             const double excess = std::abs(ratio - 1.0) / bound;
             if (excess > worst) {
                 worst = excess;

@@ -39,7 +39,8 @@ double restitutionTarget(const ContactPrepareParams& params, double e, double s,
     // landing at 9 m/s, on every integrator).
     const double trueApproach = vn - an * params.velocityTimeOffset;
     const double impact = timeToImpact(s, -trueApproach, -an, params.stepTime);
-    return bounceVelocity(e, vn, an, params.velocityTimeOffset, impact, params.solverVelocityTimeOffset,
+    // The solver's substeps are semi-implicit Euler: their velocity lags by half a substep.
+    return bounceVelocity(e, vn, an, params.velocityTimeOffset, impact, -0.5 * params.substep,
                           params.speculativeDistance, params.stepTime,
                           substepGapAtStepEnd(s, vn, an, params.stepTime, params.substep),
                           gapAtStepEnd(s, -trueApproach, -an, params.stepTime));

@@ -116,7 +116,6 @@ struct ContactPrepareParams {
     LoadStiffening load;
     double speculativeDistance = 0.0;  // m: points farther than this weigh little in the friction centre
     double velocityTimeOffset = 0.0;   // s: where the integrator's velocity sits in time (restitution)
-    double solverVelocityTimeOffset = 0.0;  // s: the same for the solver's substeps (semi-implicit: -h/2)
     double stepTime = 0.0;             // s: the whole step (an impact falls within it)
     double substep = 0.0;              // s: the solver's substep
     bool warmStart = true;

@@ -345,7 +345,6 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
                            effects.has(Effect::Gravity) ? settings.gravity.norm() : 0.0};
     prepareParams_.speculativeDistance = settings.speculativeDistance;
     prepareParams_.velocityTimeOffset = velocityTimeOffset(settings.integrator, step.dt);
-    prepareParams_.solverVelocityTimeOffset = velocityTimeOffset(Integrator::SemiImplicitEuler, h_);
     prepareParams_.stepTime = step.dt;
     prepareParams_.substep = h_;
     prepareParams_.warmStart = true;
