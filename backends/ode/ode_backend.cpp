@@ -164,18 +164,10 @@ Backend makeOdeBackend() {
          "3.3 mm at 1e5 and 1e7 kg alike (a 1 t bob's figure; bound 2.5 mm). The pendulums, the fixed joint and the "
          "slider hold within the bound"},
         {"planar.joints.heavy_joints", "as joints.heavy_joints, planar: 1.4 mm at 1 kg, 3.0 mm at 1e5 and 1e7 kg"},
-        {"restitution.low_bounce",
-         "a ball with e = 0.2 landing at 3.9 m/s does not rise at all (bound there: 0.2^2 of the drop, within 20 %): ODE "
-         "finds the contact only once the ball is up to a step's fall (6.5 cm) in the ground, and its bounce (the "
-         "larger of the restitution target and the depth's correction, not their sum) sends it up at the right 0.78 m/s "
-         "from there; it rises 3.1 cm and lands again before it is out. At 4 substeps it rises within 1.4 %"},
-        {"planar.restitution.low_bounce", "as restitution.low_bounce, planar"},
     });
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"restitution.low_bounce", 7.0},  // in multiples of its bound, measured 5.2 (no rise at all)
-        {"planar.restitution.low_bounce", 7.0},
         {"joints.stiff_hinge_lever", 24500},  // in multiples of its bounds, measured 12 245 (undamped)
         {"planar.joints.stiff_hinge_lever", 19200},  // measured 9 619 (undamped)
         {"joints.motor_lever", 2100},  // in multiples of its bounds, measured 1 041

@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "anyphys/peers/rebound_from_depth.hpp"
 #include "ode_contact_completion.hpp"
 #include "ode_math.hpp"
 #include "ode_mesh_edges.hpp"
@@ -156,16 +157,36 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
     }
     const bool feedback = wantsFeedback();
     const Vec3 fallA = stepFall(a), fallB = stepFall(b);  // once per pair: the same for every point
+    const bool bounces = (surface.mode & dContactBounce) != 0;
     for (int i = 0; i < count; ++i) {
         contacts[i].surface = surface;
-        if (surface.mode & dContactApprox1) {
+        if (surface.mode & (dContactApprox1 | dContactBounce)) {
             const Vec3 point = toVec3(contacts[i].geom.pos);
-            alignFrictionWithSlip(contacts[i], (pointVelocity(a.id(), point) + fallA) - (pointVelocity(b.id(), point) + fallB));
+            const Vec3 velocityA = pointVelocity(a.id(), point), velocityB = pointVelocity(b.id(), point);
+            if (surface.mode & dContactApprox1) alignFrictionWithSlip(contacts[i], (velocityA + fallA) - (velocityB + fallB));
+            if (bounces) aimBounce(contacts[i], m.restitution, velocityA - velocityB, fallA - fallB);
         }
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
         if (feedback) joints_.push_back(joint);  // its feedback is wired once the pass is done
     }
+}
+
+// ODE bounces a contact at -bounce times its closing speed, and moves the pair with that in the
+// same step, from the depth it found it at: for a step's fall of depth the rise falls short by
+// that depth (reboundFromDepth). The bounce is scaled per contact to the speed that makes up for
+// it, and takes no ERP push on top (ODE keeps the larger of the two targets, not their sum).
+// `relative`: geom 1's body's point velocity minus geom 2's; `fall`: what the step's gravity adds
+// to it. Impacts ODE does not bounce (closing no faster than bounce_vel) keep the contact as it is.
+void OdeWorld::aimBounce(dContact& contact, double e, const Vec3& relative, const Vec3& fall) const {
+    const Vec3 normal = toVec3(contact.geom.normal);  // into geom 1
+    const double closing = -relative.dot(normal);
+    if (!(closing > contact.surface.bounce_vel)) return;
+    const double h = odeStep();
+    const double g = -fall.dot(normal) / h;  // fall is zero without gravity
+    contact.surface.bounce = restitution::reboundFromDepth(e, closing, contact.geom.depth, g, h) / closing;
+    contact.surface.mode |= dContactSoftERP;
+    contact.surface.soft_erp = 0.0;
 }
 
 void OdeWorld::collide() {

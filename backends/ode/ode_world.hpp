@@ -89,6 +89,7 @@ private:
     void collidePair(dGeomID o1, dGeomID o2);
     void collide();
     void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count);
+    void aimBounce(dContact& contact, double e, const Vec3& relative, const Vec3& fall) const;
     /// The velocity gravity adds to the body over one ODE step (m/s): with its velocity now at a
     /// point, the point's velocity at the step's end before contacts (slip-aligned friction).
     Vec3 stepFall(const OdeBody& body) const {

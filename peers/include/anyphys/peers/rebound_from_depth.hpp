@@ -1,0 +1,40 @@
+#pragma once
+// The rebound speed to give an engine that finds an impact only once the bodies overlap (ODE,
+// Bullet): shared by those backends, which both bounce a pair in the step that finds it and move
+// it with the rebound speed in that same step (semi-implicit Euler).
+#include <algorithm>
+#include <cmath>
+
+namespace anyphys::restitution {
+
+/// The separating normal speed to leave with so that the pair passes back through the level of
+/// first contact at e times the speed it met there, as a bounce at the instant of contact would.
+/// `closing` is the normal closing speed at the step's start (before the step's gravity), `depth`
+/// the overlap found there, `g` the relative acceleration pulling the pair together along the
+/// normal (gravity's share; < 0 pulls it apart) and `h` the step. A negative depth is a gap the
+/// step would close, bounced now as if touching (Bullet's speculative points).
+///
+/// Semi-implicit Euler moves each step with the velocity after that step's gravity: a discrete
+/// flight at speed v keeps the energy of an exact one at speed v + g h / 2 (a fall from rest has
+/// v^2 + v g h = 2 g H after every step, up to the sampled g^2 h^2 / 4). So the pair met at
+/// v_i^2 = (closing + g h / 2)^2 - 2 g depth, and leaving at u from the depth it passes the contact
+/// level at (u + g h / 2)^2 - 2 g depth. Setting that to (e v_i)^2 gives the speed below; at depth 0
+/// it is e closing - (1 - e) g h / 2, the rule Box2D's backend applies at contact.
+///
+/// Engines that bounce at e closing from the depth lose that depth from the rise: a ball with
+/// e = 0.2 landing at 3.9 m/s at 60 Hz, found 6.5 cm deep, rose 3.1 cm from there and never left
+/// its resting height.
+///
+/// The depth counted is at most the closing speed's one step of travel either way: an overlap
+/// deeper than that was there before the step that brought the pair together (a body created
+/// overlapping), and is the engine's push-out's to resolve, not the bounce's.
+inline double reboundFromDepth(double e, double closing, double depth, double g, double h) {
+    const double travel = std::max(closing, 0.0) * h;
+    const double fall = std::clamp(depth, -travel, travel);
+    const double met = closing + 0.5 * g * h;
+    const double metSquared = std::max(met * met - 2.0 * g * fall, 0.0);
+    const double leave = std::sqrt(std::max(e * e * metSquared + 2.0 * g * fall, 0.0)) - 0.5 * g * h;
+    return std::max(leave, 0.0);
+}
+
+}  // namespace anyphys::restitution
