@@ -150,11 +150,6 @@ Backend makeBulletBackend() {
          "at 1 substep the 10-box stack drifts 1.8 cm over 10 s (bound 1 cm); 1.1 mm at 4 substeps"},
         {"stability.stack10.direct.s1",
          "the MLCP solver at 1 substep: the stack drifts 1.8 cm; 1.1 mm at 4 substeps"},
-        {"restitution.low_bounce",
-         "a ball with e = 0.2 landing at 3.9 m/s does not rise at all (bound there: 0.2^2 of the drop, within 20 %): Bullet "
-         "finds the contact only once the ball is up to a step's fall (6.5 cm) in the ground and bounces it at the right "
-         "0.78 m/s from there, which lands it again before it is out. At 4 substeps it rises 49 % too high"},
-        {"planar.restitution.low_bounce", "as restitution.low_bounce, planar"},
         {"stability.pyramid20.pgs.s1",
          "the 20-row pyramid comes apart: boxes drift 12 cm and the top box lifts 10 cm over 5 s"},
         {"stability.pyramid20.pgs.s4",
@@ -174,8 +169,6 @@ Backend makeBulletBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"restitution.low_bounce", 7.0},  // in multiples of its bound, measured 5.0 (no rise at all)
-        {"planar.restitution.low_bounce", 7.0},
         {"joints.motor_lever", 160},  // in multiples of its bounds, measured 79.3
         {"planar.joints.motor_lever", 160},  // measured 79.3
         {"vehicle.turning_radius", 0.2},
