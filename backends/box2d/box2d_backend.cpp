@@ -123,12 +123,6 @@ Backend makeBox2dBackend() {
     caps.knownDeviations.insert({
         {"planar.stability.pyramid20.pgs.s1",
          "at 1 substep x 8 iterations the 20-row pyramid's boxes drift 2.9 cm over 5 s (bound 1 cm); 1.8 mm at 4 substeps"},
-        {"planar.restitution.low_bounce",
-         "a ball with e = 0.2 landing at 2.5 m/s rises 38 % of 0.2^2 of its drop (bound within 30 %): Box2D 2.4 bounces "
-         "off the approach speed at the step's start (0.43 m/s for 0.5) and from where the ball has sunk to; 75 % at 4 "
-         "substeps"},
-        {"planar.materials.pair_restitution",
-         "a ball dropped 2 m with the pair's e = 0.8 rebounds 1.233 m (exact 1.28, bound 5.3 mm): Box2D 2.4 bounces off the relative velocity at the step start, not at impact, so the rebound depends on where in the step the ball lands. Verified: drops of 1.90 to 2.20 m in 5 cm steps rebound 0.959, 1.020, 0.963, 1.025, 0.970, 1.032, 0.980 of e^2 h (native: 1.002 throughout)"},
         {"planar.pyramid20.drift",
          "the catalogue's planar 20-row pyramid: boxes drift 2.9 cm over 5 s at the defaults (bound 1 cm; as planar.stability.pyramid20.pgs.s1)"},
     });
@@ -138,11 +132,9 @@ Backend makeBox2dBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"planar.restitution.low_bounce", 3.5},  // in multiples of its bound, measured 2.02
         {"planar.assemblies.ragdoll_limits", 60.0},
         {"planar.stability.pyramid20.pgs.s1", 4.4},
         {"planar.pyramid20.drift", 0.06},
-        {"planar.materials.pair_restitution", 0.1},
         {"planar.assemblies.regularised_chain_gap", 0.17},
     };
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured

@@ -76,9 +76,14 @@ public:
     /// step would carry it more than half its smallest inner radius.
     void updateBullet(bool continuous, double h);
     void setInnerRadius(double r) { innerRadius_ = r; }
-    /// Velocity at the start of the current Box2D step: unchanged means its solve has not run yet.
-    void markStepStart() { stepStartVelocity_ = body_->GetLinearVelocity(); }
+    /// Velocity and position at the start of the current Box2D step: an unchanged velocity means
+    /// its solve has not run yet; the position, how far time of impact let it travel.
+    void markStepStart() {
+        stepStartVelocity_ = body_->GetLinearVelocity();
+        stepStartPosition_ = body_->GetPosition();
+    }
     bool movedSinceStepStart() const { return !(body_->GetLinearVelocity() == stepStartVelocity_); }
+    b2Vec2 travelSinceStepStart() const { return body_->GetPosition() - stepStartPosition_; }
     /// Index in the world's body list (kept by the world).
     std::size_t slot = 0;
 
@@ -99,6 +104,7 @@ private:
     b2Vec2 stepForce_{0.0f, 0.0f};  // flushForces' sums on the b2Body this step
     float stepTorque_ = 0.0f;
     b2Vec2 stepStartVelocity_{0.0f, 0.0f};
+    b2Vec2 stepStartPosition_{0.0f, 0.0f};
 };
 
 }  // namespace anyphys::box2d

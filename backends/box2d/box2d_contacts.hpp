@@ -81,6 +81,10 @@ private:
     /// The restitution to give Box2D so that the pair leaves with e times its speed at the
     /// instant of impact, in the way a semi-implicit Euler flight then rises (see the .cpp).
     float impactRestitution(b2Contact* contact, float e) const;
+    /// Whether Box2D's time of impact catches a pair found `depth` deep (true surfaces) at once.
+    bool pushedOutByTimeOfImpact(const b2Contact& contact, float depth) const;
+    /// The rebound speed for a bounce in a time-of-impact solve; -1 under the threshold.
+    float timeOfImpactRebound(const b2Contact* contact, const b2Vec2& normal, float e, float closing, float depth, float g) const;
 
     float h_ = 1.0f / 60.0f;
     b2Vec2 gravity_{0.0f, 0.0f};
