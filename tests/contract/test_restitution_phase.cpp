@@ -40,6 +40,15 @@ protected:
         reboundSweep(criterion, settings(), 0.1, 0.2, 2.5, 4.0);
     }
 
+    /// The low bounce on every solver the backend offers at 1 and (where honoured) 4 substeps.
+    void lowBouncePerSolver(const std::string& criterion) {
+        const std::string missing =
+            lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
+        ANYPHYS_REQUIRE(missing.empty(), missing);
+        for (const WorldSettings& s : everySolverAndSubstepCount(settings()))
+            reboundSweep(criterion + "." + variantName(s), s, 0.1, 0.2, 2.5, 4.0);
+    }
+
     void reboundSweep(const std::string& criterion, const WorldSettings& base, double impactStep, double e = 0.7,
                       double slowest = 3.0, double fastest = 7.0) {
         constexpr double kRadius = 0.25;
@@ -90,6 +99,7 @@ TEST_P(RestitutionPhaseTest, ReboundHeightHoldsForEverySolverAndSubstepCount) {
     reboundSweepPerSolver("restitution.rebound_phase");
 }
 TEST_P(RestitutionPhaseTest, LowBounceRisesToRestitutionSquared) { lowBounce("restitution.low_bounce"); }
+TEST_P(RestitutionPhaseTest, LowBounceHoldsForEverySolverAndSubstepCount) { lowBouncePerSolver("restitution.low_bounce"); }
 
 ANYPHYS_CONTRACT_SUITE(RestitutionPhaseTest);
 
@@ -103,6 +113,9 @@ TEST_P(PlanarRestitutionPhaseTest, ReboundHeightHoldsForEverySolverAndSubstepCou
     reboundSweepPerSolver("planar.restitution.rebound_phase");
 }
 TEST_P(PlanarRestitutionPhaseTest, LowBounceRisesToRestitutionSquared) { lowBounce("planar.restitution.low_bounce"); }
+TEST_P(PlanarRestitutionPhaseTest, LowBounceHoldsForEverySolverAndSubstepCount) {
+    lowBouncePerSolver("planar.restitution.low_bounce");
+}
 
 ANYPHYS_CONTRACT_SUITE(PlanarRestitutionPhaseTest);
 
