@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "solver/contact_constraint.hpp"
+#include "solver/restitution_math.hpp"
 #include "solver/state_runs.hpp"
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
@@ -288,25 +289,28 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
         WideContact& c = contacts[i];
         const WideContactCold& cold = colds[i];
         if (allZero(cold.restitution)) continue;
-        BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
-        MaskW bounced = MaskW{};
-        FloatW load[4];
+        // Only where the approach was fast and the contact pushed (not speculative points that
+        // never closed).
+        MaskW bounces[4], bounced = MaskW{};
         for (int j = 0; j < c.pointCount; ++j) {
-            WideContactPoint& cp = c.points[j];
-            // Only where the approach was fast and the contact pushed (not speculative points
-            // that never closed).
-            const MaskW bounces =
-                (cold.relativeVelocity[j] < threshold) & (cp.maxImpulse > zero()) & (cold.restitution > zero());
-            bounced |= bounces;
-            const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-            const FloatW total = max(cp.normalImpulse + impulse, zero());
-            const FloatW applied = total - cp.normalImpulse;
-            cp.normalImpulse = total;
-            cp.stepImpulse += applied;
-            load[j] = total;
-            applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
+            bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
+            bounced |= bounces[j];
         }
+        if (noLane(bounced)) continue;
+        BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        FloatW load[4];
+        for (int pass = 0; pass < kRestitutionPasses; ++pass)
+            for (int j = 0; j < c.pointCount; ++j) {
+                WideContactPoint& cp = c.points[j];
+                const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
+                const FloatW impulse = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+                const FloatW total = max(cp.normalImpulse + impulse, zero());
+                const FloatW applied = total - cp.normalImpulse;
+                cp.normalImpulse = total;
+                cp.stepImpulse += applied;
+                load[j] = total;
+                applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
+            }
         // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
         // times the bounce's impulse too (as ODE, Bullet and Box2D give it; without this, a ball
         // landing at 3 m/s each way with e = 1 and mu = 0.1 left at 2.7 m/s where they give 2.4).

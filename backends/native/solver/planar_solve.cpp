@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "solver/restitution_math.hpp"
 #include "solver/state_runs.hpp"
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
@@ -221,24 +222,27 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
         PlanarContact& c = contacts[i];
         const PlanarContactCold& cold = colds[i];
         if (allZero(cold.restitution)) continue;
-        PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
-        MaskW bounced = MaskW{};
-        FloatW load[4];
+        MaskW bounces[4], bounced = MaskW{};
         for (int j = 0; j < c.pointCount; ++j) {
-            PlanarContactPoint& cp = c.points[j];
-            const MaskW bounces =
-                (cold.relativeVelocity[j] < threshold) & (cp.maxImpulse > zero()) & (cold.restitution > zero());
-            bounced |= bounces;
-            const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-            const FloatW impulse = select(bounces, -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-            const FloatW total = max(cp.normalImpulse + impulse, zero());
-            const FloatW applied = total - cp.normalImpulse;
-            cp.normalImpulse = total;
-            cp.stepImpulse += applied;
-            load[j] = total;
-            applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
-                         applied * c.normalY);
+            bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
+            bounced |= bounces[j];
         }
+        if (noLane(bounced)) continue;
+        PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
+        FloatW load[4];
+        for (int pass = 0; pass < kRestitutionPasses; ++pass)
+            for (int j = 0; j < c.pointCount; ++j) {
+                PlanarContactPoint& cp = c.points[j];
+                const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
+                const FloatW impulse = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+                const FloatW total = max(cp.normalImpulse + impulse, zero());
+                const FloatW applied = total - cp.normalImpulse;
+                cp.normalImpulse = total;
+                cp.stepImpulse += applied;
+                load[j] = total;
+                applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
+                             applied * c.normalY);
+            }
         // Friction through the whole impact, the bounce included (as in 3D).
         if (params.friction) solveFriction(c, a, b, load, bounced);
         scatterVelocities(states, c.bodyA, c.writeA, a);

@@ -5,6 +5,13 @@
 
 namespace anyphys::native {
 
+/// Gauss-Seidel passes over a manifold's points in the restitution stage. One pass bounces the
+/// first point of a flat face fully and the others less, as the first's impulse already lifts
+/// them: a 0.6 m box landing flat at 3 m/s with e = 0.5 left spinning and rose 50 to 78 % of
+/// e^2 h in a plane (2 points), 91 to 105 % in 3D (4). Eight passes even the points out: 100 to
+/// 101 % (4 passes: 101 to 107 % at e = 0.2). Only manifolds that bounce run them.
+inline constexpr int kRestitutionPasses = 8;
+
 /// The normal velocity after a bounce of restitution e, from the stored approach velocity `vn`.
 /// Restitution acts at the instant of impact, `impact` seconds into the step: under a constant
 /// relative acceleration `an` along the normal the true velocity then is vn - an * offset +

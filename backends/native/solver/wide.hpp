@@ -37,6 +37,7 @@ ANYPHYS_WIDE FloatW sqrt(FloatW x) {
     return FloatW{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])};
 }
 ANYPHYS_WIDE bool allZero(FloatW x) { return x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0 && x[3] == 0.0; }
+ANYPHYS_WIDE bool noLane(MaskW m) { return (m[0] | m[1] | m[2] | m[3]) == 0; }
 
 struct Vec3W {
     FloatW x, y, z;
