@@ -74,12 +74,6 @@ Backend makeNativeBackend() {
          "as stability.stack10.soft_step.s1, planar: 1.5 cm"},
         {"planar.stability.stack10.pgs.s1",
          "as stability.stack10.pgs.s1, planar: the stack drifts 9.4 cm"},
-        {"restitution.flat_box",
-         "a 0.6 m box landing flat at 2.5 to 4 m/s with e = 0.5 rises to its share (1.018 of e^2 h at worst) but turns at "
-         "up to 0.49 rad/s (bound 0.01): at the default 8 substeps x 1 iteration the impact's Gauss-Seidel solve leaves "
-         "the face's corners with unequal impulses, the box tilts and slides, and friction turns the slide into spin. "
-         "At 3 m/s: 0.16 rad/s at 3 iterations, 0.0009 at 6, 0 at 12"},
-        {"planar.restitution.flat_box", "as restitution.flat_box, planar: 0.40 rad/s"},
     });
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<native::NativeWorld>(settings);
@@ -98,8 +92,6 @@ Backend makeNativeBackend() {
         {"stability.pyramid20.pgs.s4", 1.7},
         {"planar.stability.stack10.soft_step.s1", 2.2},
         {"planar.stability.stack10.pgs.s1", 14},
-        {"restitution.flat_box", 75},         // in multiples of its bounds (spin / 0.01 rad/s), measured 49
-        {"planar.restitution.flat_box", 60},  // measured 40
     };
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.

@@ -230,7 +230,8 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
         if (noLane(bounced)) continue;
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         FloatW load[4];
-        for (int pass = 0; pass < kRestitutionPasses; ++pass)
+        // Friction through the whole impact, the bounce included, in every pass (as in 3D).
+        for (int pass = 0; pass < kRestitutionPasses; ++pass) {
             for (int j = 0; j < c.pointCount; ++j) {
                 PlanarContactPoint& cp = c.points[j];
                 const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
@@ -243,8 +244,8 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
                 applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                              applied * c.normalY);
             }
-        // Friction through the whole impact, the bounce included (as in 3D).
-        if (params.friction) solveFriction(c, a, b, load, bounced);
+            if (params.friction) solveFriction(c, a, b, load, bounced);
+        }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
