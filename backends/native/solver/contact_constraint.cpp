@@ -33,7 +33,7 @@ Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic,
     return makeSoftness(std::min(load.maxHertz, load.hertz * std::sqrt(ratio)), load.dampingRatio, load.h);
 }
 
-double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an) {
+double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an, double slide) {
     // Gravity (or any relative acceleration) speeds the approach until the surfaces meet, part way
     // into the step: a bounce off the step-start speed rebounds low (2 % of the height for a ball
     // landing at 9 m/s, on every integrator).
@@ -43,7 +43,7 @@ double restitutionTarget(const ContactPrepareParams& params, double e, double s,
     return bounceVelocity(e, vn, an, params.velocityTimeOffset, impact, -0.5 * params.substep,
                           params.speculativeDistance, params.stepTime,
                           substepGapAtStepEnd(s, vn, an, params.stepTime, params.substep),
-                          gapAtStepEnd(s, -trueApproach, -an, params.stepTime));
+                          gapAtStepEnd(s, -trueApproach, -an, params.stepTime), slide);
 }
 
 namespace {
@@ -153,6 +153,10 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
     wc.impulseScale[lane] = soft.impulseScale;
 
     const double normalAcceleration = n.dot(b.acceleration - a.acceleration);
+    // A bounce's target only where the pair can bounce: the restitution stage skips the others.
+    const bool bounces = in.restitution > 0.0;
+    const Vec3 relative = b.v - a.v;
+    const double slide = bounces ? (relative - n.dot(relative) * n).norm() : 0.0;  // the bodies' speed along the surface
     const double invTau = params.speculativeDistance > 0.0 ? 1.0 / params.speculativeDistance : 0.0;
     Vec3 center = Vec3::Zero();
     double totalWeight = 0.0, gap = 0.0;
@@ -179,7 +183,7 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
         cp.maxImpulse[lane] = 0.0;
         const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
         cold.relativeVelocity[i][lane] = vn;
-        cold.restitutionTarget[i][lane] = restitutionTarget(params, in.restitution, s, vn, normalAcceleration);
+        cold.restitutionTarget[i][lane] = bounces ? restitutionTarget(params, in.restitution, s, vn, normalAcceleration, slide) : 0.0;
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);

@@ -131,8 +131,9 @@ Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic,
 
 /// The normal velocity a point `s` apart should leave a bounce of restitution e with, from its
 /// step-start normal velocity vn under the relative normal acceleration an (bounceVelocity, with the
-/// step's timing from params). Shared by the 3D and the planar prepares.
-double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an);
+/// step's timing from params), the bodies sliding along the surface at `slide`. Shared by the 3D
+/// and the planar prepares.
+double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an, double slide);
 
 /// Fills `wc` and `cold` from up to four lanes (`count` of them; the rest are padding with no effect).
 void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* lanes, int count,

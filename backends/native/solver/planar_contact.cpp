@@ -66,6 +66,9 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
     pc.impulseScale[lane] = soft.impulseScale;
 
     const double normalAcceleration = nx * (b.ax - a.ax) + ny * (b.ay - a.ay);
+    // A bounce's target only where the pair can bounce: the restitution stage skips the others.
+    const bool bounces = in.restitution > 0.0;
+    const double slide = std::abs(-ny * (b.vx - a.vx) + nx * (b.vy - a.vy));  // the bodies' speed along the surface
     const double invTau = params.speculativeDistance > 0.0 ? 1.0 / params.speculativeDistance : 0.0;
     double centerX = 0.0, centerY = 0.0, totalWeight = 0.0, gap = 0.0;
     for (int i = 0; i < m.pointCount; ++i) {
@@ -91,7 +94,7 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
         cp.stepImpulse[lane] = 0.0;
         const double vn = nx * ((b.vx - b.w * rBy) - (a.vx - a.w * rAy)) + ny * ((b.vy + b.w * rBx) - (a.vy + a.w * rAx));
         cold.relativeVelocity[i][lane] = vn;
-        cold.restitutionTarget[i][lane] = restitutionTarget(params, in.restitution, s, vn, normalAcceleration);
+        cold.restitutionTarget[i][lane] = bounces ? restitutionTarget(params, in.restitution, s, vn, normalAcceleration, slide) : 0.0;
         // Points well beyond the speculative distance must not pull the friction centre around.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);
         centerX += weight * px;

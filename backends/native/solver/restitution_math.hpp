@@ -14,13 +14,36 @@ namespace anyphys::native {
 /// 0.017 rad/s, 16 leave 0.0003. Only manifolds with a bouncing point run them.
 inline constexpr int kRestitutionPasses = 16;
 
+/// The share of a rebound's speed `rebound`, pulled back at g, left when the pair rises out of the
+/// narrow phase's reach: `margin` plus a step h at the pair's speed, its rise u and its `slide`
+/// along the surface (ContactManager keeps points within margin + |relative velocity| h). Out of
+/// reach at height (rebound^2 - u^2) / 2g = margin + h sqrt(u^2 + slide^2): without a slide in
+/// closed form, with one by Newton's method from that root (the left side is concave and falling,
+/// so the steps approach the root from above). 0 when it never leaves reach. Counting only the
+/// rise, a ball sliding at 6 m/s as it bounced stayed in reach all through its flight and rose up
+/// to 10 % high (e = 0.5).
+inline double shareLeftOutOfReach(double rebound, double g, double margin, double h, double slide) {
+    const double reachAtRest = (rebound * rebound) / (2.0 * g) - margin - h * slide;
+    if (reachAtRest <= 0.0) return 0.0;
+    double u = -g * h + std::sqrt(std::max(g * g * h * h + rebound * rebound - 2.0 * g * margin, 0.0));
+    if (slide > 0.0)
+        for (int i = 0; i < 6; ++i) {
+            const double speed = std::sqrt(u * u + slide * slide);
+            const double f = (rebound * rebound - u * u) / (2.0 * g) - margin - h * speed;
+            const double slope = -u / g - h * u / speed;
+            if (!(slope < 0.0)) break;
+            u -= f / slope;
+        }
+    return std::clamp(u / rebound, 0.0, 1.0);
+}
+
 /// The normal velocity after a bounce of restitution e, from the stored approach velocity `vn`.
 /// Restitution acts at the instant of impact, `impact` seconds into the step: under a constant
 /// relative acceleration `an` along the normal the true velocity then is vn - an * offset +
 /// an * impact; it reverses to -e times that. It is stored back with the lag of whatever moves
 /// the body: first the solver's substeps (the contact holds it within the narrow phase's reach,
 /// `margin` plus a step `h` at its speed: `solverOffset`, half a substep, semi-implicit), then,
-/// once it rises out of reach, the integrator (`offset`: semi-implicit Euler's velocity lags its
+/// once it rises out of reach (shareLeftOutOfReach), the integrator (`offset`: semi-implicit Euler's velocity lags its
 /// position by half a step, -h/2, explicit Euler's leads, +h/2, exact flights have 0). Passing from
 /// one to the other turns a velocity's lag into the other's, which shifts the flight's height by
 /// the speed at the hand-over times the difference of the lags; stored with the integrator's lag in
@@ -35,17 +58,12 @@ inline constexpr int kRestitutionPasses = 16;
 /// the gap at the full speed, a ball with e = 0.1 landing at 3.2 m/s rose twice its share (5.4 mm
 /// up at the step's end, for a 5.2 mm rise).
 inline double bounceVelocity(double e, double vn, double an, double offset, double impact, double solverOffset,
-                             double margin, double h, double gap, double lateGap) {
+                             double margin, double h, double gap, double lateGap, double slide) {
     double rebound = -e * (vn - an * offset + an * impact);
     if ((gap > 0.0 || lateGap > 0.0) && an < 0.0 && rebound > 0.0)
         rebound = std::sqrt(std::max(rebound * rebound + 2.0 * an * (gap - e * e * lateGap), 0.0));
     double leftAtHandOver = 1.0;  // nothing pulls it back: it flies free at once
-    if (an < 0.0 && rebound > 0.0) {
-        // Rising at u, it is out of reach at height (rebound^2 - u^2) / 2g = margin + u h.
-        const double g = -an;
-        const double u = -g * h + std::sqrt(std::max(g * g * h * h + rebound * rebound - 2.0 * g * margin, 0.0));
-        leftAtHandOver = std::clamp(u / rebound, 0.0, 1.0);
-    }
+    if (an < 0.0 && rebound > 0.0) leftAtHandOver = shareLeftOutOfReach(rebound, -an, margin, h, slide);
     return rebound + an * (solverOffset + leftAtHandOver * (offset - solverOffset));
 }
 
