@@ -222,14 +222,21 @@ std::vector<std::string> NativeWorld::activeStageNames() {
 void NativeWorld::step(double time, double dt) {
     rebuildPipelineIfNeeded();
     anyActive_ = false;
+    const Vec3 gravity = effects_.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
     for (NativeBody& b : bodies_) {
         if (!b.isActive()) continue;
         anyActive_ = true;
+        const Vec3 fall = b.gravityScale * gravity;
+        const double gained = (b.state.linearVelocity - b.stepStartVelocity).dot(fall);
+        b.fellLastStep = !b.stepped || !(gained < 0.5 * fall.squaredNorm() * lastStepDt_);
+        b.stepStartVelocity = b.state.linearVelocity;
+        b.stepped = true;
         b.stepStartPosition = b.state.position;
         b.stepStartOrientation = b.state.orientation;
         b.constrained = false;
     }
     for (Stage* stage : active_) stage->run(*this, {time, dt});
+    lastStepDt_ = dt;
 }
 
 void NativeWorld::evaluateForceHook(double time) {

@@ -102,6 +102,7 @@ private:
 
     WorldSettings settings_;
     Effects effects_;
+    double lastStepDt_ = 0.0;  // s: the last step's (NativeBody::fellLastStep)
     ForceHook forceHook_;
     std::vector<NativeBody> bodies_;
     std::vector<std::uint32_t> freeSlots_;

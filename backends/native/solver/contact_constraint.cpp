@@ -96,7 +96,7 @@ struct BodyView {
     Mat3 invI = Mat3::Zero();
     Vec3 center = Vec3::Zero();
     Vec3 v = Vec3::Zero(), w = Vec3::Zero();
-    Vec3 acceleration = Vec3::Zero();
+    Vec3 acceleration = Vec3::Zero();  // SolverBody::bounceAcceleration (restitution)
     bool moves = false;  // has a solver state (dynamic or kinematic)
 };
 
@@ -113,7 +113,7 @@ struct BodyView {
     view.center = b.position0;
     view.v = Vec3(s.v[0], s.v[1], s.v[2]);
     view.w = Vec3(s.w[0], s.w[1], s.w[2]);
-    view.acceleration = b.linearAcceleration;
+    view.acceleration = b.bounceAcceleration;
     view.moves = true;
     return view;
 }

@@ -14,7 +14,7 @@ struct PlanarView {
     double invMass = 0.0, invI = 0.0;
     double cx = 0.0, cy = 0.0;             // centre of mass
     double vx = 0.0, vy = 0.0, w = 0.0;
-    double ax = 0.0, ay = 0.0;             // linear acceleration
+    double ax = 0.0, ay = 0.0;             // SolverBody::bounceAcceleration (restitution)
     bool moves = false;
 };
 
@@ -30,8 +30,8 @@ PlanarView planarViewOf(std::int32_t index, const SolverBody* bodies, const Solv
     view.vx = s.v[0];
     view.vy = s.v[1];
     view.w = s.w[2];
-    view.ax = b.linearAcceleration.x();
-    view.ay = b.linearAcceleration.y();
+    view.ax = b.bounceAcceleration.x();
+    view.ay = b.bounceAcceleration.y();
     view.moves = true;
     return view;
 }

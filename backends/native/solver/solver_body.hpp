@@ -38,6 +38,7 @@ struct SolverBody {
     Vec3 position0 = Vec3::Zero();         // centre of mass at the step start
     Quat orientation0 = Quat::Identity();  // at the step start
     Vec3 linearAcceleration = Vec3::Zero();  // gravity and user force, constant over the step
+    Vec3 bounceAcceleration = Vec3::Zero();  // linearAcceleration if it fell freely last step, else 0 (restitution)
     Vec3 angularAcceleration = Vec3::Zero(); // user torque, world frame
     double linearHalfDampingFactor = 1.0;  // velocity factor per half substep, exp(-c h / 2)
     double angularHalfDampingFactor = 1.0;
