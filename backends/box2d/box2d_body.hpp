@@ -76,12 +76,20 @@ public:
     /// step would carry it more than half its smallest inner radius.
     void updateBullet(bool continuous, double h);
     void setInnerRadius(double r) { innerRadius_ = r; }
-    /// Velocity and position at the start of the current Box2D step: an unchanged velocity means
-    /// its solve has not run yet; the position, how far time of impact let it travel.
-    void markStepStart() {
-        stepStartVelocity_ = body_->GetLinearVelocity();
+    /// Velocity and position at the start of the current Box2D step (of `h`, under the world's
+    /// `gravity`): an unchanged velocity means its solve has not run yet; the position, how far
+    /// time of impact let it travel. And whether it gained at least half a step of its gravity in
+    /// the last step, i.e. falls freely: a body resting on something does not fall, and its
+    /// gravity does not count in a bounce's relative acceleration (ContactRules).
+    void markStepStart(const b2Vec2& gravity, float h) {
+        const b2Vec2 v = body_->GetLinearVelocity();
+        const b2Vec2 fall = body_->GetType() == b2_dynamicBody ? body_->GetGravityScale() * gravity : b2Vec2(0.0f, 0.0f);
+        fellLastStep_ = !stepped_ || !(b2Dot(v - stepStartVelocity_, fall) < 0.5f * fall.LengthSquared() * h);
+        stepped_ = true;
+        stepStartVelocity_ = v;
         stepStartPosition_ = body_->GetPosition();
     }
+    bool fellLastStep() const { return fellLastStep_; }
     bool movedSinceStepStart() const { return !(body_->GetLinearVelocity() == stepStartVelocity_); }
     b2Vec2 travelSinceStepStart() const { return body_->GetPosition() - stepStartPosition_; }
     /// Index in the world's body list (kept by the world).
@@ -105,6 +113,8 @@ private:
     float stepTorque_ = 0.0f;
     b2Vec2 stepStartVelocity_{0.0f, 0.0f};
     b2Vec2 stepStartPosition_{0.0f, 0.0f};
+    bool stepped_ = false;
+    bool fellLastStep_ = true;
 };
 
 }  // namespace anyphys::box2d

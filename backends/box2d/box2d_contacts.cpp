@@ -145,10 +145,13 @@ float ContactRules::impactRestitution(b2Contact* contact, float e) const {
         depth -= (wm.separations[i] + static_cast<float>(kPairSkin)) / static_cast<float>(count);
     }
     if (vn >= 0.0f) return e;  // separating: nothing to bounce
-    const auto fall = [&](const b2Body* body) {
-        return body->GetType() == b2_dynamicBody ? body->GetGravityScale() * gravity_ : b2Vec2(0.0f, 0.0f);
+    // Only bodies falling freely: a box resting on the ground does not fall with the ball.
+    const auto fall = [&](const b2Fixture* fixture) {
+        const b2Body* body = fixture->GetBody();
+        return body->GetType() == b2_dynamicBody && bodyOf(fixture).fellLastStep() ? body->GetGravityScale() * gravity_
+                                                                                    : b2Vec2(0.0f, 0.0f);
     };
-    const float g = -b2Dot(fall(b) - fall(a), wm.normal);  // > 0: gravity closes the pair
+    const float g = -b2Dot(fall(contact->GetFixtureB()) - fall(contact->GetFixtureA()), wm.normal);  // > 0: gravity closes the pair
     // Pre-solve runs twice a step: in Box2D's collide phase, before any velocity changed, and
     // again for time-of-impact contacts after the solve (gravity already added).
     const bool afterSolve = solved_ || bodyOf(contact->GetFixtureA()).movedSinceStepStart() ||

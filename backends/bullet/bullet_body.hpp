@@ -100,6 +100,16 @@ public:
     /// Kinematic bodies follow their velocity exactly (double precision, exponential map for
     /// the rotation); Bullet sees the pose and velocity for contacts.
     void advanceKinematic(double h);
+    /// Before each Bullet step while something bounces: notes whether the body gained at least
+    /// half a step of its gravity in the last one, i.e. falls freely (fellLastStep). A body resting
+    /// on something does not fall, and its gravity does not count in a bounce's relative
+    /// acceleration (AnyphysDynamicsWorld::judgeImpact).
+    void noteStepStart(const btVector3& velocity, const btVector3& gravity, btScalar h) {
+        fellLastStep_ = !stepped_ || !((velocity - stepStartVelocity_).dot(gravity) < btScalar(0.5) * gravity.length2() * h);
+        stepStartVelocity_ = velocity;
+        stepped_ = true;
+    }
+    bool fellLastStep() const { return fellLastStep_; }
 
 private:
     void markForced();
@@ -108,6 +118,9 @@ private:
 
     BulletWorld& world_;
     BodyType type_;
+    btVector3 stepStartVelocity_{0, 0, 0};
+    bool stepped_ = false;
+    bool fellLastStep_ = true;
     std::uint64_t userData_;
     std::vector<ChildSurface> surfaces_;  // per shape, in the compound's child order
     std::uint32_t layer_, mask_;

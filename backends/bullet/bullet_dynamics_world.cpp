@@ -25,6 +25,11 @@ void AnyphysDynamicsWorld::predictUnconstraintMotion(btScalar timeStep) {
     //    needle of RotationTest diverged within 6 steps).
     const bool damping = effects_.has(Effect::Damping);
     const bool gyroscopic = effects_.has(Effect::Gyroscopic);
+    for (int i = 0; bouncing_ && i < m_nonStaticRigidBodies.size(); ++i) {
+        btRigidBody* body = m_nonStaticRigidBodies[i];
+        if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
+        static_cast<BulletBodyPeer*>(body->getUserPointer())->noteStepStart(body->getLinearVelocity(), body->getGravity(), timeStep);
+    }
     for (int i = 0; (damping || gyroscopic) && i < m_nonStaticRigidBodies.size(); ++i) {
         btRigidBody* body = m_nonStaticRigidBodies[i];
         if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
@@ -326,7 +331,12 @@ void AnyphysDynamicsWorld::judgeImpact(btManifoldPoint& p, const btRigidBody* bo
         // the ground by up to a step's fall: the rebound is aimed at what a bounce at the instant
         // of contact would reach (reboundFromDepth), through the point's restitution.
         if (bouncing) {
-            const btScalar g = -(bodyA->getGravity() - bodyB->getGravity()).dot(p.m_normalWorldOnB);
+            // Only bodies falling freely: a box resting on the ground does not fall with the ball.
+            const auto fall = [](const btRigidBody* body) {
+                const auto* peer = static_cast<const BulletBodyPeer*>(body->getUserPointer());
+                return peer != nullptr && peer->fellLastStep() ? body->getGravity() : btVector3(0, 0, 0);
+            };
+            const btScalar g = -(fall(bodyA) - fall(bodyB)).dot(p.m_normalWorldOnB);
             const double leave = restitution::reboundFromDepth(p.m_combinedRestitution, closing, -gap, g, timeStep_);
             p.m_combinedRestitution = static_cast<btScalar>(leave / closing);
         }

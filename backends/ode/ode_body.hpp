@@ -80,6 +80,12 @@ public:
     bool activeInPass = false;
     /// Queued in the world's list of bodies with forces this step.
     bool forceQueued = false;
+    /// Gained at least half an ODE step of its gravity in the last one: it falls freely, and its
+    /// gravity counts in a bounce's relative acceleration (OdeWorld::aimBounce). A body resting on
+    /// something does not fall. Updated by the world's collide pass from the velocity kept here.
+    bool fellLastStep = true;
+    Vec3 collideVelocity = Vec3::Zero();  // linear velocity at the last collide pass
+    bool collided = false;                // has been through a collide pass (collideVelocity holds one)
 
 private:
     void wake();

@@ -164,7 +164,9 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
             const Vec3 point = toVec3(contacts[i].geom.pos);
             const Vec3 velocityA = pointVelocity(a.id(), point), velocityB = pointVelocity(b.id(), point);
             if (surface.mode & dContactApprox1) alignFrictionWithSlip(contacts[i], (velocityA + fallA) - (velocityB + fallB));
-            if (bounces) aimBounce(contacts[i], m.restitution, velocityA - velocityB, fallA - fallB);
+            if (bounces)
+                aimBounce(contacts[i], m.restitution, velocityA - velocityB,
+                          (a.fellLastStep ? fallA : Vec3::Zero()) - (b.fellLastStep ? fallB : Vec3::Zero()));
         }
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
@@ -177,7 +179,7 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
 // that depth (reboundFromDepth). The bounce is scaled per contact to the speed that makes up for
 // it, and takes no ERP push on top (ODE keeps the larger of the two targets, not their sum).
 // `relative`: geom 1's body's point velocity minus geom 2's; `fall`: what the step's gravity adds
-// to it. Impacts ODE does not bounce (closing no faster than bounce_vel) keep the contact as it is.
+// to it, counting only bodies that fall freely (a box resting on the ground does not). Impacts ODE does not bounce (closing no faster than bounce_vel) keep the contact as it is.
 void OdeWorld::aimBounce(dContact& contact, double e, const Vec3& relative, const Vec3& fall) const {
     const Vec3 normal = toVec3(contact.geom.normal);  // into geom 1
     const double closing = -relative.dot(normal);
@@ -198,9 +200,16 @@ void OdeWorld::collide() {
     feedbackValid_ = false;
     awakeGeoms_.clear();
     awakeBodies_ = 0;
+    const Vec3 gravity = effects_.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
     for (OdeBody* body : bodies_) {
         body->activeInPass = body->isActive();
         if (!body->activeInPass) continue;
+        if (body->isDynamic()) {
+            const Vec3 v = toVec3(dBodyGetLinearVel(body->id())), fall = body->gravityScale() * gravity;
+            body->fellLastStep = !body->collided || !((v - body->collideVelocity).dot(fall) < 0.5 * fall.squaredNorm() * lastH_);
+            body->collideVelocity = v;
+            body->collided = true;
+        }
         body->awakeRank = awakeBodies_++;
         for (std::size_t i = 0; i < body->shapeCount(); ++i) awakeGeoms_.push_back(body->shape(i).geom());
     }
