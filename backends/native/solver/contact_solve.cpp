@@ -33,7 +33,7 @@ struct BodyW {
 constexpr std::size_t kAngularRun = offsetof(SolverState, w);       // w[0..2], v[0]
 constexpr std::size_t kLinearRun = offsetof(SolverState, v) + kDouble;  // v[1..2], turn
 constexpr std::size_t kMotionRun = offsetof(SolverState, dp);       // dp[0..2], dq[0]
-constexpr std::size_t kTurnRun = offsetof(SolverState, dq) + kDouble;   // dq[1..3], spare
+constexpr std::size_t kTurnRun = offsetof(SolverState, dq) + kDouble;   // dq[1..3], inBounce
 static_assert(offsetof(SolverState, v) == kAngularRun + 3 * kDouble && offsetof(SolverState, dq) == kMotionRun + 3 * kDouble &&
                   kTurnRun + 4 * kDouble == sizeof(SolverState),
               "SolverState's runs moved");
@@ -288,15 +288,26 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
     for (int i = 0; i < count; ++i) {
         WideContact& c = contacts[i];
         const WideContactCold& cold = colds[i];
-        if (allZero(cold.restitution)) continue;
-        // Only where the approach was fast and the contact pushed (not speculative points that
-        // never closed).
-        MaskW bounces[4], bounced = MaskW{};
+        // Bouncing rows: where the approach was fast and the contact pushed (not speculative
+        // points that never closed).
+        MaskW bounces[4] = {}, bounced = MaskW{};
+        if (!allZero(cold.restitution))
+            for (int j = 0; j < c.pointCount; ++j) {
+                bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
+                bounced |= bounces[j];
+            }
+        // Holding rows: the pushing points of a body that takes part in a bounce (the box a ball
+        // bounces on, on its ground), held rigidly and pushing only: no stage after the relax
+        // passes would stop the bounce driving the box into its support (a 1 kg ball bouncing on
+        // a 10 kg box rose 59 % of its share). A later round reaches the colours before this one.
+        const MaskW holding = inBounce(states, c.bodyA, c.bodyB) & ~bounced;
+        MaskW held[4] = {}, anyHeld = MaskW{};
         for (int j = 0; j < c.pointCount; ++j) {
-            bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
-            bounced |= bounces[j];
+            held[j] = holding & (c.points[j].maxImpulse > zero());
+            anyHeld |= held[j];
         }
-        if (noLane(bounced)) continue;
+        if (noLane(bounced) && noLane(anyHeld)) continue;
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, bounced);
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         FloatW load[4];
         // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
@@ -308,21 +319,21 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
             for (int j = 0; j < c.pointCount; ++j) {
                 WideContactPoint& cp = c.points[j];
                 const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-                const FloatW impulse = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-                const FloatW total = max(cp.normalImpulse + impulse, zero());
+                const FloatW bounce = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+                const FloatW hold = select(held[j], max(-cp.normalMass * vn, zero()), zero());
+                const FloatW total = max(cp.normalImpulse + bounce + hold, zero());
                 const FloatW applied = total - cp.normalImpulse;
                 cp.normalImpulse = total;
                 cp.stepImpulse += applied;
                 load[j] = total;
                 applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
             }
-            if (params.friction) solveFriction(c, a, b, load, bounced);
+            if (params.friction && !noLane(bounced)) solveFriction(c, a, b, load, bounced);
         }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
 }
-
 
 #if ANYPHYS_HAS_AVX2_KERNELS
 #define ANYPHYS_AVX2 __attribute__((target("avx2")))

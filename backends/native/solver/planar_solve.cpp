@@ -221,13 +221,21 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
         const PlanarContactCold& cold = colds[i];
-        if (allZero(cold.restitution)) continue;
-        MaskW bounces[4], bounced = MaskW{};
+        // Bouncing and holding rows as in 3D (contact_solve.cpp).
+        MaskW bounces[4] = {}, bounced = MaskW{};
+        if (!allZero(cold.restitution))
+            for (int j = 0; j < c.pointCount; ++j) {
+                bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
+                bounced |= bounces[j];
+            }
+        const MaskW holding = inBounce(states, c.bodyA, c.bodyB) & ~bounced;
+        MaskW held[4] = {}, anyHeld = MaskW{};
         for (int j = 0; j < c.pointCount; ++j) {
-            bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
-            bounced |= bounces[j];
+            held[j] = holding & (c.points[j].maxImpulse > zero());
+            anyHeld |= held[j];
         }
-        if (noLane(bounced)) continue;
+        if (noLane(bounced) && noLane(anyHeld)) continue;
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, bounced);
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
@@ -235,8 +243,9 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
             for (int j = 0; j < c.pointCount; ++j) {
                 PlanarContactPoint& cp = c.points[j];
                 const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-                const FloatW impulse = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-                const FloatW total = max(cp.normalImpulse + impulse, zero());
+                const FloatW bounce = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+                const FloatW hold = select(held[j], max(-cp.normalMass * vn, zero()), zero());
+                const FloatW total = max(cp.normalImpulse + bounce + hold, zero());
                 const FloatW applied = total - cp.normalImpulse;
                 cp.normalImpulse = total;
                 cp.stepImpulse += applied;
@@ -244,7 +253,7 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
                 applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                              applied * c.normalY);
             }
-            if (params.friction) solveFriction(c, a, b, load, bounced);
+            if (params.friction && !noLane(bounced)) solveFriction(c, a, b, load, bounced);
         }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);

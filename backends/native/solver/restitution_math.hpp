@@ -14,6 +14,13 @@ namespace anyphys::native {
 /// 0.017 rad/s, 16 leave 0.0003. Only manifolds with a bouncing point run them.
 inline constexpr int kRestitutionPasses = 16;
 
+/// Rounds of the restitution stage over all colours. A bounce that drives a body into its own
+/// resting contacts (a ball on a box on the ground) is held there by those contacts' rows, which
+/// may come in a colour after the bounce's; the next round bounces again off the held body. A
+/// 1 kg ball bouncing on a 10 kg box (e = 0.5, impacts 2.5 to 4 m/s) rose 59 to 83 % of e^2 h
+/// without holding rows, 59 to 83 % with one round, 98.5 to 99.9 % with 2, 100 to 100.7 % with 4.
+inline constexpr int kRestitutionRounds = 4;
+
 /// The share of a rebound's speed `rebound`, pulled back at g, left when the pair rises out of the
 /// narrow phase's reach: `margin` plus a step h at the pair's speed, its rise u and its `slide`
 /// along the surface (ContactManager keeps points within margin + |relative velocity| h). Out of

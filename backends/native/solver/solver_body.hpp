@@ -17,7 +17,7 @@ inline constexpr std::int32_t kStaticBody = -1;
 struct alignas(64) SolverState {
     // Laid out as runs of four doubles that the contact passes load whole, one per lane, and
     // transpose into the lanes' fields (state_runs.hpp): w[0..2] v[0] | v[1..2] turn | dp dq[0] |
-    // dq[1..3] spare. A planar pass loads w[2] v[0..2] and turn dp[0..1].
+    // dq[1..3] inBounce. A planar pass loads w[2] v[0..2] and turn dp[0..1].
     double w[3] = {0, 0, 0};               // rad/s, world frame
     double v[3] = {0, 0, 0};               // m/s, centre-of-mass velocity, world frame
     // Planar worlds: cos and sin of dq's turn about Z, kept with dq by integratePositions, so that
@@ -25,7 +25,9 @@ struct alignas(64) SolverState {
     double turn[2] = {1, 0};
     double dp[3] = {0, 0, 0};              // m, displacement since the step began
     double dq[4] = {1, 0, 0, 0};           // rotation since the step began, (w, x, y, z): q = dq q0
-    double spare = 0;                      // the last run's fourth double, read and unused
+    // The last run's fourth double, which the passes read and leave: 1 once the body takes part
+    // in a bounce this step (the restitution stage then holds its resting contacts too).
+    double inBounce = 0;
 };
 static_assert(sizeof(SolverState) == 16 * sizeof(double), "SolverState is four runs of four doubles");
 

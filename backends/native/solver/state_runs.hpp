@@ -46,4 +46,22 @@ inline const SolverState kStateAtRest{};
 
 constexpr std::size_t kDouble = sizeof(double);
 
+/// Lanes either of whose bodies takes part in a bounce this step (SolverState::inBounce).
+[[gnu::always_inline]] inline MaskW inBounce(const SolverState* states, const std::int32_t* a, const std::int32_t* b) {
+    MaskW lanes{};
+    for (int k = 0; k < kLanes; ++k)
+        lanes[k] = stateOf(states, a[k]).inBounce != 0.0 || stateOf(states, b[k]).inBounce != 0.0 ? -1 : 0;
+    return lanes;
+}
+
+/// Marks the bodies of `lanes` that take impulses as taking part in a bounce.
+[[gnu::always_inline]] inline void markInBounce(SolverState* states, const std::int32_t* a, const bool* writeA,
+                                                const std::int32_t* b, const bool* writeB, MaskW lanes) {
+    for (int k = 0; k < kLanes; ++k) {
+        if (!lanes[k]) continue;
+        if (writeA[k]) states[a[k]].inBounce = 1.0;
+        if (writeB[k]) states[b[k]].inBounce = 1.0;
+    }
+}
+
 }  // namespace anyphys::native::wide

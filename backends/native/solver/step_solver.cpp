@@ -8,6 +8,7 @@
 #include "anyphys/task_system.hpp"
 #include "native_world.hpp"
 #include "solver/body_integration.hpp"
+#include "solver/restitution_math.hpp"
 
 namespace anyphys::native {
 namespace {
@@ -312,7 +313,8 @@ void StepSolver::planStages(const NativeWorld& world) {
             for (int it = 0; it < iterations; ++it) pass(StageKind::Relax, sub, it + 1 == iterations);
     }
     if (restitution_)
-        for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c);
+        for (int round = 0; round < kRestitutionRounds; ++round)
+            for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c);
     addStage(StageKind::StoreImpulses, wide);
     if (joints > 0) addStage(StageKind::ReportJoints, joints);
     addStage(StageKind::FinalizeBodies, bodies);
