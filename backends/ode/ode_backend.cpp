@@ -164,10 +164,16 @@ Backend makeOdeBackend() {
          "3.3 mm at 1e5 and 1e7 kg alike (a 1 t bob's figure; bound 2.5 mm). The pendulums, the fixed joint and the "
          "slider hold within the bound"},
         {"planar.joints.heavy_joints", "as joints.heavy_joints, planar: 1.4 mm at 1 kg, 3.0 mm at 1e5 and 1e7 kg"},
+        {"restitution.on_resting_box",
+         "a 1 kg ball (e = 0.5) landing at 3.2 to 3.4 m/s on a 100 kg box resting on the ground rises 80 % of e^2 h "
+         "(bound within 15 %): in the step of the bounce the box gives under it at 0.13 m/s, close to a step of its own "
+         "gravity (0.16), as if its ground contact held nothing in that step. Not traced further; the box had rested "
+         "at depth 0 for 20 steps. On a 10 kg box, and in a plane, within 0.6 %"},
     });
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
+        {"restitution.on_resting_box", 2.0},  // in multiples of its bound, measured 1.31
         {"joints.stiff_hinge_lever", 24500},  // in multiples of its bounds, measured 12 245 (undamped)
         {"planar.joints.stiff_hinge_lever", 19200},  // measured 9 619 (undamped)
         {"joints.motor_lever", 2100},  // in multiples of its bounds, measured 1 041
