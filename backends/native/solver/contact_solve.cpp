@@ -7,6 +7,7 @@
 
 #include "solver/contact_constraint.hpp"
 #include "solver/restitution_math.hpp"
+#include "solver/restitution_rows.hpp"
 #include "solver/state_runs.hpp"
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
@@ -288,26 +289,9 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
     for (int i = 0; i < count; ++i) {
         WideContact& c = contacts[i];
         const WideContactCold& cold = colds[i];
-        // Bouncing rows: where the approach was fast and the contact pushed (not speculative
-        // points that never closed).
-        MaskW bounces[4] = {}, bounced = MaskW{};
-        if (!allZero(cold.restitution))
-            for (int j = 0; j < c.pointCount; ++j) {
-                bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
-                bounced |= bounces[j];
-            }
-        // Holding rows: the pushing points of a body that takes part in a bounce (the box a ball
-        // bounces on, on its ground), held rigidly and pushing only: no stage after the relax
-        // passes would stop the bounce driving the box into its support (a 1 kg ball bouncing on
-        // a 10 kg box rose 59 % of its share). A later round reaches the colours before this one.
-        const MaskW holding = inBounce(states, c.bodyA, c.bodyB) & ~bounced;
-        MaskW held[4] = {}, anyHeld = MaskW{};
-        for (int j = 0; j < c.pointCount; ++j) {
-            held[j] = holding & (c.points[j].maxImpulse > zero());
-            anyHeld |= held[j];
-        }
-        if (noLane(bounced) && noLane(anyHeld)) continue;
-        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, bounced);
+        const RestitutionRows rows = restitutionRows(c, cold, states, threshold);
+        if (rows.none()) continue;
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         FloatW load[4];
         // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
@@ -319,8 +303,8 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
             for (int j = 0; j < c.pointCount; ++j) {
                 WideContactPoint& cp = c.points[j];
                 const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-                const FloatW bounce = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-                const FloatW hold = select(held[j], max(-cp.normalMass * vn, zero()), zero());
+                const FloatW bounce = select(rows.bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+                const FloatW hold = select(rows.held[j], max(-cp.normalMass * vn, zero()), zero());
                 const FloatW total = max(cp.normalImpulse + bounce + hold, zero());
                 const FloatW applied = total - cp.normalImpulse;
                 cp.normalImpulse = total;
@@ -328,7 +312,7 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
                 load[j] = total;
                 applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
             }
-            if (params.friction && !noLane(bounced)) solveFriction(c, a, b, load, bounced);
+            if (params.friction && !noLane(rows.bounced)) solveFriction(c, a, b, load, rows.bounced);
         }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);

@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "solver/restitution_math.hpp"
+#include "solver/restitution_rows.hpp"
 #include "solver/state_runs.hpp"
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
@@ -221,21 +222,9 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
         const PlanarContactCold& cold = colds[i];
-        // Bouncing and holding rows as in 3D (contact_solve.cpp).
-        MaskW bounces[4] = {}, bounced = MaskW{};
-        if (!allZero(cold.restitution))
-            for (int j = 0; j < c.pointCount; ++j) {
-                bounces[j] = (cold.relativeVelocity[j] < threshold) & (c.points[j].maxImpulse > zero()) & (cold.restitution > zero());
-                bounced |= bounces[j];
-            }
-        const MaskW holding = inBounce(states, c.bodyA, c.bodyB) & ~bounced;
-        MaskW held[4] = {}, anyHeld = MaskW{};
-        for (int j = 0; j < c.pointCount; ++j) {
-            held[j] = holding & (c.points[j].maxImpulse > zero());
-            anyHeld |= held[j];
-        }
-        if (noLane(bounced) && noLane(anyHeld)) continue;
-        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, bounced);
+        const RestitutionRows rows = restitutionRows(c, cold, states, threshold);
+        if (rows.none()) continue;
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
@@ -243,8 +232,8 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
             for (int j = 0; j < c.pointCount; ++j) {
                 PlanarContactPoint& cp = c.points[j];
                 const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-                const FloatW bounce = select(bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-                const FloatW hold = select(held[j], max(-cp.normalMass * vn, zero()), zero());
+                const FloatW bounce = select(rows.bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+                const FloatW hold = select(rows.held[j], max(-cp.normalMass * vn, zero()), zero());
                 const FloatW total = max(cp.normalImpulse + bounce + hold, zero());
                 const FloatW applied = total - cp.normalImpulse;
                 cp.normalImpulse = total;
@@ -253,7 +242,7 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
                 applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                              applied * c.normalY);
             }
-            if (params.friction && !noLane(bounced)) solveFriction(c, a, b, load, bounced);
+            if (params.friction && !noLane(rows.bounced)) solveFriction(c, a, b, load, rows.bounced);
         }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
