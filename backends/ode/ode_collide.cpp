@@ -179,7 +179,8 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
 // that depth (reboundFromDepth). The bounce is scaled per contact to the speed that makes up for
 // it, and takes no ERP push on top (ODE keeps the larger of the two targets, not their sum).
 // `relative`: geom 1's body's point velocity minus geom 2's; `fall`: what the step's gravity adds
-// to it, counting only bodies that fall freely (a box resting on the ground does not). Impacts ODE does not bounce (closing no faster than bounce_vel) keep the contact as it is.
+// to it, counting only bodies that fall freely (a box resting on the ground does not). Impacts
+// ODE does not bounce (closing no faster than bounce_vel) keep the contact as it is.
 void OdeWorld::aimBounce(dContact& contact, double e, const Vec3& relative, const Vec3& fall) const {
     const Vec3 normal = toVec3(contact.geom.normal);  // into geom 1
     const double closing = -relative.dot(normal);

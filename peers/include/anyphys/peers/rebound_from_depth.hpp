@@ -1,7 +1,7 @@
 #pragma once
-// The rebound speed to give an engine that finds an impact only once the bodies overlap (ODE,
-// Bullet): shared by those backends, which both bounce a pair in the step that finds it and move
-// it with the rebound speed in that same step (semi-implicit Euler).
+// The rebound speed to give an engine that finds an impact only once the bodies overlap: shared
+// by ODE, Bullet and Box2D's main solve, which all bounce a pair in the step that finds it and
+// move it with the rebound speed in that same step (semi-implicit Euler).
 #include <algorithm>
 #include <cmath>
 
