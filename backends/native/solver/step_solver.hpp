@@ -5,7 +5,7 @@
 //    soft contacts with bias, integrate positions, relax without bias;
 //  - projected Gauss-Seidel: per substep integrate velocities, warm start, solve with Baumgarte
 //    bias, integrate positions.
-// Both then apply restitution once and store the impulses for the next step's warm start.
+// Both then apply restitution and store the impulses for the next step's warm start.
 //
 // The stages of a step, in order (each a range function over arrays, run by StageRunner):
 //   prepare_contacts                      once: anchors, masses, warm-start impulses
@@ -15,7 +15,7 @@
 //   solve       (per colour)              each substep, `iterations` passes
 //   integrate_positions                   each substep
 //   relax       (per colour)              each substep, `iterations` passes (soft step only)
-//   restitution (per colour)              once
+//   restitution (per colour)              kRestitutionRounds rounds, when some material bounces
 //   store_impulses                        once
 //   finalize_bodies                       once: poses and velocities back to the bodies
 // Constraints are coloured (ConstraintGraph) and grouped four to a WideContact (a PlanarContact in
