@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "anyphys/peers/body_peer.hpp"
+#include "anyphys/peers/rebound_from_depth.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "box2d_convert.hpp"
 #include "box2d_shapes.hpp"
@@ -84,7 +85,7 @@ public:
     void markStepStart(const b2Vec2& gravity, float h) {
         const b2Vec2 v = body_->GetLinearVelocity();
         const b2Vec2 fall = body_->GetType() == b2_dynamicBody ? body_->GetGravityScale() * gravity : b2Vec2(0.0f, 0.0f);
-        fellLastStep_ = !stepped_ || !(b2Dot(v - stepStartVelocity_, fall) < 0.5f * fall.LengthSquared() * h);
+        fellLastStep_ = !stepped_ || restitution::fellFreely(b2Dot(v - stepStartVelocity_, fall), fall.LengthSquared(), h);
         stepped_ = true;
         stepStartVelocity_ = v;
         stepStartPosition_ = body_->GetPosition();

@@ -5,6 +5,7 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include "anyphys/peers/rebound_from_depth.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "bullet_shapes.hpp"
 
@@ -105,7 +106,7 @@ public:
     /// on something does not fall, and its gravity does not count in a bounce's relative
     /// acceleration (AnyphysDynamicsWorld::judgeImpact).
     void noteStepStart(const btVector3& velocity, const btVector3& gravity, btScalar h) {
-        fellLastStep_ = !stepped_ || !((velocity - stepStartVelocity_).dot(gravity) < btScalar(0.5) * gravity.length2() * h);
+        fellLastStep_ = !stepped_ || restitution::fellFreely((velocity - stepStartVelocity_).dot(gravity), gravity.length2(), h);
         stepStartVelocity_ = velocity;
         stepped_ = true;
     }

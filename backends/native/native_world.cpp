@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "anyphys/peers/rebound_from_depth.hpp"
 #include "anyphys/peers/resolved_settings.hpp"
 #include "collision/mesh_data.hpp"
 #include "collision/queries.hpp"
@@ -227,8 +228,8 @@ void NativeWorld::step(double time, double dt) {
         if (!b.isActive()) continue;
         anyActive_ = true;
         const Vec3 fall = b.gravityScale * gravity;
-        const double gained = (b.state.linearVelocity - b.stepStartVelocity).dot(fall);
-        b.fellLastStep = !b.stepped || !(gained < 0.5 * fall.squaredNorm() * lastStepDt_);
+        b.fellLastStep = !b.stepped || restitution::fellFreely((b.state.linearVelocity - b.stepStartVelocity).dot(fall),
+                                                               fall.squaredNorm(), lastStepDt_);
         b.stepStartVelocity = b.state.linearVelocity;
         b.stepped = true;
         b.stepStartPosition = b.state.position;

@@ -207,7 +207,7 @@ void OdeWorld::collide() {
         if (!body->activeInPass) continue;
         if (body->isDynamic()) {
             const Vec3 v = toVec3(dBodyGetLinearVel(body->id())), fall = body->gravityScale() * gravity;
-            body->fellLastStep = !body->collided || !((v - body->collideVelocity).dot(fall) < 0.5 * fall.squaredNorm() * lastH_);
+            body->fellLastStep = !body->collided || restitution::fellFreely((v - body->collideVelocity).dot(fall), fall.squaredNorm(), lastH_);
             body->collideVelocity = v;
             body->collided = true;
         }

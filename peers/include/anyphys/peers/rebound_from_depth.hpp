@@ -1,7 +1,8 @@
 #pragma once
 // The rebound speed to give an engine that finds an impact only once the bodies overlap: shared
 // by ODE, Bullet and Box2D's main solve, which all bounce a pair in the step that finds it and
-// move it with the rebound speed in that same step (semi-implicit Euler).
+// move it with the rebound speed in that same step (semi-implicit Euler). And which bodies' gravity
+// a bounce counts, shared by every backend (fellFreely).
 #include <algorithm>
 #include <cmath>
 
@@ -36,5 +37,11 @@ inline double reboundFromDepth(double e, double closing, double depth, double g,
     const double leave = std::sqrt(std::max(e * e * metSquared + 2.0 * g * fall, 0.0)) - 0.5 * g * h;
     return std::max(leave, 0.0);
 }
+
+/// Whether a body fell freely over the last step h: it gained at least half a step of its gravity
+/// (`gained`: its velocity change along its gravity, which has squared length `fallSquared`). A
+/// body resting on something gains none, and its gravity must not count in a bounce's relative
+/// acceleration: a ball bouncing on a box resting on the ground is not aimed as if the box fell.
+inline bool fellFreely(double gained, double fallSquared, double h) { return !(gained < 0.5 * fallSquared * h); }
 
 }  // namespace anyphys::restitution
