@@ -11,8 +11,9 @@
 //   warmStartContacts   each substep: apply the accumulated impulses again (as summed by
 //                       summarizeImpulses at the end of prepare and of each substep)
 //   solveContacts       each pass: friction, then non-penetration (with or without bias)
-//   applyRestitution    once per step, after the substeps
-//   storeImpulses       once per step: impulses back to the manifolds for the next step
+//   applyRestitution    after the substeps, in rounds over the colours (kRestitutionRounds)
+//   storeImpulses       once per step: impulses back to the manifolds for the next step (without
+//                       the restitution stage's: the next step warm-starts from the contact's load)
 #include <cstdint>
 
 #include "collision/shape.hpp"
@@ -63,6 +64,7 @@ struct WideContactCold {
     wide::FloatW restitution;
     wide::FloatW relativeVelocity[4];         // per point: normal velocity at the step start (< 0: approaching)
     wide::FloatW restitutionTarget[4];        // per point: normal velocity a bounce aims for
+    wide::FloatW restitutionImpulse[4];       // per point: what the restitution stage added (not warm-started)
 };
 
 /// A record's accumulated impulses as each lane's change of velocity, written by the prepare stage
@@ -157,7 +159,8 @@ void warmStartContacts(const WideWarmStart* warm, int count, SolverState* states
 /// are summed into `warm` for the next substep.
 void solveContacts(WideContact* contacts, WideWarmStart* warm, int count, SolverState* states,
                    const ContactSolveParams& params, bool useBias, bool endOfSubstep);
-void applyRestitution(WideContact* contacts, const WideContactCold* cold, int count, SolverState* states,
+/// One round of the restitution stage over a colour's records; true when some row bounced or held.
+bool applyRestitution(WideContact* contacts, WideContactCold* cold, int count, SolverState* states,
                       const ContactSolveParams& params);
 void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int count);
 

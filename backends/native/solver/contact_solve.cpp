@@ -283,14 +283,16 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
     }
 }
 
-ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold* colds, int count, SolverState* states,
+ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* colds, int count, SolverState* states,
                                     const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
+    bool found = false;
     for (int i = 0; i < count; ++i) {
         WideContact& c = contacts[i];
-        const WideContactCold& cold = colds[i];
+        WideContactCold& cold = colds[i];
         const RestitutionRows rows = restitutionRows(c, cold, states, threshold);
         if (rows.none()) continue;
+        found = true;
         markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         FloatW load[4];
@@ -303,13 +305,8 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
             for (int j = 0; j < c.pointCount; ++j) {
                 WideContactPoint& cp = c.points[j];
                 const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-                const FloatW bounce = select(rows.bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-                const FloatW hold = select(rows.held[j], max(-cp.normalMass * vn, zero()), zero());
-                const FloatW total = max(cp.normalImpulse + bounce + hold, zero());
-                const FloatW applied = total - cp.normalImpulse;
-                cp.normalImpulse = total;
-                cp.stepImpulse += applied;
-                load[j] = total;
+                const FloatW applied = restitutionRowImpulse(rows, j, cp, cold, vn);
+                load[j] = cp.normalImpulse;
                 applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
             }
             if (params.friction && !noLane(rows.bounced)) solveFriction(c, a, b, load, rows.bounced);
@@ -317,6 +314,7 @@ ANYPHYS_KERNEL void restitutionImpl(WideContact* contacts, const WideContactCold
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
+    return found;
 }
 
 #if ANYPHYS_HAS_AVX2_KERNELS
@@ -327,9 +325,9 @@ ANYPHYS_AVX2 void solveAvx2(WideContact* c, WideWarmStart* w, int n, SolverState
                             bool end) {
     solveImpl(c, w, n, s, p, bias, end);
 }
-ANYPHYS_AVX2 void restitutionAvx2(WideContact* c, const WideContactCold* cold, int n, SolverState* s,
+ANYPHYS_AVX2 bool restitutionAvx2(WideContact* c, WideContactCold* cold, int n, SolverState* s,
                                    const ContactSolveParams& p) {
-    restitutionImpl(c, cold, n, s, p);
+    return restitutionImpl(c, cold, n, s, p);
 }
 #endif
 
@@ -338,8 +336,8 @@ void warmStartBase(const WideWarmStart* w, int n, SolverState* s) { warmStartImp
 void solveBase(WideContact* c, WideWarmStart* w, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, w, n, s, p, bias, end);
 }
-void restitutionBase(WideContact* c, const WideContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
-    restitutionImpl(c, cold, n, s, p);
+bool restitutionBase(WideContact* c, WideContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
+    return restitutionImpl(c, cold, n, s, p);
 }
 
 bool detectAvx2() {
@@ -386,12 +384,12 @@ void solveContacts(WideContact* contacts, WideWarmStart* warm, int count, Solver
     solveBase(contacts, warm, count, states, params, useBias, endOfSubstep);
 }
 
-void applyRestitution(WideContact* contacts, const WideContactCold* cold, int count, SolverState* states,
+bool applyRestitution(WideContact* contacts, WideContactCold* cold, int count, SolverState* states,
                       const ContactSolveParams& params) {
 #if ANYPHYS_HAS_AVX2_KERNELS
     if (avx2Enabled()) return restitutionAvx2(contacts, cold, count, states, params);
 #endif
-    restitutionBase(contacts, cold, count, states, params);
+    return restitutionBase(contacts, cold, count, states, params);
 }
 
 }  // namespace anyphys::native

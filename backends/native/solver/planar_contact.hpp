@@ -54,7 +54,8 @@ void preparePlanarContacts(PlanarContact& pc, PlanarContactCold& cold, const Con
 void warmStartPlanarContacts(PlanarContact* contacts, int count, SolverState* states);
 void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
                          bool useBias, bool endOfSubstep);
-void applyPlanarRestitution(PlanarContact* contacts, const PlanarContactCold* cold, int count, SolverState* states,
+/// As applyRestitution: true when some row bounced or held.
+bool applyPlanarRestitution(PlanarContact* contacts, PlanarContactCold* cold, int count, SolverState* states,
                             const ContactSolveParams& params);
 void storePlanarImpulses(const PlanarContact* contacts, const PlanarContactCold* cold, int count);
 

@@ -216,14 +216,16 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     }
 }
 
-ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContactCold* colds, int count, SolverState* states,
+ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* colds, int count, SolverState* states,
                                     const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
+    bool found = false;
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
-        const PlanarContactCold& cold = colds[i];
+        PlanarContactCold& cold = colds[i];
         const RestitutionRows rows = restitutionRows(c, cold, states, threshold);
         if (rows.none()) continue;
+        found = true;
         markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         FloatW load[4];
@@ -232,13 +234,8 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
             for (int j = 0; j < c.pointCount; ++j) {
                 PlanarContactPoint& cp = c.points[j];
                 const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-                const FloatW bounce = select(rows.bounces[j], -cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
-                const FloatW hold = select(rows.held[j], max(-cp.normalMass * vn, zero()), zero());
-                const FloatW total = max(cp.normalImpulse + bounce + hold, zero());
-                const FloatW applied = total - cp.normalImpulse;
-                cp.normalImpulse = total;
-                cp.stepImpulse += applied;
-                load[j] = total;
+                const FloatW applied = restitutionRowImpulse(rows, j, cp, cold, vn);
+                load[j] = cp.normalImpulse;
                 applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                              applied * c.normalY);
             }
@@ -247,6 +244,7 @@ ANYPHYS_KERNEL void restitutionImpl(PlanarContact* contacts, const PlanarContact
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
+    return found;
 }
 
 #if ANYPHYS_HAS_AVX2_KERNELS
@@ -255,9 +253,9 @@ ANYPHYS_AVX2 void warmStartAvx2(PlanarContact* c, int n, SolverState* s) { warmS
 ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-ANYPHYS_AVX2 void restitutionAvx2(PlanarContact* c, const PlanarContactCold* cold, int n, SolverState* s,
+ANYPHYS_AVX2 bool restitutionAvx2(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s,
                                    const ContactSolveParams& p) {
-    restitutionImpl(c, cold, n, s, p);
+    return restitutionImpl(c, cold, n, s, p);
 }
 #endif
 
@@ -265,8 +263,8 @@ void warmStartBase(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n
 void solveBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-void restitutionBase(PlanarContact* c, const PlanarContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
-    restitutionImpl(c, cold, n, s, p);
+bool restitutionBase(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
+    return restitutionImpl(c, cold, n, s, p);
 }
 
 }  // namespace
@@ -286,12 +284,12 @@ void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states
     solveBase(contacts, count, states, params, useBias, endOfSubstep);
 }
 
-void applyPlanarRestitution(PlanarContact* contacts, const PlanarContactCold* cold, int count, SolverState* states,
+bool applyPlanarRestitution(PlanarContact* contacts, PlanarContactCold* cold, int count, SolverState* states,
                             const ContactSolveParams& params) {
 #if ANYPHYS_HAS_AVX2_KERNELS
     if (contactKernelsUseAvx2()) return restitutionAvx2(contacts, cold, count, states, params);
 #endif
-    restitutionBase(contacts, cold, count, states, params);
+    return restitutionBase(contacts, cold, count, states, params);
 }
 
 }  // namespace anyphys::native

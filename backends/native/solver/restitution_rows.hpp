@@ -35,4 +35,23 @@ template <class Contact, class Cold>
     return rows;
 }
 
+/// Point j's restitution row at normal velocity vn: a bouncing row aims at its target, a holding row
+/// pushes until the point stops closing; neither pulls. Adds the change to the point's impulses and
+/// to what the stage has added (`cold.restitutionImpulse`), and returns it. A holding row may take
+/// back what it added in an earlier pass, down to what the substeps left: where the corners of a
+/// face could each push only further, the box a 65 kg ball bounced on rose off its ground at
+/// 0.13 m/s after the first round (1 mm/s after 32), each round's bounce starting from there.
+template <class Point, class Cold>
+[[gnu::always_inline]] inline FloatW restitutionRowImpulse(const RestitutionRows& rows, int j, Point& cp, Cold& cold, FloatW vn) {
+    FloatW& added = cold.restitutionImpulse[j];
+    const FloatW bounced = max(cp.normalImpulse - cp.normalMass * (vn - cold.restitutionTarget[j]), zero());
+    const FloatW held = cp.normalImpulse + max(added - cp.normalMass * vn, zero()) - added;
+    const FloatW total = select(rows.bounces[j], bounced, select(rows.held[j], held, cp.normalImpulse));
+    const FloatW applied = total - cp.normalImpulse;
+    cp.normalImpulse = total;
+    cp.stepImpulse += applied;
+    added += applied;
+    return applied;
+}
+
 }  // namespace anyphys::native::wide

@@ -314,7 +314,7 @@ void StepSolver::planStages(const NativeWorld& world) {
     }
     if (restitution_)
         for (int round = 0; round < kRestitutionRounds; ++round)
-            for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c);
+            for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c, round);
     addStage(StageKind::StoreImpulses, wide);
     if (joints > 0) addStage(StageKind::ReportJoints, joints);
     addStage(StageKind::FinalizeBodies, bodies);
@@ -359,6 +359,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     solveParams_.friction = effects.has(Effect::Friction);
     solveParams_.restitutionThreshold = settings.restitutionThreshold;
     restitution_ = effects.has(Effect::Restitution);
+    bounceFound_.store(false, std::memory_order_relaxed);
     // Joints hold their position errors as stiffly as contacts with static bodies at the default
     // contactHertz (Box2D v3's joint softness), damped a little more, whatever contactHertz is.
     jointParams_.h = h_;
@@ -404,7 +405,8 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             solveContacts(colour(), warm(), count, states_.data(), solveParams_, false, p.endOfSubstep);
             break;
         case StageKind::Restitution:
-            applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), solveParams_);
+            if (skipRestitutionRound(p)) break;
+            if (applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), solveParams_)) noteBounce();
             break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
@@ -447,7 +449,8 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
         case StageKind::Solve: solvePlanarContacts(colour(), count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
         case StageKind::Relax: solvePlanarContacts(colour(), count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
         case StageKind::Restitution:
-            applyPlanarRestitution(colour(), planarCold_.data() + first, count, states_.data(), solveParams_);
+            if (!skipRestitutionRound(p) && applyPlanarRestitution(colour(), planarCold_.data() + first, count, states_.data(), solveParams_))
+                noteBounce();
             return true;
         case StageKind::StoreImpulses:
             storePlanarImpulses(planar_.data() + begin, planarCold_.data() + begin, count);

@@ -21,6 +21,7 @@
 // Constraints are coloured (ConstraintGraph) and grouped four to a WideContact (a PlanarContact in
 // a planar world: 3 degrees of freedom per body), so the colour stages run in SIMD lanes and on
 // several workers with identical results.
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -72,7 +73,7 @@ private:
     struct StagePlan {
         StageKind kind;
         int color = 0;      // colour stages
-        int substep = 0;
+        int substep = 0;    // or the restitution stage's round
         bool endOfSubstep = false;  // the last pass of a substep (its impulses count for events)
         int items = 0;      // bodies, or wide constraints
         int blockSize = 1;
@@ -135,6 +136,15 @@ private:
     ContactSolveParams solveParams_;
     JointSolveParams jointParams_;
     bool restitution_ = false;
+    /// Some row of the restitution stage's first round bounced or held. When none did, no body was
+    /// marked in a bounce and the later rounds would find nothing either: they are skipped, so a
+    /// world whose materials bounce pays one round while nothing does. Written by any worker in
+    /// the first round, read after it (the stages' barrier orders them).
+    std::atomic<bool> bounceFound_{false};
+    void noteBounce() { bounceFound_.store(true, std::memory_order_relaxed); }
+    bool skipRestitutionRound(const StagePlan& p) const {
+        return p.substep > 0 && !bounceFound_.load(std::memory_order_relaxed);
+    }
 };
 
 }  // namespace anyphys::native
