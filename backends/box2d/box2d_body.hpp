@@ -78,20 +78,17 @@ public:
     void updateBullet(bool continuous, double h);
     void setInnerRadius(double r) { innerRadius_ = r; }
     /// Velocity and position at the start of the current Box2D step (of `h`, under the world's
-    /// `gravity`): an unchanged velocity means its solve has not run yet; the position, how far
-    /// time of impact let it travel. And whether it gained at least half a step of its gravity in
-    /// the last step, i.e. falls freely: a body resting on something does not fall, and its
-    /// gravity does not count in a bounce's relative acceleration (ContactRules).
-    void markStepStart(const b2Vec2& gravity, float h) {
-        const b2Vec2 v = body_->GetLinearVelocity();
+    /// `gravity`; `notedLastStep`: also marked at the last one): an unchanged velocity means its solve has not run yet; the position, how far
+    /// time of impact let it travel. And whether it fell freely in the last step: a body resting on
+    /// something does not, and its gravity does not count in a bounce's relative acceleration
+    /// (ContactRules).
+    void markStepStart(bool notedLastStep, const b2Vec2& gravity, float h) {
         const b2Vec2 fall = body_->GetType() == b2_dynamicBody ? body_->GetGravityScale() * gravity : b2Vec2(0.0f, 0.0f);
-        fellLastStep_ = !stepped_ || restitution::fellFreely(b2Dot(v - stepStartVelocity_, fall), fall.LengthSquared(), h);
-        stepped_ = true;
-        stepStartVelocity_ = v;
+        fall_.note(notedLastStep, body_->GetLinearVelocity(), fall, h, [](const b2Vec2& x, const b2Vec2& y) { return b2Dot(x, y); });
         stepStartPosition_ = body_->GetPosition();
     }
-    bool fellLastStep() const { return fellLastStep_; }
-    bool movedSinceStepStart() const { return !(body_->GetLinearVelocity() == stepStartVelocity_); }
+    bool fellLastStep() const { return fall_.fellLastStep(); }
+    bool movedSinceStepStart() const { return !(body_->GetLinearVelocity() == fall_.stepStartVelocity()); }
     b2Vec2 travelSinceStepStart() const { return body_->GetPosition() - stepStartPosition_; }
     /// Index in the world's body list (kept by the world).
     std::size_t slot = 0;
@@ -112,10 +109,8 @@ private:
     float heldTorque_ = 0.0f;
     b2Vec2 stepForce_{0.0f, 0.0f};  // flushForces' sums on the b2Body this step
     float stepTorque_ = 0.0f;
-    b2Vec2 stepStartVelocity_{0.0f, 0.0f};
+    restitution::FreeFallWatch<b2Vec2> fall_{b2Vec2(0.0f, 0.0f)};
     b2Vec2 stepStartPosition_{0.0f, 0.0f};
-    bool stepped_ = false;
-    bool fellLastStep_ = true;
 };
 
 }  // namespace anyphys::box2d

@@ -236,8 +236,10 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
         rules_.beginStep(static_cast<float>(h), world_->GetGravity());
         // Soft springs' pulls first: the step start's velocities include them (markStepStart).
         for (Box2dJoint* j : joints_) j->beforeSubstep(h);
-        if (effects_.has(Effect::Restitution))
-            for (Box2dBody* b : bodies_) b->markStepStart(world_->GetGravity(), static_cast<float>(h));
+        const bool bounces = effects_.has(Effect::Restitution);
+        if (bounces)
+            for (Box2dBody* b : bodies_) b->markStepStart(stepStartsMarked_, world_->GetGravity(), static_cast<float>(h));
+        stepStartsMarked_ = bounces;
         world_->Step(static_cast<float>(h), velocityIterations_, positionIterations_);
         for (Box2dJoint* j : joints_) j->afterSubstep();
     }

@@ -96,6 +96,7 @@ private:
     int positionIterations_;
     int substeps_;
     int lastStepSubsteps_ = 0;
+    bool stepStartsMarked_ = false;  // the last Box2D step marked its bodies' (Box2dBody::markStepStart)
     Effects effects_;
     ContactRules rules_;
     std::unique_ptr<b2World> world_;

@@ -101,16 +101,14 @@ public:
     /// Kinematic bodies follow their velocity exactly (double precision, exponential map for
     /// the rotation); Bullet sees the pose and velocity for contacts.
     void advanceKinematic(double h);
-    /// Before each Bullet step while something bounces: notes whether the body gained at least
-    /// half a step of its gravity in the last one, i.e. falls freely (fellLastStep). A body resting
-    /// on something does not fall, and its gravity does not count in a bounce's relative
-    /// acceleration (AnyphysDynamicsWorld::judgeImpact).
-    void noteStepStart(const btVector3& velocity, const btVector3& gravity, btScalar h) {
-        fellLastStep_ = !stepped_ || restitution::fellFreely((velocity - stepStartVelocity_).dot(gravity), gravity.length2(), h);
-        stepStartVelocity_ = velocity;
-        stepped_ = true;
+    /// Before each Bullet step while something bounces (`notedLastStep`: also before the last one):
+    /// notes whether the body fell freely in the last step. A body resting on something does not,
+    /// and its gravity does not count in a bounce's relative acceleration
+    /// (AnyphysDynamicsWorld::judgeImpact).
+    void noteStepStart(bool notedLastStep, const btVector3& velocity, const btVector3& gravity, btScalar h) {
+        fall_.note(notedLastStep, velocity, gravity, h, [](const btVector3& x, const btVector3& y) { return x.dot(y); });
     }
-    bool fellLastStep() const { return fellLastStep_; }
+    bool fellLastStep() const { return fall_.fellLastStep(); }
 
 private:
     void markForced();
@@ -119,9 +117,7 @@ private:
 
     BulletWorld& world_;
     BodyType type_;
-    btVector3 stepStartVelocity_{0, 0, 0};
-    bool stepped_ = false;
-    bool fellLastStep_ = true;
+    restitution::FreeFallWatch<btVector3> fall_{btVector3(0, 0, 0)};
     std::uint64_t userData_;
     std::vector<ChildSurface> surfaces_;  // per shape, in the compound's child order
     std::uint32_t layer_, mask_;

@@ -28,8 +28,10 @@ void AnyphysDynamicsWorld::predictUnconstraintMotion(btScalar timeStep) {
     for (int i = 0; bouncing_ && i < m_nonStaticRigidBodies.size(); ++i) {
         btRigidBody* body = m_nonStaticRigidBodies[i];
         if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
-        static_cast<BulletBodyPeer*>(body->getUserPointer())->noteStepStart(body->getLinearVelocity(), body->getGravity(), timeStep);
+        static_cast<BulletBodyPeer*>(body->getUserPointer())
+            ->noteStepStart(fallNotedLastStep_, body->getLinearVelocity(), body->getGravity(), timeStep);
     }
+    fallNotedLastStep_ = bouncing_;
     for (int i = 0; (damping || gyroscopic) && i < m_nonStaticRigidBodies.size(); ++i) {
         btRigidBody* body = m_nonStaticRigidBodies[i];
         if (body->isStaticOrKinematicObject() || !body->isActive()) continue;

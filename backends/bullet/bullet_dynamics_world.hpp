@@ -110,6 +110,7 @@ private:
     // Restitution is on and some pair of materials has some: each point's rebound is judged
     // every step from its closing speed.
     bool bouncing_ = false;
+    bool fallNotedLastStep_ = false;  // the last step noted its bodies' fall (BulletBodyPeer::noteStepStart)
     const std::vector<BulletBodyPeer*>* sensorCompounds_ = nullptr;
 
     /// Runs one of Bullet's sweep phases with sensor children out of the way.

@@ -6,6 +6,7 @@
 
 #include "anyphys/defs.hpp"
 #include "anyphys/peers/body_peer.hpp"
+#include "anyphys/peers/rebound_from_depth.hpp"
 #include "collision/shape.hpp"
 
 namespace anyphys::native {
@@ -53,12 +54,10 @@ struct NativeBody {
     bool constrained = false;    // has contact constraints this step: moved by the contact solver
     Vec3 stepStartPosition = Vec3::Zero();
     Quat stepStartOrientation = Quat::Identity();
-    Vec3 stepStartVelocity = Vec3::Zero();
-    bool stepped = false;        // has taken a step (stepStartVelocity holds one)
-    // Gained at least half a step of its gravity in the last step: it falls freely, and its
-    // gravity counts in a bounce's relative acceleration (restitutionTarget). A body resting on
-    // something does not fall: a ball bouncing on a resting box must not be aimed as if the box fell.
-    bool fellLastStep = true;
+    // Whether it fell freely in the last step: only then does its gravity count in a bounce's
+    // relative acceleration (restitutionTarget). A body resting on something does not fall: a ball
+    // bouncing on a resting box must not be aimed as if the box fell.
+    restitution::FreeFallWatch<Vec3> fall{Vec3::Zero()};
 
     // ---- sleeping ----
     bool allowSleep = true;      // (awake above)

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "anyphys/peers/rebound_from_depth.hpp"
 #include "anyphys/peers/resolved_settings.hpp"
 #include "collision/mesh_data.hpp"
 #include "collision/queries.hpp"
@@ -224,20 +223,19 @@ void NativeWorld::step(double time, double dt) {
     rebuildPipelineIfNeeded();
     anyActive_ = false;
     const Vec3 gravity = effects_.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
+    const bool bounces = effects_.has(Effect::Restitution);
+    const auto dot = [](const Vec3& x, const Vec3& y) { return x.dot(y); };
     for (NativeBody& b : bodies_) {
         if (!b.isActive()) continue;
         anyActive_ = true;
-        const Vec3 fall = b.gravityScale * gravity;
-        b.fellLastStep = !b.stepped || restitution::fellFreely((b.state.linearVelocity - b.stepStartVelocity).dot(fall),
-                                                               fall.squaredNorm(), lastStepDt_);
-        b.stepStartVelocity = b.state.linearVelocity;
-        b.stepped = true;
+        if (bounces) b.fall.note(fallNotedLastStep_, b.state.linearVelocity, b.gravityScale * gravity, lastStepDt_, dot);
         b.stepStartPosition = b.state.position;
         b.stepStartOrientation = b.state.orientation;
         b.constrained = false;
     }
     for (Stage* stage : active_) stage->run(*this, {time, dt});
     lastStepDt_ = dt;
+    fallNotedLastStep_ = bounces;
 }
 
 void NativeWorld::evaluateForceHook(double time) {

@@ -102,7 +102,8 @@ private:
 
     WorldSettings settings_;
     Effects effects_;
-    double lastStepDt_ = 0.0;  // s: the last step's (NativeBody::fellLastStep)
+    double lastStepDt_ = 0.0;   // s: the last step's (NativeBody::fall)
+    bool fallNotedLastStep_ = false;  // the last step noted its bodies' NativeBody::fall
     ForceHook forceHook_;
     std::vector<NativeBody> bodies_;
     std::vector<std::uint32_t> freeSlots_;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "anyphys/peers/rebound_from_depth.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
 #include "ode_shapes.hpp"
@@ -80,12 +81,10 @@ public:
     bool activeInPass = false;
     /// Queued in the world's list of bodies with forces this step.
     bool forceQueued = false;
-    /// Gained at least half an ODE step of its gravity in the last one: it falls freely, and its
-    /// gravity counts in a bounce's relative acceleration (OdeWorld::aimBounce). A body resting on
-    /// something does not fall. Updated by the world's collide pass from the velocity kept here.
-    bool fellLastStep = true;
-    Vec3 collideVelocity = Vec3::Zero();  // linear velocity at the last collide pass
-    bool collided = false;                // has been through a collide pass (collideVelocity holds one)
+    /// Whether it fell freely in the last ODE step: only then does its gravity count in a bounce's
+    /// relative acceleration (OdeWorld::aimBounce). A body resting on something does not fall.
+    /// Noted by the world's collide pass while some material bounces.
+    restitution::FreeFallWatch<Vec3> fall{Vec3::Zero()};
 
 private:
     void wake();

@@ -166,7 +166,7 @@ void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const Con
             if (surface.mode & dContactApprox1) alignFrictionWithSlip(contacts[i], (velocityA + fallA) - (velocityB + fallB));
             if (bounces)
                 aimBounce(contacts[i], m.restitution, velocityA - velocityB,
-                          (a.fellLastStep ? fallA : Vec3::Zero()) - (b.fellLastStep ? fallB : Vec3::Zero()));
+                          (a.fall.fellLastStep() ? fallA : Vec3::Zero()) - (b.fall.fellLastStep() ? fallB : Vec3::Zero()));
         }
         const dJointID joint = dJointCreateContact(world_, contactGroup_, &contacts[i]);
         dJointAttach(joint, a.id(), b.id());
@@ -202,18 +202,17 @@ void OdeWorld::collide() {
     awakeGeoms_.clear();
     awakeBodies_ = 0;
     const Vec3 gravity = effects_.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
+    const bool bounces = effects_.has(Effect::Restitution);
+    const auto dot = [](const Vec3& x, const Vec3& y) { return x.dot(y); };
     for (OdeBody* body : bodies_) {
         body->activeInPass = body->isActive();
         if (!body->activeInPass) continue;
-        if (body->isDynamic()) {
-            const Vec3 v = toVec3(dBodyGetLinearVel(body->id())), fall = body->gravityScale() * gravity;
-            body->fellLastStep = !body->collided || restitution::fellFreely((v - body->collideVelocity).dot(fall), fall.squaredNorm(), lastH_);
-            body->collideVelocity = v;
-            body->collided = true;
-        }
+        if (bounces && body->isDynamic())
+            body->fall.note(fallNotedLastPass_, toVec3(dBodyGetLinearVel(body->id())), body->gravityScale() * gravity, lastH_, dot);
         body->awakeRank = awakeBodies_++;
         for (std::size_t i = 0; i < body->shapeCount(); ++i) awakeGeoms_.push_back(body->shape(i).geom());
     }
+    fallNotedLastPass_ = bounces;
     if (awakeGeoms_.empty()) {
         lastPass_ = CollidePass::Skipped;  // every pair would be skipped as asleep
     } else if (awakeGeoms_.size() * kAwakeShareForWholeSpace < geomCount_) {

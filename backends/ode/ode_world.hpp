@@ -112,6 +112,7 @@ private:
     double erp_ = 0.2, cfm_ = 1e-5;
     bool direct_ = false;
     double lastH_ = 0.0;  // s, the ODE step the bodies' damping scales were computed for
+    bool fallNotedLastPass_ = false;  // the last collide pass noted its bodies' OdeBody::fall
 
     std::vector<OdeBody*> bodies_;
     std::vector<OdeJoint*> userJoints_;

@@ -118,15 +118,12 @@ protected:
                         std::max(worst.excess, fastestSpin / 0.01));
     }
 
-    /// A ball bouncing on a box that rests on the ground: the box does not fall, so the ball must
-    /// rise e^2 of its drop above the box's top, as off the ground, whatever the box weighs (a
-    /// 10 kg and a 100 kg box, against a 1 kg ball). Aiming the bounce as if the box fell with the
-    /// ball (gravity in the pair's relative acceleration, none of it in the approach) left ODE's
-    /// ball at e = 0.2 below the box's top; Bullet's rose 0 to 1.47 of its share, native's 0.74 to
-    /// 0.86 at e = 0.5. The ball's bound (reboundSweep) at e = 0.5.
-    /// A ball's first rebound off a box resting on the ground, for each (ball, box) mass pair: the
-    /// ground holds the box, so the ball rises to e^2 of its drop above the box's top as off the
-    /// ground itself.
+    /// A ball bouncing on a box that rests on the ground, for each (ball, box) mass pair: the ground
+    /// holds the box, so the ball must rise e^2 of its drop above the box's top, as off the ground,
+    /// whatever either weighs. Aiming the bounce as if the box fell with the ball (gravity in the
+    /// pair's relative acceleration, none of it in the approach) left ODE's ball at e = 0.2 below
+    /// the box's top; Bullet's rose 0 to 1.47 of its share, native's 0.74 to 0.86 at e = 0.5. The
+    /// ball's bound (reboundSweep) at e = 0.5.
     void bounceOnRestingBox(const std::string& criterion, const std::vector<std::pair<double, double>>& ballAndBoxMasses) {
         const std::string missing =
             lacking(caps(), {ShapeType::Sphere, ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);

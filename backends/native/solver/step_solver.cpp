@@ -173,7 +173,7 @@ void StepSolver::buildBody(std::uint32_t index, const NativeBody& nb, SolverBody
             sb.linearAcceleration += sb.invMass.cwiseProduct(nb.force);
             sb.angularAcceleration = sb.invInertia * nb.torque;
         }
-        if (nb.fellLastStep) sb.bounceAcceleration = sb.linearAcceleration;
+        if (nb.fall.fellLastStep()) sb.bounceAcceleration = sb.linearAcceleration;
         if (damping) {  // exact decay of dv/dt = -c v over half a substep: stable for any c
             sb.linearHalfDampingFactor = std::exp(-0.5 * nb.linearDamping * h_);
             sb.angularHalfDampingFactor = std::exp(-0.5 * nb.angularDamping * h_);

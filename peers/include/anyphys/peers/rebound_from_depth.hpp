@@ -44,4 +44,31 @@ inline double reboundFromDepth(double e, double closing, double depth, double g,
 /// acceleration: a ball bouncing on a box resting on the ground is not aimed as if the box fell.
 inline bool fellFreely(double gained, double fallSquared, double h) { return !(gained < 0.5 * fallSquared * h); }
 
+/// A body's fellFreely verdict on its last step, from its linear velocity at each step's start, in
+/// the engine's vector type; every backend's bodies keep one. The world notes its bodies only while
+/// some material bounces. With no velocity to compare (the body's first note, or the world noted no
+/// one at the step before) the body counts as falling. A body that slept compares against its
+/// velocity before it slept: a box woken by a ball landing on it rested, and does not fall.
+template <class Velocity>
+class FreeFallWatch {
+public:
+    explicit FreeFallWatch(const Velocity& atRest) : velocity_(atRest) {}
+    /// At a step's start: the body's `velocity`, its `gravity` and the last step's `h`; whether the
+    /// world noted its bodies at the step before (`notedLastStep`); `dot` is the engine's dot product.
+    template <class Dot>
+    void note(bool notedLastStep, const Velocity& velocity, const Velocity& gravity, double h, Dot dot) {
+        fell_ = !(noted_ && notedLastStep) || fellFreely(dot(velocity - velocity_, gravity), dot(gravity, gravity), h);
+        velocity_ = velocity;
+        noted_ = true;
+    }
+    bool fellLastStep() const { return fell_; }
+    /// The velocity noted at the last step's start.
+    const Velocity& stepStartVelocity() const { return velocity_; }
+
+private:
+    Velocity velocity_;
+    bool noted_ = false;  // velocity_ holds a step start's
+    bool fell_ = true;
+};
+
 }  // namespace anyphys::restitution
