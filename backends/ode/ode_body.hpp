@@ -79,6 +79,9 @@ public:
     /// isActive() when the world's current collide pass began: the pass asks it of every
     /// candidate pair, and nothing wakes or sleeps until the ODE step.
     bool activeInPass = false;
+    /// Asleep at the pass's start and touched by an awake body in it: queued to have its own pairs
+    /// collided in the same pass (OdeWorld::collideWokenBodies).
+    bool wokenInPass = false;
     /// Queued in the world's list of bodies with forces this step.
     bool forceQueued = false;
     /// Whether it fell freely in the last ODE step: only then does its gravity count in a bounce's

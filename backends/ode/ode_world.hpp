@@ -88,6 +88,9 @@ private:
     static void awakeGeomCallback(void* self, dGeomID o1, dGeomID o2);
     void collidePair(dGeomID o1, dGeomID o2);
     void collide();
+    /// Queues the sleeping one of a touching pair (wokenInPass).
+    void wakeIfTouched(OdeBody& a, OdeBody& b);
+    void collideWokenBodies();
     void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count);
     void aimBounce(dContact& contact, double e, const Vec3& relative, const Vec3& fall) const;
     /// The velocity gravity adds to the body over one ODE step (m/s): with its velocity now at a
@@ -128,6 +131,7 @@ private:
     // The collide pass: geoms of awake bodies (in body order), the one being collided, and
     // how many bodies were awake when it ran.
     std::vector<dGeomID> awakeGeoms_;
+    std::vector<OdeBody*> wokenBodies_;  // this pass's, in the order they woke (collideWokenBodies)
     dGeomID currentGeom_ = nullptr;
     std::size_t awakeBodies_ = 0;
     CollidePass lastPass_ = CollidePass::Skipped;
