@@ -240,12 +240,9 @@ void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int
         for (int lane = 0; lane < kLanes; ++lane) {
             ContactManifold* m = cold[i].manifold[lane];
             if (!m) continue;
-            // The next step warm-starts from what held the pair, not from a bounce: warm-started,
-            // the bounce of a 30 kg ball off a 10 kg box on the ground came back a step later (the
-            // substeps could not take it back from the chain in time) and the ball rose up to
-            // twice its share.
             for (int j = 0; j < m->pointCount; ++j) {
-                m->points[j].normalImpulse = c.points[j].normalImpulse[lane] - cold[i].restitutionImpulse[j][lane];
+                m->points[j].normalImpulse =
+                    storedNormalImpulse(cold[i], j, lane, c.points[j].normalImpulse[lane], m->points[j].normalImpulse);
                 m->points[j].stepImpulse = c.points[j].stepImpulse[lane];
             }
             const Vec3 t1(c.tangent1.x[lane], c.tangent1.y[lane], c.tangent1.z[lane]);

@@ -138,8 +138,9 @@ void storePlanarImpulses(const PlanarContact* contacts, const PlanarContactCold*
         for (int lane = 0; lane < wide::kLanes; ++lane) {
             ContactManifold* m = cold[i].manifold[lane];
             if (!m) continue;
-            for (int j = 0; j < m->pointCount; ++j) {  // without the bounce, as in 3D
-                m->points[j].normalImpulse = c.points[j].normalImpulse[lane] - cold[i].restitutionImpulse[j][lane];
+            for (int j = 0; j < m->pointCount; ++j) {
+                m->points[j].normalImpulse =
+                    storedNormalImpulse(cold[i], j, lane, c.points[j].normalImpulse[lane], m->points[j].normalImpulse);
                 m->points[j].stepImpulse = c.points[j].stepImpulse[lane];
             }
             const double f = c.frictionImpulse[lane];

@@ -51,6 +51,7 @@ template <class Point, class Cold>
     cp.normalImpulse = total;
     cp.stepImpulse += applied;
     added += applied;
+    cold.impactRow[j] |= rows.bounces[j] | rows.held[j];
     return applied;
 }
 
