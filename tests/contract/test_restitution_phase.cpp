@@ -123,28 +123,38 @@ protected:
     /// whatever either weighs. Aiming the bounce as if the box fell with the ball (gravity in the
     /// pair's relative acceleration, none of it in the approach) left ODE's ball at e = 0.2 below
     /// the box's top; Bullet's rose 0 to 1.47 of its share, native's 0.74 to 0.86 at e = 0.5. The
-    /// ball's bound (reboundSweep) at e = 0.5. With `boxSleeps`, the box may sleep and the ball
+    /// ball's bound (reboundSweep) at restitution e. With `boxSleeps`, the box may sleep and the ball
     /// lands at 6.5 to 8 m/s, 0.66 to 0.82 s after its release, after the box fell asleep (checked;
     /// every backend's box sleeps by 0.6 s): the box wakes as the ball comes (Bullet, whose islands
     /// join at the bounding boxes' overlap) or under it, and must have its ground under it at once.
-    void bounceOnRestingBox(const std::string& criterion, const std::vector<std::pair<double, double>>& ballAndBoxMasses,
-                            bool boxSleeps = false) {
+    /// With `boxes` > 1 the ball lands on the top of a stack of that many, each of the box's mass.
+    struct BoxBounce {
+        std::vector<std::pair<double, double>> ballAndBoxMasses;
+        double e = 0.5;
+        int boxes = 1;
+        bool boxSleeps = false;
+    };
+    void bounceOnRestingBox(const std::string& criterion, const BoxBounce& setup) {
+        const auto& [ballAndBoxMasses, e, boxes, boxSleeps] = setup;
         const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Box, ShapeType::Plane},
                                             Effect::Contacts | Effect::Restitution | (boxSleeps ? Effect::Sleeping : Effects{}));
         ANYPHYS_REQUIRE(missing.empty(), missing);
-        constexpr double kRadius = 0.25, kHalf = 0.5, kE = 0.5;
+        constexpr double kRadius = 0.25, kHalf = 0.5;
         const double slowest = boxSleeps ? 6.5 : 2.5, fastest = boxSleeps ? 8.0 : 4.0;
         WorstRebound worst;
         int neverSlept = 0;  // runs where the box was awake all through the ball's fall
         for (std::size_t pair = 0; pair < ballAndBoxMasses.size(); ++pair) {
             for (double impact = slowest; impact <= fastest + 1e-9; impact += 0.1) {
                 const double h = impact * impact / (2 * kG);
-                const std::unique_ptr<World> world = bounceWorld(settings(), kE);
-                BodyDef boxBody = boxDef("box", Vec3::Constant(kHalf), Vec3(0, kHalf, 0), "rubber");
-                boxBody.mass = ballAndBoxMasses[pair].second;
-                boxBody.allowSleep = boxSleeps;
-                Body box = world->createBody(boxBody);
-                BodyDef ballBody = ballDef("ball", kRadius, Vec3(0, 2 * kHalf + kRadius + h, 0), "rubber");
+                const std::unique_ptr<World> world = bounceWorld(settings(), e);
+                Body box;  // the top one
+                for (int k = 0; k < boxes; ++k) {
+                    BodyDef boxBody = boxDef("box" + std::to_string(k), Vec3::Constant(kHalf), Vec3(0, kHalf * (2 * k + 1), 0), "rubber");
+                    boxBody.mass = ballAndBoxMasses[pair].second;
+                    boxBody.allowSleep = boxSleeps;
+                    box = world->createBody(boxBody);
+                }
+                BodyDef ballBody = ballDef("ball", kRadius, Vec3(0, 2 * kHalf * boxes + kRadius + h, 0), "rubber");
                 ballBody.mass = ballAndBoxMasses[pair].first;
                 ballBody.allowSleep = boxSleeps;  // a falling ball stays awake; an island with a body that may not sleep never does
                 Body ball = world->createBody(ballBody);
@@ -163,12 +173,12 @@ protected:
                     if (!(above <= apex)) apex = above;  // also replaces the initial NaN
                     if (ball.linearVelocity().y() < 0) break;
                 }
-                worst.add(apex / (kE * kE * h), reboundBound(settings().timeStep, impact, kE), impact, static_cast<double>(pair));
+                worst.add(apex / (e * e * h), reboundBound(settings().timeStep, impact, e), impact, static_cast<double>(pair));
             }
         }
         const auto [ballMass, boxMass] = ballAndBoxMasses[static_cast<std::size_t>(worst.detail)];
-        const std::string where = std::to_string(worst.impact) + " m/s, a " + std::to_string(ballMass) + " kg ball on a " +
-                                  std::to_string(boxMass) + " kg box";
+        const std::string where = std::to_string(worst.impact) + " m/s, a " + std::to_string(ballMass) + " kg ball on " +
+                                  std::to_string(boxes) + " box(es) of " + std::to_string(boxMass) + " kg";
         report(backend() + " " + criterion + ": worst rebound / (e^2 h) above the box at " + where, worst.ratio);
         if (boxSleeps) {
             EXPECT_EQ(neverSlept, 0) << "the box must fall asleep before the ball lands, or this tests nothing";
@@ -221,12 +231,20 @@ const std::vector<std::pair<double, double>> kLightBalls = {{1.0, 10.0}, {1.0, 1
 const std::vector<std::pair<double, double>> kHeavyBalls = {{10.0, 10.0}, {30.0, 10.0}};
 const std::vector<std::pair<double, double>> kBallOnABox = {{1.0, 10.0}};
 
-TEST_P(RestitutionPhaseTest, BallBouncesOnABoxRestingOnTheGround) { bounceOnRestingBox("restitution.on_resting_box", kLightBalls); }
+TEST_P(RestitutionPhaseTest, BallBouncesOnABoxRestingOnTheGround) { bounceOnRestingBox("restitution.on_resting_box", {kLightBalls}); }
 TEST_P(RestitutionPhaseTest, HeavyBallBouncesOnABoxRestingOnTheGround) {
-    bounceOnRestingBox("restitution.heavy_ball_on_box", kHeavyBalls);
+    bounceOnRestingBox("restitution.heavy_ball_on_box", {kHeavyBalls});
+}
+// A low bounce (e = 0.2) rises only 1.3 to 3.3 cm: a kick from the impact carried into the next
+// step shows at once (native's 30 kg ball rose up to 2.3 times its share when its warm start kept
+// the impact: storedNormalImpulse, backends/native/solver/contact_constraint.hpp).
+TEST_P(RestitutionPhaseTest, HeavyBallBouncesLowOnABoxRestingOnTheGround) {
+    bounceOnRestingBox("restitution.heavy_ball_low_bounce", {.ballAndBoxMasses = kHeavyBalls, .e = 0.2});
 }
 // The box asleep: it wakes under the ball (ODE had left its ground contact out of that step).
-TEST_P(RestitutionPhaseTest, BallBouncesOnASleepingBox) { bounceOnRestingBox("restitution.on_sleeping_box", kBallOnABox, true); }
+TEST_P(RestitutionPhaseTest, BallBouncesOnASleepingBox) {
+    bounceOnRestingBox("restitution.on_sleeping_box", {.ballAndBoxMasses = kBallOnABox, .boxSleeps = true});
+}
 
 ANYPHYS_CONTRACT_SUITE(RestitutionPhaseTest);
 
@@ -245,13 +263,16 @@ TEST_P(PlanarRestitutionPhaseTest, LowBounceHoldsForEverySolverAndSubstepCount) 
 }
 TEST_P(PlanarRestitutionPhaseTest, FlatBoxBouncesStraightUp) { flatBoxBounce("planar.restitution.flat_box"); }
 TEST_P(PlanarRestitutionPhaseTest, BallBouncesOnABoxRestingOnTheGround) {
-    bounceOnRestingBox("planar.restitution.on_resting_box", kLightBalls);
+    bounceOnRestingBox("planar.restitution.on_resting_box", {kLightBalls});
 }
 TEST_P(PlanarRestitutionPhaseTest, HeavyBallBouncesOnABoxRestingOnTheGround) {
-    bounceOnRestingBox("planar.restitution.heavy_ball_on_box", kHeavyBalls);
+    bounceOnRestingBox("planar.restitution.heavy_ball_on_box", {kHeavyBalls});
+}
+TEST_P(PlanarRestitutionPhaseTest, HeavyBallBouncesLowOnABoxRestingOnTheGround) {
+    bounceOnRestingBox("planar.restitution.heavy_ball_low_bounce", {.ballAndBoxMasses = kHeavyBalls, .e = 0.2});
 }
 TEST_P(PlanarRestitutionPhaseTest, BallBouncesOnASleepingBox) {
-    bounceOnRestingBox("planar.restitution.on_sleeping_box", kBallOnABox, true);
+    bounceOnRestingBox("planar.restitution.on_sleeping_box", {.ballAndBoxMasses = kBallOnABox, .boxSleeps = true});
 }
 
 ANYPHYS_CONTRACT_SUITE(PlanarRestitutionPhaseTest);
