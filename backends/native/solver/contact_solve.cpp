@@ -313,6 +313,7 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
         }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, heldRowsThatPushed(rows, cold, c.pointCount));
     }
     return found;
 }

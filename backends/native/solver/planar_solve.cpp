@@ -243,6 +243,7 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
         }
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, heldRowsThatPushed(rows, cold, c.pointCount));
     }
     return found;
 }

@@ -15,7 +15,7 @@ struct RestitutionRows {
 
 /// Bouncing rows: where the approach was fast and the contact pushed (not speculative points that
 /// never closed). Holding rows: the other pushing points of a body that takes part in a bounce
-/// (the box a ball bounces on, on its ground), held rigidly and pushing only: no stage after the
+/// (the box a ball bounces on, on its ground, and the bodies under it, heldRowsThatPushed), held rigidly and pushing only: no stage after the
 /// relax passes would stop the bounce driving the box into its support (a 1 kg ball bouncing on
 /// a 10 kg box rose 59 to 83 % of its share). `threshold` is minus the restitution threshold.
 template <class Contact, class Cold>
@@ -33,6 +33,17 @@ template <class Contact, class Cold>
         rows.anyHeld |= rows.held[j];
     }
     return rows;
+}
+
+/// Lanes whose holding rows pushed: the bodies there take part in the bounce too, so their own
+/// resting contacts hold in later colours and rounds, down the pile. Marking only the bounced pair,
+/// a 1 kg ball bouncing on three stacked 10 kg boxes drove the top two into the third at 0.28 m/s
+/// and rose 74 % of e^2 h (e = 0.5, 4 m/s).
+template <class Cold>
+[[gnu::always_inline]] inline MaskW heldRowsThatPushed(const RestitutionRows& rows, const Cold& cold, int pointCount) {
+    MaskW lanes{};
+    for (int j = 0; j < pointCount; ++j) lanes |= rows.held[j] & (cold.restitutionImpulse[j] > zero());
+    return lanes;
 }
 
 /// Point j's restitution row at normal velocity vn: a bouncing row aims at its target, a holding row
