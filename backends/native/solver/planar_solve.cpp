@@ -230,7 +230,8 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
-        for (int pass = 0; pass < kRestitutionPasses; ++pass) {
+        const int passes = noLane(rows.bounced) ? 1 : kRestitutionPasses;  // as in 3D
+        for (int pass = 0; pass < passes; ++pass) {
             for (int j = 0; j < c.pointCount; ++j) {
                 PlanarContactPoint& cp = c.points[j];
                 const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
