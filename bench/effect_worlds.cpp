@@ -82,11 +82,21 @@ const std::vector<std::pair<std::string, SpecialEffect>>& specialEffects() {
 PileSimulation::PileSimulation(const ScenePlan& plan, const std::string& backend, const PileOptions& options) {
     WorldSettings settings = pileSettings(plan, backend);
     if (!options.events) settings.effects = withoutEvents(plan, backend);
-    world_ = std::make_unique<World>(settings);
-    boxes_ = createPile(*world_, plan);
+    if (options.effect == SpecialEffect::Restitution) {
+        // The default material's friction and a bounce: the lowest layer lands at 1.4 m/s, above
+        // the 1 m/s restitution threshold, and the layers above hit it faster.
+        MaterialLibrary materials;
+        materials.add("bouncy", Material{kFriction, 0.5, plan.density});
+        world_ = std::make_unique<World>(settings, materials);
+        boxes_ = createPile(*world_, plan, "bouncy");
+    } else {
+        world_ = std::make_unique<World>(settings);
+        boxes_ = createPile(*world_, plan);
+    }
     units_ = plan.count();
     switch (options.effect) {
-        case SpecialEffect::None: break;
+        case SpecialEffect::None:
+        case SpecialEffect::Restitution: break;
         case SpecialEffect::Buoyancy: world_->addField(buoyancy(plan)); break;
         case SpecialEffect::Drag: world_->addField(FieldDef::drag(1.2)); break;
         case SpecialEffect::Wind: world_->addField(FieldDef::wind(Vec3(6, 0, 0), 1.2)); break;

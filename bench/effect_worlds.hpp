@@ -16,7 +16,9 @@ class WorldPeer;
 namespace anyphys::bench {
 
 /// The special effects the benchmark prices, by the names of its rows.
-enum class SpecialEffect { None, Buoyancy, Drag, Wind, Explosion, Fluid, Cloth };
+/// The fields of fields/, and Restitution: every box and the ground of a material with e = 0.5 (no
+/// field; what the engines' bounces cost, landings and the rest after them alike).
+enum class SpecialEffect { None, Buoyancy, Drag, Wind, Explosion, Fluid, Cloth, Restitution };
 const std::vector<std::pair<std::string, SpecialEffect>>& specialEffects();
 
 struct PileOptions {

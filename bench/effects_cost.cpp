@@ -12,7 +12,9 @@
 //   effect_cost/<effect>/<backend>         drop200 with one effect added (effect_worlds.cpp) against
 //   effect_cost_planar/<effect>/<backend>  the pile alone, both through World::step, alternating as
 //                                          above (drop200_planar in the second): cost_cpu_ms per
-//                                          step, and per particle, node or body (units).
+//                                          step, and per particle, node or body (units). The
+//                                          effect "restitution" is no field: every box and the
+//                                          ground bounce (e = 0.5), the restitution stages' cost.
 #include <algorithm>
 #include <functional>
 #include <limits>
@@ -136,12 +138,16 @@ void registerAll() {
             add("no_effects_noevents/" + scene + "/" + backend.name,
                 [=](benchmark::State& s) { noEffects(s, scene, backend, false); });
         }
-        for (const auto& [name, effect] : specialEffects()) {
+        for (const auto& [name, effect] : specialEffects()) {  // and restitution, after the loop
             add("effect_cost/" + name + "/" + backend.name,
                 [=, effect = effect](benchmark::State& s) { effectCost(s, effect, "drop200", backend); });
             add("effect_cost_planar/" + name + "/" + backend.name,
                 [=, effect = effect](benchmark::State& s) { effectCost(s, effect, "drop200_planar", backend); });
         }
+        add("effect_cost/restitution/" + backend.name,
+            [=](benchmark::State& s) { effectCost(s, SpecialEffect::Restitution, "drop200", backend); });
+        add("effect_cost_planar/restitution/" + backend.name,
+            [=](benchmark::State& s) { effectCost(s, SpecialEffect::Restitution, "drop200_planar", backend); });
     }
 }
 

@@ -21,15 +21,17 @@ WorldSettings pileSettings(const ScenePlan& plan, const std::string& backend, in
     return settings;
 }
 
-std::vector<Body> createPile(World& world, const ScenePlan& plan) {
+std::vector<Body> createPile(World& world, const ScenePlan& plan, const std::string& material) {
     BodyDef ground;
     ground.type = BodyType::Static;
     ground.shape = ShapeDef::box(plan.groundHalf);
     ground.position = Vec3(0, -1, 0);
+    ground.material = material;
     world.createBody(ground);
 
     BodyDef box;
     box.shape = ScenePlan::box();
+    box.material = material;
     box.density = plan.density;
     box.allowSleep = false;
     std::vector<Body> boxes;

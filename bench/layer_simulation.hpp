@@ -18,8 +18,9 @@ std::string cannotRun(const ScenePlan& plan, const BackendInfo& backend, int wor
 
 /// The settings every layer run of a plan uses: the plan's gravity, step and plane on `backend`.
 WorldSettings pileSettings(const ScenePlan& plan, const std::string& backend, int workers = 1);
-/// The plan's static ground and boxes (allowSleep false) in `world`; returns the boxes.
-std::vector<Body> createPile(World& world, const ScenePlan& plan);
+/// The plan's static ground and boxes (allowSleep false) in `world`, all of `material` (the
+/// default material if empty); returns the boxes.
+std::vector<Body> createPile(World& world, const ScenePlan& plan, const std::string& material = {});
 /// The boxes' states as Simulation::readBoxes gives them.
 void readStates(const std::vector<Body>& boxes, std::vector<BoxState>& out);
 /// "soft_step, 8 substeps x 1 it": the solver configuration that runs.

@@ -29,6 +29,7 @@ std::string units(const Record& r) {
     if (r.scene == "fluid") return n + " particles";
     if (r.scene == "cloth") return n + " nodes";
     if (r.scene == "explosion") return "1 blast, " + n + " bodies";
+    if (r.scene == "restitution") return n + " bouncing bodies";
     return n + " bodies";
 }
 
@@ -54,7 +55,7 @@ void printEffectCosts(const Results& results, std::ostream& out) {
     Table table({"effect", "scene", "engine", "acts on", "pile CPU ms/step", "with the effect", "cost ms/step",
                  "cost us per unit", "ratio"},
                 4);
-    for (const std::string name : {"buoyancy", "drag", "wind", "explosion", "fluid", "cloth"})
+    for (const std::string name : {"buoyancy", "drag", "wind", "explosion", "fluid", "cloth", "restitution"})
         for (const std::string kind : {"effect_cost", "effect_cost_planar"})
             for (const std::string& engine : engineOrder(results)) {
                 const Record* r = results.median(kind, name, engine);
