@@ -95,8 +95,6 @@ Backend makeOdeBackend() {
          "geoms overlap, where the layer's rule counts a gap under linearSlop as touching (a pair that has touched "
          "keeps touching while within twice linearSlop: reportNearPair)"},
         {"planar.events.within_slop", "as events.within_slop, in a planar world"},
-        {"stack10.top_drift",
-         "the 10-box stack's top drifts 1.7 cm sideways over 10 s with sleeping off (quickstep at 1 substep x 50 iterations); 0.5 mm at 4 substeps (as stability.stack10.pgs.s1)"},
         {"joints.wide_pendulum_energy",
          "a 1.5 rad pendulum loses 8.7 % (hinge) and 9.6 % (ball) of its swing energy in 20 periods: ODE's first-order joint rows at one 1/60 s step (ERP correction drains the swing); 4 substeps keep it under 1 %"},
         {"planar.joints.wide_pendulum_energy",
@@ -156,24 +154,16 @@ Backend makeOdeBackend() {
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
-        {"stability.stack10.pgs.s1",
-         "quickstep at 1 substep x 50 iterations: the 10-box stack drifts 1.7 cm over 10 s (bound 1 cm); 0.5 mm at 4 substeps"},
         {"joints.heavy_joints",
          "below 1 t (kCfmReferenceMass) a pair's rows keep the world's CFM, absolute in ODE, so a light body's joints "
          "are stiffer than a heavy one's: a bob on a 1 m arm resting on a hinge limit sits 1.3 mm past it at 1 kg and "
          "3.3 mm at 1e5 and 1e7 kg alike (a 1 t bob's figure; bound 2.5 mm). The pendulums, the fixed joint and the "
          "slider hold within the bound"},
         {"planar.joints.heavy_joints", "as joints.heavy_joints, planar: 1.4 mm at 1 kg, 3.0 mm at 1e5 and 1e7 kg"},
-        {"restitution.on_resting_box",
-         "a 1 kg ball (e = 0.5) landing at 3.2 to 3.4 m/s on a 100 kg box resting on the ground rises 80 % of e^2 h "
-         "(bound within 15 %): in the step of the bounce the box gives under it at 0.13 m/s, close to a step of its own "
-         "gravity (0.16), as if its ground contact held nothing in that step. Not traced further; the box had rested "
-         "at depth 0 for 20 steps. On a 10 kg box, and in a plane, within 0.6 %"},
     });
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"restitution.on_resting_box", 2.0},  // in multiples of its bound, measured 1.31
         {"joints.stiff_hinge_lever", 24500},  // in multiples of its bounds, measured 12 245 (undamped)
         {"planar.joints.stiff_hinge_lever", 19200},  // measured 9 619 (undamped)
         {"joints.motor_lever", 2100},  // in multiples of its bounds, measured 1 041
@@ -181,8 +171,6 @@ Backend makeOdeBackend() {
         {"assemblies.ragdoll_limits", 90.0},
         {"assemblies.pinched_pile_gap", 0.1},  // m, measured 0.0551
         {"planar.assemblies.ragdoll_limits", 60.0},
-        {"stack10.top_drift", 0.025},
-        {"stability.stack10.pgs.s1", 2.5},
         {"joints.heavy_joints", 2.0},          // in multiples of its bound, measured 1.29
         {"planar.joints.heavy_joints", 1.7},   // measured 1.09
     };

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 
+#include "ode_box_plane.hpp"
 #include "ode_convex_capsule.hpp"
 #include "ode_convex_sphere.hpp"
 
@@ -53,6 +54,7 @@ void ensureOdeInitialised() {
         dSetColliderOverride(dConvexClass, dSphereClass, &collideConvexSphere);  // ode_convex_sphere.hpp
         dSetColliderOverride(dConvexClass, dCapsuleClass, &collideConvexCapsule);  // ode_convex_capsule.hpp
         dSetColliderOverride(dBoxClass, dCapsuleClass, &collideBoxCapsule);  // ode_convex_capsule.hpp
+        dSetColliderOverride(dBoxClass, dPlaneClass, &collideBoxPlane);  // ode_box_plane.hpp
         return true;
     }();
     (void)initialised;

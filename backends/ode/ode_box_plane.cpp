@@ -1,0 +1,53 @@
+#include "ode_box_plane.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "ode_math.hpp"
+
+namespace anyphys::ode {
+
+int collideBoxPlane(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
+    constexpr int kContactCountBits = 0xffff;  // ODE's NUMC_MASK: the low bits of flags, the room for contacts
+    const int room = std::min(flags & kContactCountBits, 4);
+    if (room <= 0) return 0;
+    dVector3 lengths;
+    dGeomBoxGetLengths(o1, lengths);
+    dVector4 plane;  // n . p = d on the plane
+    dGeomPlaneGetParams(o2, plane);
+    const Vec3 normal(plane[0], plane[1], plane[2]);
+    const Vec3 centre = toVec3(dGeomGetPosition(o1));
+    const Mat3 rotation = toMat3(dGeomGetRotation(o1));
+    const Vec3 half = 0.5 * Vec3(lengths[0], lengths[1], lengths[2]);
+
+    struct Corner {
+        Vec3 point;
+        double depth;
+    };
+    std::array<Corner, 8> corners;
+    int found = 0;
+    for (int k = 0; k < 8; ++k) {
+        const Vec3 local((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(), (k & 4) ? half.z() : -half.z());
+        const Vec3 point = centre + rotation * local;
+        const double depth = plane[3] - normal.dot(point);
+        if (depth >= -kBoxPlaneReach) corners[found++] = {point, depth};  // a NaN pose gives none
+    }
+    // The deepest first; equal depths keep the corner order, so the same pose gives the same contacts.
+    std::stable_sort(corners.begin(), corners.begin() + found, [](const Corner& a, const Corner& b) { return a.depth > b.depth; });
+    const int count = std::min(found, room);
+    for (int c = 0; c < count; ++c) {
+        dContactGeom* out = reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contact) + c * skip);
+        for (int k = 0; k < 3; ++k) {
+            out->pos[k] = corners[c].point[k];
+            out->normal[k] = normal[k];
+        }
+        out->pos[3] = out->normal[3] = 0.0;
+        out->depth = std::max(corners[c].depth, 0.0);
+        out->g1 = o1;
+        out->g2 = o2;
+        out->side1 = out->side2 = -1;
+    }
+    return count;
+}
+
+}  // namespace anyphys::ode
