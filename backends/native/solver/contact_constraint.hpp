@@ -73,8 +73,8 @@ struct WideContactCold {
 /// substep pushed, less the restitution stage's share. A row the stage bounced or held passed an
 /// impact, and the pair it bounced leaves: it keeps no more than it carried into this step.
 /// Warm-started with the impact, a 30 kg ball bouncing off a 10 kg box at e = 0.2 was kicked
-/// again a step later (the ball held 3 mm in the box's overlap got 1.3 m/s from the warm start, and
-/// the soft passes took back only part of it through the chain), rising up to 2.3 times its share.
+/// again a step later (the ball, 2 mm into the box, got 1.3 m/s from the warm start, and the soft
+/// passes took back only part of it through the chain), rising up to 2.3 times its share.
 inline double storedNormalImpulse(const WideContactCold& cold, int point, int lane, double lastSubstep,
                                   double carriedIn) {
     const double load = lastSubstep - cold.restitutionImpulse[point][lane];

@@ -15,9 +15,10 @@ struct RestitutionRows {
 
 /// Bouncing rows: where the approach was fast and the contact pushed (not speculative points that
 /// never closed). Holding rows: the other pushing points of a body that takes part in a bounce
-/// (the box a ball bounces on, on its ground, and the bodies under it, heldRowsThatPushed), held rigidly and pushing only: no stage after the
-/// relax passes would stop the bounce driving the box into its support (a 1 kg ball bouncing on
-/// a 10 kg box rose 59 to 83 % of its share). `threshold` is minus the restitution threshold.
+/// (the box a ball bounces on, on its ground, and the bodies under it: heldRowsThatPushed), held
+/// rigidly and pushing only: no stage after the relax passes would stop the bounce driving the box
+/// into its support (a 1 kg ball bouncing on a 10 kg box rose 59 to 83 % of its share).
+/// `threshold` is minus the restitution threshold.
 template <class Contact, class Cold>
 [[gnu::always_inline]] inline RestitutionRows restitutionRows(const Contact& c, const Cold& cold, const SolverState* states,
                                                               FloatW threshold) {
