@@ -27,13 +27,14 @@ int collideBoxPlane(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, in
     std::array<Corner, 8> corners;
     int found = 0;
     for (int k = 0; k < 8; ++k) {
-        const Vec3 local((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(), (k & 4) ? half.z() : -half.z());
-        const Vec3 point = centre + rotation * local;
+        const Vec3 sign((k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0, (k & 4) ? 1.0 : -1.0);
+        const Vec3 point = centre + rotation * sign.cwiseProduct(half);
         const double depth = plane[3] - normal.dot(point);
         if (depth >= -kBoxPlaneReach) corners[found++] = {point, depth};  // a NaN pose gives none
     }
     // The deepest first; equal depths keep the corner order, so the same pose gives the same contacts.
-    std::stable_sort(corners.begin(), corners.begin() + found, [](const Corner& a, const Corner& b) { return a.depth > b.depth; });
+    const auto deeper = [](const Corner& a, const Corner& b) { return a.depth > b.depth; };
+    std::stable_sort(corners.begin(), corners.begin() + found, deeper);
     const int count = std::min(found, room);
     for (int c = 0; c < count; ++c) {
         dContactGeom* out = reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contact) + c * skip);

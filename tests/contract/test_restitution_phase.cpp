@@ -149,7 +149,8 @@ protected:
                 const std::unique_ptr<World> world = bounceWorld(settings(), e);
                 Body box;  // the top one
                 for (int k = 0; k < boxes; ++k) {
-                    BodyDef boxBody = boxDef("box" + std::to_string(k), Vec3::Constant(kHalf), Vec3(0, kHalf * (2 * k + 1), 0), "rubber");
+                    const Vec3 centre(0, kHalf * (2 * k + 1), 0);
+                    BodyDef boxBody = boxDef("box" + std::to_string(k), Vec3::Constant(kHalf), centre, "rubber");
                     boxBody.mass = ballAndBoxMasses[pair].second;
                     boxBody.allowSleep = boxSleeps;
                     box = world->createBody(boxBody);
