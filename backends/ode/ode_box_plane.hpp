@@ -10,7 +10,8 @@ namespace anyphys::ode {
 
 /// Corners this close above the plane still touch it, at depth 0 (m). ODE holds such a corner
 /// from closing, so a box may rest this high; the solver's rounding lifted corners by up to
-/// 1.1e-6 m in that step.
+/// 1.1e-6 m in that step. ODE calls the collider only while the bounds meet (an axis-aligned
+/// plane's end at its surface), so a box with every corner above the plane is not held.
 inline constexpr double kBoxPlaneReach = 1e-5;
 
 /// An ODE collider (dColliderFn) for o1 a box and o2 a plane: the corners within kBoxPlaneReach
