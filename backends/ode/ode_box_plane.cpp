@@ -33,8 +33,13 @@ int collideBoxPlane(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, in
         if (depth >= -kBoxPlaneReach) corners[found++] = {point, depth};  // a NaN pose gives none
     }
     // The deepest first; equal depths keep the corner order, so the same pose gives the same contacts.
-    const auto deeper = [](const Corner& a, const Corner& b) { return a.depth > b.depth; };
-    std::stable_sort(corners.begin(), corners.begin() + found, deeper);
+    // An insertion sort: stable like std::stable_sort, which takes a heap buffer in every collision.
+    for (int i = 1; i < found; ++i) {
+        const Corner corner = corners[i];
+        int j = i;
+        for (; j > 0 && corners[j - 1].depth < corner.depth; --j) corners[j] = corners[j - 1];
+        corners[j] = corner;
+    }
     const int count = std::min(found, room);
     for (int c = 0; c < count; ++c) {
         dContactGeom* out = reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contact) + c * skip);
