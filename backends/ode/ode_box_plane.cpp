@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <array>
 
+#include "ode_collider_output.hpp"
 #include "ode_math.hpp"
 
 namespace anyphys::ode {
 
 int collideBoxPlane(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
-    constexpr int kContactCountBits = 0xffff;  // ODE's NUMC_MASK: the low bits of flags, the room for contacts
-    const int room = std::min(flags & kContactCountBits, 4);
+    const int room = std::min(contactRoom(flags), 4);
     if (room <= 0) return 0;
     dVector3 lengths;
     dGeomBoxGetLengths(o1, lengths);
@@ -41,18 +41,8 @@ int collideBoxPlane(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, in
         corners[j] = corner;
     }
     const int count = std::min(found, room);
-    for (int c = 0; c < count; ++c) {
-        dContactGeom* out = reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contact) + c * skip);
-        for (int k = 0; k < 3; ++k) {
-            out->pos[k] = corners[c].point[k];
-            out->normal[k] = normal[k];
-        }
-        out->pos[3] = out->normal[3] = 0.0;
-        out->depth = std::max(corners[c].depth, 0.0);
-        out->g1 = o1;
-        out->g2 = o2;
-        out->side1 = out->side2 = -1;
-    }
+    for (int c = 0; c < count; ++c)
+        writeContact(contactAt(contact, c, skip), corners[c].point, normal, std::max(corners[c].depth, 0.0), o1, o2);
     return count;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ode_collider_output.hpp"
 #include "ode_hull_geometry.hpp"
 #include "ode_math.hpp"
 #include "ode_shapes.hpp"
@@ -12,7 +13,6 @@
 namespace anyphys::ode {
 namespace {
 
-constexpr int kContactCountBits = 0xffff;  // ODE's NUMC_MASK: the low bits of flags, the room for contacts
 
 /// A contact in the hull's frame: the point (on a face, the capsule's deepest; else midway
 /// through the overlap), the way out of the hull towards the capsule, and how deep they overlap.
@@ -212,18 +212,8 @@ int collideHullCapsule(const HullData& hull, dGeomID o1, dGeomID o2, int room, d
         count = room;
     }
     for (int c = 0; c < count; ++c) {
-        dContactGeom* out = reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contact) + c * skip);
-        const Vec3 point = origin + rotation * found[c].point;
         const Vec3 normal = -(rotation * found[c].outward);  // into o1: moving the hull along it parts them
-        for (int k = 0; k < 3; ++k) {
-            out->pos[k] = point[k];
-            out->normal[k] = normal[k];
-        }
-        out->pos[3] = out->normal[3] = 0.0;
-        out->depth = found[c].depth;
-        out->g1 = o1;
-        out->g2 = o2;
-        out->side1 = out->side2 = -1;
+        writeContact(contactAt(contact, c, skip), origin + rotation * found[c].point, normal, found[c].depth, o1, o2);
     }
     return count;
 }
@@ -232,13 +222,13 @@ int collideHullCapsule(const HullData& hull, dGeomID o1, dGeomID o2, int room, d
 
 int collideConvexCapsule(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
     const OdeShape* shape = shapeOfGeom(o1);
-    const int room = flags & kContactCountBits;
+    const int room = contactRoom(flags);
     if (room == 0 || !shape || !shape->hull()) return 0;
     return collideHullCapsule(*shape->hull(), o1, o2, room, contact, skip);
 }
 
 int collideBoxCapsule(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
-    const int room = flags & kContactCountBits;
+    const int room = contactRoom(flags);
     if (room == 0) return 0;
     dVector3 lengths;
     dGeomBoxGetLengths(o1, lengths);  // any box geom: a body's, a twin or a query probe

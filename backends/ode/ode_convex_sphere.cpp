@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ode_collider_output.hpp"
 #include "ode_hull_geometry.hpp"
 #include "ode_math.hpp"
 #include "ode_shapes.hpp"
@@ -11,8 +12,7 @@ namespace anyphys::ode {
 
 int collideConvexSphere(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int /*skip: one contact*/) {
     const OdeShape* shape = shapeOfGeom(o1);
-    constexpr int kContactCountBits = 0xffff;  // ODE's NUMC_MASK: the low bits of flags, the room for contacts
-    if ((flags & kContactCountBits) == 0 || !shape || !shape->hull()) return 0;
+    if (contactRoom(flags) == 0 || !shape || !shape->hull()) return 0;
     const HullData& hull = *shape->hull();
     const Vec3 origin = toVec3(dGeomGetPosition(o1));
     const Mat3 rotation = toMat3(dGeomGetRotation(o1));
@@ -43,15 +43,7 @@ int collideConvexSphere(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact
     // Midway between the hull's surface and the sphere's deepest point, as ODE's own colliders.
     const Vec3 point = origin + rotation * (surface + 0.5 * (distance - radius) * outward);
     const Vec3 normal = -(rotation * outward);  // into o1: moving the hull along it parts them
-    for (int k = 0; k < 3; ++k) {
-        contact->pos[k] = point[k];
-        contact->normal[k] = normal[k];
-    }
-    contact->pos[3] = contact->normal[3] = 0.0;
-    contact->depth = depth;
-    contact->g1 = o1;
-    contact->g2 = o2;
-    contact->side1 = contact->side2 = -1;
+    writeContact(*contact, point, normal, depth, o1, o2);
     return 1;
 }
 
