@@ -174,7 +174,8 @@ void warmStartContacts(const WideWarmStart* warm, int count, SolverState* states
 void solveContacts(WideContact* contacts, WideWarmStart* warm, int count, SolverState* states,
                    const ContactSolveParams& params, bool useBias, bool endOfSubstep);
 /// One round of the restitution stage over a colour's records; true when some row bounced or held.
-bool applyRestitution(WideContact* contacts, WideContactCold* cold, int count, SolverState* states,
+/// `supports`: per solver body, the direction a support holds it in this stage (restitution_rows.hpp).
+bool applyRestitution(WideContact* contacts, WideContactCold* cold, int count, SolverState* states, Vec3* supports,
                       const ContactSolveParams& params);
 void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int count);
 

@@ -283,8 +283,51 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
     }
 }
 
+// A record's masses while its pinned lanes' held bodies count as immovable (shock propagation,
+// restitution_rows.hpp): what pinBodies replaced, for unpinBodies to put back.
+struct SavedMasses {
+    FloatW invMassA, invMassB;
+    SymMat3W invIA, invIB;
+    FloatW normalMass[4];
+};
+
+ANYPHYS_KERNEL SymMat3W maskedInertia(const SymMat3W& m, MaskW clear) {
+    const FloatW z = zero();
+    return {select(clear, z, m.xx), select(clear, z, m.xy), select(clear, z, m.xz),
+            select(clear, z, m.yy), select(clear, z, m.yz), select(clear, z, m.zz)};
+}
+
+// The pinned body of each lane gets no impulse, and its points' normal mass is the other body's
+// alone (which moves: pinnedLanes pins only between two moving bodies).
+ANYPHYS_KERNEL SavedMasses pinBodies(WideContact& c, const PinnedLanes& pinned) {
+    SavedMasses saved{c.invMassA, c.invMassB, c.invIA, c.invIB, {}};
+    c.invMassA = select(pinned.a, zero(), c.invMassA);
+    c.invMassB = select(pinned.b, zero(), c.invMassB);
+    c.invIA = maskedInertia(c.invIA, pinned.a);
+    c.invIB = maskedInertia(c.invIB, pinned.b);
+    const MaskW any = pinned.a | pinned.b;
+    for (int j = 0; j < c.pointCount; ++j) {
+        WideContactPoint& cp = c.points[j];
+        saved.normalMass[j] = cp.normalMass;
+        const Vec3W rnA = cross(cp.anchorA, c.normal), rnB = cross(cp.anchorB, c.normal);
+        const FloatW k = c.invMassA + dot(rnA, c.invIA * rnA) + c.invMassB + dot(rnB, c.invIB * rnB);
+        cp.normalMass = select(any, splat(1.0) / select(any, k, splat(1.0)), cp.normalMass);
+    }
+    return saved;
+}
+
+ANYPHYS_KERNEL void unpinBodies(WideContact& c, const SavedMasses& saved) {
+    c.invMassA = saved.invMassA;
+    c.invMassB = saved.invMassB;
+    c.invIA = saved.invIA;
+    c.invIB = saved.invIB;
+    for (int j = 0; j < c.pointCount; ++j) c.points[j].normalMass = saved.normalMass[j];
+}
+
+ANYPHYS_KERNEL Vec3 laneOf(const Vec3W& v, int lane) { return {v.x[lane], v.y[lane], v.z[lane]}; }
+
 ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* colds, int count, SolverState* states,
-                                    const ContactSolveParams& params) {
+                                    Vec3* supports, const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
     bool found = false;
     for (int i = 0; i < count; ++i) {
@@ -295,6 +338,14 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
         found = true;
         markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
+        const auto normalOf = [&c](int lane) { return laneOf(c.normal, lane); };
+        const auto speedOf = [&](const BodyW& body, const Vec3W& anchor) { return dot(body.v + cross(body.w, anchor), c.normal); };
+        const MaskW stoppedA = stoppedAtBounce(rows, cold, c.pointCount, [&](int j) { return speedOf(a, c.points[j].anchorA); });
+        const MaskW stoppedB = stoppedAtBounce(rows, cold, c.pointCount, [&](int j) { return speedOf(b, c.points[j].anchorB); });
+        const PinnedLanes pinned = pinnedLanes(c, supports, rows.bounced, stoppedA, stoppedB, normalOf);
+        const bool pinning = !pinned.none();
+        SavedMasses saved{};
+        if (pinning) saved = pinBodies(c, pinned);
         FloatW load[4];
         // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
         // times the bounce's impulse too (as ODE, Bullet and Box2D give it; without this, a ball
@@ -314,9 +365,12 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
             }
             if (params.friction && !noLane(rows.bounced)) solveFriction(c, a, b, load, rows.bounced);
         }
+        if (pinning) unpinBodies(c, saved);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
-        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, heldRowsThatPushed(rows, cold, c.pointCount));
+        const MaskW pushed = heldRowsThatPushed(rows, cold, c.pointCount);
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, pushed);
+        propagateSupport(c, supports, pushed, normalOf);
     }
     return found;
 }
@@ -329,9 +383,9 @@ ANYPHYS_AVX2 void solveAvx2(WideContact* c, WideWarmStart* w, int n, SolverState
                             bool end) {
     solveImpl(c, w, n, s, p, bias, end);
 }
-ANYPHYS_AVX2 bool restitutionAvx2(WideContact* c, WideContactCold* cold, int n, SolverState* s,
+ANYPHYS_AVX2 bool restitutionAvx2(WideContact* c, WideContactCold* cold, int n, SolverState* s, Vec3* supports,
                                    const ContactSolveParams& p) {
-    return restitutionImpl(c, cold, n, s, p);
+    return restitutionImpl(c, cold, n, s, supports, p);
 }
 #endif
 
@@ -340,8 +394,9 @@ void warmStartBase(const WideWarmStart* w, int n, SolverState* s) { warmStartImp
 void solveBase(WideContact* c, WideWarmStart* w, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, w, n, s, p, bias, end);
 }
-bool restitutionBase(WideContact* c, WideContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
-    return restitutionImpl(c, cold, n, s, p);
+bool restitutionBase(WideContact* c, WideContactCold* cold, int n, SolverState* s, Vec3* supports,
+                     const ContactSolveParams& p) {
+    return restitutionImpl(c, cold, n, s, supports, p);
 }
 
 bool detectAvx2() {
@@ -388,12 +443,12 @@ void solveContacts(WideContact* contacts, WideWarmStart* warm, int count, Solver
     solveBase(contacts, warm, count, states, params, useBias, endOfSubstep);
 }
 
-bool applyRestitution(WideContact* contacts, WideContactCold* cold, int count, SolverState* states,
+bool applyRestitution(WideContact* contacts, WideContactCold* cold, int count, SolverState* states, Vec3* supports,
                       const ContactSolveParams& params) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (avx2Enabled()) return restitutionAvx2(contacts, cold, count, states, params);
+    if (avx2Enabled()) return restitutionAvx2(contacts, cold, count, states, supports, params);
 #endif
-    return restitutionBase(contacts, cold, count, states, params);
+    return restitutionBase(contacts, cold, count, states, supports, params);
 }
 
 }  // namespace anyphys::native

@@ -56,7 +56,7 @@ void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states
                          bool useBias, bool endOfSubstep);
 /// As applyRestitution: true when some row bounced or held.
 bool applyPlanarRestitution(PlanarContact* contacts, PlanarContactCold* cold, int count, SolverState* states,
-                            const ContactSolveParams& params);
+                            Vec3* supports, const ContactSolveParams& params);
 void storePlanarImpulses(const PlanarContact* contacts, const PlanarContactCold* cold, int count);
 
 }  // namespace anyphys::native

@@ -216,8 +216,40 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     }
 }
 
+// A record's masses while its pinned lanes' held bodies count as immovable (as in 3D).
+struct SavedMasses {
+    FloatW invMassA, invMassB, invIA, invIB;
+    FloatW normalMass[4];
+};
+
+ANYPHYS_KERNEL SavedMasses pinBodies(PlanarContact& c, const PinnedLanes& pinned) {
+    SavedMasses saved{c.invMassA, c.invMassB, c.invIA, c.invIB, {}};
+    c.invMassA = select(pinned.a, zero(), c.invMassA);
+    c.invMassB = select(pinned.b, zero(), c.invMassB);
+    c.invIA = select(pinned.a, zero(), c.invIA);
+    c.invIB = select(pinned.b, zero(), c.invIB);
+    const MaskW any = pinned.a | pinned.b;
+    for (int j = 0; j < c.pointCount; ++j) {
+        PlanarContactPoint& cp = c.points[j];
+        saved.normalMass[j] = cp.normalMass;
+        const FloatW rnA = cp.anchorAx * c.normalY - cp.anchorAy * c.normalX;
+        const FloatW rnB = cp.anchorBx * c.normalY - cp.anchorBy * c.normalX;
+        const FloatW k = c.invMassA + c.invMassB + c.invIA * rnA * rnA + c.invIB * rnB * rnB;
+        cp.normalMass = select(any, splat(1.0) / select(any, k, splat(1.0)), cp.normalMass);
+    }
+    return saved;
+}
+
+ANYPHYS_KERNEL void unpinBodies(PlanarContact& c, const SavedMasses& saved) {
+    c.invMassA = saved.invMassA;
+    c.invMassB = saved.invMassB;
+    c.invIA = saved.invIA;
+    c.invIB = saved.invIB;
+    for (int j = 0; j < c.pointCount; ++j) c.points[j].normalMass = saved.normalMass[j];
+}
+
 ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* colds, int count, SolverState* states,
-                                    const ContactSolveParams& params) {
+                                    Vec3* supports, const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
     bool found = false;
     for (int i = 0; i < count; ++i) {
@@ -228,6 +260,18 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
         found = true;
         markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
+        const auto normalOf = [&c](int lane) { return Vec3(c.normalX[lane], c.normalY[lane], 0.0); };
+        const auto speedOf = [&](const PlanarBodyW& body, FloatW rx, FloatW ry) {
+            return c.normalX * (body.vx - body.w * ry) + c.normalY * (body.vy + body.w * rx);
+        };
+        const MaskW stoppedA = stoppedAtBounce(rows, cold, c.pointCount,
+                                               [&](int j) { return speedOf(a, c.points[j].anchorAx, c.points[j].anchorAy); });
+        const MaskW stoppedB = stoppedAtBounce(rows, cold, c.pointCount,
+                                               [&](int j) { return speedOf(b, c.points[j].anchorBx, c.points[j].anchorBy); });
+        const PinnedLanes pinned = pinnedLanes(c, supports, rows.bounced, stoppedA, stoppedB, normalOf);
+        const bool pinning = !pinned.none();
+        SavedMasses saved{};
+        if (pinning) saved = pinBodies(c, pinned);
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
         const int passes = noLane(rows.bounced) ? 1 : kRestitutionPasses;  // as in 3D
@@ -242,9 +286,12 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
             }
             if (params.friction && !noLane(rows.bounced)) solveFriction(c, a, b, load, rows.bounced);
         }
+        if (pinning) unpinBodies(c, saved);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
-        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, heldRowsThatPushed(rows, cold, c.pointCount));
+        const MaskW pushed = heldRowsThatPushed(rows, cold, c.pointCount);
+        markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, pushed);
+        propagateSupport(c, supports, pushed, normalOf);
     }
     return found;
 }
@@ -255,9 +302,9 @@ ANYPHYS_AVX2 void warmStartAvx2(PlanarContact* c, int n, SolverState* s) { warmS
 ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-ANYPHYS_AVX2 bool restitutionAvx2(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s,
+ANYPHYS_AVX2 bool restitutionAvx2(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s, Vec3* supports,
                                    const ContactSolveParams& p) {
-    return restitutionImpl(c, cold, n, s, p);
+    return restitutionImpl(c, cold, n, s, supports, p);
 }
 #endif
 
@@ -265,8 +312,9 @@ void warmStartBase(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n
 void solveBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
 }
-bool restitutionBase(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s, const ContactSolveParams& p) {
-    return restitutionImpl(c, cold, n, s, p);
+bool restitutionBase(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s, Vec3* supports,
+                     const ContactSolveParams& p) {
+    return restitutionImpl(c, cold, n, s, supports, p);
 }
 
 }  // namespace
@@ -287,11 +335,11 @@ void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states
 }
 
 bool applyPlanarRestitution(PlanarContact* contacts, PlanarContactCold* cold, int count, SolverState* states,
-                            const ContactSolveParams& params) {
+                            Vec3* supports, const ContactSolveParams& params) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (contactKernelsUseAvx2()) return restitutionAvx2(contacts, cold, count, states, params);
+    if (contactKernelsUseAvx2()) return restitutionAvx2(contacts, cold, count, states, supports, params);
 #endif
-    return restitutionBase(contacts, cold, count, states, params);
+    return restitutionBase(contacts, cold, count, states, supports, params);
 }
 
 }  // namespace anyphys::native

@@ -370,6 +370,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
 
     planarWorld_ = settings.planar;
     buildBodies(world, step);
+    if (restitution_) bounceSupports_.assign(bodies_.size(), Vec3::Zero());  // nothing holds a body yet
     buildConstraints();
     planStages(world);
     runner_.run(world.taskSystem(), stages_, *this);
@@ -406,7 +407,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             break;
         case StageKind::Restitution:
             if (skipRestitutionRound(p)) break;
-            if (applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), solveParams_)) noteBounce();
+            if (applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), bounceSupports_.data(), solveParams_)) noteBounce();
             break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
@@ -449,7 +450,8 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
         case StageKind::Solve: solvePlanarContacts(colour(), count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
         case StageKind::Relax: solvePlanarContacts(colour(), count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
         case StageKind::Restitution:
-            if (!skipRestitutionRound(p) && applyPlanarRestitution(colour(), planarCold_.data() + first, count, states_.data(), solveParams_))
+            if (!skipRestitutionRound(p) && applyPlanarRestitution(colour(), planarCold_.data() + first, count, states_.data(),
+                                                                     bounceSupports_.data(), solveParams_))
                 noteBounce();
             return true;
         case StageKind::StoreImpulses:

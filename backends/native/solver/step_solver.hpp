@@ -109,6 +109,7 @@ private:
     std::vector<std::int32_t> solverIndex_;   // per world body: solver index or kStaticBody
     std::vector<SolverBody> bodies_;
     std::vector<SolverState> states_;
+    std::vector<Vec3> bounceSupports_;        // per solver body: the restitution stage's shock propagation
     ConstraintGraph graph_;
     std::vector<WideContact> wide_;       // 3D worlds
     std::vector<WideContactCold> wideCold_;  // beside wide_: what only prepare, restitution and store read
