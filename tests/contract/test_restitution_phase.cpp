@@ -231,10 +231,17 @@ TEST_P(RestitutionPhaseTest, FlatBoxBouncesStraightUp) { flatBoxBounce("restitut
 const std::vector<std::pair<double, double>> kLightBalls = {{1.0, 10.0}, {1.0, 100.0}};
 const std::vector<std::pair<double, double>> kHeavyBalls = {{10.0, 10.0}, {30.0, 10.0}};
 const std::vector<std::pair<double, double>> kBallOnABox = {{1.0, 10.0}};
+// 6.5 to 1: a Gauss-Seidel pass closes only 13 % of the heavy ball's shortfall a round (native
+// rose 52 to 94 % of its share with 16 rounds before its restitution stage held a box resting on
+// its support as immovable: shock propagation, backends/native/solver/restitution_rows.hpp).
+const std::vector<std::pair<double, double>> kVeryHeavyBall = {{65.0, 10.0}};
 
 TEST_P(RestitutionPhaseTest, BallBouncesOnABoxRestingOnTheGround) { bounceOnRestingBox("restitution.on_resting_box", {kLightBalls}); }
 TEST_P(RestitutionPhaseTest, HeavyBallBouncesOnABoxRestingOnTheGround) {
     bounceOnRestingBox("restitution.heavy_ball_on_box", {kHeavyBalls});
+}
+TEST_P(RestitutionPhaseTest, VeryHeavyBallBouncesOnABoxRestingOnTheGround) {
+    bounceOnRestingBox("restitution.very_heavy_ball_on_box", {kVeryHeavyBall});
 }
 // A low bounce (e = 0.2) rises only 1.3 to 3.3 cm: a kick from the impact carried into the next
 // step shows at once (native's 30 kg ball rose up to 2.3 times its share when its warm start kept
@@ -273,6 +280,9 @@ TEST_P(PlanarRestitutionPhaseTest, BallBouncesOnABoxRestingOnTheGround) {
 }
 TEST_P(PlanarRestitutionPhaseTest, HeavyBallBouncesOnABoxRestingOnTheGround) {
     bounceOnRestingBox("planar.restitution.heavy_ball_on_box", {kHeavyBalls});
+}
+TEST_P(PlanarRestitutionPhaseTest, VeryHeavyBallBouncesOnABoxRestingOnTheGround) {
+    bounceOnRestingBox("planar.restitution.very_heavy_ball_on_box", {kVeryHeavyBall});
 }
 TEST_P(PlanarRestitutionPhaseTest, HeavyBallBouncesLowOnABoxRestingOnTheGround) {
     bounceOnRestingBox("planar.restitution.heavy_ball_low_bounce", {.ballAndBoxMasses = kHeavyBalls, .e = 0.2});
