@@ -50,60 +50,73 @@ template <class Cold>
 /// Shock propagation: a body that a holding row pressed against something immovable (a static
 /// or kinematic body, or a body so pressed itself, down a pile) keeps the direction its support
 /// pushes it, per solver body (`supports`, zero while nothing holds it; StepSolver resets them each
-/// step). A bounce that drives such a body into its support then meets it as immovable: the
-/// support takes the blow. Without it each round of the stage closed only m_box / (m_ball + m_box)
-/// of the heavy body's shortfall, and a 100 kg ball bouncing on a 1 kg box resting on the ground
-/// rose 13 to 27 % of e^2 h (e = 0.5). A push more than about 45 degrees off the support's line
-/// (kSupportCos) is not held by it: a ball striking a resting box from the side moves the box.
-/// Nor is a body its supports have not stopped (kStoppedShare: at its bouncing points, along the
-/// normal, at most that share of the approach speed): a box on the end of a plank balanced on a
-/// pivot is pressed against the plank, the plank against the pivot, yet the plank turns, and taken
-/// as a wall it sent a 10 kg ball up 0.43 m/s faster than the rounds without it. A twentieth was
-/// too strict: a planar box's two ground points, one pass a round, left it moving faster, and a
-/// 100 kg ball on it rose 4 to 38 %. A box on boxes is seldom stopped in time: the rounds stop the
-/// one below only after the one above (a 65 kg ball on three stacked 10 kg boxes does not rise).
+/// step). A bouncing or holding row that drives such a body into its support then meets it as
+/// immovable: the support takes the blow. Without it each round of the stage closed only
+/// m_box / (m_ball + m_box) of the heavy body's shortfall: a 100 kg ball bouncing on a 1 kg box
+/// resting on the ground rose 13 to 27 % of e^2 h (e = 0.5), and a 65 kg ball on three stacked
+/// 10 kg boxes did not rise at all. The holding rows pin too, so that a box stops on the box under
+/// it, which its ground has stopped, within the round; pinning only where the ball bounced, the
+/// rounds stopped each box only after the one above it and the 65 kg ball still did not rise.
+/// A push more than about 45 degrees off the support's line (kSupportCos) is not held by it: a
+/// ball striking a resting box from the side moves the box. Nor is a body its supports have not
+/// stopped (kStoppedShare: at the row's points, along the normal, at most that share of the
+/// approach speed, or at a holding point of the speed the other body closes at): a box on the end
+/// of a plank balanced on a pivot is pressed against the plank, the plank against the pivot, yet
+/// the plank turns, and taken as a wall it sent a 10 kg ball up 0.43 m/s faster than the rounds
+/// without it. A twentieth was too strict: a planar box's two ground points, one pass a round,
+/// left it moving faster, and a 100 kg ball on it rose 4 to 38 %.
 inline constexpr double kSupportCos = 0.7;
 inline constexpr double kStoppedShare = 0.25;
 
-/// Per lane, the bounced rows' body that its support holds against the row's push.
+/// Per lane, the body that its support holds against the row's push.
 struct PinnedLanes {
     MaskW a{}, b{};
     bool none() const { return noLane(a | b); }
 };
 
-/// `normalOf(lane)` is the lane's normal (from A to B) as a Vec3. Body B is pushed along the
-/// normal, A against it. `stoppedA`, `stoppedB`: the lanes whose body A (B) moves along the normal
-/// at every bouncing point by at most kStoppedShare of the approach speed (stoppedAtBounce). A lane
-/// whose bodies both rest on supports pins neither: each would be the other's wall.
+/// Per lane, whether body A (B) is all but still along the normal at the row's points:
+/// `speedA(j)`, `speedB(j)` are each body's normal velocity at point j. At a bouncing point its
+/// speed is at most kStoppedShare of the approach speed; at a holding point, of the speed at which
+/// the other body closes on or leaves it.
+struct StoppedLanes {
+    MaskW a{}, b{};
+};
+
+template <class Cold, class SpeedA, class SpeedB>
+[[gnu::always_inline]] inline StoppedLanes stoppedLanes(const RestitutionRows& rows, const Cold& cold, int pointCount,
+                                                        SpeedA speedA, SpeedB speedB) {
+    StoppedLanes stopped{rows.bounced | rows.anyHeld, rows.bounced | rows.anyHeld};
+    const FloatW share = splat(kStoppedShare);
+    const auto within = [](FloatW speed, FloatW limit) { return (speed <= limit) & (zero() - speed <= limit); };
+    for (int j = 0; j < pointCount; ++j) {
+        const MaskW active = rows.bounces[j] | rows.held[j];
+        if (noLane(active)) continue;
+        const FloatW a = speedA(j), b = speedB(j);
+        const FloatW relative = b - a;
+        const FloatW limit = share * select(rows.bounces[j], zero() - cold.relativeVelocity[j], max(relative, zero() - relative));
+        stopped.a &= ~active | within(a, limit);
+        stopped.b &= ~active | within(b, limit);
+    }
+    return stopped;
+}
+
+/// Over the lanes of `rows` (those that bounce or hold). `normalOf(lane)` is the lane's normal
+/// (from A to B) as a Vec3: body B is pushed along it, A against it. `stopped`: stoppedLanes. A
+/// lane whose bodies both rest on supports pins neither: each would be the other's wall.
 template <class Contact, class NormalOf>
-inline PinnedLanes pinnedLanes(const Contact& c, const Vec3* supports, MaskW bounced, MaskW stoppedA, MaskW stoppedB,
+inline PinnedLanes pinnedLanes(const Contact& c, const Vec3* supports, MaskW rows, const StoppedLanes& stopped,
                                NormalOf normalOf) {
     PinnedLanes pinned;
     for (int k = 0; k < kLanes; ++k) {
-        if (!bounced[k] || !c.writeA[k] || !c.writeB[k]) continue;  // a static partner is a wall already
+        if (!rows[k] || !c.writeA[k] || !c.writeB[k]) continue;  // a static partner is a wall already
         const Vec3 n = normalOf(k);
-        const bool heldA = stoppedA[k] && n.dot(supports[c.bodyA[k]]) > kSupportCos;
-        const bool heldB = stoppedB[k] && n.dot(supports[c.bodyB[k]]) < -kSupportCos;
+        const bool heldA = stopped.a[k] && n.dot(supports[c.bodyA[k]]) > kSupportCos;
+        const bool heldB = stopped.b[k] && n.dot(supports[c.bodyB[k]]) < -kSupportCos;
         if (heldA == heldB) continue;
         pinned.a[k] = heldA ? -1 : 0;
         pinned.b[k] = heldB ? -1 : 0;
     }
     return pinned;
-}
-
-/// Lanes where a body's normal velocity at each bouncing point (`normalSpeed(j)`, one lane each)
-/// is within kStoppedShare of the point's approach speed.
-template <class Cold, class NormalSpeed>
-[[gnu::always_inline]] inline MaskW stoppedAtBounce(const RestitutionRows& rows, const Cold& cold, int pointCount,
-                                                    NormalSpeed normalSpeed) {
-    MaskW stopped = rows.bounced;
-    if (noLane(stopped)) return stopped;  // a record that only holds
-    for (int j = 0; j < pointCount; ++j) {
-        const FloatW speed = normalSpeed(j);
-        const FloatW limit = splat(kStoppedShare) * (zero() - cold.relativeVelocity[j]);  // approaching: vn < 0
-        stopped &= ~rows.bounces[j] | ((speed <= limit) & (zero() - speed <= limit));
-    }
-    return stopped;
 }
 
 /// After a record's passes: across each lane of `pushed` (holding rows that pushed), a body pressed
