@@ -340,9 +340,11 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         const auto normalOf = [&c](int lane) { return laneOf(c.normal, lane); };
         const auto speedOf = [&](const BodyW& body, const Vec3W& anchor) { return dot(body.v + cross(body.w, anchor), c.normal); };
-        const StoppedLanes stopped = stoppedLanes(rows, cold, c.pointCount, [&](int j) { return speedOf(a, c.points[j].anchorA); },
-                                                  [&](int j) { return speedOf(b, c.points[j].anchorB); });
-        const PinnedLanes pinned = pinnedLanes(c, supports, rows.bounced | rows.anyHeld, stopped, normalOf);
+        const PinnedLanes supported = supportedLanes(c, supports, rows.bounced | rows.anyHeld, normalOf);
+        PinnedLanes pinned;
+        if (!supported.none())
+            pinned = pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount, [&](int j) { return speedOf(a, c.points[j].anchorA); },
+                                                         [&](int j) { return speedOf(b, c.points[j].anchorB); }));
         const bool pinning = !pinned.none();
         SavedMasses saved{};
         if (pinning) saved = pinBodies(c, pinned);

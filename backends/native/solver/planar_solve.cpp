@@ -264,10 +264,12 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
         const auto speedOf = [&](const PlanarBodyW& body, FloatW rx, FloatW ry) {
             return c.normalX * (body.vx - body.w * ry) + c.normalY * (body.vy + body.w * rx);
         };
-        const StoppedLanes stopped =
-            stoppedLanes(rows, cold, c.pointCount, [&](int j) { return speedOf(a, c.points[j].anchorAx, c.points[j].anchorAy); },
-                         [&](int j) { return speedOf(b, c.points[j].anchorBx, c.points[j].anchorBy); });
-        const PinnedLanes pinned = pinnedLanes(c, supports, rows.bounced | rows.anyHeld, stopped, normalOf);
+        const PinnedLanes supported = supportedLanes(c, supports, rows.bounced | rows.anyHeld, normalOf);
+        PinnedLanes pinned;
+        if (!supported.none())
+            pinned = pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount,
+                                                         [&](int j) { return speedOf(a, c.points[j].anchorAx, c.points[j].anchorAy); },
+                                                         [&](int j) { return speedOf(b, c.points[j].anchorBx, c.points[j].anchorBy); }));
         const bool pinning = !pinned.none();
         SavedMasses saved{};
         if (pinning) saved = pinBodies(c, pinned);

@@ -100,23 +100,26 @@ template <class Cold, class SpeedA, class SpeedB>
     return stopped;
 }
 
-/// Over the lanes of `rows` (those that bounce or hold). `normalOf(lane)` is the lane's normal
-/// (from A to B) as a Vec3: body B is pushed along it, A against it. `stopped`: stoppedLanes. A
-/// lane whose bodies both rest on supports pins neither: each would be the other's wall.
+/// Over the lanes of `rows` (those that bounce or hold), the bodies whose support holds them against
+/// the row's push: `normalOf(lane)` is the lane's normal (from A to B) as a Vec3, and body B is
+/// pushed along it, A against it. A static or kinematic partner is a wall already.
 template <class Contact, class NormalOf>
-inline PinnedLanes pinnedLanes(const Contact& c, const Vec3* supports, MaskW rows, const StoppedLanes& stopped,
-                               NormalOf normalOf) {
-    PinnedLanes pinned;
+inline PinnedLanes supportedLanes(const Contact& c, const Vec3* supports, MaskW rows, NormalOf normalOf) {
+    PinnedLanes held;
     for (int k = 0; k < kLanes; ++k) {
-        if (!rows[k] || !c.writeA[k] || !c.writeB[k]) continue;  // a static partner is a wall already
+        if (!rows[k] || !c.writeA[k] || !c.writeB[k]) continue;
         const Vec3 n = normalOf(k);
-        const bool heldA = stopped.a[k] && n.dot(supports[c.bodyA[k]]) > kSupportCos;
-        const bool heldB = stopped.b[k] && n.dot(supports[c.bodyB[k]]) < -kSupportCos;
-        if (heldA == heldB) continue;
-        pinned.a[k] = heldA ? -1 : 0;
-        pinned.b[k] = heldB ? -1 : 0;
+        held.a[k] = n.dot(supports[c.bodyA[k]]) > kSupportCos ? -1 : 0;
+        held.b[k] = n.dot(supports[c.bodyB[k]]) < -kSupportCos ? -1 : 0;
     }
-    return pinned;
+    return held;
+}
+
+/// The supported bodies (supportedLanes) that are also stopped (stoppedLanes). A lane whose bodies
+/// both qualify pins neither: each would be the other's wall.
+[[gnu::always_inline]] inline PinnedLanes pinnedLanes(const PinnedLanes& supported, const StoppedLanes& stopped) {
+    const MaskW a = supported.a & stopped.a, b = supported.b & stopped.b;
+    return {a & ~b, b & ~a};
 }
 
 /// After a record's passes: across each lane of `pushed` (holding rows that pushed), a body pressed
