@@ -283,47 +283,6 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
     }
 }
 
-// A record's masses while its pinned lanes' held bodies count as immovable (shock propagation,
-// restitution_rows.hpp): what pinBodies replaced, for unpinBodies to put back.
-struct SavedMasses {
-    FloatW invMassA, invMassB;
-    SymMat3W invIA, invIB;
-    FloatW normalMass[4];
-};
-
-ANYPHYS_KERNEL SymMat3W maskedInertia(const SymMat3W& m, MaskW clear) {
-    const FloatW z = zero();
-    return {select(clear, z, m.xx), select(clear, z, m.xy), select(clear, z, m.xz),
-            select(clear, z, m.yy), select(clear, z, m.yz), select(clear, z, m.zz)};
-}
-
-// The pinned body of each lane gets no impulse, and its points' normal mass is the other body's
-// alone (which moves: pinnedLanes pins only between two moving bodies).
-ANYPHYS_KERNEL SavedMasses pinBodies(WideContact& c, const PinnedLanes& pinned) {
-    SavedMasses saved{c.invMassA, c.invMassB, c.invIA, c.invIB, {}};
-    c.invMassA = select(pinned.a, zero(), c.invMassA);
-    c.invMassB = select(pinned.b, zero(), c.invMassB);
-    c.invIA = maskedInertia(c.invIA, pinned.a);
-    c.invIB = maskedInertia(c.invIB, pinned.b);
-    const MaskW any = pinned.a | pinned.b;
-    for (int j = 0; j < c.pointCount; ++j) {
-        WideContactPoint& cp = c.points[j];
-        saved.normalMass[j] = cp.normalMass;
-        const Vec3W rnA = cross(cp.anchorA, c.normal), rnB = cross(cp.anchorB, c.normal);
-        const FloatW k = c.invMassA + dot(rnA, c.invIA * rnA) + c.invMassB + dot(rnB, c.invIB * rnB);
-        cp.normalMass = select(any, splat(1.0) / select(any, k, splat(1.0)), cp.normalMass);
-    }
-    return saved;
-}
-
-ANYPHYS_KERNEL void unpinBodies(WideContact& c, const SavedMasses& saved) {
-    c.invMassA = saved.invMassA;
-    c.invMassB = saved.invMassB;
-    c.invIA = saved.invIA;
-    c.invIB = saved.invIB;
-    for (int j = 0; j < c.pointCount; ++j) c.points[j].normalMass = saved.normalMass[j];
-}
-
 ANYPHYS_KERNEL Vec3 laneOf(const Vec3W& v, int lane) { return {v.x[lane], v.y[lane], v.z[lane]}; }
 
 ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* colds, int count, SolverState* states,
@@ -346,8 +305,13 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
             pinned = pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount, [&](int j) { return speedOf(a, c.points[j].anchorA); },
                                                          [&](int j) { return speedOf(b, c.points[j].anchorB); }));
         const bool pinning = !pinned.none();
-        SavedMasses saved{};
-        if (pinning) saved = pinBodies(c, pinned);
+        // Pinned, a point's effective mass is the moving body's alone.
+        const auto inverseMassAt = [&c](const WideContactPoint& cp) {
+            const Vec3W rnA = cross(cp.anchorA, c.normal), rnB = cross(cp.anchorB, c.normal);
+            return c.invMassA + dot(rnA, c.invIA * rnA) + c.invMassB + dot(rnB, c.invIB * rnB);
+        };
+        SavedMasses<WideContact> saved{};
+        if (pinning) saved = pinBodies(c, pinned, inverseMassAt);
         FloatW load[4];
         // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
         // times the bounce's impulse too (as ODE, Bullet and Box2D give it; without this, a ball

@@ -216,38 +216,6 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     }
 }
 
-// A record's masses while its pinned lanes' held bodies count as immovable (as in 3D).
-struct SavedMasses {
-    FloatW invMassA, invMassB, invIA, invIB;
-    FloatW normalMass[4];
-};
-
-ANYPHYS_KERNEL SavedMasses pinBodies(PlanarContact& c, const PinnedLanes& pinned) {
-    SavedMasses saved{c.invMassA, c.invMassB, c.invIA, c.invIB, {}};
-    c.invMassA = select(pinned.a, zero(), c.invMassA);
-    c.invMassB = select(pinned.b, zero(), c.invMassB);
-    c.invIA = select(pinned.a, zero(), c.invIA);
-    c.invIB = select(pinned.b, zero(), c.invIB);
-    const MaskW any = pinned.a | pinned.b;
-    for (int j = 0; j < c.pointCount; ++j) {
-        PlanarContactPoint& cp = c.points[j];
-        saved.normalMass[j] = cp.normalMass;
-        const FloatW rnA = cp.anchorAx * c.normalY - cp.anchorAy * c.normalX;
-        const FloatW rnB = cp.anchorBx * c.normalY - cp.anchorBy * c.normalX;
-        const FloatW k = c.invMassA + c.invMassB + c.invIA * rnA * rnA + c.invIB * rnB * rnB;
-        cp.normalMass = select(any, splat(1.0) / select(any, k, splat(1.0)), cp.normalMass);
-    }
-    return saved;
-}
-
-ANYPHYS_KERNEL void unpinBodies(PlanarContact& c, const SavedMasses& saved) {
-    c.invMassA = saved.invMassA;
-    c.invMassB = saved.invMassB;
-    c.invIA = saved.invIA;
-    c.invIB = saved.invIB;
-    for (int j = 0; j < c.pointCount; ++j) c.points[j].normalMass = saved.normalMass[j];
-}
-
 ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* colds, int count, SolverState* states,
                                     Vec3* supports, const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
@@ -271,8 +239,13 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
                                                          [&](int j) { return speedOf(a, c.points[j].anchorAx, c.points[j].anchorAy); },
                                                          [&](int j) { return speedOf(b, c.points[j].anchorBx, c.points[j].anchorBy); }));
         const bool pinning = !pinned.none();
-        SavedMasses saved{};
-        if (pinning) saved = pinBodies(c, pinned);
+        const auto inverseMassAt = [&c](const PlanarContactPoint& cp) {  // as in 3D
+            const FloatW rnA = cp.anchorAx * c.normalY - cp.anchorAy * c.normalX;
+            const FloatW rnB = cp.anchorBx * c.normalY - cp.anchorBy * c.normalX;
+            return c.invMassA + c.invMassB + c.invIA * rnA * rnA + c.invIB * rnB * rnB;
+        };
+        SavedMasses<PlanarContact> saved{};
+        if (pinning) saved = pinBodies(c, pinned, inverseMassAt);
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
         const int passes = noLane(rows.bounced) ? 1 : kRestitutionPasses;  // as in 3D

@@ -122,6 +122,45 @@ inline PinnedLanes supportedLanes(const Contact& c, const Vec3* supports, MaskW 
     return {a & ~b, b & ~a};
 }
 
+/// A record's masses while its pinned lanes' bodies count as immovable: what pinBodies replaced, for
+/// unpinBodies to put back (a WideContact's inverse inertia is a SymMat3W, a PlanarContact's one
+/// FloatW about Z).
+template <class Contact>
+struct SavedMasses {
+    FloatW invMassA, invMassB;
+    decltype(Contact::invIA) invIA, invIB;
+    FloatW normalMass[4];
+};
+
+/// The pinned body of each lane takes no impulse, and its points' normal mass is the other body's
+/// alone (which moves: only a body between two moving ones is pinned). `inverseMassAt(point)`: the
+/// point's inverse effective mass from the record's masses as they now are.
+template <class Contact, class InverseMassAt>
+[[gnu::always_inline]] inline auto pinBodies(Contact& c, const PinnedLanes& pinned, InverseMassAt inverseMassAt) {
+    SavedMasses<Contact> saved{c.invMassA, c.invMassB, c.invIA, c.invIB, {}};
+    c.invMassA = cleared(c.invMassA, pinned.a);
+    c.invMassB = cleared(c.invMassB, pinned.b);
+    c.invIA = cleared(c.invIA, pinned.a);
+    c.invIB = cleared(c.invIB, pinned.b);
+    const MaskW any = pinned.a | pinned.b;
+    for (int j = 0; j < c.pointCount; ++j) {
+        auto& cp = c.points[j];
+        saved.normalMass[j] = cp.normalMass;
+        const FloatW k = inverseMassAt(cp);
+        cp.normalMass = select(any, splat(1.0) / select(any, k, splat(1.0)), cp.normalMass);
+    }
+    return saved;
+}
+
+template <class Contact, class Saved>
+[[gnu::always_inline]] inline void unpinBodies(Contact& c, const Saved& saved) {
+    c.invMassA = saved.invMassA;
+    c.invMassB = saved.invMassB;
+    c.invIA = saved.invIA;
+    c.invIB = saved.invIB;
+    for (int j = 0; j < c.pointCount; ++j) c.points[j].normalMass = saved.normalMass[j];
+}
+
 /// After a record's passes: across each lane of `pushed` (holding rows that pushed), a body pressed
 /// against a partner that cannot give way (static, kinematic or held itself along the push) is
 /// held from then on, along the normal pushing it. The first support found stays for the step.

@@ -64,6 +64,13 @@ ANYPHYS_WIDE Vec3W operator*(const SymMat3W& m, const Vec3W& v) {
 }
 
 /// Symmetric 2x2 matrix (the tangent-plane mass of central friction).
+/// x with the lanes of `clear` set to zero.
+ANYPHYS_WIDE FloatW cleared(FloatW x, MaskW clear) { return select(clear, zero(), x); }
+ANYPHYS_WIDE SymMat3W cleared(const SymMat3W& m, MaskW clear) {
+    return {cleared(m.xx, clear), cleared(m.xy, clear), cleared(m.xz, clear),
+            cleared(m.yy, clear), cleared(m.yz, clear), cleared(m.zz, clear)};
+}
+
 struct SymMat2W {
     FloatW xx, xy, yy;
 };
