@@ -285,6 +285,30 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
 
 ANYPHYS_KERNEL Vec3 laneOf(const Vec3W& v, int lane) { return {v.x[lane], v.y[lane], v.z[lane]}; }
 
+// The lanes whose body shock propagation pins in this pass (restitution_rows.hpp).
+template <class NormalOf>
+ANYPHYS_KERNEL PinnedLanes pinnedBodies(const WideContact& c, const WideContactCold& cold, const RestitutionRows& rows,
+                                        const BodyW& a, const BodyW& b, const Vec3* supports, NormalOf normalOf) {
+    const PinnedLanes supported = supportedLanes(c, supports, rows.bounced | rows.anyHeld, normalOf);
+    if (supported.none()) return supported;
+    FloatW speedA[4], speedB[4];  // each body's normal velocity at each point
+    for (int j = 0; j < c.pointCount; ++j) {
+        speedA[j] = dot(a.v + cross(a.w, c.points[j].anchorA), c.normal);
+        speedB[j] = dot(b.v + cross(b.w, c.points[j].anchorB), c.normal);
+    }
+    return pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount, speedA, speedB));
+}
+
+ANYPHYS_KERNEL SavedMasses<WideContact> pinMasses(WideContact& c, const PinnedLanes& pinned) {
+    FloatW shareA[4], shareB[4];  // each body's part of a point's inverse effective mass
+    for (int j = 0; j < c.pointCount; ++j) {
+        const Vec3W rnA = cross(c.points[j].anchorA, c.normal), rnB = cross(c.points[j].anchorB, c.normal);
+        shareA[j] = c.invMassA + dot(rnA, c.invIA * rnA);
+        shareB[j] = c.invMassB + dot(rnB, c.invIB * rnB);
+    }
+    return pinBodies(c, pinned, shareA, shareB);
+}
+
 ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* colds, int count, SolverState* states,
                                     Vec3* supports, const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
@@ -297,21 +321,11 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
         found = true;
         markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
-        const auto normalOf = [&c](int lane) { return laneOf(c.normal, lane); };
-        const auto speedOf = [&](const BodyW& body, const Vec3W& anchor) { return dot(body.v + cross(body.w, anchor), c.normal); };
-        const PinnedLanes supported = supportedLanes(c, supports, rows.bounced | rows.anyHeld, normalOf);
-        PinnedLanes pinned;
-        if (!supported.none())
-            pinned = pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount, [&](int j) { return speedOf(a, c.points[j].anchorA); },
-                                                         [&](int j) { return speedOf(b, c.points[j].anchorB); }));
+        const auto normalOf = [&c](int lane) { return laneOf(c.normal, lane); };  // scalar: no wide value passes
+        const PinnedLanes pinned = pinnedBodies(c, cold, rows, a, b, supports, normalOf);
         const bool pinning = !pinned.none();
-        // Pinned, a point's effective mass is the moving body's alone.
-        const auto inverseMassAt = [&c](const WideContactPoint& cp) {
-            const Vec3W rnA = cross(cp.anchorA, c.normal), rnB = cross(cp.anchorB, c.normal);
-            return c.invMassA + dot(rnA, c.invIA * rnA) + c.invMassB + dot(rnB, c.invIB * rnB);
-        };
         SavedMasses<WideContact> saved{};
-        if (pinning) saved = pinBodies(c, pinned, inverseMassAt);
+        if (pinning) saved = pinMasses(c, pinned);
         FloatW load[4];
         // Friction acts through the whole impact: a ball still sliding as it rebounds takes mu
         // times the bounce's impulse too (as ODE, Bullet and Box2D give it; without this, a ball

@@ -216,6 +216,33 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     }
 }
 
+// As in 3D (contact_solve.cpp).
+template <class NormalOf>
+ANYPHYS_KERNEL PinnedLanes pinnedBodies(const PlanarContact& c, const PlanarContactCold& cold, const RestitutionRows& rows,
+                                        const PlanarBodyW& a, const PlanarBodyW& b, const Vec3* supports, NormalOf normalOf) {
+    const PinnedLanes supported = supportedLanes(c, supports, rows.bounced | rows.anyHeld, normalOf);
+    if (supported.none()) return supported;
+    FloatW speedA[4], speedB[4];
+    for (int j = 0; j < c.pointCount; ++j) {
+        const PlanarContactPoint& cp = c.points[j];
+        speedA[j] = c.normalX * (a.vx - a.w * cp.anchorAy) + c.normalY * (a.vy + a.w * cp.anchorAx);
+        speedB[j] = c.normalX * (b.vx - b.w * cp.anchorBy) + c.normalY * (b.vy + b.w * cp.anchorBx);
+    }
+    return pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount, speedA, speedB));
+}
+
+ANYPHYS_KERNEL SavedMasses<PlanarContact> pinMasses(PlanarContact& c, const PinnedLanes& pinned) {
+    FloatW shareA[4], shareB[4];
+    for (int j = 0; j < c.pointCount; ++j) {
+        const PlanarContactPoint& cp = c.points[j];
+        const FloatW rnA = cp.anchorAx * c.normalY - cp.anchorAy * c.normalX;
+        const FloatW rnB = cp.anchorBx * c.normalY - cp.anchorBy * c.normalX;
+        shareA[j] = c.invMassA + c.invIA * rnA * rnA;
+        shareB[j] = c.invMassB + c.invIB * rnB * rnB;
+    }
+    return pinBodies(c, pinned, shareA, shareB);
+}
+
 ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* colds, int count, SolverState* states,
                                     Vec3* supports, const ContactSolveParams& params) {
     const FloatW threshold = splat(-params.restitutionThreshold);
@@ -228,24 +255,11 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
         found = true;
         markInBounce(states, c.bodyA, c.writeA, c.bodyB, c.writeB, rows.bounced);
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
-        const auto normalOf = [&c](int lane) { return Vec3(c.normalX[lane], c.normalY[lane], 0.0); };
-        const auto speedOf = [&](const PlanarBodyW& body, FloatW rx, FloatW ry) {
-            return c.normalX * (body.vx - body.w * ry) + c.normalY * (body.vy + body.w * rx);
-        };
-        const PinnedLanes supported = supportedLanes(c, supports, rows.bounced | rows.anyHeld, normalOf);
-        PinnedLanes pinned;
-        if (!supported.none())
-            pinned = pinnedLanes(supported, stoppedLanes(rows, cold, c.pointCount,
-                                                         [&](int j) { return speedOf(a, c.points[j].anchorAx, c.points[j].anchorAy); },
-                                                         [&](int j) { return speedOf(b, c.points[j].anchorBx, c.points[j].anchorBy); }));
+        const auto normalOf = [&c](int lane) { return Vec3(c.normalX[lane], c.normalY[lane], 0.0); };  // as in 3D
+        const PinnedLanes pinned = pinnedBodies(c, cold, rows, a, b, supports, normalOf);
         const bool pinning = !pinned.none();
-        const auto inverseMassAt = [&c](const PlanarContactPoint& cp) {  // as in 3D
-            const FloatW rnA = cp.anchorAx * c.normalY - cp.anchorAy * c.normalX;
-            const FloatW rnB = cp.anchorBx * c.normalY - cp.anchorBy * c.normalX;
-            return c.invMassA + c.invMassB + c.invIA * rnA * rnA + c.invIB * rnB * rnB;
-        };
         SavedMasses<PlanarContact> saved{};
-        if (pinning) saved = pinBodies(c, pinned, inverseMassAt);
+        if (pinning) saved = pinMasses(c, pinned);
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
         const int passes = noLane(rows.bounced) ? 1 : kRestitutionPasses;  // as in 3D

@@ -75,27 +75,32 @@ struct PinnedLanes {
 };
 
 /// Per lane, whether body A (B) is all but still along the normal at the row's points:
-/// `speedA(j)`, `speedB(j)` are each body's normal velocity at point j. At a bouncing point its
+/// `speedA[j]`, `speedB[j]` are each body's normal velocity at point j. At a bouncing point its
 /// speed is at most kStoppedShare of the approach speed; at a holding point, of the speed at which
 /// the other body closes on or leaves it.
 struct StoppedLanes {
     MaskW a{}, b{};
 };
 
-template <class Cold, class SpeedA, class SpeedB>
+// Everything the kernels call with a wide value is inlined (no lambdas): an out-of-line call
+// passes a 32-byte vector one way from the AVX2 kernels and another from the baseline ones, and
+// at the sanitizer build's -O1 such calls were left out of line and read garbage.
+[[gnu::always_inline]] inline MaskW withinSpeed(FloatW speed, FloatW limit) {
+    return (speed <= limit) & (zero() - speed <= limit);
+}
+
+template <class Cold>
 [[gnu::always_inline]] inline StoppedLanes stoppedLanes(const RestitutionRows& rows, const Cold& cold, int pointCount,
-                                                        SpeedA speedA, SpeedB speedB) {
+                                                        const FloatW* speedA, const FloatW* speedB) {
     StoppedLanes stopped{rows.bounced | rows.anyHeld, rows.bounced | rows.anyHeld};
     const FloatW share = splat(kStoppedShare);
-    const auto within = [](FloatW speed, FloatW limit) { return (speed <= limit) & (zero() - speed <= limit); };
     for (int j = 0; j < pointCount; ++j) {
         const MaskW active = rows.bounces[j] | rows.held[j];
         if (noLane(active)) continue;
-        const FloatW a = speedA(j), b = speedB(j);
-        const FloatW relative = b - a;
+        const FloatW relative = speedB[j] - speedA[j];
         const FloatW limit = share * select(rows.bounces[j], zero() - cold.relativeVelocity[j], max(relative, zero() - relative));
-        stopped.a &= ~active | within(a, limit);
-        stopped.b &= ~active | within(b, limit);
+        stopped.a &= ~active | withinSpeed(speedA[j], limit);
+        stopped.b &= ~active | withinSpeed(speedB[j], limit);
     }
     return stopped;
 }
@@ -104,7 +109,8 @@ template <class Cold, class SpeedA, class SpeedB>
 /// the row's push: `normalOf(lane)` is the lane's normal (from A to B) as a Vec3, and body B is
 /// pushed along it, A against it. A static or kinematic partner is a wall already.
 template <class Contact, class NormalOf>
-inline PinnedLanes supportedLanes(const Contact& c, const Vec3* supports, MaskW rows, NormalOf normalOf) {
+[[gnu::always_inline]] inline PinnedLanes supportedLanes(const Contact& c, const Vec3* supports, MaskW rows,
+                                                         NormalOf normalOf) {
     PinnedLanes held;
     for (int k = 0; k < kLanes; ++k) {
         if (!rows[k] || !c.writeA[k] || !c.writeB[k]) continue;
@@ -133,10 +139,11 @@ struct SavedMasses {
 };
 
 /// The pinned body of each lane takes no impulse, and its points' normal mass is the other body's
-/// alone (which moves: only a body between two moving ones is pinned). `inverseMassAt(point)`: the
-/// point's inverse effective mass from the record's masses as they now are.
-template <class Contact, class InverseMassAt>
-[[gnu::always_inline]] inline auto pinBodies(Contact& c, const PinnedLanes& pinned, InverseMassAt inverseMassAt) {
+/// alone (which moves: only a body between two moving ones is pinned). `shareA[j]`, `shareB[j]`:
+/// each body's part of point j's inverse effective mass (inverse mass plus the turning term).
+template <class Contact>
+[[gnu::always_inline]] inline SavedMasses<Contact> pinBodies(Contact& c, const PinnedLanes& pinned, const FloatW* shareA,
+                                                             const FloatW* shareB) {
     SavedMasses<Contact> saved{c.invMassA, c.invMassB, c.invIA, c.invIB, {}};
     c.invMassA = cleared(c.invMassA, pinned.a);
     c.invMassB = cleared(c.invMassB, pinned.b);
@@ -146,7 +153,7 @@ template <class Contact, class InverseMassAt>
     for (int j = 0; j < c.pointCount; ++j) {
         auto& cp = c.points[j];
         saved.normalMass[j] = cp.normalMass;
-        const FloatW k = inverseMassAt(cp);
+        const FloatW k = select(pinned.a, shareB[j], shareA[j]);  // pinned in B's lanes: A's share
         cp.normalMass = select(any, splat(1.0) / select(any, k, splat(1.0)), cp.normalMass);
     }
     return saved;
@@ -165,7 +172,7 @@ template <class Contact, class Saved>
 /// against a partner that cannot give way (static, kinematic or held itself along the push) is
 /// held from then on, along the normal pushing it. The first support found stays for the step.
 template <class Contact, class NormalOf>
-inline void propagateSupport(const Contact& c, Vec3* supports, MaskW pushed, NormalOf normalOf) {
+[[gnu::always_inline]] inline void propagateSupport(const Contact& c, Vec3* supports, MaskW pushed, NormalOf normalOf) {
     for (int k = 0; k < kLanes; ++k) {
         if (!pushed[k]) continue;
         const Vec3 n = normalOf(k);
