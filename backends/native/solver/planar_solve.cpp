@@ -7,6 +7,7 @@
 
 #include "solver/restitution_math.hpp"
 #include "solver/restitution_rows.hpp"
+#include "solver/rigid_bias.hpp"
 #include "solver/state_runs.hpp"
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
@@ -142,12 +143,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
     // Where a point's row is rigid (the relax pass; PGS), its friction is bounded by the impulse the
     // row will leave (below); the solve pass's soft rows keep the last impulses.
     const bool predictLoad = params.friction && (!useBias || !params.soft);
-    // A rigid row's velocity bias from the point's separation s: a speculative point closes its
-    // gap this substep; PGS pushes overlap beyond linearSlop out by a Baumgarte fraction.
-    const auto rigidBias = [&](FloatW s) {
-        const FloatW push = useBias ? max(baumgarte * min(zero(), s + slop), maxPush) : zero();
-        return select(s > zero(), s * invH, push);
-    };
+    const RigidBias rigid{invH, maxPush, baumgarte, slop, useBias};
     for (int i = 0; i < count; ++i) {
         PlanarContact& c = contacts[i];
         PlanarBodyW a = gatherPlanarMotion(states, c.bodyA), b = gatherPlanarMotion(states, c.bodyB);
@@ -163,7 +159,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
                 load[k] = cp.normalImpulse;
                 if (predictLoad) {
                     const FloatW s = separation(c, cp, a, b, dpx, dpy);
-                    rowBias[k] = rigidBias(s);
+                    rowBias[k] = rigidBias(rigid, s);
                     const FloatW vn =
                         normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
                     load[k] = max(cp.normalImpulse - cp.normalMass * (vn + rowBias[k]), zero());
