@@ -13,7 +13,6 @@
 namespace anyphys::ode {
 namespace {
 
-
 /// A contact in the hull's frame: the point (on a face, the capsule's deepest; else midway
 /// through the overlap), the way out of the hull towards the capsule, and how deep they overlap.
 struct HullContact {

@@ -407,7 +407,8 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             break;
         case StageKind::Restitution:
             if (skipRestitutionRound(p)) break;
-            if (applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), bounceSupports_.data(), solveParams_)) noteBounce();
+            if (applyRestitution(colour(), wideCold_.data() + first, count, states_.data(), bounceSupports_.data(), solveParams_))
+                noteBounce();
             break;
         case StageKind::StoreImpulses: storeImpulses(wide_.data() + begin, wideCold_.data() + begin, count); break;
         case StageKind::FinalizeBodies: finalizeBodies(begin, end); break;
