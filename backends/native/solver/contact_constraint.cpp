@@ -40,10 +40,16 @@ double restitutionTarget(const ContactPrepareParams& params, double e, double s,
     const double trueApproach = vn - an * params.velocityTimeOffset;
     const double impact = timeToImpact(s, -trueApproach, -an, params.stepTime);
     // The solver's substeps are semi-implicit Euler: their velocity lags by half a substep.
-    return bounceVelocity(e, vn, an, params.velocityTimeOffset, impact, -0.5 * params.substep,
-                          params.speculativeDistance, params.stepTime,
-                          substepGapAtStepEnd(s, vn, an, params.stepTime, params.substep),
-                          gapAtStepEnd(s, -trueApproach, -an, params.stepTime), slide);
+    return bounceVelocity(e, {.vn = vn,
+                              .an = an,
+                              .impact = impact,
+                              .offset = params.velocityTimeOffset,
+                              .solverOffset = -0.5 * params.substep,
+                              .margin = params.speculativeDistance,
+                              .h = params.stepTime,
+                              .gap = substepGapAtStepEnd(s, vn, an, params.stepTime, params.substep),
+                              .lateGap = gapAtStepEnd(s, -trueApproach, -an, params.stepTime),
+                              .slide = slide});
 }
 
 namespace {

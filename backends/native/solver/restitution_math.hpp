@@ -50,6 +50,21 @@ inline double shareLeftOutOfReach(double rebound, double g, double margin, doubl
     return std::clamp(u / rebound, 0.0, 1.0);
 }
 
+/// What a bounce's rebound speed depends on besides the restitution: the approach, where the
+/// velocities sit in time, and how the step leaves the pair (bounceVelocity).
+struct BounceApproach {
+    double vn = 0.0;            // m/s: the stored normal velocity at the step's start (< 0: approaching)
+    double an = 0.0;            // m/s^2: the pair's relative normal acceleration
+    double impact = 0.0;        // s: when in the step the surfaces meet (timeToImpact)
+    double offset = 0.0;        // s: the integrator's velocity lag (semi-implicit Euler -h/2, explicit +h/2)
+    double solverOffset = 0.0;  // s: the substeps' velocity lag (half a substep, semi-implicit)
+    double margin = 0.0;        // m: the narrow phase's reach beyond a step at the pair's speed
+    double h = 0.0;             // s: the step
+    double gap = 0.0;           // m: the gap the substeps leave at the step's end (substepGapAtStepEnd)
+    double lateGap = 0.0;       // m: the same in continuous time (gapAtStepEnd)
+    double slide = 0.0;         // m/s: the pair's speed along the surface
+};
+
 /// The normal velocity after a bounce of restitution e, from the stored approach velocity `vn`.
 /// Restitution acts at the instant of impact, `impact` seconds into the step: under a constant
 /// relative acceleration `an` along the normal the true velocity then is vn - an * offset +
@@ -70,14 +85,14 @@ inline double shareLeftOutOfReach(double rebound, double g, double margin, doubl
 /// would have met faster, by 2 |an| lateGap in the square, and rebounded e times that. Bounced from
 /// the gap at the full speed, a ball with e = 0.1 landing at 3.2 m/s rose twice its share (5.4 mm
 /// up at the step's end, for a 5.2 mm rise).
-inline double bounceVelocity(double e, double vn, double an, double offset, double impact, double solverOffset,
-                             double margin, double h, double gap, double lateGap, double slide) {
-    double rebound = -e * (vn - an * offset + an * impact);
-    if ((gap > 0.0 || lateGap > 0.0) && an < 0.0 && rebound > 0.0)
-        rebound = std::sqrt(std::max(rebound * rebound + 2.0 * an * (gap - e * e * lateGap), 0.0));
+inline double bounceVelocity(double e, const BounceApproach& in) {
+    const double an = in.an;
+    double rebound = -e * (in.vn - an * in.offset + an * in.impact);
+    if ((in.gap > 0.0 || in.lateGap > 0.0) && an < 0.0 && rebound > 0.0)
+        rebound = std::sqrt(std::max(rebound * rebound + 2.0 * an * (in.gap - e * e * in.lateGap), 0.0));
     double leftAtHandOver = 1.0;  // nothing pulls it back: it flies free at once
-    if (an < 0.0 && rebound > 0.0) leftAtHandOver = shareLeftOutOfReach(rebound, -an, margin, h, slide);
-    return rebound + an * (solverOffset + leftAtHandOver * (offset - solverOffset));
+    if (an < 0.0 && rebound > 0.0) leftAtHandOver = shareLeftOutOfReach(rebound, -an, in.margin, in.h, in.slide);
+    return rebound + an * (in.solverOffset + leftAtHandOver * (in.offset - in.solverOffset));
 }
 
 /// Seconds into the step at which a point `separation` apart meets, closing at `closing` (> 0)
