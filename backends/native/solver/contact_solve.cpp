@@ -247,20 +247,15 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
             FloatW bias = zero(), pointMassScale = one, pointImpulseScale = zero();
             if (predictLoad) {
                 bias = rowBias[k];
-            } else {
+            } else if (useBias && params.soft) {
                 const FloatW s = separation(c, cp, a, b, dp);
-                const MaskW speculative = s > zero();
-                if (!useBias) {
-                    bias = zero();
-                } else if (params.soft) {
-                    bias = max(biasRate * s, maxPush);
-                } else {  // Baumgarte: a fraction of the overlap beyond linearSlop per substep
-                    bias = max(baumgarte * min(zero(), s + slop), maxPush);
-                }
                 // A speculative point allows the approach to close exactly the gap this substep.
-                bias = select(speculative, s * invH, bias);
+                const MaskW speculative = s > zero();
+                bias = select(speculative, s * invH, max(biasRate * s, maxPush));
                 pointMassScale = select(speculative, one, massScale);
                 pointImpulseScale = select(speculative, zero(), impulseScale);
+            } else {  // a rigid row: the relax pass; PGS (Baumgarte)
+                bias = rigidBias(rigid, separation(c, cp, a, b, dp));
             }
 
             const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);

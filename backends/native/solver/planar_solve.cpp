@@ -182,19 +182,15 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
             FloatW bias = zero(), pointMassScale = one, pointImpulseScale = zero();
             if (predictLoad) {
                 bias = rowBias[k];
-            } else {
+            } else if (useBias && params.soft) {
                 const FloatW s = separation(c, cp, a, b, dpx, dpy);
+                // A speculative point allows the approach to close exactly the gap this substep.
                 const MaskW speculative = s > zero();
-                if (!useBias) {
-                    bias = zero();
-                } else if (params.soft) {
-                    bias = max(biasRate * s, maxPush);
-                } else {
-                    bias = max(baumgarte * min(zero(), s + slop), maxPush);
-                }
-                bias = select(speculative, s * invH, bias);
+                bias = select(speculative, s * invH, max(biasRate * s, maxPush));
                 pointMassScale = select(speculative, one, massScale);
                 pointImpulseScale = select(speculative, zero(), impulseScale);
+            } else {  // a rigid row: the relax pass; PGS (Baumgarte)
+                bias = rigidBias(rigid, separation(c, cp, a, b, dpx, dpy));
             }
             const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
             const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
