@@ -1,7 +1,10 @@
 #include "anyphys/backends.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
+#include "anyphys/error.hpp"
 #include "anyphys/joint_capabilities.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "anyphys/world_settings.hpp"
@@ -44,10 +47,32 @@ std::vector<std::string> missingCapabilities(const Capabilities& caps, const Wor
         missing.push_back("settings.iterations");
     for (const auto& [name, value] : settings.backendOptions) {
         bool known = false;
-        for (const auto& option : caps.options) known = known || option.first == name;
+        for (const BackendOption& option : caps.options) known = known || option.name == name;
         if (!known) missing.push_back("backend option " + name);
     }
     return missing;
+}
+
+std::string BackendOption::allowed() const {
+    std::ostringstream os;
+    os << (integer ? "an integer" : "a number");
+    if (std::isinf(max) && std::isinf(min))
+        os << " (finite)";
+    else if (std::isinf(max))
+        os << " >= " << min;
+    else
+        os << " in [" << min << ", " << max << "]";
+    return os.str();
+}
+
+void checkBackendOptions(const Capabilities& caps, const WorldSettings& settings) {
+    for (const auto& [name, value] : settings.backendOptions)
+        for (const BackendOption& option : caps.options) {
+            if (option.name != name) continue;
+            const bool inRange = value >= option.min && value <= option.max;  // false for NaN
+            if (!inRange || (option.integer && value != std::floor(value)))
+                throw Error::invalid("WorldSettings.backendOptions." + name, value, "must be " + option.allowed());
+        }
 }
 
 std::vector<std::string> missingJointCapabilities(const Capabilities& caps, const JointDef& def, bool planar) {

@@ -178,6 +178,7 @@ World::World(const WorldSettings& settings, MaterialLibrary materials)
                         "WorldSettings: " + what + " (capabilityPolicy strict; choose lenient to run without them)");
         warn("WorldSettings: " + what + "; running without them");
     }
+    checkBackendOptions(caps, settings_);
     // Unset solver knobs take the backend's defaults here, once: the peer reads plain values and
     // settings() shows what runs.
     settings_ = withBackendDefaults(settings_, caps);

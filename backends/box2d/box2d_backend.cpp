@@ -2,6 +2,7 @@
 #include <memory>
 #include <string>
 
+#include "anyphys/checks.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "box2d_world.hpp"
 
@@ -116,7 +117,8 @@ Backend makeBox2dBackend() {
          "-1.3 % with 32 substeps"},
     };
     caps.options = {
-        {"positionIterations", "Box2D position-correction iterations per Box2D step (b2World::Step); default 3"},
+        {.name = "positionIterations", .meaning = "Box2D position-correction iterations per Box2D step (b2World::Step); default 3",
+         .min = 0, .max = kMaxIterations, .integer = true},
     };
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).

@@ -31,7 +31,7 @@ b2BodyType bodyType(BodyType t) {
 Box2dWorld::Box2dWorld(const WorldSettings& settings)
     : settings_(settings),
       velocityIterations_(resolvedIterations(settings)),
-      positionIterations_(std::max(0, option(settings, "positionIterations", kDefaultPositionIterations))),
+      positionIterations_(option(settings, "positionIterations", kDefaultPositionIterations)),  // checked by the layer
       substeps_(resolvedSubsteps(settings)),
       world_(std::make_unique<b2World>(b2Vec2(0.0f, 0.0f))) {
     world_->SetContactFilter(&rules_);

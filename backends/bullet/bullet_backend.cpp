@@ -2,6 +2,7 @@
 #include <memory>
 #include <string>
 
+#include "anyphys/checks.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "bullet_world.hpp"
 
@@ -62,18 +63,18 @@ Backend makeBulletBackend() {
                               "joint.cone.twistLimits"})
         caps.parameters.insert(field);
     caps.options = {
-        {"erp2", "fraction of deep overlap (beyond splitImpulseDepth) removed per step by split impulse; default settings.baumgarte"},
-        {"splitImpulse", "1: push deep overlap apart without adding velocity (Bullet's split impulse), 0: Baumgarte only; default 1"},
-        {"splitImpulseDepth", "m, overlap beyond which split impulse takes over from Baumgarte; default 0.04"},
-        {"cfm", "constraint force mixing (softness) of every contact; default 0"},
-        {"frictionDirections", "1: friction along the sliding direction only, 2: also across it; default 2"},
-        {"frictionCaching", "1: keep each point's friction directions across steps; default 0"},
-        {"fixedFrictionDirections", "1: friction directions from the normal only, not the sliding velocity; default 0"},
-        {"decoupledJoints", "1: each joint's rigid rows are handed to the solver in a basis where they do not interact (solved in one pass), 0: Bullet's rows as they are; default 1"},
-        {"jointIterations", "sequential-impulse iterations of joint rows (Bullet does not warm start them); default 10 x settings.iterations"},
-        {"linearSlop", "m, overlap the solver leaves uncorrected; default 0"},
-        {"planeMultipoint", "1: a convex shape on a plane keeps its whole face of contact points (Bullet's perturbation, 5 tilts whenever the face lacks 4 points, with stale points dropped first) and a capsule both ends of its core, 0: one new point per step (Bullet's default); default 1"},
-        {"warmstarting", "fraction of last step's impulses to start from, in [0, 1]; default 0.85"},
+        {.name = "erp2", .meaning = "fraction of deep overlap (beyond splitImpulseDepth) removed per step by split impulse; default settings.baumgarte", .min = 0, .max = 1},
+        {.name = "splitImpulse", .meaning = "1: push deep overlap apart without adding velocity (Bullet's split impulse), 0: Baumgarte only; default 1", .min = 0, .max = 1, .integer = true},
+        {.name = "splitImpulseDepth", .meaning = "m, overlap beyond which split impulse takes over from Baumgarte; default 0.04", .min = 0},
+        {.name = "cfm", .meaning = "constraint force mixing (softness) of every contact; default 0", .min = 0},
+        {.name = "frictionDirections", .meaning = "1: friction along the sliding direction only, 2: also across it; default 2", .min = 1, .max = 2, .integer = true},
+        {.name = "frictionCaching", .meaning = "1: keep each point's friction directions across steps; default 0", .min = 0, .max = 1, .integer = true},
+        {.name = "fixedFrictionDirections", .meaning = "1: friction directions from the normal only, not the sliding velocity; default 0", .min = 0, .max = 1, .integer = true},
+        {.name = "decoupledJoints", .meaning = "1: each joint's rigid rows are handed to the solver in a basis where they do not interact (solved in one pass), 0: Bullet's rows as they are; default 1", .min = 0, .max = 1, .integer = true},
+        {.name = "jointIterations", .meaning = "sequential-impulse iterations of joint rows (Bullet does not warm start them); default 10 x settings.iterations", .min = 1, .max = kMaxIterations, .integer = true},
+        {.name = "linearSlop", .meaning = "m, overlap the solver leaves uncorrected; default 0", .min = 0},
+        {.name = "planeMultipoint", .meaning = "1: a convex shape on a plane keeps its whole face of contact points (Bullet's perturbation, 5 tilts whenever the face lacks 4 points, with stale points dropped first) and a capsule both ends of its core, 0: one new point per step (Bullet's default); default 1", .min = 0, .max = 1, .integer = true},
+        {.name = "warmstarting", .meaning = "fraction of last step's impulses to start from; default 0.85", .min = 0, .max = 1},
     };
     caps.knownDeviations = {
         {"joints.motor_lever",

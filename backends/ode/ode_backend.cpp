@@ -60,11 +60,13 @@ Backend makeOdeBackend() {
         for (const char* field : {"breakForce", "breakTorque", "collideConnected"})
             caps.parameters.insert(std::string("joint.") + type + "." + field);
     caps.options = {
-        {"erp", "error reduction parameter: fraction of contact overlap (and of slider and wheel joint drift) "
-                "corrected per step, in [0, 1]; default settings.baumgarte (0.2). Ball, hinge, cone, fixed and "
-                "distance joints use their own 0.8"},
-        {"cfm", "constraint force mixing: softness of resting contacts, >= 0; default 1e-6 (bouncing contacts "
-                "use 1e-10 so softness does not absorb the rebound)"},
+        {.name = "erp", .meaning = "error reduction parameter: fraction of contact overlap (and of slider and wheel joint drift) "
+                "corrected per step; default settings.baumgarte (0.2). Ball, hinge, cone, fixed and "
+                "distance joints use their own 0.8",
+         .min = 0, .max = 1},
+        {.name = "cfm", .meaning = "constraint force mixing: softness of resting contacts; default 1e-6 (bouncing contacts "
+                "use 1e-10 so softness does not absorb the rebound)",
+         .min = 0},
     };
     backend.createWorld = [](const WorldSettings& settings) -> std::unique_ptr<WorldPeer> {
         return std::make_unique<ode::OdeWorld>(settings);

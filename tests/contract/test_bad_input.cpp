@@ -2,6 +2,7 @@
 // the world is left exactly as it was.
 #include <gmock/gmock.h>
 
+#include <cmath>
 #include <limits>
 
 #include "contract_fixture.hpp"
@@ -143,6 +144,32 @@ TEST_P(BadInputTest, StructuralChangesInsideForceCallbackAreRefused) {
     EXPECT_TRUE(refused);
     EXPECT_EQ(world.bodyCount(), 1u);
     EXPECT_TRUE(b.isValid());
+}
+
+// Every option the backend lists refuses a value outside its range, and a fraction where it
+// counts: a value below the minimum, above a finite maximum, and 0.5 past an integer's minimum.
+// The ends of the range are taken. The layer checks them all (BackendOption), whatever the policy:
+// a bad value is a mistake, not a missing feature.
+TEST_P(BadInputTest, BackendOptionsOutsideTheirRangeAreRefused) {
+    for (const BackendOption& option : caps().options) {
+        SCOPED_TRACE(option.name);
+        const std::string field = "WorldSettings.backendOptions." + option.name;
+        const auto with = [&](double value, CapabilityPolicy policy = CapabilityPolicy::Strict) {
+            WorldSettings s = settings();
+            s.capabilityPolicy = policy;
+            s.backendOptions[option.name] = value;
+            return s;
+        };
+        const std::string rule = "must be " + option.allowed();
+        expectError([&] { World w(with(option.min - 1.0)); }, {field.c_str(), rule.c_str()});
+        expectError([&] { World w(with(option.min - 1.0, CapabilityPolicy::Lenient)); }, {field.c_str()});
+        if (std::isfinite(option.max)) {
+            expectError([&] { World w(with(option.max + 1.0)); }, {field.c_str(), rule.c_str()});
+            EXPECT_NO_THROW(World w(with(option.max)));
+        }
+        if (option.integer) expectError([&] { World w(with(option.min + 0.5)); }, {field.c_str(), "an integer"});
+        EXPECT_NO_THROW(World w(with(option.min)));
+    }
 }
 
 TEST_P(BadInputTest, StrictPolicyRefusesWhatTheBackendLacks) {

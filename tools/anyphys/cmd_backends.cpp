@@ -23,8 +23,11 @@ std::vector<std::string> missingPairNames(const Capabilities& caps) {
 
 /// Capabilities with scene-file names, so the output can be matched against scene files.
 nlohmann::json capabilitiesJson(const Capabilities& caps) {
-    nlohmann::json options = nlohmann::json::object();
-    for (const auto& [name, meaning] : caps.options) options[name] = meaning;
+    nlohmann::json options = nlohmann::json::object(), optionsAllowed = nlohmann::json::object();
+    for (const BackendOption& option : caps.options) {
+        options[option.name] = option.meaning;
+        optionsAllowed[option.name] = option.allowed();
+    }
     return {
         {"dimensions", caps.dimensions},
         {"unitRoundoff", caps.unitRoundoff},
@@ -42,6 +45,7 @@ nlohmann::json capabilitiesJson(const Capabilities& caps) {
         {"forceEvaluation", forceEvaluationName(caps.forceEvaluation)},
         {"parameters", std::vector<std::string>(caps.parameters.begin(), caps.parameters.end())},
         {"options", options},
+        {"optionsAllowed", optionsAllowed},
         {"knownDeviations", caps.knownDeviations},
         {"deviationCeilings", caps.deviationCeilings},
         {"missingShapePairs", missingPairNames(caps)},
@@ -97,7 +101,8 @@ void printText(const std::vector<BackendInfo>& backends) {
         row("joint fields", jointFields);
         row("parameters", orNone(parameters));
         std::vector<std::string> options;
-        for (const auto& [name, meaning] : c.options) options.push_back(name + " (" + meaning + ")");
+        for (const BackendOption& option : c.options)
+            options.push_back(option.name + " (" + option.meaning + "; " + option.allowed() + ")");
         row("options", orNone(options));
         row("missing pairs", orNone(missingPairNames(c)));
         {

@@ -41,7 +41,7 @@ const NumberSetting* numberSetting(const std::string& name) {
 std::set<std::string> backendOptionNames() {
     std::set<std::string> names;
     for (const BackendInfo& b : availableBackends())
-        for (const auto& option : b.capabilities.options) names.insert(option.first);
+        for (const BackendOption& option : b.capabilities.options) names.insert(option.name);
     return names;
 }
 
@@ -193,7 +193,7 @@ std::optional<std::string> applyAxisValue(const std::string& name, const std::st
         const std::string option = optionName(name);
         settings.backendOptions[option] = v;
         const bool offered = std::any_of(caps.options.begin(), caps.options.end(),
-                                         [&option](const auto& o) { return o.first == option; });
+                                         [&option](const BackendOption& o) { return o.name == option; });
         if (!offered) return "backend option " + option + " not offered by this backend";
         return std::nullopt;
     }

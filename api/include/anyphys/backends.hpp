@@ -29,6 +29,10 @@ struct WorldSettings withBackendDefaults(struct WorldSettings settings, const Ca
 /// Names of what `settings` (plus content needing `effects`) asks for that the backend lacks,
 /// e.g. {"integrator rk4", "effect contacts"}. Empty when everything is honoured.
 std::vector<std::string> missingCapabilities(const Capabilities& caps, const struct WorldSettings& settings, Effects effects);
+/// Throws anyphys::Error of kind InvalidArgument naming "WorldSettings.backendOptions.<name>",
+/// the value and the option's range (BackendOption::allowed) for the first option the backend
+/// lists whose value it does not take. Options it does not list are missingCapabilities' concern.
+void checkBackendOptions(const Capabilities& caps, const struct WorldSettings& settings);
 /// What a joint asks for that the backend lacks: "joint type cone", "effect joints", or the
 /// parameters it uses by name ("joint.hinge.motor"; see joint_capabilities.hpp). `planar`: the
 /// world is planar (a ball joint then runs as a hinge). Empty when everything is honoured.

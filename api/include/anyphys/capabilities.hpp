@@ -1,6 +1,7 @@
 #pragma once
 // Machine-readable description of what a backend honours. The layer checks every request
 // against it; `anyphys backends --json` prints it.
+#include <limits>
 #include <map>
 #include <set>
 #include <utility>
@@ -11,6 +12,20 @@
 #include "anyphys/enums.hpp"
 
 namespace anyphys {
+
+/// A backend option (a WorldSettings::backendOptions key): what it does and the values it takes.
+/// World's constructor refuses a value outside [min, max], or a fraction for an integer option,
+/// before the backend reads it: a count read from 1e12 or -3 would otherwise be cast or clamped
+/// in silence.
+struct BackendOption {
+    std::string name;
+    std::string meaning;  ///< one line, with the default
+    double min = 0.0;
+    double max = std::numeric_limits<double>::infinity();  ///< inclusive; infinity: no upper bound
+    bool integer = false;                                  ///< a count or a 0 / 1 switch
+    /// The rule in words, for errors and listings: "an integer in [0, 1]", "a number >= 0".
+    std::string allowed() const;
+};
 
 /// When the user force callback is evaluated.
 enum class ForceEvaluation {
@@ -52,8 +67,8 @@ struct Capabilities {
     /// Individual def / settings fields honoured, by their scene-file path, e.g.
     /// "settings.substeps", "body.gravityScale". A field not listed is ignored by this backend.
     std::set<std::string> parameters;
-    /// Backend options (WorldSettings::backendOptions keys) with a one-line meaning each.
-    std::vector<std::pair<std::string, std::string>> options;
+    /// Backend options (WorldSettings::backendOptions keys), each with its meaning and range.
+    std::vector<BackendOption> options;
     /// Contract criteria this backend misses at default settings, by criterion id (e.g.
     /// "stack10.top_drift"), each with the measured value, the reason and the settings at which
     /// it passes, if any. The contract suite reports these visibly instead of failing, and fails

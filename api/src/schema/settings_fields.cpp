@@ -128,7 +128,7 @@ const std::vector<Field<WorldSettings>>& settingsFields() {
                 member(&S::divergencePolicy), allowedNames<DivergencePolicy>),
         {.key = "backendOptions", .path = "settings.backendOptions", .type = Type::Object, .unit = "object: name -> number",
          .defaultText = "`{}`", .check = Check::Finite,
-         .note = "each backend lists the names it honours (`anyphys backends`); the layer refuses the others",
+         .note = "each backend lists the names it honours and the values each takes (`anyphys backends`); the layer refuses other names, and values out of range",
          .honour = Honour::Layer, .ownCode = true},
     };
     return rows;

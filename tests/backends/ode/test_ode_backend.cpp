@@ -140,7 +140,7 @@ TEST(OdeBackend, ErpAndCfmOptionsReachTheWorld) {
     World defaults(plain);
     EXPECT_EQ(dWorldGetERP(defaults.native<dxWorld>()), 0.3);
 
-    // Out of range: refused by the backend, naming the option.
+    // Out of range: refused by the layer (the range ODE lists for erp), naming the option.
     s.backendOptions["erp"] = 1.5;
     try {
         World bad(s);
