@@ -64,7 +64,11 @@ NativeWorld::NativeWorld(const WorldSettings& settings)
     // The layer resolved them (withBackendDefaults); refuse settings that skipped it.
     resolvedSolver(settings_);
     resolvedSubsteps(settings_);
-    resolvedIterations(settings_);
+    const int iterations = resolvedIterations(settings_);
+    const auto relax = settings_.backendOptions.find("relaxIterations");  // in range: the layer checked
+    relaxIterations_ = relax != settings_.backendOptions.end() ? static_cast<int>(relax->second)
+                       : resolvedSolver(settings_) == Solver::ProjectedGaussSeidel ? 0
+                                                                                    : iterations;
 }
 
 NativeWorld::~NativeWorld() = default;

@@ -54,6 +54,10 @@ public:
 
     // ---- for stages and peers -------------------------------------------------------
     const WorldSettings& settings() const { return settings_; }
+    /// Relax passes per substep (backend option relaxIterations): each a pass over the joints
+    /// and contacts without position bias, after the positions move. Default: soft_step runs as
+    /// many as it runs solve passes (settings.iterations), pgs none (Baumgarte keeps its push).
+    int relaxIterations() const { return relaxIterations_; }
     /// Some dynamic or kinematic body was awake when this step began. When none is, nothing can
     /// move or touch anew, so the contact stages skip their walks: a sleeping pile costs ~nothing.
     bool anyActive() const { return anyActive_; }
@@ -101,6 +105,7 @@ private:
     void rebuildPipelineIfNeeded();
 
     WorldSettings settings_;
+    int relaxIterations_ = 0;
     Effects effects_;
     double lastStepDt_ = 0.0;   // s: the last step's (NativeBody::fall)
     bool fallNotedLastStep_ = false;  // the last step noted its bodies' NativeBody::fall

@@ -286,8 +286,8 @@ void StepSolver::addStage(StageKind kind, int items, int color, int substep, boo
 
 void StepSolver::planStages(const NativeWorld& world) {
     const WorldSettings& settings = world.settings();
-    const bool soft = *settings.solver != Solver::ProjectedGaussSeidel;
     const int substeps = *settings.substeps, iterations = *settings.iterations;
+    const int relaxIterations = world.relaxIterations();
     const bool hook = world.forceHook() && world.effects().has(Effect::UserForces);
     const int bodies = static_cast<int>(bodies_.size()), wide = wideCount_;
     const int colors = static_cast<int>(colorWideCount_.size());
@@ -307,10 +307,10 @@ void StepSolver::planStages(const NativeWorld& world) {
         addStage(StageKind::IntegrateVelocities, bodies);
         if (joints > 0) addStage(StageKind::WarmStartJoints, joints);
         for (int c = 0; c < colors; ++c) addStage(StageKind::WarmStart, colorWideCount_[c], c);
-        for (int it = 0; it < iterations; ++it) pass(StageKind::Solve, sub, !soft && it + 1 == iterations);
+        // The substep's last pass, solve or relax, leaves the impulses the events report.
+        for (int it = 0; it < iterations; ++it) pass(StageKind::Solve, sub, relaxIterations == 0 && it + 1 == iterations);
         addStage(StageKind::IntegratePositions, bodies);
-        if (soft)
-            for (int it = 0; it < iterations; ++it) pass(StageKind::Relax, sub, it + 1 == iterations);
+        for (int it = 0; it < relaxIterations; ++it) pass(StageKind::Relax, sub, it + 1 == relaxIterations);
     }
     if (restitution_)
         for (int round = 0; round < kRestitutionRounds; ++round)
