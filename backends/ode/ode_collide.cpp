@@ -70,6 +70,25 @@ int dropUntouchingMprContacts(dGeomID o1, dGeomID o2, dContact* contacts, int co
     return static_cast<int>(std::remove_if(contacts, contacts + count, untouching) - contacts);
 }
 
+// Friction turns a sphere about its contact point, so the joint's point belongs on the sphere. ODE
+// puts the point of a sphere against a box or a hull on the other surface, as deep inside the
+// sphere as the pair overlaps, which at rest is up to the surface layer (0.2 linearSlop, 1 mm): a
+// 5 mm ball rolling down a box slope turned about an arm of 4 mm and rolled 14 % slow (the inertia
+// term grows as (r / (r - depth))^2). The normal runs through the centre, so the point moves along
+// it to the sphere's surface (ODE's normal points into geom 1). Two spheres keep ODE's point
+// between them.
+void placePointsOnTheSphere(dGeomID o1, dGeomID o2, dContact* contacts, int count) {
+    const bool first = dGeomGetClass(o1) == dSphereClass, second = dGeomGetClass(o2) == dSphereClass;
+    if (first == second) return;
+    const dGeomID sphere = first ? o1 : o2;
+    const Vec3 centre = toVec3(dGeomGetPosition(sphere));
+    const double reach = first ? -dGeomSphereGetRadius(sphere) : dGeomSphereGetRadius(sphere);
+    for (int i = 0; i < count; ++i) {
+        const Vec3 point = centre + reach * toVec3(contacts[i].geom.normal);
+        for (int k = 0; k < 3; ++k) contacts[i].geom.pos[k] = point[k];
+    }
+}
+
 }  // namespace
 
 void OdeWorld::nearCallback(void* self, dGeomID o1, dGeomID o2) { static_cast<OdeWorld*>(self)->collidePair(o1, o2); }
@@ -116,18 +135,19 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     if (!trigger) n = dropUntouchingMprContacts(o1, o2, found, n);  // a sensor's touch is an overlap all the same
     if (n <= 0) return;
     if (n == 1 && !trigger) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
-    if (!trigger) {  // sensors never collide
-        createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);
-        wakeIfTouched(*a, *b);
+    if (effects_.has(Effect::Events)) {  // ODE's points, before the joints' sphere points
+        const auto first = static_cast<std::uint32_t>(points_.size());
+        if (!trigger)  // a sensor's overlap has no points
+            for (int i = 0; i < n; ++i) {
+                points_.push_back({toVec3(found[i].geom.pos), found[i].geom.depth, 0.0});
+                normals_.push_back(toVec3(found[i].geom.normal));
+            }
+        pairs_.push_back({a, b, trigger, first, static_cast<std::uint32_t>(points_.size()) - first});
     }
-    if (!effects_.has(Effect::Events)) return;
-    const auto first = static_cast<std::uint32_t>(points_.size());
-    if (!trigger)  // a sensor's overlap has no points
-        for (int i = 0; i < n; ++i) {
-            points_.push_back({toVec3(found[i].geom.pos), found[i].geom.depth, 0.0});
-            normals_.push_back(toVec3(found[i].geom.normal));
-        }
-    pairs_.push_back({a, b, trigger, first, static_cast<std::uint32_t>(points_.size()) - first});
+    if (trigger) return;  // sensors never collide
+    placePointsOnTheSphere(o1, o2, found, n);
+    createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);
+    wakeIfTouched(*a, *b);
 }
 
 void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts,
