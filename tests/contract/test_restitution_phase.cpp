@@ -78,6 +78,19 @@ protected:
         reboundSweep(criterion, settings(), 0.1, 0.2, 2.5, 4.0);
     }
 
+    /// Impacts just above the restitution threshold (1 m/s), 1.25 to 2.45 m/s at e = 0.2: the ball
+    /// rises 3 to 12 mm, less than its last step's fall, so an engine that finds the pair a step
+    /// early (a speculative point) meets a gap the rebound cannot climb back to within the step.
+    /// Bullet's ball stops at the gap for a step and falls back below the threshold: 3 of these
+    /// 13 impacts lose their bounce (declared). The method's bound (reboundSweep), loose at these speeds (60 %
+    /// at 1.25 m/s), still tells a bounce from none.
+    void nearThresholdBounce(const std::string& criterion) {
+        const std::string missing =
+            lacking(caps(), {ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts | Effect::Restitution);
+        ANYPHYS_REQUIRE(missing.empty(), missing);
+        reboundSweep(criterion, settings(), 0.1, 0.2, 1.25, 2.45);
+    }
+
     /// The low bounce on every solver the backend offers at 1 and (where honoured) 4 substeps.
     void lowBouncePerSolver(const std::string& criterion) {
         const std::string missing =
@@ -271,6 +284,7 @@ TEST_P(RestitutionPhaseTest, ReboundHeightHoldsForEverySolverAndSubstepCount) {
 }
 TEST_P(RestitutionPhaseTest, LowBounceRisesToRestitutionSquared) { lowBounce("restitution.low_bounce"); }
 TEST_P(RestitutionPhaseTest, LowBounceHoldsForEverySolverAndSubstepCount) { lowBouncePerSolver("restitution.low_bounce"); }
+TEST_P(RestitutionPhaseTest, LowBounceJustAboveTheThresholdStillRises) { nearThresholdBounce("restitution.near_threshold"); }
 TEST_P(RestitutionPhaseTest, FlatBoxBouncesStraightUp) { flatBoxBounce("restitution.flat_box"); }
 // A light ball on a heavier box, and a ball as heavy as the box or three times heavier: the bounce
 // drives the box into its ground contact, which must hold it through the bounce. Native's restitution
@@ -327,6 +341,9 @@ TEST_P(PlanarRestitutionPhaseTest, ReboundHeightHoldsForEverySolverAndSubstepCou
 TEST_P(PlanarRestitutionPhaseTest, LowBounceRisesToRestitutionSquared) { lowBounce("planar.restitution.low_bounce"); }
 TEST_P(PlanarRestitutionPhaseTest, LowBounceHoldsForEverySolverAndSubstepCount) {
     lowBouncePerSolver("planar.restitution.low_bounce");
+}
+TEST_P(PlanarRestitutionPhaseTest, LowBounceJustAboveTheThresholdStillRises) {
+    nearThresholdBounce("planar.restitution.near_threshold");
 }
 TEST_P(PlanarRestitutionPhaseTest, FlatBoxBouncesStraightUp) { flatBoxBounce("planar.restitution.flat_box"); }
 TEST_P(PlanarRestitutionPhaseTest, BallBouncesOnABoxRestingOnTheGround) {
