@@ -45,11 +45,8 @@ std::vector<std::string> missingCapabilities(const Capabilities& caps, const Wor
     if (settings.substeps && !caps.parameters.count("settings.substeps")) missing.push_back("settings.substeps");
     if (constrained && settings.iterations && !caps.parameters.count("settings.iterations"))
         missing.push_back("settings.iterations");
-    for (const auto& [name, value] : settings.backendOptions) {
-        bool known = false;
-        for (const BackendOption& option : caps.options) known = known || option.name == name;
-        if (!known) missing.push_back("backend option " + name);
-    }
+    for (const auto& [name, value] : settings.backendOptions)
+        if (!findOption(caps, name)) missing.push_back("backend option " + name);
     return missing;
 }
 
@@ -65,14 +62,19 @@ std::string BackendOption::allowed() const {
     return os.str();
 }
 
+const BackendOption* findOption(const Capabilities& caps, std::string_view name) {
+    const auto it = std::find_if(caps.options.begin(), caps.options.end(), [name](const BackendOption& o) { return o.name == name; });
+    return it == caps.options.end() ? nullptr : &*it;
+}
+
 void checkBackendOptions(const Capabilities& caps, const WorldSettings& settings) {
-    for (const auto& [name, value] : settings.backendOptions)
-        for (const BackendOption& option : caps.options) {
-            if (option.name != name) continue;
-            const bool inRange = value >= option.min && value <= option.max;  // false for NaN
-            if (!inRange || (option.integer && value != std::floor(value)))
-                throw Error::invalid("WorldSettings.backendOptions." + name, value, "must be " + option.allowed());
-        }
+    for (const auto& [name, value] : settings.backendOptions) {
+        const BackendOption* option = findOption(caps, name);
+        if (!option) continue;  // not listed: missingCapabilities reports it
+        const bool inRange = value >= option->min && value <= option->max;  // false for NaN
+        if (!inRange || (option->integer && value != std::floor(value)))
+            throw Error::invalid("WorldSettings.backendOptions." + name, value, "must be " + option->allowed());
+    }
 }
 
 std::vector<std::string> missingJointCapabilities(const Capabilities& caps, const JointDef& def, bool planar) {

@@ -12,11 +12,6 @@
 namespace anyphys::box2d {
 namespace {
 
-int option(const WorldSettings& s, const char* name, int fallback) {
-    const auto it = s.backendOptions.find(name);
-    return it == s.backendOptions.end() ? fallback : static_cast<int>(it->second);
-}
-
 b2BodyType bodyType(BodyType t) {
     switch (t) {
         case BodyType::Static: return b2_staticBody;
@@ -31,7 +26,7 @@ b2BodyType bodyType(BodyType t) {
 Box2dWorld::Box2dWorld(const WorldSettings& settings)
     : settings_(settings),
       velocityIterations_(resolvedIterations(settings)),
-      positionIterations_(option(settings, "positionIterations", kDefaultPositionIterations)),  // checked by the layer
+      positionIterations_(static_cast<int>(backendOption(settings, "positionIterations", kDefaultPositionIterations))),
       substeps_(resolvedSubsteps(settings)),
       world_(std::make_unique<b2World>(b2Vec2(0.0f, 0.0f))) {
     world_->SetContactFilter(&rules_);

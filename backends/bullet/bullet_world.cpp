@@ -26,10 +26,7 @@ bool LayerFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphas
 
 namespace {
 
-bool planeMultipoint(const WorldSettings& settings) {
-    const auto it = settings.backendOptions.find("planeMultipoint");
-    return it == settings.backendOptions.end() || it->second != 0.0;
-}
+bool planeMultipoint(const WorldSettings& settings) { return backendOption(settings, "planeMultipoint", 1.0) != 0.0; }
 
 std::unique_ptr<btDefaultCollisionConfiguration> makeCollisionConfiguration(const WorldSettings& settings) {
     // Bullet's default pools hold 4096 manifolds and 4096 collision algorithms, allocated and
@@ -110,38 +107,35 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
     world_->setForceUpdateAllAabbs(false);
 
     btContactSolverInfo& info = world_->getSolverInfo();
-    const auto option = [&settings](const char* name, double fallback) {
-        const auto it = settings.backendOptions.find(name);
-        return it == settings.backendOptions.end() ? fallback : it->second;
-    };
     info.m_numIterations = resolvedIterations(settings);
     // Overlap is pushed out at the layer's Baumgarte fraction per step: through the velocity up to
     // 4 cm deep, by split impulse (moving positions only) beyond (Bullet's defaults). Split impulse
     // from 5 mm on lets a box sliding down a 35 deg slope sink 4 cm into it, and at every depth a
     // 10-box stack topples. Bouncing impacts get no push at all (AnyphysDynamicsWorld::applyMaterials).
     info.m_erp = static_cast<btScalar>(settings.baumgarte);
-    info.m_erp2 = static_cast<btScalar>(option("erp2", settings.baumgarte));
-    info.m_splitImpulse = option("splitImpulse", 1.0) != 0.0;
-    info.m_splitImpulsePenetrationThreshold = static_cast<btScalar>(-option("splitImpulseDepth", 0.04));
+    info.m_erp2 = static_cast<btScalar>(backendOption(settings, "erp2", settings.baumgarte));
+    info.m_splitImpulse = backendOption(settings, "splitImpulse", 1.0) != 0.0;
+    info.m_splitImpulsePenetrationThreshold = static_cast<btScalar>(-backendOption(settings, "splitImpulseDepth", 0.04));
     // Two friction directions per point (Bullet's SOLVER_USE_2_FRICTION_DIRECTIONS): with one,
     // along the sliding velocity only, a box resting 2 deg under the friction angle creeps away
     // (0.85 m in 2 s) because at rest that direction is arbitrary. Two make friction a square
     // rather than a circle, which holds slightly more than mu (see the known deviations).
-    if (option("frictionDirections", 2) >= 2) info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
-    if (option("frictionCaching", 0) != 0) info.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
-    if (option("fixedFrictionDirections", 0) != 0) info.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
-    info.m_linearSlop = static_cast<btScalar>(option("linearSlop", 0.0));
-    info.m_warmstartingFactor = static_cast<btScalar>(option("warmstarting", info.m_warmstartingFactor));
+    if (backendOption(settings, "frictionDirections", 2) >= 2) info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+    if (backendOption(settings, "frictionCaching", 0) != 0) info.m_solverMode |= SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+    if (backendOption(settings, "fixedFrictionDirections", 0) != 0)
+        info.m_solverMode |= SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION;
+    info.m_linearSlop = static_cast<btScalar>(backendOption(settings, "linearSlop", 0.0));
+    info.m_warmstartingFactor = static_cast<btScalar>(backendOption(settings, "warmstarting", info.m_warmstartingFactor));
     info.m_restitutionVelocityThreshold = static_cast<btScalar>(settings.restitutionThreshold);
-    info.m_globalCfm = static_cast<btScalar>(option("cfm", info.m_globalCfm));
+    info.m_globalCfm = static_cast<btScalar>(backendOption(settings, "cfm", info.m_globalCfm));
     // Bullet starts every joint row from zero impulse each step (no warm starting, unlike
     // contacts). Each joint's rigid rows are decoupled (DecoupledConstraint), but rows of
     // different joints, and a motor or limit against its joint's rigid rows, still converge by
     // iteration: at the world's 30 a motor holding a 1 m arm of 2 kg droops by 0.3 rad in 2 s and
     // a 40-link chain gaps 5.8 cm. Joints get their own count (Bullet's per-constraint override;
     // contacts keep the world's): 10 x iterations, 2e-4 rad and 3.5 mm.
-    jointIterations_ = static_cast<int>(option("jointIterations", 10.0 * info.m_numIterations));
-    decoupledJoints_ = option("decoupledJoints", 1.0) != 0.0;
+    jointIterations_ = static_cast<int>(backendOption(settings, "jointIterations", 10.0 * info.m_numIterations));
+    decoupledJoints_ = backendOption(settings, "decoupledJoints", 1.0) != 0.0;
 }
 
 BulletWorld::~BulletWorld() {

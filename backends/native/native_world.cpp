@@ -62,13 +62,11 @@ double coreExtent(const Shape& s) {
 NativeWorld::NativeWorld(const WorldSettings& settings)
     : settings_(settings), stages_(makePipeline()), broadPhase_(kAabbMargin) {
     // The layer resolved them (withBackendDefaults); refuse settings that skipped it.
-    resolvedSolver(settings_);
+    const Solver solver = resolvedSolver(settings_);
     resolvedSubsteps(settings_);
     const int iterations = resolvedIterations(settings_);
-    const auto relax = settings_.backendOptions.find("relaxIterations");  // in range: the layer checked
-    relaxIterations_ = relax != settings_.backendOptions.end() ? static_cast<int>(relax->second)
-                       : resolvedSolver(settings_) == Solver::ProjectedGaussSeidel ? 0
-                                                                                    : iterations;
+    const int relaxByDefault = solver == Solver::ProjectedGaussSeidel ? 0 : iterations;
+    relaxIterations_ = static_cast<int>(backendOption(settings_, "relaxIterations", relaxByDefault));
 }
 
 NativeWorld::~NativeWorld() = default;

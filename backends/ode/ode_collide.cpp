@@ -81,7 +81,7 @@ int dropUntouchingMprContacts(dGeomID o1, dGeomID o2, dContact* contacts, int co
 // pile of ragdolls (sphere heads) from 55 mm to a median of 91 mm, up to 278. And by at most the
 // surface layer, the overlap a resting ball keeps: moved through a deep overlap as well, one of
 // that pile's nine draws opened 251 mm (61 to 108 mm capped; 55 to 68 unmoved).
-void placePointsOnTheSphere(dGeomID o1, dGeomID o2, dContact* contacts, int count, double most) {
+void movePointsOntoTheSphere(dGeomID o1, dGeomID o2, dContact* contacts, int count, double most) {
     const bool first = dGeomGetClass(o1) == dSphereClass, second = dGeomGetClass(o2) == dSphereClass;
     if (first == second) return;
     const dGeomID sphere = first ? o1 : o2;
@@ -152,7 +152,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
         pairs_.push_back({a, b, trigger, first, static_cast<std::uint32_t>(points_.size()) - first});
     }
     if (trigger) return;  // sensors never collide
-    if (!b->isDynamic()) placePointsOnTheSphere(o1, o2, found, n, dWorldGetContactSurfaceLayer(world_));
+    if (!b->isDynamic()) movePointsOntoTheSphere(o1, o2, found, n, dWorldGetContactSurfaceLayer(world_));
     createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n);
     wakeIfTouched(*a, *b);
 }

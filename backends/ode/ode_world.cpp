@@ -13,16 +13,11 @@
 namespace anyphys::ode {
 namespace {
 
-double option(const WorldSettings& s, const char* name, double fallback) {
-    const auto it = s.backendOptions.find(name);
-    return it == s.backendOptions.end() ? fallback : it->second;
-}
-
 }  // namespace
 
 OdeWorld::OdeWorld(const WorldSettings& settings) : settings_(settings) {
-    erp_ = option(settings, "erp", settings.baumgarte);
-    cfm_ = option(settings, "cfm", kDefaultCfm);  // both in range: the layer checked (caps.options)
+    erp_ = backendOption(settings, "erp", settings.baumgarte);
+    cfm_ = backendOption(settings, "cfm", kDefaultCfm);  // both in range: the layer checked (caps.options)
     ensureOdeInitialised();
     world_ = dWorldCreate();
     dWorldSetData(world_, this);  // lets tests reach the peer from the escape hatch

@@ -192,9 +192,7 @@ std::optional<std::string> applyAxisValue(const std::string& name, const std::st
     else {
         const std::string option = optionName(name);
         settings.backendOptions[option] = v;
-        const bool offered = std::any_of(caps.options.begin(), caps.options.end(),
-                                         [&option](const BackendOption& o) { return o.name == option; });
-        if (!offered) return "backend option " + option + " not offered by this backend";
+        if (!findOption(caps, option)) return "backend option " + option + " not offered by this backend";
         return std::nullopt;
     }
     if (!honours("settings." + name)) return "settings." + name + " not honoured by this backend";

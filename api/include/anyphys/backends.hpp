@@ -1,6 +1,7 @@
 #pragma once
 // Which backends this build contains and what each honours.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "anyphys/capabilities.hpp"
@@ -29,6 +30,8 @@ struct WorldSettings withBackendDefaults(struct WorldSettings settings, const Ca
 /// Names of what `settings` (plus content needing `effects`) asks for that the backend lacks,
 /// e.g. {"integrator rk4", "effect contacts"}. Empty when everything is honoured.
 std::vector<std::string> missingCapabilities(const Capabilities& caps, const struct WorldSettings& settings, Effects effects);
+/// The option `name` among those the backend lists, or nullptr.
+const BackendOption* findOption(const Capabilities& caps, std::string_view name);
 /// Throws anyphys::Error of kind InvalidArgument naming "WorldSettings.backendOptions.<name>",
 /// the value and the option's range (BackendOption::allowed) for the first option the backend
 /// lists whose value it does not take. Options it does not list are missingCapabilities' concern.

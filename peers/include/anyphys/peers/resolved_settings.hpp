@@ -26,4 +26,12 @@ inline Solver resolvedSolver(const WorldSettings& s) { return detail::resolvedSe
 inline int resolvedSubsteps(const WorldSettings& s) { return detail::resolvedSetting(s.substeps, "substeps"); }
 inline int resolvedIterations(const WorldSettings& s) { return detail::resolvedSetting(s.iterations, "iterations"); }
 
+/// A backend option's value, or `fallback` (its default) when the settings do not give it. The
+/// layer has checked it against the range the backend lists (checkBackendOptions), so a count
+/// casts to int safely.
+inline double backendOption(const WorldSettings& s, const char* name, double fallback) {
+    const auto it = s.backendOptions.find(name);
+    return it == s.backendOptions.end() ? fallback : it->second;
+}
+
 }  // namespace anyphys
