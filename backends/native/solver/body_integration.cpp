@@ -52,19 +52,22 @@ void integrateVelocities(const SolverBody* bodies, SolverState* states, int begi
     }
 }
 
+void displaceBody(SolverState& s, const Vec3& move, const Vec3& turn) {
+    for (int k = 0; k < 3; ++k) s.dp[k] += move[k];
+    const Quat dq = (rotationFromVector(turn) * Quat(s.dq[0], s.dq[1], s.dq[2], s.dq[3])).normalized();
+    s.dq[0] = dq.w();
+    s.dq[1] = dq.x();
+    s.dq[2] = dq.y();
+    s.dq[3] = dq.z();
+    // As a turn about Z, dq = (cos t/2, 0, 0, sin t/2): cos t = 1 - 2 z^2, sin t = 2 w z.
+    s.turn[0] = 1.0 - 2.0 * dq.z() * dq.z();
+    s.turn[1] = 2.0 * dq.w() * dq.z();
+}
+
 void integratePositions(SolverState* states, int begin, int end, double h) {
     for (int i = begin; i < end; ++i) {
         SolverState& s = states[i];
-        for (int k = 0; k < 3; ++k) s.dp[k] += h * s.v[k];
-        const Quat turn = rotationFromVector(h * Vec3(s.w[0], s.w[1], s.w[2]));
-        const Quat dq = (turn * Quat(s.dq[0], s.dq[1], s.dq[2], s.dq[3])).normalized();
-        s.dq[0] = dq.w();
-        s.dq[1] = dq.x();
-        s.dq[2] = dq.y();
-        s.dq[3] = dq.z();
-        // As a turn about Z, dq = (cos t/2, 0, 0, sin t/2): cos t = 1 - 2 z^2, sin t = 2 w z.
-        s.turn[0] = 1.0 - 2.0 * dq.z() * dq.z();
-        s.turn[1] = 2.0 * dq.w() * dq.z();
+        displaceBody(s, h * Vec3(s.v[0], s.v[1], s.v[2]), h * Vec3(s.w[0], s.w[1], s.w[2]));
     }
 }
 

@@ -12,6 +12,9 @@ namespace anyphys::native {
 void integrateVelocities(const SolverBody* bodies, SolverState* states, int begin, int end, double h);
 /// dp += h v; dq = exp(h w / 2) dq, and turn from dq. Dynamic and kinematic bodies.
 void integratePositions(SolverState* states, int begin, int end, double h);
+/// Moves a body by `move` and turns it by the rotation vector `turn` (dp, dq and turn kept
+/// together): integratePositions' update, and the joint position pass's (joint_solver.hpp).
+void displaceBody(SolverState& s, const Vec3& move, const Vec3& turn);
 
 /// Rotation by the rotation vector r (angle |r| about r / |r|), exact for every angle.
 Quat rotationFromVector(const Vec3& r);

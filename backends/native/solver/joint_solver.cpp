@@ -8,6 +8,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
+#include "solver/body_integration.hpp"
+
 namespace anyphys::native {
 namespace {
 
@@ -86,8 +88,9 @@ double wrap(double angle) {
     return angle - kPi;
 }
 
-// What a pass does with each row.
-enum class Mode { WarmStart, Solve, Relax };
+// What a pass does with each row. Position: PGS's position pass (correctJointPosition), which
+// moves the bodies instead of changing their velocities.
+enum class Mode { WarmStart, Solve, Relax, Position };
 
 // The geometry of one joint in the current pass, and the driver that solves, warm starts or
 // sums its rows.
@@ -97,6 +100,9 @@ public:
               Mode mode)
         : joint_(*c.joint), def_(c.joint->def), p_(p), mode_(mode), springsOnBusierBody_(c.springsOnBusierBody),
           a_(load(c.a, c.fixedA, bodies, states)), b_(load(c.b, c.fixedB, bodies, states)) {
+        if (mode_ == Mode::Position) {  // v and w carry the pass's displacement and turn
+            a_.v = a_.w = b_.v = b_.w = Vec3::Zero();
+        }
         frameA_ = a_.q * def_.frameA.orientation;
         frameB_ = b_.q * def_.frameB.orientation;
         if (def_.type == JointType::Wheel && def_.steering)
@@ -140,8 +146,12 @@ public:
     }
 
     void finish(SolverState* states) {
-        store(a_, states);
-        store(b_, states);
+        for (const Side* side : {&a_, &b_}) {
+            if (mode_ != Mode::Position)
+                store(*side, states);
+            else if (side->takesImpulses)
+                displaceBody(states[side->index], side->v, side->w);
+        }
     }
 
     // For reports.
@@ -165,20 +175,28 @@ public:
 private:
     // ---- bias of a position error -----------------------------------------------------------
 
-    // Velocity bias and softness of a rigid row with position error C (Cdot + bias -> 0).
+    // Velocity bias and softness of a rigid row with position error C (Cdot + bias -> 0). PGS
+    // corrects positions in their own pass, where the bias is the share of C to take back now: a
+    // velocity bias (Baumgarte) stays in the accumulated impulses, and warm starting it made a
+    // hanging 40-link chain ring up until it flew apart, even at 1 substep x 50 iterations.
     struct Bias {
         double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
     };
     Bias rigidBias(double C) const {
-        if (mode_ == Mode::Relax || !useBias_) return {};
-        if (p_.soft) return {p_.softness.biasRate * C, p_.softness.massScale, p_.softness.impulseScale};
-        return {p_.baumgarte * p_.invH * C, 1.0, 0.0};
+        if (mode_ == Mode::Position) return {p_.baumgarte * C, 1.0, 0.0};
+        if (mode_ == Mode::Relax || !useBias_ || !p_.soft) return {};
+        return {p_.softness.biasRate * C, p_.softness.massScale, p_.softness.impulseScale};
+    }
+    // The position pass changes no impulse: they are the velocity passes' (and warm starts').
+    void releaseImpulse(int slot) {
+        if (mode_ != Mode::Position) joint_.impulse[slot] = 0.0;
     }
 
     // ---- rows ---------------------------------------------------------------------------------
 
     // Solves, warm starts or sums one scalar row. lower / upper bound the accumulated impulse.
     void row(int slot, const Jacobian& j, const Bias& bias, double lower, double upper) {
+        if (mode_ == Mode::Position) return;
         double& acc = joint_.impulse[slot];
         if (mode_ == Mode::WarmStart) {
             apply(j, acc, a_, b_);
@@ -203,13 +221,13 @@ private:
     void limitPair(int lowerSlot, int upperSlot, const Jacobian& j, double position, double lower, double upper) {
         if (upper - lower <= kLockedRange) {
             lock(lowerSlot, j, position - lower);
-            joint_.impulse[upperSlot] = 0.0;
+            releaseImpulse(upperSlot);
         } else if (position - lower <= upper - position) {
             limitRow(lowerSlot, j, position - lower);
-            joint_.impulse[upperSlot] = 0.0;
+            releaseImpulse(upperSlot);
         } else {
             limitRow(upperSlot, negate(j), upper - position);
-            joint_.impulse[lowerSlot] = 0.0;
+            releaseImpulse(lowerSlot);
         }
     }
     // Drives Cdot toward `speed` with at most maxForce per second, in the block: row by row, a
@@ -220,6 +238,7 @@ private:
     // the block's softness still counts its impulse (left out, a 1 000 N m motor straining
     // against a 1e6 N m/rad spring let a pin on a 1 m lever give 0.6 m).
     void motorRow(int slot, const Jacobian& j, const JointMotor& motor, bool apart) {
+        if (mode_ == Mode::Position) return;  // a motor drives velocity only
         const double most = motor.maxForce * p_.h;
         if (apart) row(slot, j, {-motor.speed, 1.0, 0.0}, -most, most);
         locks_[lockCount_++] = {j, -motor.speed, slot, apart ? Row::MotorApart : Row::Motor, 0.0, most};
@@ -236,6 +255,7 @@ private:
     // at its warm start (for a hinge a 5 x 5 solve): the solve passes see the same pose, and the
     // relax passes, after the positions moved, keep that substep's law.
     void springRow(int slot, const Jacobian& j, double C, const JointSpringSI& spring) {
+        if (mode_ == Mode::Position) return;  // a spring's error is its own to keep
         if (mode_ == Mode::WarmStart)
             joint_.springExplicit =
                 spring.stiffness * p_.h * p_.h * springInverseMass(j) * springsOnBusierBody_ <= kExplicitSpring;
@@ -354,9 +374,10 @@ private:
             }
             const double C = locks_[i].C;
             const Row kind = locks_[i].row;
-            const double bias = locks_[i].ownLaw() ? C : kind == Row::Limit && C > 0.0 ? C * p_.invH : soft.bias * C;
+            const bool speculative = kind == Row::Limit && C > 0.0 && mode_ != Mode::Position;
+            const double bias = locks_[i].ownLaw() ? C : speculative ? C * p_.invH : soft.bias * C;
             rhs[i] = rate(ji, a_, b_) + bias;
-            acc[i] = joint_.impulse[locks_[i].slot];
+            acc[i] = mode_ == Mode::Position ? 0.0 : joint_.impulse[locks_[i].slot];
         }
         // The unknowns are z = delta + t acc (s + t = 1). Rigid rows: (K z)_rigid = -s rhs, the
         // block's soft step; its softness acts on all the joint's impulses, the spring's too, so
@@ -445,6 +466,7 @@ private:
         for (int i = 0; i < n; ++i) {
             if (locks_[i].row == Row::MotorApart) continue;  // its delta is 0, its impulse summed
             apply(locks_[i].j, delta[i], a_, b_);
+            if (mode_ == Mode::Position) continue;
             joint_.impulse[locks_[i].slot] += delta[i];
             sum(locks_[i].j, joint_.impulse[locks_[i].slot]);
         }
@@ -513,7 +535,8 @@ private:
                 limitPair(kTwistLower, kTwistUpper, angularRow(half.normalized()), twist, def_.twistLimits->lower,
                           def_.twistLimits->upper);
             } else {
-                joint_.impulse[kTwistLower] = joint_.impulse[kTwistUpper] = 0.0;
+                releaseImpulse(kTwistLower);
+                releaseImpulse(kTwistUpper);
             }
         }
     }
@@ -583,6 +606,12 @@ void solveJoint(const JointConstraint& c, const SolverBody* bodies, SolverState*
                 bool useBias, bool endOfSubstep) {
     JointPass pass(c, bodies, states, p, useBias ? Mode::Solve : Mode::Relax);
     pass.run(useBias, endOfSubstep);
+    pass.finish(states);
+}
+
+void correctJointPosition(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p) {
+    JointPass pass(c, bodies, states, p, Mode::Position);
+    pass.run(false, false);
     pass.finish(states);
 }
 

@@ -4,7 +4,10 @@
 // bodies' current poses (the step-start pose moved by the solver's displacement and rotation),
 // so position errors are always current; impulses accumulate per row and warm start the next
 // substep and step. Soft step: rigid rows correct their position error softly in the solve pass
-// and hold velocity exactly in the relax pass; PGS: Baumgarte correction in every pass.
+// and hold velocity exactly in the relax pass. PGS: the velocity passes hold velocity only, and a
+// position pass after the positions move takes back the settings.baumgarte share of each rigid
+// row's and violated limit's error by moving the bodies (Box2D v2's nonlinear Gauss-Seidel), so no
+// correction is left in the velocity or in the impulses that warm start the next substep.
 //
 // The rows of a joint (anchor point, rotation and sliding locks, limits, spring, motor) are solved
 // together as one small block, the spring and the motor each with its own law. A motor on a
@@ -39,9 +42,9 @@ struct JointConstraint {
 struct JointSolveParams {
     double h = 0.0;             // s, substep
     double invH = 0.0;
-    bool soft = true;           // soft step; false: PGS with Baumgarte
+    bool soft = true;           // soft step; false: PGS
     Softness softness;          // rigid rows' position correction (soft step)
-    double baumgarte = 0.0;     // PGS
+    double baumgarte = 0.0;     // PGS: the share of a position error one position pass takes back
 };
 
 /// Applies each row's accumulated impulse (start of a substep).
@@ -50,6 +53,11 @@ void warmStartJoint(const JointConstraint& c, const SolverBody* bodies, SolverSt
 /// this substep's total and add to the step's reactions.
 void solveJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p,
                 bool useBias, bool endOfSubstep);
+/// PGS: one pass over the joint's rigid rows and violated limits on positions, moving the bodies
+/// (dp, dq) by baumgarte times the error, with the substep's inverse masses. Motors and springs
+/// act on velocity only; no impulse changes.
+void correctJointPosition(const JointConstraint& c, const SolverBody* bodies, SolverState* states,
+                          const JointSolveParams& p);
 /// After the step: the reactions (step sums / dt) and the joint's position and speed from the
 /// bodies' final poses and velocities.
 void reportJoint(const JointConstraint& c, const SolverBody* bodies, const SolverState* states, double dt);

@@ -127,6 +127,7 @@ std::vector<const char*> StepSolver::lastStageNames() const {
             case StageKind::WarmStart: names.push_back("warm_start"); break;
             case StageKind::Solve: names.push_back("solve"); break;
             case StageKind::IntegratePositions: names.push_back("integrate_positions"); break;
+            case StageKind::CorrectJoints: names.push_back("correct_joints"); break;
             case StageKind::Relax: names.push_back("relax"); break;
             case StageKind::Restitution: names.push_back("restitution"); break;
             case StageKind::StoreImpulses: names.push_back("store_impulses"); break;
@@ -264,7 +265,8 @@ void StepSolver::buildConstraints() {
 void StepSolver::addStage(StageKind kind, int items, int color, int substep, bool endOfSubstep) {
     // Joints are few and solved one after another: one block, on whichever worker takes it.
     const bool jointStage = kind == StageKind::WarmStartJoints || kind == StageKind::SolveJoints ||
-                            kind == StageKind::RelaxJoints || kind == StageKind::ReportJoints;
+                            kind == StageKind::CorrectJoints || kind == StageKind::RelaxJoints ||
+                            kind == StageKind::ReportJoints;
     if (jointStage) {
         plan_.push_back({kind, color, substep, endOfSubstep, items, std::max(items, 1)});
         stages_.push_back({items > 0 ? 1 : 0, false});
@@ -310,6 +312,10 @@ void StepSolver::planStages(const NativeWorld& world) {
         // The substep's last pass, solve or relax, leaves the impulses the events report.
         for (int it = 0; it < iterations; ++it) pass(StageKind::Solve, sub, relaxIterations == 0 && it + 1 == iterations);
         addStage(StageKind::IntegratePositions, bodies);
+        // PGS's joints take back their position errors here, one pass per velocity pass
+        // (joint_solver.hpp); the soft step's do it softly in the solve passes.
+        if (joints > 0 && *settings.solver == Solver::ProjectedGaussSeidel)
+            for (int it = 0; it < iterations; ++it) addStage(StageKind::CorrectJoints, joints);
         for (int it = 0; it < relaxIterations; ++it) pass(StageKind::Relax, sub, it + 1 == relaxIterations);
     }
     if (restitution_)
@@ -418,6 +424,9 @@ void StepSolver::runBlock(int stage, int block, int worker) {
         case StageKind::SolveJoints:
             for (const JointConstraint& c : joints_)
                 solveJoint(c, bodies_.data(), states_.data(), jointParams_, true, p.endOfSubstep);
+            break;
+        case StageKind::CorrectJoints:
+            for (const JointConstraint& c : joints_) correctJointPosition(c, bodies_.data(), states_.data(), jointParams_);
             break;
         case StageKind::RelaxJoints:
             for (const JointConstraint& c : joints_)

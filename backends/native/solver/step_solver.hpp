@@ -63,6 +63,7 @@ private:
         SolveJoints,
         Solve,
         IntegratePositions,
+        CorrectJoints,
         RelaxJoints,
         Relax,
         Restitution,
