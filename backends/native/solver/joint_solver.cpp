@@ -374,8 +374,13 @@ private:
             }
             const double C = locks_[i].C;
             const Row kind = locks_[i].row;
-            const bool speculative = kind == Row::Limit && C > 0.0 && mode_ != Mode::Position;
-            const double bias = locks_[i].ownLaw() ? C : speculative ? C * p_.invH : soft.bias * C;
+            // A limit short of its stop may close the gap, not pass it: the velocity passes allow
+            // C / h, the position pass C (all of it, else a stop ahead of a turn held it back).
+            const bool ahead = kind == Row::Limit && C > 0.0;
+            const double bias = locks_[i].ownLaw()            ? C
+                                : ahead && mode_ == Mode::Position ? C
+                                : ahead                        ? C * p_.invH
+                                                               : soft.bias * C;
             rhs[i] = rate(ji, a_, b_) + bias;
             acc[i] = mode_ == Mode::Position ? 0.0 : joint_.impulse[locks_[i].slot];
         }

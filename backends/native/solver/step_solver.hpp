@@ -3,8 +3,9 @@
 // selected by WorldSettings::solver, share one set of staged functions over arrays:
 //  - soft step (default, after Box2D v3): per substep integrate velocities, warm start, solve
 //    soft contacts with bias, integrate positions, relax without bias;
-//  - projected Gauss-Seidel: per substep integrate velocities, warm start, solve with Baumgarte
-//    bias, integrate positions.
+//  - projected Gauss-Seidel: per substep integrate velocities, warm start, solve (contacts with
+//    Baumgarte bias, joints without), integrate positions, correct the joints' positions.
+//  Joints run before the contacts in each pass (warm_start_joints, solve_joints, relax_joints).
 // Both then apply restitution and store the impulses for the next step's warm start.
 //
 // The stages of a step, in order (each a range function over arrays, run by StageRunner):
@@ -14,7 +15,9 @@
 //   warm_start  (per colour)              each substep
 //   solve       (per colour)              each substep, `iterations` passes
 //   integrate_positions                   each substep
-//   relax       (per colour)              each substep, `iterations` passes (soft step only)
+//   correct_joints                        each substep, `iterations` passes (PGS with joints only)
+//   relax       (per colour)              each substep, backend option relaxIterations passes
+//                                         (default `iterations` on soft step, none on PGS)
 //   restitution (per colour)              kRestitutionRounds rounds, when some material bounces
 //   store_impulses                        once
 //   finalize_bodies                       once: poses and velocities back to the bodies
