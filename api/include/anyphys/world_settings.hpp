@@ -73,7 +73,7 @@ struct WorldSettings {
     double contactHertz = 60.0;                     ///< Hz, soft-contact stiffness (soft step), > 0; default 60 (native caps it at a fifth of the substep rate)
     double contactDampingRatio = 10.0;              ///< soft-contact damping ratio, >= 0; default 10 (heavily damped: no bounce from overlap)
     double contactPushMaxVelocity = 3.0;            ///< m/s, fastest speed at which overlap is pushed apart, > 0; default 3
-    double baumgarte = 0.2;                         ///< PGS: fraction of overlap corrected per step, in [0, 1]; default 0.2
+    double baumgarte = 0.2;                         ///< PGS: fraction of overlap corrected per step (native: and of a joint's error per position pass), in [0, 1]; default 0.2
     double restitutionThreshold = 1.0;              ///< m/s, slower impacts do not bounce, >= 0; default 1
     double linearSlop = 0.005;                      ///< m, allowed overlap and touching tolerance, > 0; default 0.005
     double speculativeDistance = 0.02;              ///< m, contacts are created this far before touching, >= 0; default 4 x linearSlop

@@ -67,7 +67,7 @@ const std::vector<Field<WorldSettings>>& settingsFields() {
                  .check = Check::Positive, .note = "fastest speed at which overlap is pushed apart"},
                 member(&S::contactPushMaxVelocity)),
         with<S>({.key = "baumgarte", .path = "settings.baumgarte", .unit = "1", .value = 0.2, .check = Check::UnitInterval,
-                 .note = "PGS: fraction of overlap corrected per step"},
+                 .note = "PGS: fraction of overlap corrected per step (native: and of a joint's error per position pass)"},
                 member(&S::baumgarte)),
         with<S>({.key = "restitutionThreshold", .path = "settings.restitutionThreshold", .unit = "m/s", .value = 1.0,
                  .check = Check::NonNegative, .note = "impacts slower than this do not bounce"},
