@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "native_world.hpp"
+#include "solver/joint_solver.hpp"
 
 namespace anyphys::native {
 namespace {
@@ -374,6 +375,71 @@ TEST(NativeJoints, MotorDrivesALeverIntoItsStop) {
         lever.run(0, 60);
         EXPECT_NEAR(hinge->position(), 0.0, 1e-6) << toString(solver) << ", weak motor";
         EXPECT_NEAR(hinge->speed(), 0.0, 1e-6) << toString(solver) << ", weak motor";
+    }
+}
+
+// PGS's position pass on one hinge (correctJointPosition, the solver's own arrays): a 1 kg bob on a
+// 1 m arm (I = 0.004) about world Z, its pin 5 cm off. One pass takes back baumgarte's share of
+// each error, moving the bob and touching no impulse or velocity. A stop the correction does not
+// reach changes nothing (one 0.01 rad ahead had held the turn to 0.002 rad and pushed the centre
+// 8 mm instead); a stop passed by 0.05 rad is taken back by 0.2 x 0.05; a locked angle both ways.
+TEST(NativeJoints, PgsPositionPassTakesBackErrorsAndHonoursStops) {
+    struct Hinge {
+        NativeJoint joint;
+        JointConstraint constraint;
+        SolverBody body;
+        SolverState state;
+        JointSolveParams params;
+    };
+    const auto hinge = [](std::optional<JointLimits> limits, double angle, const Vec3& centre) {
+        auto h = std::make_unique<Hinge>();
+        const Quat alongZ(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitY()));  // frame X along world Z
+        h->joint.def.type = JointType::Hinge;
+        h->joint.def.frameA = {Vec3::Zero(), alongZ};
+        h->joint.def.frameB = {Vec3(-1, 0, 0), alongZ};
+        h->joint.def.limits = limits;
+        for (int k = 0; k < kRowCount; ++k) h->joint.impulse[static_cast<std::size_t>(k)] = 0.5 + k;  // must stay
+        h->constraint.joint = &h->joint;
+        h->constraint.b = 0;
+        h->body.dynamic = true;
+        h->body.invMass = Vec3::Ones();
+        h->body.invInertia = 250.0 * Mat3::Identity();
+        h->body.position0 = centre;
+        h->body.orientation0 = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+        h->state.v[0] = 0.3;  // must stay
+        h->state.w[2] = -0.7;
+        h->params = {.h = 1.0 / 480.0, .invH = 480.0, .soft = false, .softness = {}, .baumgarte = 0.2};
+        return h;
+    };
+    // The hinge angle and the pin's distance from the origin after `passes` passes.
+    const auto correct = [](Hinge& h, int passes) {
+        const NativeJoint before = h.joint;
+        for (int i = 0; i < passes; ++i) correctJointPosition(h.constraint, &h.body, &h.state, h.params);
+        for (int k = 0; k < kRowCount; ++k)
+            EXPECT_EQ(h.joint.impulse[static_cast<std::size_t>(k)], before.impulse[static_cast<std::size_t>(k)]);
+        EXPECT_EQ(h.state.v[0], 0.3);
+        EXPECT_EQ(h.state.w[2], -0.7);
+        const Quat q = Quat(h.state.dq[0], h.state.dq[1], h.state.dq[2], h.state.dq[3]) * h.body.orientation0;
+        const Vec3 x = h.body.position0 + Vec3(h.state.dp[0], h.state.dp[1], h.state.dp[2]);
+        return std::pair{2.0 * std::atan2(q.z(), q.w()), (x + q * Vec3(-1, 0, 0)).norm()};
+    };
+    const Vec3 pinOff(1.0, 0.05, 0.0);
+    auto free = hinge(std::nullopt, 0.0, pinOff);
+    const auto [freeAngle, freePin] = correct(*free, 1);
+    EXPECT_NEAR(freePin, 0.8 * 0.05, 1e-4);  // baumgarte 0.2 of the 5 cm
+    for (const JointLimits& ahead : {JointLimits{-0.3, 0.01}, JointLimits{-0.01, 0.3}}) {
+        auto h = hinge(ahead, 0.0, pinOff);
+        const auto [angle, pin] = correct(*h, 1);
+        EXPECT_NEAR(angle, freeAngle, 1e-12) << "a stop not reached changed the correction";
+        EXPECT_NEAR(pin, freePin, 1e-12);
+    }
+    const double past = 0.05;
+    const Vec3 atPast(std::cos(past), std::sin(past), 0.0);
+    auto passed = hinge(JointLimits{-0.3, 0.0}, past, atPast);
+    EXPECT_NEAR(correct(*passed, 1).first, 0.8 * past, 1e-4);
+    for (const double sign : {1.0, -1.0}) {
+        auto locked = hinge(JointLimits{0.0, 0.0}, sign * past, Vec3(std::cos(past), sign * std::sin(past), 0.0));
+        EXPECT_NEAR(correct(*locked, 1).first, sign * 0.8 * past, 1e-4);
     }
 }
 
