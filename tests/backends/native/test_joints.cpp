@@ -534,9 +534,9 @@ TEST(NativeJoints, JointChainHangingAtRestStaysTogether) {
 }
 
 // The same chain (end 10 times a link) released horizontal swings down without gaining energy: it
-// can only lose what it had (0.4 J, 1 % of the 47 J its fall releases, is the bound). PGS at 8 x 1
-// gained 459 J from its warm-started Baumgarte bias and opened a joint 117 mm; at 1 x 20 the
-// chain tore (4 m).
+// can only lose what it had (0.4 J, a third of 1 % of the 116 J its fall releases, is the bound).
+// PGS at 8 x 1 gained 459 J from its warm-started Baumgarte bias and opened a joint 117 mm; at
+// 1 x 20 the chain tore (4 m).
 // Measured worst gaps: soft step 18.0 mm, PGS 8 x 1 16.1 mm, 1 x 20 32.2 mm; bounds about 1.5 times.
 TEST(NativeJoints, JointChainSwingingDownGainsNoEnergy) {
     for (const ChainCase& c : {ChainCase{Solver::SoftStep, 8, 1, 0.027}, ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.025},
