@@ -777,6 +777,28 @@ protected:
         world.removeListener(&recorder);
     }
 
+    /// A chain of 40 balls (0.1 kg, radius 3 cm) spaced 10 cm along `direction` from the origin,
+    /// each held by a ball joint at the previous ball's centre (the first at the origin); the last
+    /// ball weighs `endMass`.
+    std::vector<Body> ballChain(World& world, const Vec3& direction, double endMass) {
+        constexpr int kLinks = 40;
+        std::vector<Body> bodies;
+        Body previous;
+        for (int i = 0; i < kLinks; ++i) {
+            Body link = ball(world, kChainSpacing * (i + 1) * direction, i + 1 == kLinks ? endMass : 0.1, 0.03);
+            JointDef d;
+            d.type = JointType::Ball;
+            d.bodyA = previous;
+            d.bodyB = link;
+            d.anchor = kChainSpacing * i * direction;
+            world.createJoint(d);
+            bodies.push_back(link);
+            previous = link;
+        }
+        return bodies;
+    }
+    static constexpr double kChainSpacing = 0.1;
+
     void HangingChainHoldsTogetherCase() {
         ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
         for (Solver solver : caps().solvers)
@@ -784,23 +806,8 @@ protected:
             WorldSettings s = jointSettings();
             s.solver = solver;
             World world(s);
-            const int links = 40;
-            const double spacing = 0.1;
-            std::vector<Body> bodies;
-            Body previous;
-            for (int i = 0; i < links; ++i) {
-                const bool end = i + 1 == links;
-                // Started off-vertical so the chain swings.
-                Body link = ball(world, Vec3(spacing * (i + 1), 0, 0), end ? 0.1 * endRatio : 0.1, 0.03);
-                JointDef d;
-                d.type = JointType::Ball;
-                d.bodyA = previous;
-                d.bodyB = link;
-                d.anchor = Vec3(spacing * i, 0, 0);
-                world.createJoint(d);
-                bodies.push_back(link);
-                previous = link;
-            }
+            const double spacing = kChainSpacing;
+            const std::vector<Body> bodies = ballChain(world, Vec3::UnitX(), 0.1 * endRatio);  // horizontal: it swings
             double worst = 0.0;
             for (int i = 0; i < 300; ++i) {
                 world.step();
@@ -838,30 +845,15 @@ protected:
             WorldSettings s = jointSettings();
             s.solver = solver;
             World world(s);
-            const int links = 40;
-            const double spacing = 0.1, radius = 0.03;
-            std::vector<Body> bodies;
-            std::vector<double> masses;
-            Body previous;
-            for (int i = 0; i < links; ++i) {
-                masses.push_back(i + 1 == links ? 10.0 : 0.1);
-                Body link = ball(world, Vec3(0, -spacing * (i + 1), 0), masses.back(), radius);
-                JointDef d;
-                d.type = JointType::Ball;
-                d.bodyA = previous;
-                d.bodyB = link;
-                d.anchor = Vec3(0, -spacing * i, 0);
-                world.createJoint(d);
-                bodies.push_back(link);
-                previous = link;
-            }
+            const double spacing = kChainSpacing;
+            const std::vector<Body> bodies = ballChain(world, -Vec3::UnitY(), 10.0);
             const auto energy = [&] {
                 double e = 0.0;
-                for (std::size_t i = 0; i < bodies.size(); ++i) {
-                    const BodyState b = bodies[i].state();
-                    const double inertia = 0.4 * masses[i] * radius * radius;
-                    e += masses[i] * (-s.gravity.dot(b.position) + 0.5 * b.linearVelocity.squaredNorm()) +
-                         0.5 * inertia * b.angularVelocity.squaredNorm();
+                for (const Body& body : bodies) {
+                    const BodyState b = body.state();
+                    const MassProperties mass = body.massProperties();  // a ball: one principal moment
+                    e += mass.mass * (-s.gravity.dot(b.position) + 0.5 * b.linearVelocity.squaredNorm()) +
+                         0.5 * mass.inertia.x() * b.angularVelocity.squaredNorm();
                 }
                 return e;
             };
