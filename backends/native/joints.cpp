@@ -14,19 +14,20 @@ Vec3 NativeJointPeer::reactionTorque() const { return joint().reactionTorque; }
 // Every change wakes the joint's bodies: a sleeping pair must react to a new motor speed.
 void NativeJointPeer::setMotor(const std::optional<JointMotor>& motor) {
     joint().def.motor = motor;
-    if (!motor) joint().impulse[kMotor] = 0.0;
+    if (!motor) joint().releaseRow(kMotor);
     world_.wakeJoint(index_);
 }
 
 void NativeJointPeer::setLimits(const std::optional<JointLimits>& limits) {
     joint().def.limits = limits;
-    joint().impulse[kLower] = joint().impulse[kUpper] = 0.0;
+    joint().releaseRow(kLower);
+    joint().releaseRow(kUpper);
     world_.wakeJoint(index_);
 }
 
 void NativeJointPeer::setSpring(const std::optional<JointSpringSI>& spring) {
     joint().def.spring = spring;
-    joint().impulse[kSpring] = 0.0;
+    joint().releaseRow(kSpring);
     world_.wakeJoint(index_);
 }
 

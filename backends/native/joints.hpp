@@ -34,6 +34,12 @@ struct NativeJoint {
     std::uint32_t bodyB = kWorldBody;
     double steeringAngle = 0.0;         // rad, wheels with steering
     std::array<double, kRowCount> impulse{};  // accumulated per row (N s, N m s), kept between steps
+    // PGS: the impulses as the substep's solve passes left them, kept by its position pass before
+    // any relax pass adds to them; the next substep's warm start begins from these (joint_solver.hpp).
+    std::array<double, kRowCount> solvedImpulse{};
+    bool solvedImpulseFresh = false;
+    /// Forgets a row's impulse (its motor, limit or spring changed).
+    void releaseRow(int row) { impulse[static_cast<std::size_t>(row)] = solvedImpulse[static_cast<std::size_t>(row)] = 0.0; }
     // The spring's stiffness is explicit this substep: decided once, at its warm start, from the
     // substep's starting pose (the solver's springRow).
     bool springExplicit = false;

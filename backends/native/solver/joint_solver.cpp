@@ -602,6 +602,9 @@ private:
 }  // namespace
 
 void warmStartJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p) {
+    NativeJoint& j = *c.joint;
+    if (j.solvedImpulseFresh) j.impulse = j.solvedImpulse;
+    j.solvedImpulseFresh = false;
     JointPass pass(c, bodies, states, p, Mode::WarmStart);
     pass.run(false, false);
     pass.finish(states);
@@ -615,6 +618,8 @@ void solveJoint(const JointConstraint& c, const SolverBody* bodies, SolverState*
 }
 
 void correctJointPosition(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p) {
+    c.joint->solvedImpulse = c.joint->impulse;
+    c.joint->solvedImpulseFresh = true;
     JointPass pass(c, bodies, states, p, Mode::Position);
     pass.run(false, false);
     pass.finish(states);

@@ -7,7 +7,10 @@
 // and hold velocity exactly in the relax pass. PGS: the velocity passes hold velocity only, and a
 // position pass after the positions move takes back the settings.baumgarte share of each rigid
 // row's and violated limit's error by moving the bodies (Box2D v2's nonlinear Gauss-Seidel), so no
-// correction is left in the velocity or in the impulses that warm start the next substep.
+// correction is left in the velocity or in the impulses that warm start the next substep. PGS's
+// relax passes (after the position pass) make the velocities consistent at the pose the next
+// substep starts from; the next warm start applies what the solve passes left, without what the
+// relax passes added (applied again on top, a fast 40-link chain gained 3 800 J at 8 relax passes).
 //
 // The rows of a joint (anchor point, rotation and sliding locks, limits, spring, motor) are solved
 // together as one small block, the spring and the motor each with its own law. A motor on a
@@ -47,7 +50,8 @@ struct JointSolveParams {
     double baumgarte = 0.0;     // PGS: the share of a position error one position pass takes back
 };
 
-/// Applies each row's accumulated impulse (start of a substep).
+/// Applies each row's accumulated impulse (start of a substep); on PGS, the impulses as the last
+/// substep's solve passes left them (NativeJoint::solvedImpulse), where its position pass kept them.
 void warmStartJoint(const JointConstraint& c, const SolverBody* bodies, SolverState* states, const JointSolveParams& p);
 /// One Gauss-Seidel pass over the joint's rows. `endOfSubstep`: the impulses now in the rows are
 /// this substep's total and add to the step's reactions.
@@ -55,7 +59,8 @@ void solveJoint(const JointConstraint& c, const SolverBody* bodies, SolverState*
                 bool useBias, bool endOfSubstep);
 /// PGS: one pass over the joint's rigid rows and violated limits on positions, moving the bodies
 /// (dp, dq) by baumgarte times the error, with the substep's inverse masses. Motors and springs
-/// act on velocity only; no impulse changes.
+/// act on velocity only; no impulse changes. Keeps the impulses as they are (the solve passes'
+/// total) for the next substep's warm start.
 void correctJointPosition(const JointConstraint& c, const SolverBody* bodies, SolverState* states,
                           const JointSolveParams& p);
 /// After the step: the reactions (step sums / dt) and the joint's position and speed from the

@@ -28,12 +28,14 @@ std::unique_ptr<BodyPeer> pointMass(NativeWorld& world, const Vec3& position, do
 // Soft step at the default 8 substeps x 1 iteration, or PGS at 1 substep x 20 iterations (with
 // its position pass): both solvers run every joint row. `substeps` and `iterations` override.
 std::unique_ptr<NativeWorld> jointWorld(Effects effects = Effect::Gravity | Effect::Joints,
-                                        Solver solver = Solver::SoftStep, int substeps = 0, int iterations = 0) {
+                                        Solver solver = Solver::SoftStep, int substeps = 0, int iterations = 0,
+                                        int relaxIterations = -1) {
     WorldSettings s;
     const bool pgs = solver == Solver::ProjectedGaussSeidel;
     s.substeps = substeps > 0 ? substeps : pgs ? 1 : 8;
     s.iterations = iterations > 0 ? iterations : pgs ? 20 : 1;
     s.solver = solver;
+    if (relaxIterations >= 0) s.backendOptions["relaxIterations"] = relaxIterations;  // else the solver's default
     auto world = std::make_unique<NativeWorld>(s);
     world->setEffects(effects);
     return world;
@@ -451,8 +453,8 @@ struct ChainRun {
     double worstGap = 0.0, energyGain = 0.0;
 };
 template <class Start>
-ChainRun runChain(Solver solver, int substeps, int iterations, double endMass, Start start) {
-    auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver, substeps, iterations);
+ChainRun runChain(Solver solver, int substeps, int iterations, int relaxIterations, double endMass, Start start) {
+    auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver, substeps, iterations, relaxIterations);
     NativeWorld& world = *worldPtr;
     constexpr int kLinks = 40;
     std::vector<std::unique_ptr<BodyPeer>> links;
@@ -499,11 +501,13 @@ ChainRun runChain(Solver solver, int substeps, int iterations, double endMass, S
     return run;
 }
 
-// A solver configuration of the chain tests and its bound on the worst joint gap (m).
+// A solver configuration of the chain tests and its bound on the worst joint gap (m); relax
+// passes: the solver's default unless given.
 struct ChainCase {
     Solver solver;
     int substeps, iterations;
     double gapBound;
+    int relaxIterations = -1;
 };
 
 // Runs the chain in `c`, prints what it measured and checks the gap and that the energy never
@@ -511,9 +515,10 @@ struct ChainCase {
 // to billions of joules).
 template <class Start>
 void expectChainHolds(const ChainCase& c, const char* what, double endMass, Start start) {
-    const ChainRun run = runChain(c.solver, c.substeps, c.iterations, endMass, start);
+    const ChainRun run = runChain(c.solver, c.substeps, c.iterations, c.relaxIterations, endMass, start);
+    const std::string relax = c.relaxIterations >= 0 ? " + " + std::to_string(c.relaxIterations) + " relax" : "";
     const std::string label = std::string(toString(c.solver)) + " " + std::to_string(c.substeps) + " x " +
-                              std::to_string(c.iterations) + ", chain of 40 " + what;
+                              std::to_string(c.iterations) + relax + ", chain of 40 " + what;
     std::cout << "[ MEASURED ] native " << label << ": worst gap " << run.worstGap * 1e3 << " mm, energy gain "
               << run.energyGain << " J\n";
     EXPECT_LT(run.worstGap, c.gapBound) << label;
@@ -525,22 +530,32 @@ void expectChainHolds(const ChainCase& c, const char* what, double endMass, Star
 // the impulses that warm start the next substep, and this chain rang up until it flew apart
 // within half a second, at 8 x 1 and at 1 x 50 alike (a uniform chain too); ODE and Bullet hold it
 // (2.8 and 1.6 cm). Now PGS corrects joint positions in a pass of their own (joint_solver.hpp).
-// Measured worst gaps: soft step 8.8 mm; PGS 8 x 1 11.9 mm, 1 x 20 34.0 mm; bounds about 1.5
-// times. The energy (kinetic and m g y) has nothing to gain.
+// Measured worst gaps: soft step 8.8 mm; PGS 8 x 1 11.9 mm, 1 x 20 34.0 mm, 8 x 1 with 4 and 8
+// relax passes 11.3 and 10.8 mm; bounds about 1.5 times. (Warm-started with the relax passes'
+// impulses too, PGS held this chain to 2.4 and 1.3 mm, but the swinging chain below then gained
+// thousands of joules: the relax passes now refine only the velocity, not the next warm start.)
+// The energy (kinetic and m g y) has nothing to gain.
 TEST(NativeJoints, JointChainHangingAtRestStaysTogether) {
     for (const ChainCase& c : {ChainCase{Solver::SoftStep, 8, 1, 0.015}, ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.02},
-                               ChainCase{Solver::ProjectedGaussSeidel, 1, 20, 0.05}})
+                               ChainCase{Solver::ProjectedGaussSeidel, 1, 20, 0.05},
+                               ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.02, 4},
+                               ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.02, 8}})
         expectChainHolds(c, "hanging at rest, end 100x", 10.0, [](int i) { return Vec3(0.0, -0.1 * (i + 1), 0.0); });
 }
 
 // The same chain (end 10 times a link) released horizontal swings down without gaining energy: it
 // can only lose what it had (0.4 J, a third of 1 % of the 116 J its fall releases, is the bound).
 // PGS at 8 x 1 gained 459 J from its warm-started Baumgarte bias and opened a joint 117 mm; at
-// 1 x 20 the chain tore (4 m).
-// Measured worst gaps: soft step 18.0 mm, PGS 8 x 1 16.1 mm, 1 x 20 32.2 mm; bounds about 1.5 times.
+// 1 x 20 the chain tore (4 m). With relax passes PGS warm-started the relax passes' impulses too,
+// which re-applied at the pose they were solved at, on velocities they had already made
+// consistent: 4 relax passes gained 312 J (gap 34 mm), 8 gained 3 263 J (289 mm).
+// Measured worst gaps: soft step 18.0 mm, PGS 8 x 1 16.1 mm, 1 x 20 32.2 mm, 8 x 1 with 4 and 8
+// relax passes 13.5 and 11.9 mm; bounds about 1.5 times.
 TEST(NativeJoints, JointChainSwingingDownGainsNoEnergy) {
     for (const ChainCase& c : {ChainCase{Solver::SoftStep, 8, 1, 0.027}, ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.025},
-                               ChainCase{Solver::ProjectedGaussSeidel, 1, 20, 0.05}})
+                               ChainCase{Solver::ProjectedGaussSeidel, 1, 20, 0.05},
+                               ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.02, 4},
+                               ChainCase{Solver::ProjectedGaussSeidel, 8, 1, 0.02, 8}})
         expectChainHolds(c, "swinging down, end 10x", 1.0, [](int i) { return Vec3(0.1 * (i + 1), 0.0, 0.0); });
 }
 
