@@ -44,8 +44,11 @@ private:
 };
 
 /// Every body's state, bit for bit, after `steps` steps of a tumbling pile. `planar`: the pile
-/// in the XY plane (a planar world, which has its own contact kernels).
-std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps, bool planar = false) {
+/// in the XY plane (a planar world, which has its own contact kernels). `events`, if given,
+/// receives every step's contact events flattened (ids, phase, normal, points): one worker
+/// reports contacts in one walk, several in two over chunks, and both must give the same events.
+std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps, bool planar = false,
+                               std::vector<double>* events = nullptr) {
     WorldSettings settings;
     settings.planar = planar;
     settings.workers = workers;
@@ -78,7 +81,16 @@ std::vector<BodyState> runPile(int workers, TaskSystem* tasks, int steps, bool p
         }
         bodies.push_back(world.createBody(d));
     }
-    for (int s = 0; s < steps; ++s) world.step();
+    for (int s = 0; s < steps; ++s) {
+        world.step();
+        if (!events) continue;
+        for (const ContactEvent& e : world.lastEvents()) {
+            events->insert(events->end(), {double(s), double(e.bodyA.index), double(e.bodyB.index), double(e.phase),
+                                           e.normal.x(), e.normal.y(), e.normal.z()});
+            for (const ContactPoint& p : e.points)
+                events->insert(events->end(), {p.position.x(), p.position.y(), p.position.z(), p.depth, p.normalImpulse});
+        }
+    }
     std::vector<BodyState> states;
     for (const Body& b : bodies) states.push_back(b.state());
     return states;
@@ -108,16 +120,23 @@ TEST(NativeDeterminism, SameRunTwiceIsBitIdentical) {
 }
 
 TEST(NativeDeterminism, WorkerCountDoesNotChangeTheResult) {
-    const auto one = runPile(1, nullptr, kSteps);
-    expectIdentical(one, runPile(2, nullptr, kSteps), "2 workers");
+    std::vector<double> oneEvents, twoEvents, poolEvents;
+    const auto one = runPile(1, nullptr, kSteps, false, &oneEvents);
+    expectIdentical(one, runPile(2, nullptr, kSteps, false, &twoEvents), "2 workers");
     expectIdentical(one, runPile(4, nullptr, kSteps), "4 workers");
     ThreadPool shared(3);
-    expectIdentical(one, runPile(1, &shared, kSteps), "a game's pool of 3");
+    expectIdentical(one, runPile(1, &shared, kSteps, false, &poolEvents), "a game's pool of 3");
+    EXPECT_GT(oneEvents.size(), 1000u);  // the pile touched: there were events to compare
+    EXPECT_TRUE(oneEvents == twoEvents) << "2 workers report other contact events";
+    EXPECT_TRUE(oneEvents == poolEvents) << "a game's pool of 3 reports other contact events";
 }
 
 TEST(NativeDeterminism, PlanarWorkerCountDoesNotChangeTheResult) {
-    const auto one = runPile(1, nullptr, kSteps, true);
-    expectIdentical(one, runPile(2, nullptr, kSteps, true), "planar, 2 workers");
+    std::vector<double> oneEvents, twoEvents;
+    const auto one = runPile(1, nullptr, kSteps, true, &oneEvents);
+    expectIdentical(one, runPile(2, nullptr, kSteps, true, &twoEvents), "planar, 2 workers");
+    EXPECT_GT(oneEvents.size(), 1000u);
+    EXPECT_TRUE(oneEvents == twoEvents) << "planar, 2 workers report other contact events";
     LateReverseTasks tasks(3);
     expectIdentical(one, runPile(1, &tasks, kSteps, true), "planar, late, reversed task system");
     double lowest = 1e9;  // the planar pile fell and piled up too
