@@ -382,13 +382,9 @@ void NativeWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint6
 
 void NativeWorld::reportContacts(ContactReport& out) {
     if (!anyActive_) return;  // everything at rest: asleep pairs are the layer's to keep
-    // In two passes over fixed chunks of the contacts that may touch, each chunk on any worker:
-    // count each chunk's pairs and points, then write them at the chunk's offsets. The report is
-    // in slot order whatever the workers.
     const std::size_t candidates = contacts_.touchCandidateCount();
     constexpr std::size_t kContactsPerChunk = 512;
     const std::size_t chunks = (candidates + kContactsPerChunk - 1) / kContactsPerChunk;
-    reportChunks_.assign(chunks + 1, ReportChunk{out.pairs.size(), out.points.size()});
     const auto visitChunk = [&](std::size_t chunk, auto&& onPair) {
         const std::size_t begin = chunk * kContactsPerChunk;
         contacts_.forEachTouchCandidateIn(begin, std::min(candidates, begin + kContactsPerChunk), [&](const Contact& c) {
@@ -397,44 +393,69 @@ void NativeWorld::reportContacts(ContactReport& out) {
             if (c.trigger ? c.touching : !c.manifolds.empty()) onPair(c, a, b);
         });
     };
-    auto count = [&](int begin, int end, int) {
-        for (int chunk = begin; chunk < end; ++chunk) {
-            ReportChunk& n = reportChunks_[static_cast<std::size_t>(chunk) + 1];
-            n = {};
-            visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody&, const NativeBody&) {
-                ++n.pairs;
-                if (!c.trigger)
-                    for (const ContactManifold& m : c.manifolds) n.points += static_cast<std::size_t>(m.pointCount);
-            });
-        }
+    const auto pointsOf = [](const Contact& c) {
+        std::size_t n = 0;
+        if (!c.trigger)
+            for (const ContactManifold& m : c.manifolds) n += static_cast<std::size_t>(m.pointCount);
+        return n;
     };
-    parallelFor(tasks_, static_cast<int>(chunks), 1, count);
-    for (std::size_t k = 1; k <= chunks; ++k) {
-        reportChunks_[k].pairs += reportChunks_[k - 1].pairs;
-        reportChunks_[k].points += reportChunks_[k - 1].points;
-    }
-    out.pairs.resize(reportChunks_[chunks].pairs);
-    out.points.resize(reportChunks_[chunks].points);
     const auto asleep = [](const NativeBody& b) { return b.moves() && !b.awake; };
-    auto write = [&](int begin, int end, int) {
-        for (int chunk = begin; chunk < end; ++chunk) {
-            std::size_t pair = reportChunks_[static_cast<std::size_t>(chunk)].pairs;
-            std::size_t point = reportChunks_[static_cast<std::size_t>(chunk)].points;
-            visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
-                ContactReport::Pair& p = out.pairs[pair++];
-                p = {a.userData, b.userData, c.trigger, asleep(a) || asleep(b), Vec3::Zero(),
-                     static_cast<std::uint32_t>(point), 0};
-                if (c.trigger) return;
-                p.normal = c.manifolds.front().normal;
-                // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
-                for (const ContactManifold& m : c.manifolds)
-                    for (int i = 0; i < m.pointCount; ++i, ++p.pointCount)
-                        out.points[point++] = {m.points[i].geometry.point, -m.points[i].geometry.separation,
-                                               m.points[i].stepImpulse};
-            });
-        }
+    // Writes contact c's pair at out.pairs[pair] and its points from out.points[point] on.
+    const auto writePair = [&](const Contact& c, const NativeBody& a, const NativeBody& b, std::size_t pair, std::size_t point) {
+        ContactReport::Pair& p = out.pairs[pair];
+        p = {a.userData, b.userData, c.trigger, asleep(a) || asleep(b), Vec3::Zero(), static_cast<std::uint32_t>(point), 0};
+        if (c.trigger) return;
+        p.normal = c.manifolds.front().normal;
+        // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
+        for (const ContactManifold& m : c.manifolds)
+            for (int i = 0; i < m.pointCount; ++i, ++p.pointCount)
+                out.points[point++] = {m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].stepImpulse};
     };
-    parallelFor(tasks_, static_cast<int>(chunks), 1, write);
+    if (!tasks_ || tasks_->workerCount() <= 1) {
+        // One worker: one walk, appending (the buffers keep their capacity from step to step). The
+        // walk waits on memory (each contact, both bodies, the manifolds), and a second one missed
+        // the caches again: on the 5 050-box planar pyramid the report was 8 % of a step.
+        for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+            visitChunk(chunk, [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
+                const std::size_t pair = out.pairs.size(), point = out.points.size();
+                out.pairs.resize(pair + 1);
+                out.points.resize(point + pointsOf(c));
+                writePair(c, a, b, pair, point);
+            });
+    } else {
+        // Several: in two passes over fixed chunks of the contacts that may touch, each chunk on any
+        // worker: count each chunk's pairs and points, then write them at the chunk's offsets. The
+        // report is in slot order whatever the workers, the same as one worker's.
+        reportChunks_.assign(chunks + 1, ReportChunk{out.pairs.size(), out.points.size()});
+        auto count = [&](int begin, int end, int) {
+            for (int chunk = begin; chunk < end; ++chunk) {
+                ReportChunk& n = reportChunks_[static_cast<std::size_t>(chunk) + 1];
+                n = {};
+                visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody&, const NativeBody&) {
+                    ++n.pairs;
+                    n.points += pointsOf(c);
+                });
+            }
+        };
+        parallelFor(tasks_, static_cast<int>(chunks), 1, count);
+        for (std::size_t k = 1; k <= chunks; ++k) {
+            reportChunks_[k].pairs += reportChunks_[k - 1].pairs;
+            reportChunks_[k].points += reportChunks_[k - 1].points;
+        }
+        out.pairs.resize(reportChunks_[chunks].pairs);
+        out.points.resize(reportChunks_[chunks].points);
+        auto write = [&](int begin, int end, int) {
+            for (int chunk = begin; chunk < end; ++chunk) {
+                std::size_t pair = reportChunks_[static_cast<std::size_t>(chunk)].pairs;
+                std::size_t point = reportChunks_[static_cast<std::size_t>(chunk)].points;
+                visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
+                    writePair(c, a, b, pair++, point);
+                    point += pointsOf(c);
+                });
+            }
+        };
+        parallelFor(tasks_, static_cast<int>(chunks), 1, write);
+    }
     out.sleepKnown = true;
     // A body of several shapes meets another in several shape pairs: one report per body pair.
     if (multiShapeBodies_ > 0) out.mergeRepeatedPairs();
