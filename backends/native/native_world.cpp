@@ -400,16 +400,18 @@ void NativeWorld::reportContacts(ContactReport& out) {
         return n;
     };
     const auto asleep = [](const NativeBody& b) { return b.moves() && !b.awake; };
-    // Writes contact c's pair at out.pairs[pair] and its points from out.points[point] on.
+    // Writes contact c's pair at out.pairs[pair] and its points from out.points[point] on; returns
+    // the index after its last point.
     const auto writePair = [&](const Contact& c, const NativeBody& a, const NativeBody& b, std::size_t pair, std::size_t point) {
         ContactReport::Pair& p = out.pairs[pair];
         p = {a.userData, b.userData, c.trigger, asleep(a) || asleep(b), Vec3::Zero(), static_cast<std::uint32_t>(point), 0};
-        if (c.trigger) return;
+        if (c.trigger) return point;
         p.normal = c.manifolds.front().normal;
         // The impulse over the whole step (all substeps), so impulse / dt is the mean force.
         for (const ContactManifold& m : c.manifolds)
             for (int i = 0; i < m.pointCount; ++i, ++p.pointCount)
                 out.points[point++] = {m.points[i].geometry.point, -m.points[i].geometry.separation, m.points[i].stepImpulse};
+        return point;
     };
     if (!tasks_ || tasks_->workerCount() <= 1) {
         // One worker: one walk, appending (the buffers keep their capacity from step to step). The
@@ -449,8 +451,7 @@ void NativeWorld::reportContacts(ContactReport& out) {
                 std::size_t pair = reportChunks_[static_cast<std::size_t>(chunk)].pairs;
                 std::size_t point = reportChunks_[static_cast<std::size_t>(chunk)].points;
                 visitChunk(static_cast<std::size_t>(chunk), [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
-                    writePair(c, a, b, pair++, point);
-                    point += pointsOf(c);
+                    point = writePair(c, a, b, pair++, point);
                 });
             }
         };

@@ -445,6 +445,15 @@ TEST(NativeJoints, PgsPositionPassTakesBackErrorsAndHonoursStops) {
     }
 }
 
+// A solver configuration of the chain tests and its bound on the worst joint gap (m); relax
+// passes: the solver's default unless given.
+struct ChainCase {
+    Solver solver;
+    int substeps, iterations;
+    double gapBound;
+    int relaxIterations = -1;
+};
+
 // A chain of 40 point-like links (0.1 kg, I 3.6e-5 kg m^2 as a 3 cm ball, 10 cm apart) on ball
 // joints, each link held at the previous link's centre and the first at the origin, the last link
 // `endMass`; set out at `start(i)` at rest. Runs 5 s at 60 Hz; returns the worst joint gap over the
@@ -453,8 +462,8 @@ struct ChainRun {
     double worstGap = 0.0, energyGain = 0.0;
 };
 template <class Start>
-ChainRun runChain(Solver solver, int substeps, int iterations, int relaxIterations, double endMass, Start start) {
-    auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, solver, substeps, iterations, relaxIterations);
+ChainRun runChain(const ChainCase& c, double endMass, Start start) {
+    auto worldPtr = jointWorld(Effect::Gravity | Effect::Joints, c.solver, c.substeps, c.iterations, c.relaxIterations);
     NativeWorld& world = *worldPtr;
     constexpr int kLinks = 40;
     std::vector<std::unique_ptr<BodyPeer>> links;
@@ -501,21 +510,12 @@ ChainRun runChain(Solver solver, int substeps, int iterations, int relaxIteratio
     return run;
 }
 
-// A solver configuration of the chain tests and its bound on the worst joint gap (m); relax
-// passes: the solver's default unless given.
-struct ChainCase {
-    Solver solver;
-    int substeps, iterations;
-    double gapBound;
-    int relaxIterations = -1;
-};
-
 // Runs the chain in `c`, prints what it measured and checks the gap and that the energy never
 // rose more than 0.4 J above its start (nothing feeds it: the chains that rang up gained hundreds
 // to billions of joules).
 template <class Start>
 void expectChainHolds(const ChainCase& c, const char* what, double endMass, Start start) {
-    const ChainRun run = runChain(c.solver, c.substeps, c.iterations, c.relaxIterations, endMass, start);
+    const ChainRun run = runChain(c, endMass, start);
     const std::string relax = c.relaxIterations >= 0 ? " + " + std::to_string(c.relaxIterations) + " relax" : "";
     const std::string label = std::string(toString(c.solver)) + " " + std::to_string(c.substeps) + " x " +
                               std::to_string(c.iterations) + relax + ", chain of 40 " + what;
