@@ -1324,7 +1324,7 @@ TEST_P(JointTest, HingeWrenchedOffItsAxisTurnsBack) {
     std::cout << "[ MEASURED ] " << backend() << " hinge wrenched 120 deg off its axis: fastest spin " << fastestSpin
               << " rad/s, worst anchor gap " << worstGap * 1e3 << " mm, off axis after 2 s " << offAxis / kDegree << " deg\n";
     // Back on its axis (not turned over: 180 deg) within a degree after 2 s, and held at the
-    // anchor on the way: within a third of the limb (10 cm; native 1.0 cm, Bullet 2.0, ODE 5.1:
+    // anchor on the way: within a third of the limb (10 cm; native 1.3 cm, Bullet 2.0, ODE 5.1:
     // its joints correct by ERP, so they open while the limb turns back).
     EXPECT_LT(offAxis, 1.0 * kDegree);
     EXPECT_LT(worstGap, 0.1);

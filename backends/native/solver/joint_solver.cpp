@@ -124,12 +124,12 @@ public:
                 point();
                 break;
             case JointType::Hinge:
-                axisRows(angularRow(axisX()), hingeAngle());
+                axisRows(angularRow(axisX()), hingeAngle(), false);
                 hingeLocks(0);  // about frame X
                 point();
                 break;
             case JointType::Slider:
-                axisRows(linearRow(axisX(), rA_ + d_, rB_), d_.dot(axisX()));
+                axisRows(linearRow(axisX(), rA_ + d_, rB_), d_.dot(axisX()), true);
                 angularLock();
                 slidingLocks();
                 break;
@@ -213,20 +213,25 @@ private:
     }
     // A limit (C >= 0 allowed, impulse >= 0) joins the rigid block, so a stop holds against a
     // long lever too (a row of its own would only stop the small body's spin).
-    void limitRow(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, Row::Limit}; }
+    void limitRow(int slot, const Jacobian& j, double C, double biasScale = 1.0) {
+        locks_[lockCount_++] = {.j = j, .C = C, .slot = slot, .row = Row::Limit, .biasScale = biasScale};
+    }
     static constexpr double kLockedRange = 1e-12;  // a range this narrow is a lock
     // A range [lower, upper] on `position` along j: only the nearer stop joins the block. Both
     // would be two rows with opposite Jacobians, a singular K whose rounding-sized pivot blew a
     // ragdoll pile up; the far stop cannot act this substep anyway. A range of zero width is a lock.
-    void limitPair(int lowerSlot, int upperSlot, const Jacobian& j, double position, double lower, double upper) {
+    // `linear`: the position is a length, whose correction is capped (anchorBiasScale).
+    void limitPair(int lowerSlot, int upperSlot, const Jacobian& j, double position, double lower, double upper,
+                   bool linear = false) {
+        const auto scale = [&](double C) { return linear ? anchorBiasScale(C) : 1.0; };
         if (upper - lower <= kLockedRange) {
-            lock(lowerSlot, j, position - lower);
+            lock(lowerSlot, j, position - lower, scale(position - lower));
             releaseImpulse(upperSlot);
         } else if (position - lower <= upper - position) {
-            limitRow(lowerSlot, j, position - lower);
+            limitRow(lowerSlot, j, position - lower, scale(position - lower));
             releaseImpulse(upperSlot);
         } else {
-            limitRow(upperSlot, negate(j), upper - position);
+            limitRow(upperSlot, negate(j), upper - position, scale(upper - position));
             releaseImpulse(lowerSlot);
         }
     }
@@ -301,13 +306,14 @@ private:
         if (!x.allFinite()) return alone;
         return std::clamp(alone - kps.dot(x), 0.0, alone);
     }
-    // The axis rows of hinge, slider: limits, motor and spring on position C along j.
-    void axisRows(const Jacobian& j, double position) {
+    // The axis rows of hinge, slider: limits, motor and spring on position C along j (`linear`:
+    // a length, the slider's).
+    void axisRows(const Jacobian& j, double position, bool linear) {
         if (def_.spring) springRow(kSpring, j, position, *def_.spring);
         const bool locked = def_.limits && def_.limits->upper - def_.limits->lower <= kLockedRange;
         if (def_.motor) motorRow(kMotor, j, *def_.motor, locked);
         if (def_.limits) {
-            limitPair(kLower, kUpper, j, position, def_.limits->lower, def_.limits->upper);
+            limitPair(kLower, kUpper, j, position, def_.limits->lower, def_.limits->upper, linear);
             Lock& stop = locks_[lockCount_ - 1];
             if (def_.motor && stop.row == Row::Limit)
                 stop.motorSide = stop.j.angB.dot(j.angB) + stop.j.linB.dot(j.linB) > 0.0 ? 1.0 : -1.0;
@@ -342,10 +348,32 @@ private:
         double most = 0.0;   // Motor
         // A limit on the motor's axis: +1 or -1 as its Jacobian is the motor's or its negation.
         double motorSide = 0.0;
+        // Soft step: the share of the velocity bias kept. Below 1 on an anchor's rows whose error
+        // the bias would close faster than JointSolveParams::anchorPushMaxVelocity.
+        double biasScale = 1.0;
         // Spring and motor rows keep their own law, outside the block's softness.
         bool ownLaw() const { return row == Row::Spring || row == Row::Motor; }
     };
-    void lock(int slot, const Jacobian& j, double C) { locks_[lockCount_++] = {j, C, slot, Row::Rigid}; }
+    void lock(int slot, const Jacobian& j, double C, double biasScale = 1.0) {
+        locks_[lockCount_++] = {.j = j, .C = C, .slot = slot, .row = Row::Rigid, .biasScale = biasScale};
+    }
+    // The bias scale that keeps an anchor error of this length (m) closing at most at
+    // anchorPushMaxVelocity. A body set far from its joint (3 m from a 1 m pendulum's bob) was
+    // pulled back at the softness' rate times the error, 400 m/s: turning each substep by a
+    // large angle, the relax pass took back only the part along the rows, and the bob left
+    // circling at 226 m/s.
+    double anchorBiasScale(double error) const {
+        return std::min(1.0, p_.anchorPushMaxVelocity / (p_.softness.biasRate * std::abs(error)));
+    }
+    // The velocity bias of a lock's row (Cdot + bias -> 0) in this pass.
+    double lockBias(const Lock& l, const Bias& soft) const {
+        const bool ahead = l.row == Row::Limit && l.C > 0.0;
+        if (l.ownLaw()) return l.C;
+        // A limit short of its stop may close the gap, not pass it: the velocity passes allow
+        // C / h, the position pass C (all of it, else a stop ahead of a turn held it back).
+        if (ahead) return mode_ == Mode::Position ? l.C : l.C * p_.invH;
+        return mode_ == Mode::Position ? soft.bias * l.C : soft.bias * l.biasScale * l.C;
+    }
 
     void solveLocks() {
         const int n = lockCount_;
@@ -372,16 +400,7 @@ private:
                 const Jacobian& jk = locks_[k].j;
                 K(k, i) = K(i, k) = jk.linA.dot(la) + jk.angA.dot(aa) + jk.linB.dot(lb) + jk.angB.dot(ab);
             }
-            const double C = locks_[i].C;
-            const Row kind = locks_[i].row;
-            // A limit short of its stop may close the gap, not pass it: the velocity passes allow
-            // C / h, the position pass C (all of it, else a stop ahead of a turn held it back).
-            const bool ahead = kind == Row::Limit && C > 0.0;
-            const double bias = locks_[i].ownLaw()            ? C
-                                : ahead && mode_ == Mode::Position ? C
-                                : ahead                        ? C * p_.invH
-                                                               : soft.bias * C;
-            rhs[i] = rate(ji, a_, b_) + bias;
+            rhs[i] = rate(ji, a_, b_) + lockBias(locks_[i], soft);
             acc[i] = mode_ == Mode::Position ? 0.0 : joint_.impulse[locks_[i].slot];
         }
         // The unknowns are z = delta + t acc (s + t = 1). Rigid rows: (K z)_rigid = -s rhs, the
@@ -461,7 +480,7 @@ private:
             motorLimit = -1;
             if (rhs[l] + K.row(l).dot(delta) >= 0.0) break;
             const Lock& stop = locks_[l];
-            const double rateAtStop = -stop.motorSide * (stop.C > 0.0 ? stop.C * p_.invH : soft.bias * stop.C);
+            const double rateAtStop = -stop.motorSide * lockBias(stop, soft);
             fixed[l] = false;
             delta[l] = 0.0;
             fixed[motor] = true;
@@ -479,7 +498,8 @@ private:
 
     // Anchor coincidence: B's anchor on A's, along the world axes.
     void point() {
-        for (int k = 0; k < 3; ++k) lock(kPointX + k, linearRow(Vec3::Unit(k), rA_, rB_), d_[k]);
+        const double scale = anchorBiasScale(d_.norm());  // one scale: the pull keeps its direction
+        for (int k = 0; k < 3; ++k) lock(kPointX + k, linearRow(Vec3::Unit(k), rA_, rB_), d_[k], scale);
     }
 
     // No relative rotation: the rotation error of B's frame against A's as a small rotation
@@ -513,8 +533,9 @@ private:
     // B's anchor stays on A's line along frame X (slider) or along the suspension (wheel).
     void slidingLocks() {
         const Vec3 y = frameA_ * Vec3::UnitY(), z = frameA_ * Vec3::UnitZ();
-        lock(kLinear0, linearRow(y, rA_ + d_, rB_), d_.dot(y));
-        lock(kLinear1, linearRow(z, rA_ + d_, rB_), d_.dot(z));
+        const double scale = anchorBiasScale(std::hypot(d_.dot(y), d_.dot(z)));
+        lock(kLinear0, linearRow(y, rA_ + d_, rB_), d_.dot(y), scale);
+        lock(kLinear1, linearRow(z, rA_ + d_, rB_), d_.dot(z), scale);
     }
 
     void coneLimits() {
@@ -554,13 +575,13 @@ private:
         const double C = length - def_.length;
         const bool range = def_.minLength || def_.maxLength;
         if (def_.spring) springRow(kSpring, j, C, *def_.spring);
-        else if (!range) lock(kLength, j, C);
+        else if (!range) lock(kLength, j, C, anchorBiasScale(C));
         if (def_.minLength && def_.maxLength)
-            limitPair(kLower, kUpper, j, length, *def_.minLength, *def_.maxLength);
+            limitPair(kLower, kUpper, j, length, *def_.minLength, *def_.maxLength, true);
         else if (def_.minLength)
-            limitRow(kLower, j, length - *def_.minLength);
+            limitRow(kLower, j, length - *def_.minLength, anchorBiasScale(length - *def_.minLength));
         else if (def_.maxLength)
-            limitRow(kUpper, negate(j), *def_.maxLength - length);
+            limitRow(kUpper, negate(j), *def_.maxLength - length, anchorBiasScale(*def_.maxLength - length));
     }
 
     void wheel() {
@@ -570,13 +591,14 @@ private:
         const Jacobian along = linearRow(s, rA_ + d_, rB_);
         if (def_.spring) springRow(kSpring, along, travel, *def_.spring);
         if (def_.limits) {
-            limitPair(kLower, kUpper, along, travel, def_.limits->lower, def_.limits->upper);
+            limitPair(kLower, kUpper, along, travel, def_.limits->lower, def_.limits->upper, true);
         }
         if (def_.motor) motorRow(kMotor, angularRow(axle), *def_.motor, false);  // limits are the suspension's
         hingeLocks(1);  // about the axle, frame Y
         const Vec3 z = frameA_ * Vec3::UnitZ();
-        lock(kLinear0, linearRow(axle, rA_ + d_, rB_), d_.dot(axle));
-        lock(kLinear1, linearRow(z, rA_ + d_, rB_), d_.dot(z));
+        const double scale = anchorBiasScale(std::hypot(d_.dot(axle), d_.dot(z)));
+        lock(kLinear0, linearRow(axle, rA_ + d_, rB_), d_.dot(axle), scale);
+        lock(kLinear1, linearRow(z, rA_ + d_, rB_), d_.dot(z), scale);
     }
 
     void sum(const Jacobian& j, double impulse) {

@@ -27,6 +27,7 @@
 // Motors clamp their impulse to maxForce x substep. Springs damp implicitly; their stiffness is
 // explicit where the substep resolves the spring and implicit beyond (springRow); SI units.
 #include <cstdint>
+#include <limits>
 
 #include "joints.hpp"
 #include "solver/contact_constraint.hpp"
@@ -47,6 +48,8 @@ struct JointSolveParams {
     double invH = 0.0;
     bool soft = true;           // soft step; false: PGS
     Softness softness;          // rigid rows' position correction (soft step)
+    // Soft step: the fastest an anchor's position error is closed (m/s); see anchorBiasScale.
+    double anchorPushMaxVelocity = std::numeric_limits<double>::infinity();
     double baumgarte = 0.0;     // PGS: the share of a position error one position pass takes back
 };
 
