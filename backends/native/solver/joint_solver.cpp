@@ -358,12 +358,13 @@ private:
         locks_[lockCount_++] = {.j = j, .C = C, .slot = slot, .row = Row::Rigid, .biasScale = biasScale};
     }
     // The bias scale that keeps an anchor error of this length (m) closing at most at
-    // anchorPushMaxVelocity. A body set far from its joint (3 m from a 1 m pendulum's bob) was
-    // pulled back at the softness' rate times the error, 400 m/s: turning each substep by a
-    // large angle, the relax pass took back only the part along the rows, and the bob left
-    // circling at 226 m/s.
+    // anchorPushMaxVelocity. A pendulum's bob set 3 m off was pulled back at the softness' rate
+    // times the error, 400 m/s: light to turn on its 1 m lever, it turned half a radian a
+    // substep, the relax pass took back only the part along the turned rows, and it circled at
+    // 226 m/s.
     double anchorBiasScale(double error) const {
-        return std::min(1.0, p_.anchorPushMaxVelocity / (p_.softness.biasRate * std::abs(error)));
+        const double pull = p_.softness.biasRate * std::abs(error);  // m/s
+        return pull > p_.anchorPushMaxVelocity ? p_.anchorPushMaxVelocity / pull : 1.0;
     }
     // The velocity bias of a lock's row (Cdot + bias -> 0) in this pass.
     double lockBias(const Lock& l, const Bias& soft) const {
