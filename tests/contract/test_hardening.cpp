@@ -466,6 +466,33 @@ TEST_P(HardeningTest, JointAnchorsBeyondTheCeilingAreRefused) {
     EXPECT_EQ(world.jointCount(), 0u);
 }
 
+// Found by the API fuzzer: a ball joint anchored 1.7e7 m from a 5 cm ball (5e8 of its radii of
+// gyration) left ODE's direct solver a matrix past double precision; the ball's rotation came out
+// NaN and ODE aborted the process. A joint's lever is refused beyond 1e6 radii of gyration of a
+// dynamic body (3.2e4 m for that 5 cm ball), the world left without the joint and stepping on; a long
+// lever within it (a 1 km cable) is kept.
+TEST_P(HardeningTest, JointLeversBeyondTheBodiesReachAreRefused) {
+    World world(settings());
+    Body b = world.createBody(ball("b", Vec3(0, 2, 0)));  // radius 0.5 m: radius of gyration 0.32 m
+    const double radiusOfGyration = std::sqrt(b.massProperties().inertia.minCoeff() / b.massProperties().mass);
+    JointDef j;
+    j.type = JointType::Ball;
+    j.bodyB = b;
+    j.anchor = Vec3(0, 2 + 1.01e6 * radiusOfGyration, 0);
+    expectError([&] { world.createJoint(j); }, ErrorKind::InvalidArgument, "JointDef.anchor", {"radii of gyration", "bodyB"});
+    j.type = JointType::Distance;
+    j.anchorA = Vec3::Zero();
+    j.anchorB = Vec3(1e7, 2, 0);
+    expectError([&] { world.createJoint(j); }, ErrorKind::InvalidArgument, "JointDef.anchorB", {"radii of gyration"});
+    EXPECT_EQ(world.jointCount(), 0u);
+    j.type = JointType::Ball;
+    j.anchor = Vec3(0, 1002, 0);  // a 1 km cable: 3 200 radii
+    EXPECT_NO_THROW(world.createJoint(j));
+    EXPECT_EQ(world.jointCount(), 1u);
+    for (int i = 0; i < 10; ++i) world.step();
+    EXPECT_TRUE(b.position().allFinite());
+}
+
 // Found by the API fuzzer: a ray direction of (1e308, 1e308, 0) has a norm that overflows to inf,
 // and normalising by it handed ODE a zero direction, which it aborted the process on. Huge
 // directions now work as their unit direction, huge lengths are cut to the world's extent, and a

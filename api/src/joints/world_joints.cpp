@@ -1,6 +1,7 @@
 // World's joints: creation (validation, capabilities, resolution), destruction, lookup, and the
 // layer's breaking pass after each step.
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "anyphys/backends.hpp"
@@ -22,6 +23,26 @@ JointBodyFrame frameOf(const Slot& s) {
 }
 
 std::string quotedName(const JointDef& def) { return def.name.empty() ? "" : " \"" + def.name + "\""; }
+
+/// The longest lever a joint may have on a dynamic body, in the body's smallest radius of
+/// gyration (sqrt(I / m)). A row's turning part grows with the lever squared over that radius
+/// squared: found by the API fuzzer, a ball joint anchored 1.7e7 m from a 5 cm ball (5e8 radii)
+/// left ODE's direct solver a matrix past double precision, its rotation NaN, and ODE aborted the
+/// process. 1e6 radii is 6 km for a 1 cm ball and leaves the rows 4 digits of precision.
+constexpr double kMaxJointLeverInGyrationRadii = 1e6;
+
+/// Refuses an anchor too far from a dynamic body's centre of mass (kMaxJointLeverInGyrationRadii).
+template <class Slot>
+void requireLeverWithinReach(const Slot& s, const Vec3& anchor, const std::string& field, const char* side) {
+    if (s.def.type != BodyType::Dynamic || !(s.mass.mass > 0.0)) return;
+    const double radius = std::sqrt(s.mass.inertia.minCoeff() / s.mass.mass);
+    const double lever = (anchor - s.peer->state().position).norm();
+    if (!(lever <= kMaxJointLeverInGyrationRadii * radius))
+        throw Error::invalid(field, formatVec3(anchor),
+                             std::string("must lie within 1e6 radii of gyration of ") + side + "'s centre of mass (" +
+                                 formatNumber(kMaxJointLeverInGyrationRadii * radius) + " m; the lever is " +
+                                 formatNumber(lever) + " m): a longer lever leaves the solvers no precision");
+}
 
 /// Clears a parameter the backend lacks (lenient policy): the peer never sees it.
 void dropParameter(JointDef& def, const std::string& field) {
@@ -61,6 +82,9 @@ Joint World::createJoint(const JointDef& input) {
     Slot* b = bodySlot(input.bodyB, "JointDef.bodyB");
     const auto view = [](const Slot& s) { return JointBodyView{s.def.name, s.def.type}; };
     validateJointBodies(a ? std::optional<JointBodyView>(view(*a)) : std::nullopt, view(*b), a == b, "JointDef");
+    const bool distance = input.type == JointType::Distance;
+    if (a) requireLeverWithinReach(*a, distance ? input.anchorA : input.anchor, distance ? "JointDef.anchorA" : "JointDef.anchor", "bodyA");
+    requireLeverWithinReach(*b, distance ? input.anchorB : input.anchor, distance ? "JointDef.anchorB" : "JointDef.anchor", "bodyB");
     if (settings_.planar) validatePlanar(input, "JointDef");
     if (input.motor)
         validateJointMotorSpeed(*input.motor, input.type, settings_.maxSpeed, settings_.maxAngularSpeed, "JointDef.motor");
