@@ -385,13 +385,17 @@ void NativeWorld::reportContacts(ContactReport& out) {
     const std::size_t candidates = contacts_.touchCandidateCount();
     constexpr std::size_t kContactsPerChunk = 512;
     const std::size_t chunks = (candidates + kContactsPerChunk - 1) / kContactsPerChunk;
-    const auto visitChunk = [&](std::size_t chunk, auto&& onPair) {
-        const std::size_t begin = chunk * kContactsPerChunk;
-        contacts_.forEachTouchCandidateIn(begin, std::min(candidates, begin + kContactsPerChunk), [&](const Contact& c) {
+    // The reported pairs among touch candidates [begin, end).
+    const auto visit = [&](std::size_t begin, std::size_t end, auto&& onPair) {
+        contacts_.forEachTouchCandidateIn(begin, end, [&](const Contact& c) {
             const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
             if (!a.isActive() && !b.isActive()) return;  // both at rest: the layer keeps the pair
             if (c.trigger ? c.touching : !c.manifolds.empty()) onPair(c, a, b);
         });
+    };
+    const auto visitChunk = [&](std::size_t chunk, auto&& onPair) {
+        const std::size_t begin = chunk * kContactsPerChunk;
+        visit(begin, std::min(candidates, begin + kContactsPerChunk), onPair);
     };
     const auto pointsOf = [](const Contact& c) {
         std::size_t n = 0;
@@ -417,13 +421,12 @@ void NativeWorld::reportContacts(ContactReport& out) {
         // One worker: one walk, appending (the buffers keep their capacity from step to step). The
         // walk waits on memory (each contact, both bodies, the manifolds), and a second one missed
         // the caches again: on the 5 050-box planar pyramid the report was 8 % of a step.
-        for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-            visitChunk(chunk, [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
-                const std::size_t pair = out.pairs.size(), point = out.points.size();
-                out.pairs.resize(pair + 1);
-                out.points.resize(point + pointsOf(c));
-                writePair(c, a, b, pair, point);
-            });
+        visit(0, candidates, [&](const Contact& c, const NativeBody& a, const NativeBody& b) {
+            const std::size_t pair = out.pairs.size(), point = out.points.size();
+            out.pairs.resize(pair + 1);
+            out.points.resize(point + pointsOf(c));
+            writePair(c, a, b, pair, point);
+        });
     } else {
         // Several: in two passes over fixed chunks of the contacts that may touch, each chunk on any
         // worker: count each chunk's pairs and points, then write them at the chunk's offsets. The
