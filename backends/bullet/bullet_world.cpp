@@ -209,6 +209,7 @@ std::unique_ptr<BodyPeer> BulletWorld::createBody(const BodyPeerDef& def) {
     if (peer->mixedSurfaces() && mixedBodies_++ == 0) world_->setSortChildPoints(true);
     if (peer->hasSolidPart()) sensorCompounds_.push_back(peer.get());
     if (peer->isPlane() && planeBodies_++ == 0) world_->setRefreshPlaneManifoldsFirst(planeMultipoint_);
+    if (peer->compound()) ++compoundBodies_;
     peer->applyEffects();
     if (!def.def.isAwake && peer->moves()) peer->setAwake(false);
     return peer;
@@ -251,6 +252,7 @@ void BulletWorld::detach(BulletBodyPeer& peer) {
     if (peer.mixedSurfaces() && --mixedBodies_ == 0) world_->setSortChildPoints(false);
     if (peer.hasSolidPart()) drop(sensorCompounds_);
     if (peer.isPlane() && --planeBodies_ == 0) world_->setRefreshPlaneManifoldsFirst(false);
+    if (peer.compound()) --compoundBodies_;
     drop(forced_);
 }
 
@@ -458,7 +460,13 @@ void BulletWorld::reportContacts(ContactReport& out) {
         repeats = true;  // several child pairs may overlap: one trigger per body pair
     }
     out.sleepKnown = true;
-    if (repeats) out.mergeRepeatedPairs();
+    if (repeats) {
+        out.mergeRepeatedPairs();
+    } else if (effects_.has(Effect::ContinuousCollision) || compoundBodies_ > 0) {
+        // A later step may merge (a fast body's predictive manifold, a compound's first touch):
+        // its buffers grow now, with the report, not in that step.
+        out.keepRoomToMerge();
+    }
 }
 
 void* BulletWorld::nativeObject(const std::type_info& pointerType) {

@@ -130,6 +130,7 @@ private:
     int mixedBodies_ = 0;                     // attached bodies whose children differ in surface
     std::vector<BulletBodyPeer*> sensorCompounds_;  // attached compounds of solid and sensor children
     int planeBodies_ = 0;                     // attached bodies whose shape is a plane
+    int compoundBodies_ = 0;                  // attached bodies of several child shapes
     bool planeMultipoint_ = true;             // backend option planeMultipoint
     // Bullet refreshes bounds before it integrates, so a step leaves them at the old poses. The
     // first query after a step refreshes them; later ones (an explosion casts a ray per body) do not.

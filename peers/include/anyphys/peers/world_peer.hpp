@@ -89,10 +89,11 @@ struct ContactReport {
         // Room for the largest outcome at once: a world's first merge may come late (Bullet merges
         // only while continuous collision adds predictive manifolds), and doubling its three
         // buffers up from empty cost a collapsing 5 050-box pile 42 allocations in one step.
+        // The room is the report's capacity, not its size: the merged buffers are swapped in as the
+        // report's, and one sized to this step alone would grow again as the next step's pairs
+        // (or the layer's near pairs, World::stillTouching) pass it.
         order_.clear();
-        order_.reserve(pairs.size());
-        mergedPairs_.reserve(pairs.size());
-        mergedPoints_.reserve(points.size());
+        keepRoomToMerge();
         for (std::uint32_t i = 0; i < pairs.size(); ++i) {
             const auto [low, high] = std::minmax(pairs[i].bodyA, pairs[i].bodyB);
             order_.push_back({low, high, i});
@@ -124,6 +125,14 @@ struct ContactReport {
         points.swap(mergedPoints_);
     }
 
+    /// For a peer that may merge in a later step: sizes the merge's buffers to the report's
+    /// capacity now, so they grow when the report does (rarely, geometrically) and a merge that
+    /// first comes late in a run (a collapsing pile's first fast body) allocates nothing.
+    void keepRoomToMerge() {
+        order_.reserve(pairs.capacity());
+        mergedPairs_.reserve(pairs.capacity());
+        mergedPoints_.reserve(points.capacity());
+    }
 
 private:
     struct Order {
