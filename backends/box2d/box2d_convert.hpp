@@ -16,8 +16,11 @@ namespace anyphys::box2d {
 inline constexpr double kSkin = 0.5 * b2_linearSlop;
 /// Skin of a pair: what Box2D's separation undercounts the true separation by.
 inline constexpr double kPairSkin = 2.0 * kSkin;
-/// Half length of the edge that stands for a plane: 2 km of ground, centred near the origin.
-inline constexpr double kPlaneHalfLength = 1000.0;
+/// A plane is a run of edges along its line (box2d_shapes.cpp): the middle one reaches this far
+/// either side of the point nearest the origin, and each next one is twice as long as the last,
+/// so an edge's ends are never much farther from the origin than the bodies on it (Box2D's float
+/// edge test measures from them), and the run covers every coordinate a world admits.
+inline constexpr double kPlaneMiddleHalfLength = 1000.0;
 
 inline b2Vec2 toB2(const Vec3& v) { return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y())); }
 inline Vec3 fromB2(const b2Vec2& v, double z = 0.0) { return Vec3(v.x, v.y, z); }

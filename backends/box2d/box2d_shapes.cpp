@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "anyphys/checks.hpp"
 #include "anyphys/error.hpp"
 #include "box2d_convert.hpp"
 
@@ -217,6 +218,43 @@ std::vector<Vec2> projectedOutline(const std::vector<Vec3>& points, const std::s
 
 }  // namespace
 
+namespace {
+
+// Where a plane's edges begin and end along its line, from the point nearest the origin:
+// -R ... -2L, -L, L, 2L ... R for the middle half length L, doubling until R passes twice the
+// largest coordinate a world admits (a body may stand anywhere within it).
+std::vector<double> planeStops() {
+    std::vector<double> ends{kPlaneMiddleHalfLength};
+    while (ends.back() < 2.0 * kMaxCoordinate) ends.push_back(2.0 * ends.back());
+    std::vector<double> stops;
+    for (auto it = ends.rbegin(); it != ends.rend(); ++it) stops.push_back(-*it);
+    stops.insert(stops.end(), ends.begin(), ends.end());
+    return stops;
+}
+
+// Edge i of a plane, from stops[i] to stops[i + 1] along t. Its ghost vertices are its
+// neighbours' far ends, so a body sliding across a joint meets one smooth surface; the run's
+// outer ends look past themselves.
+Piece planeEdge(const Vec2& sunk, const Vec2& centre, const Vec2& t, const Vec2& n, const std::vector<double>& stops,
+                std::size_t i) {
+    const auto point = [](const Vec2& p) { return b2Vec2(static_cast<float>(p.x()), static_cast<float>(p.y())); };
+    const double before = i > 0 ? stops[i - 1] : stops[i] - 1.0;
+    const double after = i + 2 < stops.size() ? stops[i + 2] : stops[i + 1] + 1.0;
+    auto collision = std::make_unique<b2EdgeShape>();
+    collision->SetOneSided(point(sunk + before * t), point(sunk + stops[i] * t), point(sunk + stops[i + 1] * t),
+                           point(sunk + after * t));  // one-sided: a half-plane's surface
+    auto exact = std::make_unique<b2EdgeShape>();
+    exact->SetTwoSided(point(centre + stops[i] * t), point(centre + stops[i + 1] * t));
+    exact->m_radius = 0.0f;
+    Piece piece;
+    piece.collision = std::move(collision);
+    piece.exact = std::move(exact);
+    piece.plane = HalfPlane{point(n), static_cast<float>(n.dot(centre))};
+    return piece;
+}
+
+}  // namespace
+
 std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, const b2Vec2& originInBody,
                               const std::string& path) {
     const ShapeDef& s = shape.def;
@@ -260,21 +298,12 @@ std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, con
             const Vec2 o(originInBody.x, originInBody.y);
             const Vec2 centre = o - (n.dot(o) - d) * n;
             const Vec2 t(-n.y(), n.x());  // Box2D's edge normal is the right-hand side of v1 -> v2
-            const auto point = [](const Vec2& p) { return b2Vec2(static_cast<float>(p.x()), static_cast<float>(p.y())); };
             // The edge keeps Box2D's radius and sits that much minus the skin below the plane, so
             // its surface is kSkin above the plane like every other piece's.
             const Vec2 sunk = centre - (b2_polygonRadius - kSkin) * n;
-            auto collision = std::make_unique<b2EdgeShape>();
-            const Vec2 v1 = sunk - kPlaneHalfLength * t, v2 = sunk + kPlaneHalfLength * t;
-            collision->SetOneSided(point(v1 - t), point(v1), point(v2), point(v2 + t));  // one-sided: a half-plane's surface
-            auto exact = std::make_unique<b2EdgeShape>();
-            exact->SetTwoSided(point(centre - kPlaneHalfLength * t), point(centre + kPlaneHalfLength * t));
-            exact->m_radius = 0.0f;
-            Piece piece;
-            piece.collision = std::move(collision);
-            piece.exact = std::move(exact);
-            piece.plane = HalfPlane{point(n), static_cast<float>(n.dot(centre))};
-            pieces.push_back(std::move(piece));
+            const std::vector<double> stops = planeStops();
+            for (std::size_t i = 0; i + 1 < stops.size(); ++i)
+                pieces.push_back(planeEdge(sunk, centre, t, n, stops, i));
             break;
         }
         case ShapeType::Mesh:

@@ -605,4 +605,40 @@ inline std::vector<CriterionResult> overhangResults(const WorldSettings& s, cons
              "top at " + std::to_string(topples.topHeight) + " m after 3 s (bound < 0)", topples.topHeight}};
 }
 
+/// A unit box (half extent 0.5) set resting on the ground plane y = 0 at `where` (its centre's
+/// x and z; y is the resting height 0.5), run for 2 s: the lowest its centre went. A plane is
+/// infinite on every backend, wherever the body stands within the coordinate ceiling; a box off
+/// an engine's stand-in for it falls 20 m in those 2 s.
+inline double lowestRestingHeightFarOut(const WorldSettings& s, const Vec3& where) {
+    World world(s);
+    world.createBody(groundDef());
+    BodyDef def;
+    def.name = "box";
+    def.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
+    def.position = Vec3(where.x(), 0.5, where.z());
+    def.allowSleep = false;
+    Body box = world.createBody(def);
+    double lowest = 0.5;
+    for (int i = 0; i < 120; ++i) {
+        world.step();
+        const double y = box.position().y();
+        lowest = std::isfinite(y) ? std::min(lowest, y) : -std::numeric_limits<double>::infinity();
+    }
+    return lowest;
+}
+
+/// lowestRestingHeightFarOut at each of `places`, reported, each expected no more than 1 cm
+/// below its resting height: a resting contact overlaps by up to linearSlop (5 mm) plus its
+/// spring's give under a box's weight (well under a millimetre); a float engine's rounding at
+/// 1e5 m is 8 mm along the plane, not across it.
+inline void expectRestsFarOut(const WorldSettings& s, const std::vector<Vec3>& places) {
+    for (const Vec3& where : places) {
+        const double lowest = lowestRestingHeightFarOut(s, where);
+        const std::string label = s.backend + " box resting on the ground at (" + std::to_string(where.x()) + ", " +
+                                  std::to_string(where.z()) + "): lowest centre height";
+        report(label, lowest, "m");
+        EXPECT_GT(lowest, 0.49) << label;
+    }
+}
+
 }  // namespace anyphys::test

@@ -602,6 +602,15 @@ TEST_P(ContactsTest, FastSphereOnASliderNeverTunnelsThroughThinWall) {
     expectCriterion(r.id, r.met, r.measured);
 }
 
+// A plane holds what rests on it anywhere, not only near the origin: 10 km and 100 km out
+// along X and Z, either way (Box2D's stand-in edges once ended 1 km out, and a stack 10 km out
+// fell through its ground; see the planar twin).
+TEST_P(ContactsTest, BoxRestsOnAPlaneFarFromTheOrigin) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    expectRestsFarOut(settings(), {Vec3(1e4, 0, 0), Vec3(-1e5, 0, 0), Vec3(0, 0, 1e4), Vec3(0, 0, -1e5), Vec3(7e4, 0, -7e4)});
+}
+
 ANYPHYS_CONTRACT_SUITE(ContactsTest);
 
 }  // namespace

@@ -333,6 +333,24 @@ TEST(Box2dLayer, RaycastClosestAndAll) {
     EXPECT_NE(message.find("World.raycast.direction"), std::string::npos) << message;
 }
 
+// A plane is a run of Box2D edges (box2d_shapes.cpp: from 1 km either side of the origin, each
+// twice the last). A ray down through the point where two of them meet, or far out along the
+// plane, hits the one plane once, at its surface.
+TEST(Box2dLayer, RayHitsAPlaneOnceAnywhereAlongIt) {
+    WorldSettings s = planarSettings();
+    s.gravity = Vec3::Zero();
+    World world(s);
+    BodyDef ground;
+    ground.type = BodyType::Static;
+    ground.shape = ShapeDef::plane(Vec3(0, 1, 0), 0.0);
+    world.createBody(ground);
+    for (const double x : {0.0, 1000.0, -2000.0, 3000.0, 1e5, -5e6}) {
+        const auto all = world.raycastAll(Vec3(x, 10, 0), Vec3(0, -1, 0), 20.0);
+        ASSERT_EQ(all.size(), 1u) << "ray down at x = " << x;
+        EXPECT_NEAR(all[0].distance, 10.0, 1e-5) << "ray down at x = " << x;  // float rounding of 10 m
+    }
+}
+
 // Overlap against true shapes; a plane is a half-plane (anything reaching below it overlaps).
 TEST(Box2dLayer, OverlapQueries) {
     WorldSettings s = planarSettings();
