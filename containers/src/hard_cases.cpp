@@ -368,14 +368,17 @@ CatalogueScene farStack(bool planar) {
     const Vec3 at = planar ? Vec3(kFar, 0, 0) : Vec3(kFar, 0, kFar);
     CatalogueScene c = hardCase("hard_far_stack",
                                 "5 unit boxes stacked 10 km from the origin behave as at the origin: the top box's largest "
-                                "sideways drift over 5 s",
+                                "displacement over 5 s",
                                 5.0);
     c.scene.bodies.push_back(groundPlane());
     for (int i = 0; i < kBoxes; ++i) c.scene.bodies.push_back(unitBox("box_" + std::to_string(i), at + Vec3(0, 0.5 + i, 0)));
     keepAwake(c.scene);
-    c.check = worstCheck("top drift", "m", 0.01,
-                         "1 cm at any time, the stack's bound at the origin: doubles resolve 10 km to 2e-12 m",
-                         "hard.far_stack.drift", maxHorizontalDrift({static_cast<std::size_t>(kBoxes)}));
+    // Up and down too: a stack that sinks through its ground far out (Box2D's plane once ended
+    // 1 km from the origin) never drifts sideways.
+    c.check = worstCheck("top displacement", "m", 0.01,
+                         "1 cm at any time, the stack's bound at the origin: doubles resolve 10 km to 2e-12 m; five "
+                         "resting contacts give a few millimetres",
+                         "hard.far_stack.drift", maxDisplacement({static_cast<std::size_t>(kBoxes)}));
     if (planar) c = planarCase(c);
     return c;
 }
