@@ -97,5 +97,39 @@ TEST(Box2dContacts, AllAsleepReportsNothing) {
     EXPECT_EQ(world.lastEvents().front().phase, ContactPhase::Stay);
 }
 
+// A plane is a run of Box2D edges (box2d_shapes.cpp), joined 1 km from the origin. A box resting
+// across that joint touches two of them: one contact for the pair (the layer's events are per body
+// pair) holding the points of both, so the event has the whole face and carries the whole
+// weight; a box on one edge alone is one contact of its own points (the report merges only when
+// a pair touches twice: box2d_world.cpp).
+TEST(Box2dContacts, BoxAcrossTwoPlaneEdgesIsOneContact) {
+    for (const double x : {1000.0, 1000.4, 500.0}) {
+        World world(planarSettings());
+        world.createBody(ground());
+        BodyDef def = box("box", Vec3(0.5, 0.5, 0.5), Vec3(x, 0.5, 0));
+        def.allowSleep = false;  // a sleeping pair has no events
+        Body b = world.createBody(def);
+        for (int i = 0; i < 60; ++i) world.step();
+        const auto& events = world.lastEvents();
+        ASSERT_EQ(events.size(), 1u) << "box at x = " << x;
+        double impulse = 0.0, left = x, right = x;
+        for (const ContactPoint& p : events.front().points) {
+            impulse += p.normalImpulse;
+            left = std::min(left, p.position.x());
+            right = std::max(right, p.position.x());
+        }
+        // The whole bottom face, both corners (within the 2.5 mm skin): across the joint, one
+        // edge's contact alone holds only the corner on its side.
+        EXPECT_LT(left, x - 0.49) << "box at x = " << x;
+        EXPECT_GT(right, x + 0.49) << "box at x = " << x;
+        // Resting: one step's impulse is the box's weight times the step, within 1 % (the solver's
+        // iterations leave a fraction of a per cent of a settling box's load unsettled).
+        const double weight = b.massProperties().mass * 9.81 / 60.0;
+        EXPECT_NEAR(impulse, weight, 0.01 * weight) << "box at x = " << x;
+        EXPECT_NEAR(b.position().y(), 0.5, 1e-3) << "box at x = " << x;
+        report("box across plane edges at x = " + std::to_string(x) + ": points", static_cast<double>(events.front().points.size()));
+    }
+}
+
 }  // namespace
 }  // namespace anyphys::box2d::test
