@@ -33,6 +33,15 @@ bool ContactRules::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
     return fixturesCollide(fixtureA, fixtureB);
 }
 
+namespace {
+
+bool apartBeyond(const b2AABB& a, const b2AABB& b, float reach) {
+    return a.lowerBound.x - reach > b.upperBound.x || b.lowerBound.x - reach > a.upperBound.x ||
+           a.lowerBound.y - reach > b.upperBound.y || b.lowerBound.y - reach > a.upperBound.y;
+}
+
+}  // namespace
+
 bool nearestSurfaces(const b2Body& a, const b2Body& b, double reach, b2Vec2& normal, b2Vec2& point, double& gap) {
     gap = reach;
     bool found = false;
@@ -43,6 +52,11 @@ bool nearestSurfaces(const b2Body& a, const b2Body& b, double reach, b2Vec2& nor
             const b2Shape* sb = fb->GetShape();
             for (int32 ca = 0; ca < sa->GetChildCount(); ++ca)
                 for (int32 cb = 0; cb < sb->GetChildCount(); ++cb) {
+                    // Box2D's broad-phase boxes hold each child with room to spare: children whose
+                    // boxes lie farther apart than the reach have no surfaces within it (most of a
+                    // plane's run of edges). Every child has its box: the backend never disables
+                    // a body, which would take its fixtures out of the broad phase.
+                    if (apartBeyond(fa->GetAABB(ca), fb->GetAABB(cb), static_cast<float>(reach))) continue;
                     // Between the cores (no radii): their closest points give the normal even
                     // where the rounded shapes would touch.
                     b2DistanceInput in;
