@@ -629,8 +629,8 @@ inline double lowestRestingHeightFarOut(const WorldSettings& s, const Vec3& wher
 
 /// lowestRestingHeightFarOut at each of `places`, reported, each expected no more than 1 cm
 /// below its resting height: a resting contact overlaps by up to linearSlop (5 mm) plus its
-/// spring's give under a box's weight (well under a millimetre); a float engine's rounding at
-/// 1e5 m is 8 mm along the plane, not across it.
+/// spring's give under a box's weight (well under a millimetre); a float engine's rounding far
+/// out (8 mm at 1e5 m, 1 m at 9e6 m) is along the plane, not across it.
 inline void expectRestsFarOut(const WorldSettings& s, const std::vector<Vec3>& places) {
     for (const Vec3& where : places) {
         const double lowest = lowestRestingHeightFarOut(s, where);

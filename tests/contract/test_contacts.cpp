@@ -602,13 +602,15 @@ TEST_P(ContactsTest, FastSphereOnASliderNeverTunnelsThroughThinWall) {
     expectCriterion(r.id, r.met, r.measured);
 }
 
-// A plane holds what rests on it anywhere, not only near the origin: 10 km and 100 km out
-// along X and Z, either way (Box2D's stand-in edges once ended 1 km out, and a stack 10 km out
-// fell through its ground; see the planar twin).
+// A plane holds what rests on it anywhere, not only near the origin: from 10 km out to 9 000 km,
+// within the coordinate ceiling (1e7 m), along X and Z, either way. Native's plane stood in the
+// broad phase as a box 1e6 m across, and a box resting 3e6 m out fell through it; see the planar
+// twin for Box2D's.
 TEST_P(ContactsTest, BoxRestsOnAPlaneFarFromTheOrigin) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
     ANYPHYS_REQUIRE(missing.empty(), missing);
-    expectRestsFarOut(settings(), {Vec3(1e4, 0, 0), Vec3(-1e5, 0, 0), Vec3(0, 0, 1e4), Vec3(0, 0, -1e5), Vec3(7e4, 0, -7e4)});
+    expectRestsFarOut(settings(), {Vec3(1e4, 0, 0), Vec3(-1e5, 0, 0), Vec3(0, 0, 1e4), Vec3(0, 0, -1e5), Vec3(7e4, 0, -7e4),
+                                   Vec3(3e6, 0, 0), Vec3(0, 0, -9e6), Vec3(-6e6, 0, 6e6)});
 }
 
 ANYPHYS_CONTRACT_SUITE(ContactsTest);

@@ -4,15 +4,17 @@
 #include <limits>
 #include <stdexcept>
 
+#include "anyphys/checks.hpp"
 #include "collision/mesh_data.hpp"
 #include "collision/query_helpers.hpp"
 
 namespace anyphys::native {
 namespace {
 
-// Half size of the box standing in for an infinite plane: large, but finite so that tree
-// arithmetic (perimeters, merges) stays finite.
-constexpr double kPlaneExtent = 1e6;
+// Half size of the box standing in for an infinite plane: finite so that tree arithmetic
+// (perimeters, merges) stays finite, and past every coordinate a world admits, so a body anywhere
+// on the plane meets it in the broad phase (at 1e6 m a box resting 3e6 m out fell through).
+constexpr double kPlaneExtent = 2.0 * kMaxCoordinate;
 
 Aabb pointsAabb(const std::vector<Vec3>& points, const Transform& xf) {
     const Mat3 r = xf.orientation.toRotationMatrix();
