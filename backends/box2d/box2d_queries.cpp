@@ -2,7 +2,6 @@
 // outline, without the contact skin). A query that leaves the XY plane never gets here: the layer
 // refuses it in every planar world (World::raycast, World::overlap), whichever the backend.
 #include <algorithm>
-#include <cmath>
 
 #include "box2d_world.hpp"
 
@@ -98,15 +97,9 @@ std::vector<PeerRayHit> Box2dWorld::raycast(const Vec3& origin, const Vec3& dire
     const b2BroadPhase& bp = world_->GetContactManager().m_broadPhase;
     RayCollector collector(bp, Vec3(origin.x(), origin.y(), 0.0), dir, maxDistance, closestOnly, mask);
     bp.RayCast(&collector, input);
-    std::vector<PeerRayHit>& hits = collector.hits;
-    std::sort(hits.begin(), hits.end(), [](const PeerRayHit& a, const PeerRayHit& b) { return a.distance < b.distance; });
-    // One shape may be several fixtures (a plane's run of edges, a capsule's three pieces): a ray
-    // through the point where two of them meet hits both there. One hit per body and distance.
-    const auto same = [](const PeerRayHit& a, const PeerRayHit& b) {
-        return a.body == b.body && std::abs(a.distance - b.distance) <= 1e-6 * std::max(1.0, b.distance);
-    };
-    hits.erase(std::unique(hits.begin(), hits.end(), same), hits.end());
-    return std::move(hits);
+    // One shape may be several fixtures (a plane's run of edges, a capsule's three pieces).
+    sortAndMergeSeamHits(collector.hits);
+    return std::move(collector.hits);
 }
 
 std::vector<std::uint64_t> Box2dWorld::overlap(const std::vector<PeerShape>& shapes, const Transform& pose, std::uint32_t mask) {

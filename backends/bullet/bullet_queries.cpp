@@ -86,8 +86,8 @@ std::vector<PeerRayHit> BulletWorld::raycast(const Vec3& origin, const Vec3& dir
     refreshBounds();
     RayHits hits(origin, direction, maxDistance, closestOnly, mask);
     world_->rayTest(toBt(origin), toBt(origin + maxDistance * direction), hits);
-    std::sort(hits.hits.begin(), hits.hits.end(),
-              [](const PeerRayHit& x, const PeerRayHit& y) { return x.distance < y.distance; });
+    // Bullet's plane is two triangles around the ray's midpoint, meeting under a ray straight down.
+    sortAndMergeSeamHits(hits.hits);
     return std::move(hits.hits);
 }
 

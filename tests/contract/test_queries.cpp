@@ -78,6 +78,27 @@ TEST_P(QueriesTest, RaycastAllReturnsEveryHitNearestFirst) {
     EXPECT_NEAR(closestOnLayer2->distance, 3.5, kExact);
 }
 
+// "At most one hit per shape": a ray down onto the ground plane hits it once, wherever it falls
+// (near the origin, 2 km out where Box2D's run of edges joins two, 3 000 km out), straight down
+// or slanted. Bullet's plane is two triangles meeting under the ray, and both answered: 2 hits.
+TEST_P(QueriesTest, RaycastAllHitsAPlaneOnce) {
+    ANYPHYS_REQUIRE(has("raycast") && caps().shapes.contains(ShapeType::Plane), "query raycast on planes");
+    World world(settings());
+    world.createBody(groundDef());
+    const double zs[] = {0.0, 0.7};
+    for (const double x : {0.0, 3.3, 2000.0, -3e6})
+        for (const double z : zs) {
+            const Vec3 from(x, 10, planarWorld() ? 0.0 : z);
+            for (const Vec3& dir : {Vec3(0, -1, 0), Vec3(0.6, -0.8, 0)}) {
+                const std::vector<RayHit> hits = world.raycastAll(from, dir, 20.0);
+                ASSERT_EQ(hits.size(), 1u) << "ray from " << from.transpose() << " along " << dir.transpose();
+                // 10 m straight down, 12.5 m along the slant; a float engine rounds 3e6 m to 0.25 m
+                // along the plane, which moves neither distance.
+                EXPECT_NEAR(hits[0].distance, 10.0 / -dir.y(), 1e-4) << "ray from " << from.transpose();
+            }
+        }
+}
+
 std::vector<std::string> names(const std::vector<Body>& bodies) {
     std::vector<std::string> out;
     for (const Body& b : bodies) out.push_back(b.name());

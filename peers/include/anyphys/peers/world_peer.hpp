@@ -1,6 +1,7 @@
 #pragma once
 // The backend side of one world.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -150,6 +151,18 @@ struct PeerRayHit {
     Vec3 normal = Vec3::Zero();      ///< surface normal at the hit, facing the ray
     double distance = 0.0;           ///< m along the unit direction
 };
+
+/// Sorts a ray's hits nearest first and keeps one per body and distance (within a millionth of
+/// it, or a micrometre): an engine whose one shape is several pieces (Box2D's capsules and planes,
+/// Bullet's plane as two triangles under the ray) answers twice for a ray through a seam, where
+/// the layer promises at most one hit per shape.
+inline void sortAndMergeSeamHits(std::vector<PeerRayHit>& hits) {
+    std::sort(hits.begin(), hits.end(), [](const PeerRayHit& a, const PeerRayHit& b) { return a.distance < b.distance; });
+    const auto seam = [](const PeerRayHit& a, const PeerRayHit& b) {
+        return a.body == b.body && std::abs(a.distance - b.distance) <= 1e-6 * std::max(1.0, b.distance);
+    };
+    hits.erase(std::unique(hits.begin(), hits.end(), seam), hits.end());
+}
 
 /// Access to body states while a ForceEvaluation::PerStage backend evaluates forces inside a
 /// step: the integrator's intermediate states. (On PerStep backends the layer evaluates forces
