@@ -216,10 +216,6 @@ std::vector<Vec2> projectedOutline(const std::vector<Vec3>& points, const std::s
     return outline;
 }
 
-}  // namespace
-
-namespace {
-
 // Where a plane's edges begin and end along its line, from the point nearest the origin:
 // -R ... -2L, -L, L, 2L ... R for the middle half length L, doubling until R passes twice the
 // largest coordinate a world admits (a body may stand anywhere within it).
