@@ -64,7 +64,11 @@ struct WorldSettings {
     std::optional<int> iterations;
     /// Constraint-solver substeps per step, >= 1: bodies in contact are solved and moved in
     /// `substeps` slices of the step; free bodies are integrated once per step by `integrator`.
-    /// Unset (default): the backend's default (capabilities.defaultSubsteps).
+    /// Unset (default): the backend's default (capabilities.defaultSubsteps). The count, not the
+    /// rate, is fixed: native caps its contacts' stiffness at a fifth of the substep rate, so a
+    /// longer step with the same count gives softer stacks (at 1/30 s the catalogue's 40-box column
+    /// sags four times as far as at 1/60 s and topples after 25 s; 16 substeps hold it as 8 do
+    /// at 60 Hz).
     std::optional<int> substeps;
     /// Effects to simulate. Unset (default): derived from the world's content, e.g. damping only
     /// when some body has non-zero damping. Set: exactly these effects, nothing else.
