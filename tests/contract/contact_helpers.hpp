@@ -612,10 +612,7 @@ inline std::vector<CriterionResult> overhangResults(const WorldSettings& s, cons
 inline double lowestRestingHeightFarOut(const WorldSettings& s, const Vec3& where) {
     World world(s);
     world.createBody(groundDef());
-    BodyDef def;
-    def.name = "box";
-    def.shape = ShapeDef::box(Vec3(0.5, 0.5, 0.5));
-    def.position = Vec3(where.x(), 0.5, where.z());
+    BodyDef def = boxDef("box", Vec3(0.5, 0.5, 0.5), Vec3(where.x(), 0.5, where.z()));
     def.allowSleep = false;
     Body box = world.createBody(def);
     double lowest = 0.5;
