@@ -8,6 +8,7 @@
 #include "anyphys/peers/rebound_from_depth.hpp"
 #include "box2d_body.hpp"
 #include "box2d_convert.hpp"
+#include "box2d_trigger_planes.hpp"
 
 namespace anyphys::box2d {
 
@@ -30,6 +31,7 @@ bool fixturesCollide(const b2Fixture* fixtureA, const b2Fixture* fixtureB) {
 
 bool ContactRules::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
     if (!effects_.has(Effect::Contacts)) return false;  // contacts off: nothing touches
+    if (isTriggerPlane(*fixtureA) || isTriggerPlane(*fixtureB)) return false;  // the world lists those
     return fixturesCollide(fixtureA, fixtureB);
 }
 

@@ -46,16 +46,6 @@ private:
     std::uint32_t mask_;
 };
 
-// The smallest value of normal.dot(x) over a shape placed at xf (how deep it reaches below a plane).
-float lowest(const b2Shape& s, const b2Transform& xf, const b2Vec2& normal) {
-    if (s.GetType() == b2Shape::e_circle)
-        return b2Dot(normal, b2Mul(xf, static_cast<const b2CircleShape&>(s).m_p)) - s.m_radius;
-    const auto& p = static_cast<const b2PolygonShape&>(s);
-    float low = b2Dot(normal, b2Mul(xf, p.m_vertices[0]));
-    for (int32 i = 1; i < p.m_count; ++i) low = std::min(low, b2Dot(normal, b2Mul(xf, p.m_vertices[i])));
-    return low;
-}
-
 class OverlapCollector final : public b2QueryCallback {
 public:
     OverlapCollector(const Piece& query, const b2Transform& xf, std::uint32_t mask, std::vector<std::uint64_t>& found)

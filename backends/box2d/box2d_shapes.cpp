@@ -310,6 +310,15 @@ std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, con
     return pieces;
 }
 
+float lowest(const b2Shape& exact, const b2Transform& xf, const b2Vec2& normal) {
+    if (exact.GetType() == b2Shape::e_circle)
+        return b2Dot(normal, b2Mul(xf, static_cast<const b2CircleShape&>(exact).m_p)) - exact.m_radius;
+    const auto& p = static_cast<const b2PolygonShape&>(exact);
+    float low = b2Dot(normal, b2Mul(xf, p.m_vertices[0]));
+    for (int32 i = 1; i < p.m_count; ++i) low = std::min(low, b2Dot(normal, b2Mul(xf, p.m_vertices[i])));
+    return low;
+}
+
 double innerRadius(const Piece& piece) {
     const b2Shape& s = *piece.exact;
     if (s.GetType() == b2Shape::e_circle) return s.m_radius;

@@ -1,7 +1,7 @@
 #pragma once
 // The layer's shapes as Box2D shapes: each PeerShape becomes one or more 2D pieces in the Box2D
 // body frame (sphere -> circle, box and convex -> polygon, capsule -> rectangle + two circles,
-// plane -> a long one-sided edge).
+// plane -> a run of one-sided edges along its line).
 #include <box2d/box2d.h>
 
 #include <memory>
@@ -36,6 +36,10 @@ struct Piece {
 /// than b2_maxPolygonVertices vertices, or one too thin to be a polygon).
 std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, const b2Vec2& originInBody,
                               const std::string& path);
+
+/// The smallest value of normal.dot(x) over an exact piece placed at xf: how deep it reaches
+/// below a plane of that normal (a circle or polygon; a polygon's outline is its vertices).
+float lowest(const b2Shape& exact, const b2Transform& xf, const b2Vec2& normal);
 
 /// Smallest distance from a piece's centre to its surface, m (how far it may move in a step
 /// before a discrete step can miss a hit); infinite for planes.

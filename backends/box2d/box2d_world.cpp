@@ -87,7 +87,6 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     auto peer = std::make_unique<Box2dBody>(*this, body, peerDef, embedding);
     peer->slot = bodies_.size();
     bodies_.push_back(peer.get());
-    if (pieces.size() > 1) ++multiFixtureBodies_;
 
     double inner = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -106,6 +105,8 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
         peer->addFixture(std::move(info));
     }
     peer->setInnerRadius(inner);
+    // A trigger plane's edges make no Box2D contacts (TriggerPlanes): nothing of it to merge.
+    if (!triggerPlanes_.addIfTriggerPlane(*peer) && pieces.size() > 1) ++multiFixtureBodies_;
     if (def.type == BodyType::Dynamic) {
         // The layer's mass and its moment about Z through the centre of mass (the peer frame's
         // inertia turned into the Box2D body frame), so masses agree with the 3D backends.
@@ -167,7 +168,7 @@ void Box2dWorld::removeBody(Box2dBody& body) {
         if (const SummedImpulses* sum = summedImpulses(e->contact))
             impulses_.erase(impulses_.begin() + (sum - impulses_.data()));
     world_->DestroyBody(b);
-    if (body.fixtures().size() > 1) --multiFixtureBodies_;
+    if (!triggerPlanes_.remove(body) && body.fixtures().size() > 1) --multiFixtureBodies_;
     bodies_.back()->slot = body.slot;
     bodies_[body.slot] = bodies_.back();
     bodies_.pop_back();
@@ -385,6 +386,7 @@ void Box2dWorld::reportContacts(ContactReport& out) {
             out.addPoint({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulse});
         }
     }
+    triggerPlanes_.report(bodies_, effects_, out);
     out.sleepKnown = true;
     // Box2D keeps one contact per fixture pair; the layer wants one per body pair (a capsule has
     // three fixtures, a plane a run of edges): merged, the first contact's body order and normal

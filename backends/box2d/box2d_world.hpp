@@ -15,6 +15,7 @@
 #include "box2d_body.hpp"
 #include "box2d_contacts.hpp"
 #include "box2d_joints.hpp"
+#include "box2d_trigger_planes.hpp"
 
 namespace anyphys::box2d {
 
@@ -104,6 +105,7 @@ private:
     std::vector<Box2dJoint*> joints_;
     SpringsPerBody<b2Body> springsPerBody_;  // beginJointSteps'
     b2Body* ground_ = nullptr;
+    TriggerPlanes triggerPlanes_;  // overlaps listed by the world, not by Box2D
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
 

@@ -24,6 +24,7 @@ protected:
     void RestingBodyEntersOnceAndNeverExits();
     void PairOrderIsLowerIdFirstWithNormalFromAToB();
     void BodyPassingThroughSensorGetsTriggerEnterAndExit();
+    void BodySinkingThroughATriggerPlaneStaysInside();
     void DestroyingAndCreatingBodiesInsideCallbackIsSafe();
     void RestingBoxImpulseCarriesItsWeightOverTheWholeStep();
     void EventsWithoutImpulsesAreTheSameEventsAndMotion();
@@ -340,6 +341,71 @@ void EventsTest::BodyPassingThroughSensorGetsTriggerEnterAndExit() {
                 report(backend() + std::string(" ") + phaseName(r.event) + " time at " + std::to_string(speed) + " m/s", t, "s");
         }
     }
+}
+
+// A plane is solid below its surface: a body that sinks through a trigger plane is inside it
+// until it rises out again, however deep it goes, level or tilted, near the origin or far along
+// the plane. (Box2D's plane is a run of edges, a line: its sensor once let the body out below.)
+void EventsTest::BodySinkingThroughATriggerPlaneStaysInside() {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Box, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const double speed = 2.0;  // m/s along the plane's normal
+    struct PlaneCase {
+        Vec3 normal;
+        double offset;
+        double along;  // m along the plane from its point nearest the origin
+    };
+    // Far out only on the level plane: there the body moves along Y, whose coordinate stays
+    // small; a 2D engine in floats cannot move a body 3 cm a step at a coordinate of 2e6 m.
+    for (const PlaneCase& plane : {PlaneCase{Vec3(0, 1, 0), 0.0, 0.0}, PlaneCase{Vec3(0, 1, 0), 0.0, 1500.0},
+                                  PlaneCase{Vec3(0, 1, 0), 0.0, -3e6}, PlaneCase{Vec3(0.6, 0.8, 0), -1.0, 0.0},
+                                  PlaneCase{Vec3(0.6, 0.8, 0), -1.0, 1500.0}})
+        for (const bool box : {false, true}) {
+                const double along = plane.along;
+                SCOPED_TRACE("normal " + ::testing::PrintToString(plane.normal.transpose()) + ", " + std::to_string(along) +
+                             " m along, " + (box ? "box" : "ball"));
+                WorldSettings s = settings();
+                s.gravity = Vec3::Zero();
+                World world(s);
+                CheckingListener listener(world);
+                world.addListener(&listener);
+                BodyDef trigger;
+                trigger.type = BodyType::Static;
+                trigger.shape = ShapeDef::plane(plane.normal, plane.offset);
+                trigger.isTrigger = true;
+                world.createBody(trigger);
+                const Vec3 n = plane.normal.normalized(), t(-n.y(), n.x(), 0.0);
+                const double reach = 0.25;  // how far the body reaches below its centre along -n
+                const Vec3 start = (plane.offset + 2.0) * n + along * t;
+                BodyDef def = box ? boxDef("body", Vec3(0.25, 0.25, 0.25), start) : ballDef("body", 0.25, start);
+                if (box) def.orientation = Quat::FromTwoVectors(Vec3::UnitY(), n);  // a face towards the plane
+                def.linearVelocity = -speed * n;
+                Body body = world.createBody(def);
+                const double dt = world.settings().timeStep;
+                while (world.time() < 4.0) world.step();  // ends 4 m under the surface (6 m travelled)
+                body.setLinearVelocity(speed * n);
+                while (world.time() < 8.0) world.step();  // back where it began
+
+                EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+                ASSERT_EQ(listener.count(ContactPhase::Enter, true), 1) << listener.log();
+                ASSERT_EQ(listener.count(ContactPhase::Exit, true), 1) << "one exit, on the way up:" << listener.log();
+                // Overlap begins when the body's lowest point reaches the surface (t = 0.875 s) and
+                // ends when it rises past it on the way back (t = 7.125 s). As in
+                // BodyPassingThroughSensorGetsTriggerEnterAndExit: at most two steps late; and no
+                // earlier than within linearSlop of the surface (an engine's skin, as on collisions).
+                const double touch = (2.0 - reach) / speed, leave = 8.0 - touch;
+                const double early = s.linearSlop / speed + 1e-9, late = 2 * dt + 1e-9;
+                for (const auto& r : listener.records) {
+                    const double time = r.step * dt;
+                    if (r.event.phase == ContactPhase::Enter) {
+                        EXPECT_GE(time, touch - early) << "trigger enter time";
+                        EXPECT_LE(time, touch + late) << "trigger enter time";
+                    } else if (r.event.phase == ContactPhase::Exit) {
+                        EXPECT_GE(time, leave - early) << "trigger exit time";
+                        EXPECT_LE(time, leave + late) << "trigger exit time";
+                    }
+                }
+            }
 }
 
 // A listener may destroy the body it is told about and create another; the world stays sound,
@@ -815,6 +881,8 @@ TEST_P(EventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) { PairOrderIsLower
 TEST_P(PlanarEventsTest, PairOrderIsLowerIdFirstWithNormalFromAToB) { PairOrderIsLowerIdFirstWithNormalFromAToB(); }
 TEST_P(EventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) { BodyPassingThroughSensorGetsTriggerEnterAndExit(); }
 TEST_P(PlanarEventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) { BodyPassingThroughSensorGetsTriggerEnterAndExit(); }
+TEST_P(EventsTest, BodySinkingThroughATriggerPlaneStaysInside) { BodySinkingThroughATriggerPlaneStaysInside(); }
+TEST_P(PlanarEventsTest, BodySinkingThroughATriggerPlaneStaysInside) { BodySinkingThroughATriggerPlaneStaysInside(); }
 TEST_P(EventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { DestroyingAndCreatingBodiesInsideCallbackIsSafe(); }
 TEST_P(PlanarEventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { DestroyingAndCreatingBodiesInsideCallbackIsSafe(); }
 
