@@ -50,6 +50,8 @@ bool nearestSurfaces(const b2Body& a, const b2Body& b, double reach, b2Vec2& nor
     for (const b2Fixture* fa = a.GetFixtureList(); fa; fa = fa->GetNext())
         for (const b2Fixture* fb = b.GetFixtureList(); fb; fb = fb->GetNext()) {
             if (fa->IsSensor() || fb->IsSensor() || !fixturesCollide(fa, fb)) continue;
+            // A plane's edges give its surface; its basements lie under them (box2d_shapes.hpp).
+            if (fixtureInfo(fa).piece.basement || fixtureInfo(fb).piece.basement) continue;
             const b2Shape* sa = fa->GetShape();
             const b2Shape* sb = fb->GetShape();
             for (int32 ca = 0; ca < sa->GetChildCount(); ++ca)
@@ -97,9 +99,42 @@ void ContactRules::updateBounces() {
                std::any_of(materials_.values.begin(), materials_.values.end(), [](const ContactMaterial& m) { return m.restitution > 0; });
 }
 
+namespace {
+// A plane's basement (box2d_shapes.hpp) holds a piece only where the edge above it lets go: when
+// the piece's centre (a polygon's centroid, a circle's centre) is behind the edge's line, as
+// Box2D's one-sided edge tests it (b2CollideEdgeAndPolygon, b2CollideEdgeAndCircle, in the edge's
+// frame). Elsewhere the edge holds the piece alone: one smooth surface across the edges' joints.
+bool basementLetsGo(const b2Contact& contact) {
+    const b2Fixture* basement = contact.GetFixtureA();
+    const b2Fixture* other = contact.GetFixtureB();
+    // Only a static body has a basement: most contacts are settled by the body's type.
+    const auto isBasement = [](const b2Fixture* f) { return f->GetBody()->GetType() == b2_staticBody && fixtureInfo(f).piece.basement; };
+    if (!isBasement(basement)) {
+        std::swap(basement, other);
+        if (!isBasement(basement)) return false;
+    }
+    const b2Shape& shape = *other->GetShape();
+    b2Vec2 centre;
+    if (shape.GetType() == b2Shape::e_circle)
+        centre = static_cast<const b2CircleShape&>(shape).m_p;
+    else if (shape.GetType() == b2Shape::e_polygon)
+        centre = static_cast<const b2PolygonShape&>(shape).m_centroid;
+    else
+        return false;
+    const HalfPlane& plane = *fixtureInfo(basement).piece.plane;
+    const b2Transform xf = b2MulT(basement->GetBody()->GetTransform(), other->GetBody()->GetTransform());
+    const float edgeLine = plane.offset - (b2_polygonRadius - static_cast<float>(kSkin));  // the edge's core (makePieces)
+    return b2Dot(plane.normal, b2Mul(xf, centre)) >= edgeLine;
+}
+}  // namespace
+
 // Runs for every touching contact every step: with nothing that bounces it returns at once (the
 // lookups of both bodies' materials were 7 % of a 5 050-box pile's step when done here).
 void ContactRules::PreSolve(b2Contact* contact, const b2Manifold* /*oldManifold*/) {
+    if (basementLetsGo(*contact)) {
+        contact->SetEnabled(false);  // until its next update: unsolved and unreported
+        return;
+    }
     if (solved_) {  // only time of impact updates contacts after a solve
         timeOfImpact_ = true;
         // The update may re-collide the manifold after the main solve stored its impulses in it:

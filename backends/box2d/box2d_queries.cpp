@@ -10,7 +10,10 @@ namespace {
 
 const FixtureInfo& infoOf(const b2Fixture* f) { return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(f)->GetUserData().pointer); }
 
-bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (infoOf(f).layer & mask) == 0; }
+// Queries answer about the user's shapes: a plane is its edges, not the basements below them.
+bool skipped(const b2Fixture* f, std::uint32_t mask) {
+    return f->IsSensor() || (infoOf(f).layer & mask) == 0 || infoOf(f).piece.basement;
+}
 
 // Visits the broad phase's proxies along the ray and casts against each fixture's exact shape
 // (b2World::RayCast would cast against the skinned collision shapes).

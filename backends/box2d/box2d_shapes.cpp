@@ -249,6 +249,18 @@ Piece planeEdge(const Vec2& sunk, const Vec2& centre, const Vec2& t, const Vec2&
     return piece;
 }
 
+// The polygon under edge i: its top is the plane between the edge's ends, and it reaches as deep
+// as the edge is long (2 km under the middle one). Its coordinates stay as large as the edge's.
+Piece planeBasement(const Vec2& centre, const Vec2& t, const Vec2& n, const std::vector<double>& stops, std::size_t i,
+                    const std::string& path) {
+    const double depth = stops[i + 1] - stops[i];
+    const Vec2 a = centre + stops[i] * t, b = centre + stops[i + 1] * t;
+    Piece piece = polygonPiece(convexOutline({a, b, b - depth * n, a - depth * n}), path, "plane");
+    piece.plane = HalfPlane{b2Vec2(static_cast<float>(n.x()), static_cast<float>(n.y())), static_cast<float>(n.dot(centre))};
+    piece.basement = true;
+    return piece;
+}
+
 }  // namespace
 
 std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, const b2Vec2& originInBody,
@@ -300,6 +312,9 @@ std::vector<Piece> makePieces(const PeerShape& shape, const Transform& pose, con
             const std::vector<double> stops = planeStops();
             for (std::size_t i = 0; i + 1 < stops.size(); ++i)
                 pieces.push_back(planeEdge(sunk, centre, t, n, stops, i));
+            // A trigger plane's overlaps are the world's to find (TriggerPlanes): no basement.
+            if (!shape.isTrigger)
+                for (std::size_t i = 0; i + 1 < stops.size(); ++i) pieces.push_back(planeBasement(centre, t, n, stops, i, path));
             break;
         }
         case ShapeType::Mesh:

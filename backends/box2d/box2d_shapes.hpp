@@ -1,7 +1,7 @@
 #pragma once
 // The layer's shapes as Box2D shapes: each PeerShape becomes one or more 2D pieces in the Box2D
 // body frame (sphere -> circle, box and convex -> polygon, capsule -> rectangle + two circles,
-// plane -> a run of one-sided edges along its line).
+// plane -> a run of one-sided edges along its line, over polygons that hold what sinks below).
 #include <box2d/box2d.h>
 
 #include <memory>
@@ -28,6 +28,10 @@ struct Piece {
     /// The true outline, for ray casts and overlap queries (answers about the user's geometry).
     std::unique_ptr<b2Shape> exact;
     std::optional<HalfPlane> plane;  ///< set for planes: overlap tests use the half-plane
+    /// A polygon under one of a collision plane's edges, its top on the plane: it holds what sank
+    /// below the edge's line (a one-sided edge lets go of a piece whose centre is behind it).
+    /// Enabled per contact only then (ContactRules::PreSolve); no part of queries or near pairs.
+    bool basement = false;
 };
 
 /// Builds the pieces of one shape placed at `pose` in the Box2D body frame. `originInBody` is the

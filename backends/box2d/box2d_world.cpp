@@ -352,7 +352,7 @@ bool touchesTwice(const b2Contact& c) {
     const b2Body* walked = walkA ? a : b;
     const b2Body* partner = walkA ? b : a;
     for (const b2ContactEdge* e = const_cast<b2Body*>(walked)->GetContactList(); e; e = e->next)
-        if (e->other == partner && e->contact != &c && e->contact->IsTouching()) return true;
+        if (e->other == partner && e->contact != &c && e->contact->IsTouching() && e->contact->IsEnabled()) return true;
     return false;
 }
 
@@ -364,7 +364,7 @@ void Box2dWorld::reportContacts(ContactReport& out) {
     const auto key = [](const b2Body* b) { return static_cast<std::uint64_t>(const_cast<b2Body*>(b)->GetUserData().pointer); };
     bool repeats = false;
     for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
-        if (!c->IsTouching()) continue;
+        if (!c->IsTouching() || !c->IsEnabled()) continue;  // disabled: a basement the edge above holds for
         const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
         const b2Body *ba = fa->GetBody(), *bb = fb->GetBody();
         if (!ba->IsAwake() && !bb->IsAwake()) continue;  // asleep: the layer keeps the pair

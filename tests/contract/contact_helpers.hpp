@@ -638,4 +638,34 @@ inline void expectRestsFarOut(const WorldSettings& s, const std::vector<Vec3>& p
     }
 }
 
+/// A plane is solid below its surface: a body set partly or wholly into the ground is pushed out
+/// and rests on it. A unit box (half extent 0.5) and a ball of radius 0.5 each start with their
+/// centre at 0.3 m (0.2 m into the ground), -0.2 m and -1 m (whole body under the surface), are
+/// run for 3 s, and must end resting: centre within 5 mm of 0.5 m (a resting contact overlaps by
+/// up to linearSlop) and under 5 cm/s. Box2D's one-sided edges once let the box fall through from
+/// 0.2 m in, its centre being behind the edge's line. Returns the farthest any of them ended from
+/// where it began sideways (the push is along the normal: criterion contacts.sunk_rises_straight,
+/// within 5 cm).
+inline double sunkBodiesRiseOntoThePlane(const WorldSettings& s) {
+    double sideways = 0.0;
+    for (const bool ball : {false, true})
+        for (const double start : {0.3, -0.2, -1.0}) {
+            World world(s);
+            world.createBody(groundDef());
+            BodyDef def = ball ? ballDef("ball", 0.5, Vec3(0.0, start, 0.0)) : boxDef("box", Vec3(0.5, 0.5, 0.5), Vec3(0.0, start, 0.0));
+            def.allowSleep = false;
+            Body body = world.createBody(def);
+            for (int i = 0; i < 180; ++i) world.step();
+            const std::string label = s.backend + (ball ? " ball" : " box") + " started with its centre at y = " +
+                                      std::to_string(start) + " m: ";
+            const Vec3 p = body.position();
+            report(label + "centre height after 3 s", p.y(), "m");
+            report(label + "sideways after 3 s", std::hypot(p.x(), p.z()), "m");
+            EXPECT_NEAR(p.y(), 0.5, 0.005) << label << "height";
+            EXPECT_LT(body.linearVelocity().norm(), 0.05) << label << "speed";
+            sideways = std::max(sideways, std::hypot(p.x(), p.z()));
+        }
+    return sideways;
+}
+
 }  // namespace anyphys::test

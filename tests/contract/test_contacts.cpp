@@ -613,6 +613,14 @@ TEST_P(ContactsTest, BoxRestsOnAPlaneFarFromTheOrigin) {
                                    Vec3(3e6, 0, 0), Vec3(0, 0, -9e6), Vec3(-6e6, 0, 6e6)});
 }
 
+// A plane is solid below its surface, not a skin: what is set into the ground comes out on top.
+TEST_P(ContactsTest, BodiesSetIntoAPlaneRiseOntoIt) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Sphere, ShapeType::Plane}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const double sideways = sunkBodiesRiseOntoThePlane(settings());
+    expectCriterion("contacts.sunk_rises_straight", sideways < 0.05, "farthest sideways " + std::to_string(sideways) + " m (bound 0.05)", sideways);
+}
+
 ANYPHYS_CONTRACT_SUITE(ContactsTest);
 
 }  // namespace
