@@ -113,4 +113,38 @@ private:
     b2Vec2 stepStartPosition_{0.0f, 0.0f};
 };
 
+// Inline: the world runs both for every body every step.
+inline void Box2dBody::flushForces(bool apply) {
+    stepForce_.SetZero();
+    stepTorque_ = 0.0f;
+    if (apply && body_->IsAwake()) {
+        stepForce_ = force_ + heldForce_;
+        stepTorque_ = torque_ + heldTorque_;
+        // addForce's first, then the step forces: the order Box2D summed them in when this
+        // backend ran the force hook itself.
+        if (force_.x != 0.0f || force_.y != 0.0f) body_->ApplyForceToCenter(force_, false);
+        if (torque_ != 0.0f) body_->ApplyTorque(torque_, false);
+        if (heldForce_.x != 0.0f || heldForce_.y != 0.0f) body_->ApplyForceToCenter(heldForce_, false);
+        if (heldTorque_ != 0.0f) body_->ApplyTorque(heldTorque_, false);
+    }
+    force_.SetZero();
+    torque_ = 0.0f;
+    heldForce_.SetZero();
+    heldTorque_ = 0.0f;
+}
+
+inline void Box2dBody::updateBullet(bool continuous, double h) {
+    if (!isDynamic()) return;
+    if (!body_->IsAwake()) {  // at rest (Box2D zeroes a sleeping body's velocity): not fast
+        if (body_->IsBullet()) body_->SetBullet(false);
+        return;
+    }
+    const double travel2 = static_cast<double>(body_->GetLinearVelocity().LengthSquared()) * h * h;
+    // Not a body held by joints: Box2D's time-of-impact solve moves bullets without their joints,
+    // which tore a falling ragdoll's limbs 87 cm from their sockets. Such a body keeps Box2D's
+    // own time of impact against static geometry.
+    const bool fast = continuous && travel2 > 0.25 * innerRadius_ * innerRadius_ && body_->GetJointList() == nullptr;
+    if (fast != body_->IsBullet()) body_->SetBullet(fast);
+}
+
 }  // namespace anyphys::box2d

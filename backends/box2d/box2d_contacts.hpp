@@ -36,6 +36,9 @@ public:
         updateBounces();
     }
     void setRestitutionThreshold(double v) { restitutionThreshold_ = static_cast<float>(v); }
+    /// Bodies whose planes lie over basements (box2d_shapes.hpp) came (+1) or went (-1): without
+    /// any, pre-solve skips its basement test.
+    void countBasements(int change) { basementBodies_ += change; }
     /// Before each b2World::Step: its duration and the world's gravity (for restitution).
     void beginStep(float h, const b2Vec2& gravity) {
         h_ = h;
@@ -97,6 +100,7 @@ private:
     Effects effects_;
     MaterialTable materials_;
     float restitutionThreshold_ = 1.0f;
+    int basementBodies_ = 0;
 };
 
 }  // namespace anyphys::box2d

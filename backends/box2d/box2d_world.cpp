@@ -107,6 +107,7 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     peer->setInnerRadius(inner);
     // A trigger plane's edges make no Box2D contacts (TriggerPlanes): nothing of it to merge.
     if (!triggerPlanes_.addIfTriggerPlane(*peer) && pieces.size() > 1) ++multiFixtureBodies_;
+    if (hasBasements(*peer)) rules_.countBasements(+1);
     if (def.type == BodyType::Dynamic) {
         // The layer's mass and its moment about Z through the centre of mass (the peer frame's
         // inertia turned into the Box2D body frame), so masses agree with the 3D backends.
@@ -120,6 +121,10 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     }
     peer->applyDamping(effects_.has(Effect::Damping), dampingStep_);
     return peer;
+}
+
+bool Box2dWorld::hasBasements(const Box2dBody& body) {
+    return std::any_of(body.fixtures().begin(), body.fixtures().end(), [](const auto& info) { return info->piece.basement; });
 }
 
 void Box2dWorld::destroyBody(BodyPeer& body) { removeBody(static_cast<Box2dBody&>(body)); }
@@ -169,6 +174,7 @@ void Box2dWorld::removeBody(Box2dBody& body) {
             impulses_.erase(impulses_.begin() + (sum - impulses_.data()));
     world_->DestroyBody(b);
     if (!triggerPlanes_.remove(body) && body.fixtures().size() > 1) --multiFixtureBodies_;
+    if (hasBasements(body)) rules_.countBasements(-1);
     bodies_.back()->slot = body.slot;
     bodies_[body.slot] = bodies_.back();
     bodies_.pop_back();
@@ -210,19 +216,58 @@ void Box2dWorld::setMaterialTable(const MaterialTable& table) {
     reapplyMaterials();
 }
 
+namespace {
+
+// The larger fraction of Box2D's per-step caps that one Box2D step of dt would use for this body
+// (after its flushForces: its step forces are part of its motion), if Box2D moves
+// it (awake, dynamic or kinematic: Box2D clamps both): its speed and spin now plus what the step's
+// gravity and held forces add by its end (bounds by the triangle inequality; damping ignored, it
+// only slows). Contact and joint impulses are not known before the solve: the headroom covers
+// them (kCapHeadroom). A non-finite velocity is the layer's to catch (findUnsound): left out here
+// (a NaN fails every comparison, so the caller's std::max keeps the other).
+// Inline: it runs for every body every step (out of line it cost a call per body).
+[[gnu::always_inline]] inline double capShare(const Box2dBody& body, const b2Vec2& gravity, double dt) {
+    const b2Body& b = *body.b2();
+    if (b.GetType() == b2_staticBody || !b.IsAwake()) return 0.0;
+    const b2Vec2 v = b.GetLinearVelocity();
+    double speed = std::sqrt(static_cast<double>(v.x) * v.x + static_cast<double>(v.y) * v.y);
+    double spin = std::abs(static_cast<double>(b.GetAngularVelocity()));
+    if (b.GetType() == b2_dynamicBody) {
+        const double m = b.GetMass(), inertia = b.GetInertia();  // centre of mass at the origin (createBody)
+        const b2Vec2 f = body.stepForce();
+        const double ax = gravity.x * b.GetGravityScale() + (m > 0.0 ? f.x / m : 0.0);
+        const double ay = gravity.y * b.GetGravityScale() + (m > 0.0 ? f.y / m : 0.0);
+        speed += dt * std::sqrt(ax * ax + ay * ay);
+        if (inertia > 0.0) spin += dt * std::abs(static_cast<double>(body.stepTorque())) / inertia;
+    }
+    return std::max(speed * dt / b2_maxTranslation, spin * dt / b2_maxRotation);
+}
+
+}  // namespace
+
 void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, double dt) {
     const bool userForces = effects_.has(Effect::UserForces);
-    for (Box2dBody* b : bodies_) b->flushForces(userForces);
+    const bool continuous = effects_.has(Effect::ContinuousCollision) && effects_.has(Effect::Contacts);
+    // One pass over the bodies: forces flushed, then each body's share of the caps (after its
+    // forces: they are part of its motion) and its bullet flag for the configured Box2D step.
+    const b2Vec2 gravity = world_->GetGravity();
+    const double configuredStep = dt / substeps_;
+    double worst = 0.0;
+    for (Box2dBody* b : bodies_) {
+        b->flushForces(userForces);
+        worst = std::max(worst, capShare(*b, gravity, dt));
+        b->updateBullet(continuous, configuredStep);
+    }
     // Below the caps this is substeps_, and the step is what it was without them, bit for bit.
-    const int substeps = substepsFor(dt);
+    const int substeps = substepsFor(worst);
     lastStepSubsteps_ = substeps;
     const double h = dt / substeps;
     if (h != dampingStep_) {  // Box2D's damping factor depends on the step: convert again
         dampingStep_ = h;
         for (Box2dBody* b : bodies_) b->applyDamping(effects_.has(Effect::Damping), h);
     }
-    const bool continuous = effects_.has(Effect::ContinuousCollision) && effects_.has(Effect::Contacts);
-    for (Box2dBody* b : bodies_) b->updateBullet(continuous, h);
+    if (substeps != substeps_)  // split for the caps: bullets by the shorter step
+        for (Box2dBody* b : bodies_) b->updateBullet(continuous, h);
     // Split or not, the layer sees one step: forces held over every Box2D step (flushForces),
     // contacts reported once after the last, impulses and joint reactions summed over all of
     // them, restitution aimed per Box2D step (markStepStart), joint springs set for h.
@@ -244,33 +289,9 @@ void Box2dWorld::step(double /*time: forces come evaluated from the layer*/, dou
     sumImpulses();
 }
 
-// The worst fraction of a cap that one Box2D step of dt would use, over the awake bodies that
-// Box2D moves (dynamic and kinematic: Box2D clamps both), each at its speed and spin now plus what
-// the step's gravity and held forces add by its end (bounds by the triangle inequality; damping
-// ignored, it only slows). Contact and joint impulses are not known before the solve: the headroom
-// covers them (kCapHeadroom). A non-finite velocity is the layer's to catch (findUnsound): left
-// out here (a NaN fails every comparison, so std::max keeps the other).
-int Box2dWorld::substepsFor(double dt) const {
-    const b2Vec2 gravity = world_->GetGravity();
-    double worst = 0.0;
-    for (const Box2dBody* body : bodies_) {
-        const b2Body& b = *body->b2();
-        if (b.GetType() == b2_staticBody || !b.IsAwake()) continue;
-        const b2Vec2 v = b.GetLinearVelocity();
-        double speed = std::sqrt(static_cast<double>(v.x) * v.x + static_cast<double>(v.y) * v.y);
-        double spin = std::abs(static_cast<double>(b.GetAngularVelocity()));
-        if (b.GetType() == b2_dynamicBody) {
-            const double m = b.GetMass(), inertia = b.GetInertia();  // centre of mass at the origin (createBody)
-            const b2Vec2 f = body->stepForce();
-            const double ax = gravity.x * b.GetGravityScale() + (m > 0.0 ? f.x / m : 0.0);
-            const double ay = gravity.y * b.GetGravityScale() + (m > 0.0 ? f.y / m : 0.0);
-            speed += dt * std::sqrt(ax * ax + ay * ay);
-            if (inertia > 0.0) spin += dt * std::abs(static_cast<double>(body->stepTorque())) / inertia;
-        }
-        worst = std::max(worst, std::max(speed * dt / b2_maxTranslation, spin * dt / b2_maxRotation));
-    }
+int Box2dWorld::substepsFor(double worstShare) const {
     const int most = std::max(substeps_, kMaxCapSubsteps);
-    const double needed = worst / kCapHeadroom;  // Box2D steps of dt / needed keep the worst at the headroom
+    const double needed = worstShare / kCapHeadroom;  // Box2D steps of dt / needed keep the worst at the headroom
     if (needed <= substeps_) return substeps_;
     if (!(needed < most)) return most;  // also infinity
     return static_cast<int>(std::ceil(needed));

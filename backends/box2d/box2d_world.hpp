@@ -88,9 +88,11 @@ private:
     /// Begins every joint's step: each sprung joint with the most sprung joints on either of its
     /// moving bodies (springs on one body share its stable range: see Box2dJoint::beginStep).
     void beginJointSteps(double h);
-    /// The Box2D steps this step of dt takes: substeps_, or more where the caps need them (see
-    /// kCapHeadroom). After flushForces: a body's step forces are part of its motion.
-    int substepsFor(double dt) const;
+    /// Whether the body is a plane over basements (box2d_shapes.hpp).
+    static bool hasBasements(const Box2dBody& body);
+    /// The Box2D steps this step takes, given its bodies' largest capShare: substeps_, or more
+    /// where the caps need them (see kCapHeadroom).
+    int substepsFor(double worstShare) const;
 
     WorldSettings settings_;
     int velocityIterations_;
