@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "anyphys/checks.hpp"
+#include "anyphys/limits.hpp"
 #include "anyphys/error.hpp"
 #include "box2d_convert.hpp"
 

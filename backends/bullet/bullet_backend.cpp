@@ -2,7 +2,7 @@
 #include <memory>
 #include <string>
 
-#include "anyphys/checks.hpp"
+#include "anyphys/limits.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "bullet_world.hpp"
 

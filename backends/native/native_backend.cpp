@@ -1,7 +1,7 @@
 // Registration record of the native backend: its name, capabilities and world factory.
 #include <memory>
 
-#include "anyphys/checks.hpp"
+#include "anyphys/limits.hpp"
 #include "anyphys/peers/backend.hpp"
 #include "native_world.hpp"
 

@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "anyphys/checks.hpp"
+#include "anyphys/limits.hpp"
 #include "collision/mesh_data.hpp"
 #include "collision/query_helpers.hpp"
 
