@@ -39,7 +39,7 @@ void requireLeverWithinReach(const Slot& s, const Vec3& anchor, const std::strin
     const double lever = (anchor - s.peer->state().position).norm();
     if (!(lever <= kMaxJointLeverInGyrationRadii * radius))
         throw Error::invalid(field, formatVec3(anchor),
-                             std::string("must lie within 1e6 radii of gyration of ") + side + "'s centre of mass (" +
+                             "must lie within " + formatNumber(kMaxJointLeverInGyrationRadii) + " radii of gyration of " + side + "'s centre of mass (" +
                                  formatNumber(kMaxJointLeverInGyrationRadii * radius) + " m; the lever is " +
                                  formatNumber(lever) + " m): a longer lever leaves the solvers no precision");
 }
