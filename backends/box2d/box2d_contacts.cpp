@@ -8,7 +8,7 @@
 #include "anyphys/peers/rebound_from_depth.hpp"
 #include "box2d_body.hpp"
 #include "box2d_convert.hpp"
-#include "box2d_trigger_planes.hpp"
+#include "box2d_triggers.hpp"
 
 namespace anyphys::box2d {
 

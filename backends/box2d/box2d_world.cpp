@@ -108,6 +108,8 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     // A trigger plane's edges make no Box2D contacts (TriggerPlanes): nothing of it to merge.
     if (!triggerPlanes_.addIfTriggerPlane(*peer) && pieces.size() > 1) ++multiFixtureBodies_;
     if (hasBasements(*peer)) rules_.countBasements(+1);
+    if (def.type == BodyType::Kinematic) kinematic_.push_back(peer.get());
+    if (hasSensor(*peer)) ++sensorBodies_;
     if (def.type == BodyType::Dynamic) {
         // The layer's mass and its moment about Z through the centre of mass (the peer frame's
         // inertia turned into the Box2D body frame), so masses agree with the 3D backends.
@@ -121,6 +123,12 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
     }
     peer->applyDamping(effects_.has(Effect::Damping), dampingStep_);
     return peer;
+}
+
+bool Box2dWorld::hasSensor(const Box2dBody& body) {
+    for (const b2Fixture* f = body.b2()->GetFixtureList(); f; f = f->GetNext())
+        if (f->IsSensor()) return true;
+    return false;
 }
 
 bool Box2dWorld::hasBasements(const Box2dBody& body) {
@@ -175,6 +183,8 @@ void Box2dWorld::removeBody(Box2dBody& body) {
     world_->DestroyBody(b);
     if (!triggerPlanes_.remove(body) && body.fixtures().size() > 1) --multiFixtureBodies_;
     if (hasBasements(body)) rules_.countBasements(-1);
+    std::erase(kinematic_, &body);
+    if (hasSensor(body)) --sensorBodies_;
     bodies_.back()->slot = body.slot;
     bodies_[body.slot] = bodies_.back();
     bodies_.pop_back();
@@ -408,6 +418,8 @@ void Box2dWorld::reportContacts(ContactReport& out) {
         }
     }
     triggerPlanes_.report(bodies_, effects_, out);
+    // Box2D makes contacts only where a body is dynamic (box2d_triggers.hpp).
+    if (sensorBodies_ > 0 && !kinematic_.empty()) reportKinematicTriggers(kinematic_, *world_, effects_, out, kinematicFound_);
     out.sleepKnown = true;
     // Box2D keeps one contact per fixture pair; the layer wants one per body pair (a capsule has
     // three fixtures, a plane a run of edges): merged, the first contact's body order and normal

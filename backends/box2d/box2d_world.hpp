@@ -15,7 +15,7 @@
 #include "box2d_body.hpp"
 #include "box2d_contacts.hpp"
 #include "box2d_joints.hpp"
-#include "box2d_trigger_planes.hpp"
+#include "box2d_triggers.hpp"
 
 namespace anyphys::box2d {
 
@@ -88,6 +88,8 @@ private:
     /// Begins every joint's step: each sprung joint with the most sprung joints on either of its
     /// moving bodies (springs on one body share its stable range: see Box2dJoint::beginStep).
     void beginJointSteps(double h);
+    /// Whether the body has a sensor fixture.
+    static bool hasSensor(const Box2dBody& body);
     /// Whether the body is a plane over basements (box2d_shapes.hpp).
     static bool hasBasements(const Box2dBody& body);
     /// The Box2D steps this step takes, given its bodies' largest capShare: substeps_, or more
@@ -108,6 +110,9 @@ private:
     SpringsPerBody<b2Body> springsPerBody_;  // beginJointSteps'
     b2Body* ground_ = nullptr;
     TriggerPlanes triggerPlanes_;  // overlaps listed by the world, not by Box2D
+    std::vector<Box2dBody*> kinematic_;  // the kinematic bodies: their triggers are the world's too
+    std::size_t sensorBodies_ = 0;       // bodies with a sensor fixture
+    std::vector<const b2Body*> kinematicFound_;  // scratch of reportKinematicTriggers
     std::size_t multiFixtureBodies_ = 0;  // bodies of several fixtures (contacts then merge per body pair)
     double dampingStep_ = 0.0;  // s, the Box2D step the bodies' damping rates are converted for
 

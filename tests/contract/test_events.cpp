@@ -25,6 +25,7 @@ protected:
     void PairOrderIsLowerIdFirstWithNormalFromAToB();
     void BodyPassingThroughSensorGetsTriggerEnterAndExit();
     void BodySinkingThroughATriggerPlaneStaysInside();
+    void KinematicBodiesMeetStaticAndKinematicTriggers();
     void DestroyingAndCreatingBodiesInsideCallbackIsSafe();
     void RestingBoxImpulseCarriesItsWeightOverTheWholeStep();
     void EventsWithoutImpulsesAreTheSameEventsAndMotion();
@@ -406,6 +407,61 @@ void EventsTest::BodySinkingThroughATriggerPlaneStaysInside() {
                     }
                 }
             }
+}
+
+// A trigger reports every body that overlaps it, whatever moves it: a kinematic body (a
+// character, a platform) crossing a static or kinematic trigger zone, or a kinematic trigger
+// crossing a static or kinematic body, gets one enter and one exit; into a trigger plane, an enter
+// and no exit. (Box2D makes contacts only where a body is dynamic, and reported none of these.)
+void EventsTest::KinematicBodiesMeetStaticAndKinematicTriggers() {
+    const std::string missing = missingFor({ShapeType::Sphere, ShapeType::Box, ShapeType::Plane});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const double speed = 2.0;  // m/s along X
+    for (const BodyType zoneType : {BodyType::Static, BodyType::Kinematic})
+        for (const bool plane : {false, true})
+            for (const bool zoneTrigger : {true, false})
+                for (const bool moverTrigger : {false, true}) {
+                    if (!zoneTrigger && !moverTrigger) continue;  // two solid bodies: no trigger
+                    if (plane && (zoneType != BodyType::Static || !zoneTrigger)) continue;  // planes are static
+                    SCOPED_TRACE(std::string(plane ? "plane" : "box") + " zone, " + (zoneType == BodyType::Static ? "static" : "kinematic") +
+                                 (zoneTrigger ? " trigger" : " solid") + "; kinematic " + (moverTrigger ? "trigger" : "solid") + " ball");
+                    WorldSettings s = settings();
+                    s.gravity = Vec3::Zero();
+                    World world(s);
+                    CheckingListener listener(world);
+                    world.addListener(&listener);
+                    BodyDef zone = plane ? BodyDef{} : boxDef("zone", Vec3(1, 1, 1), Vec3(5, 0, 0));
+                    if (plane) zone.shape = ShapeDef::plane(Vec3(-1, 0, 0), -5.0);  // solid beyond x = 5
+                    zone.type = zoneType;
+                    zone.isTrigger = zoneTrigger;
+                    world.createBody(zone);
+                    BodyDef def = ballDef("ball", 0.25, Vec3(0, 0, 0));
+                    def.type = BodyType::Kinematic;
+                    def.linearVelocity = Vec3(speed, 0, 0);
+                    def.isTrigger = moverTrigger;
+                    world.createBody(def);
+                    while (world.time() < 4.0) world.step();  // the ball ends 8 m along, past the box
+
+                    EXPECT_TRUE(listener.violations.empty()) << ::testing::PrintToString(listener.violations);
+                    EXPECT_EQ(listener.count(ContactPhase::Enter, true), 1) << listener.log();
+                    EXPECT_EQ(listener.count(ContactPhase::Exit, true), plane ? 0 : 1) << listener.log();
+                    EXPECT_EQ(listener.count(ContactPhase::Enter, false), 0) << "a trigger pair never collides:" << listener.log();
+                    // The ball reaches the zone when its centre is at 4.75 m (the plane) or 3.75 m
+                    // (the box), and leaves it past 6.25 m: at most two steps late, no earlier than
+                    // within linearSlop (as BodySinkingThroughATriggerPlaneStaysInside).
+                    const double dt = world.settings().timeStep, early = s.linearSlop / speed + 1e-9, late = 2 * dt + 1e-9;
+                    const double enter = (plane ? 4.75 : 3.75) / speed, exit = 6.25 / speed;
+                    for (const auto& r : listener.records) {
+                        const double t = r.step * dt;
+                        if (r.event.phase == ContactPhase::Enter) {
+                            EXPECT_GE(t, enter - early) << "trigger enter time";
+                            EXPECT_LE(t, enter + late) << "trigger enter time";
+                        } else if (r.event.phase == ContactPhase::Exit) {
+                            EXPECT_GE(t, exit - early) << "trigger exit time";
+                            EXPECT_LE(t, exit + late) << "trigger exit time";
+                        }
+                    }
+                }
 }
 
 // A listener may destroy the body it is told about and create another; the world stays sound,
@@ -883,6 +939,8 @@ TEST_P(EventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) { BodyPassin
 TEST_P(PlanarEventsTest, BodyPassingThroughSensorGetsTriggerEnterAndExit) { BodyPassingThroughSensorGetsTriggerEnterAndExit(); }
 TEST_P(EventsTest, BodySinkingThroughATriggerPlaneStaysInside) { BodySinkingThroughATriggerPlaneStaysInside(); }
 TEST_P(PlanarEventsTest, BodySinkingThroughATriggerPlaneStaysInside) { BodySinkingThroughATriggerPlaneStaysInside(); }
+TEST_P(EventsTest, KinematicBodiesMeetStaticAndKinematicTriggers) { KinematicBodiesMeetStaticAndKinematicTriggers(); }
+TEST_P(PlanarEventsTest, KinematicBodiesMeetStaticAndKinematicTriggers) { KinematicBodiesMeetStaticAndKinematicTriggers(); }
 TEST_P(EventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { DestroyingAndCreatingBodiesInsideCallbackIsSafe(); }
 TEST_P(PlanarEventsTest, DestroyingAndCreatingBodiesInsideCallbackIsSafe) { DestroyingAndCreatingBodiesInsideCallbackIsSafe(); }
 
