@@ -26,6 +26,7 @@ struct FixtureInfo {
     std::uint32_t material = 0;
     std::uint32_t layer = 1;
     std::uint32_t mask = 0xFFFFFFFFu;
+    std::uint32_t shape = 0;  // which of the body's shapes (BodyPeerDef::shapes) the piece is of
 };
 
 class Box2dBody final : public BodyPeer {

@@ -27,21 +27,51 @@ public:
         const auto* proxy = static_cast<const b2FixtureProxy*>(broadPhase_.GetUserData(proxyId));
         const b2Fixture* f = proxy->fixture;
         if (skipped(f, mask_)) return input.maxFraction;
+        // A plane is solid below its surface: a ray starting there does not hit it, as a ray
+        // starting inside a circle or polygon does not (Box2D's edges answer from either side).
+        if (startsBelow(infoOf(f).piece, f->GetBody()->GetTransform())) return input.maxFraction;
         b2RayCastOutput out;
         if (!infoOf(f).piece.exact->RayCast(&out, input, f->GetBody()->GetTransform(), 0)) return input.maxFraction;
         const double distance = static_cast<double>(out.fraction) * maxDistance_;
         PeerRayHit hit{bodyOf(f).userData(), origin_ + distance * direction_, fromB2(out.normal), distance};
         if (!closestOnly_) {
             hits.push_back(hit);
+            shapes.push_back(infoOf(f).shape);
             return input.maxFraction;
         }
         hits.assign(1, hit);
         return out.fraction;  // only nearer hits matter from now on
     }
 
+    /// One shape may be several fixtures (a capsule's three pieces, a plane's run of edges), each
+    /// answering the ray: keeps each shape's nearest hit, nearest first.
+    void keepNearestPerShape() {
+        std::vector<std::size_t> order(hits.size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+            if (hits[x].body != hits[y].body) return hits[x].body < hits[y].body;
+            if (shapes[x] != shapes[y]) return shapes[x] < shapes[y];
+            return hits[x].distance < hits[y].distance;
+        });
+        std::vector<PeerRayHit> kept;
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            const std::size_t i = order[k], before = k > 0 ? order[k - 1] : i;
+            if (k == 0 || hits[i].body != hits[before].body || shapes[i] != shapes[before]) kept.push_back(hits[i]);
+        }
+        hits.swap(kept);
+    }
+
     std::vector<PeerRayHit> hits;
+    std::vector<std::uint32_t> shapes;  // per hit, its fixture's shape (all hits only)
 
 private:
+    bool startsBelow(const Piece& piece, const b2Transform& xf) const {
+        if (!piece.plane) return false;
+        const b2Vec2 n = b2Mul(xf.q, piece.plane->normal);
+        const b2Vec2 point = xf.p + piece.plane->offset * n;  // on the plane
+        return n.x * (origin_.x() - point.x) + n.y * (origin_.y() - point.y) < 0.0;
+    }
+
     const b2BroadPhase& broadPhase_;
     Vec3 origin_, direction_;
     double maxDistance_;
@@ -90,8 +120,8 @@ std::vector<PeerRayHit> Box2dWorld::raycast(const Vec3& origin, const Vec3& dire
     const b2BroadPhase& bp = world_->GetContactManager().m_broadPhase;
     RayCollector collector(bp, Vec3(origin.x(), origin.y(), 0.0), dir, maxDistance, closestOnly, mask);
     bp.RayCast(&collector, input);
-    // One shape may be several fixtures (a plane's run of edges, a capsule's three pieces).
-    sortAndMergeSeamHits(collector.hits);
+    if (!closestOnly) collector.keepNearestPerShape();
+    sortAndMergeSeamHits(collector.hits);  // nearest first; a compound's seam once
     return std::move(collector.hits);
 }
 

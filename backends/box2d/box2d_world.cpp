@@ -94,7 +94,8 @@ std::unique_ptr<BodyPeer> Box2dWorld::createBody(const BodyPeerDef& peerDef) {
         const PeerShape& source = *sources[i];
         inner = std::min(inner, innerRadius(piece));
         auto info = std::make_unique<FixtureInfo>(
-            FixtureInfo{peer.get(), std::move(piece), source.material, source.layer, source.mask});
+            FixtureInfo{peer.get(), std::move(piece), source.material, source.layer, source.mask,
+                        static_cast<std::uint32_t>(&source - peerDef.shapes.data())});
         b2FixtureDef fd;
         fd.shape = info->piece.collision.get();
         fd.density = 0.0f;   // mass comes from the layer (below), not from Box2D's areas

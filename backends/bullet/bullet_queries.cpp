@@ -29,6 +29,7 @@ public:
         const int child = r.m_localShapeInfo ? r.m_localShapeInfo->m_triangleIndex : -1;
         const ChildSurface& surface = peerOf(r.m_collisionObject)->surface(child);
         if (surface.trigger || (surface.layer & mask_) == 0) return m_closestHitFraction;
+        if (startsBelow(*r.m_collisionObject)) return m_closestHitFraction;
         const btVector3 n = normalInWorldSpace ? r.m_hitNormalLocal
                                                : r.m_collisionObject->getWorldTransform().getBasis() * r.m_hitNormalLocal;
         const double distance = static_cast<double>(r.m_hitFraction) * maxDistance_;
@@ -47,6 +48,17 @@ public:
     std::vector<PeerRayHit> hits;
 
 private:
+    // A plane is solid below its surface: a ray starting there does not hit it, as a ray starting
+    // inside any other shape does not (Bullet answers a plane from either side).
+    bool startsBelow(const btCollisionObject& object) const {
+        const btCollisionShape* shape = object.getCollisionShape();
+        if (shape->getShapeType() != STATIC_PLANE_PROXYTYPE) return false;
+        const auto& plane = *static_cast<const btStaticPlaneShape*>(shape);
+        const btTransform& xf = object.getWorldTransform();
+        const btVector3 n = xf.getBasis() * plane.getPlaneNormal();
+        return fromBt(n).dot(origin_ - fromBt(xf.getOrigin())) < static_cast<double>(plane.getPlaneConstant());
+    }
+
     Vec3 origin_, direction_;
     double maxDistance_;
     bool closestOnly_;

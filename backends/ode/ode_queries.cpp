@@ -13,9 +13,30 @@ namespace {
 struct RayQuery {
     dGeomID ray;
     std::uint32_t mask;
+    Vec3 origin;
     Vec3 direction;
     std::unordered_map<std::uint64_t, PeerRayHit> nearest;  // per body: its nearest hit
 };
+
+// Whether `p` lies strictly inside the shape's solid (below a plane). A ray from there does not
+// hit the shape, as on the other backends. A mesh is a surface: nothing is inside it.
+bool holds(const OdeShape& shape, const Vec3& p) {
+    const dGeomID g = shape.geom();
+    switch (dGeomGetClass(g)) {
+        case dSphereClass: return dGeomSpherePointDepth(g, p.x(), p.y(), p.z()) > 0;
+        case dBoxClass: return dGeomBoxPointDepth(g, p.x(), p.y(), p.z()) > 0;
+        case dCapsuleClass: return dGeomCapsulePointDepth(g, p.x(), p.y(), p.z()) > 0;
+        case dPlaneClass: return dGeomPlanePointDepth(g, p.x(), p.y(), p.z()) > 0;
+        case dConvexClass: {
+            const HullData& hull = *shape.hull();
+            const Vec3 local = toMat3(dGeomGetRotation(g)).transpose() * (p - toVec3(dGeomGetPosition(g)));
+            for (std::size_t f = 0; f < hull.faceNormals.size(); ++f)
+                if (!(hull.faceNormals[f].dot(local) < hull.faceOffsets[f])) return false;
+            return true;
+        }
+        default: return false;
+    }
+}
 
 void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<RayQuery*>(data);
@@ -23,6 +44,7 @@ void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     const OdeShape* shape = shapeOfGeom(other);
     const OdeBody* body = shape ? shape->owner() : nullptr;
     if (!body || shape->surface().trigger || (shape->surface().layer & q.mask) == 0) return;
+    if (holds(*shape, q.origin)) return;  // ODE would report where the ray leaves it
     dContactGeom hit;
     if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
     Vec3 normal = toVec3(hit.normal);
@@ -67,7 +89,7 @@ std::vector<PeerRayHit> OdeWorld::raycast(const Vec3& origin, const Vec3& direct
     dGeomRaySetFirstContact(ray_, 0);  // the nearest hit per geom, not the first found
     dGeomRaySetBackfaceCull(ray_, 0);  // mesh back faces count too
     dGeomRaySetClosestHit(ray_, 1); // per mesh: its nearest triangle
-    RayQuery q{ray_, mask, direction, {}};
+    RayQuery q{ray_, mask, origin, direction, {}};
     dSpaceCollide2(ray_, reinterpret_cast<dGeomID>(space_), &q, &rayCallback);
     std::vector<PeerRayHit> hits;
     hits.reserve(q.nearest.size());

@@ -179,7 +179,9 @@ public:
     /// direction have z = 0, an overlap's pose has z = 0 and turns about Z only (else an
     /// anyphys::Error naming the field).
     /// Closest hit of the ray origin + t direction, 0 <= t <= maxDistance (direction need not
-    /// be unit), on bodies whose layer is in `mask`. Triggers are not hit.
+    /// be unit), on bodies whose layer is in `mask`. Triggers are not hit, nor is a shape whose
+    /// solid holds the origin (below a plane included): a ray cast from inside a body finds what
+    /// lies beyond it. Where the origin lies exactly on a surface, backends differ.
     std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
                                   std::uint32_t mask = 0xFFFFFFFFu);
     /// Every hit along the ray, nearest first (at most one per shape).
