@@ -2,7 +2,12 @@
 // bodies on a layer in the mask, sensors skipped.
 #include <algorithm>
 
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+
 #include "bullet_convert.hpp"
+#include "bullet_ray_round.hpp"
 #include "bullet_world.hpp"
 
 namespace anyphys::bullet {
@@ -32,14 +37,23 @@ public:
         if (startsBelow(*r.m_collisionObject)) return m_closestHitFraction;
         const btVector3 n = normalInWorldSpace ? r.m_hitNormalLocal
                                                : r.m_collisionObject->getWorldTransform().getBasis() * r.m_hitNormalLocal;
-        const double distance = static_cast<double>(r.m_hitFraction) * maxDistance_;
-        const PeerRayHit hit{peerOf(r.m_collisionObject)->userData(), origin_ + distance * direction_,
-                             fromBt(n).normalized(), distance};
+        double distance = static_cast<double>(r.m_hitFraction) * maxDistance_;
+        Vec3 normal = fromBt(n).normalized();
+        btScalar fraction = r.m_hitFraction;
+        if (const std::optional<RoundShape> round = roundShapeHit(*r.m_collisionObject, child)) {
+            const std::optional<RayEntry> entry = rayIntoCapsule(origin_, direction_, maxDistance_, round->a, round->b, round->radius);
+            if (!entry) return m_closestHitFraction;  // Bullet's cast grazed it
+            distance = entry->distance;
+            normal = entry->normal;
+            fraction = static_cast<btScalar>(distance / maxDistance_);
+        }
+        const PeerRayHit hit{peerOf(r.m_collisionObject)->userData(), origin_ + distance * direction_, normal, distance};
         m_collisionObject = r.m_collisionObject;
         if (closestOnly_) {
+            if (!hits.empty() && hits.front().distance <= distance) return m_closestHitFraction;
             hits.assign(1, hit);
-            m_closestHitFraction = r.m_hitFraction;  // only nearer hits from now on
-            return r.m_hitFraction;
+            m_closestHitFraction = fraction;  // only nearer hits from now on
+            return fraction;
         }
         hits.push_back(hit);
         return m_closestHitFraction;  // keep looking along the whole ray
@@ -48,6 +62,31 @@ public:
     std::vector<PeerRayHit> hits;
 
 private:
+    // A sphere or capsule as its axis segment (a sphere's: one point) and radius, world frame.
+    struct RoundShape {
+        Vec3 a, b;
+        double radius;
+    };
+    // The sphere or capsule hit (a compound's child: `child`); none for other shapes.
+    static std::optional<RoundShape> roundShapeHit(const btCollisionObject& object, int child) {
+        const btCollisionShape* shape = object.getCollisionShape();
+        btTransform pose = object.getWorldTransform();
+        if (shape->getShapeType() == COMPOUND_SHAPE_PROXYTYPE && child >= 0) {
+            const auto& compound = *static_cast<const btCompoundShape*>(shape);
+            pose = pose * compound.getChildTransform(child);
+            shape = compound.getChildShape(child);
+        }
+        if (shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+            const Vec3 centre = fromBt(pose.getOrigin());
+            return RoundShape{centre, centre, static_cast<double>(static_cast<const btSphereShape*>(shape)->getRadius())};
+        }
+        if (shape->getShapeType() != CAPSULE_SHAPE_PROXYTYPE) return std::nullopt;
+        const auto& capsule = *static_cast<const btCapsuleShape*>(shape);
+        btVector3 half(0, 0, 0);
+        half[capsule.getUpAxis()] = capsule.getHalfHeight();
+        return RoundShape{fromBt(pose * half), fromBt(pose * -half), static_cast<double>(capsule.getRadius())};
+    }
+
     // A plane is solid below its surface: a ray starting there does not hit it, as a ray starting
     // inside any other shape does not (Bullet answers a plane from either side).
     bool startsBelow(const btCollisionObject& object) const {
