@@ -1,6 +1,8 @@
 // Queries against the space: ray casts and shape overlap, both through ODE's own colliders
 // (dSpaceCollide2 for the broad phase, dCollide for the exact test).
 #include <algorithm>
+#include <limits>
+#include <optional>
 #include <unordered_map>
 
 #include "ode_init.hpp"
@@ -15,6 +17,7 @@ struct RayQuery {
     std::uint32_t mask;
     Vec3 origin;
     Vec3 direction;
+    double maxDistance;
     std::unordered_map<std::uint64_t, PeerRayHit> nearest;  // per body: its nearest hit
 };
 
@@ -38,6 +41,37 @@ bool holds(const OdeShape& shape, const Vec3& p) {
     }
 }
 
+// Where the ray enters a hull, clipped against its face planes in the geom's frame. ODE 0.16's own
+// ray-convex test (dCollideRayConvex) is wrong for a turned hull: a cube turned 0.3 rad about the
+// ray's normal axis was hit 17 cm early, and missed where the ray crossed it 0.7 m off centre.
+// Only for an origin outside the hull (holds() has let the others go).
+std::optional<PeerRayHit> rayIntoHull(const OdeShape& shape, const Vec3& origin, const Vec3& direction, double maxDistance) {
+    const HullData& hull = *shape.hull();
+    const dGeomID g = shape.geom();
+    const Mat3 rotation = toMat3(dGeomGetRotation(g));
+    const Vec3 o = rotation.transpose() * (origin - toVec3(dGeomGetPosition(g)));
+    const Vec3 d = rotation.transpose() * direction;
+    // On the hull where n . (o + t d) <= offset for every face: each face bounds t from below
+    // (the ray enters through its plane) or from above (leaves), or, parallel, keeps all or none.
+    double enter = -std::numeric_limits<double>::infinity(), leave = maxDistance;
+    std::size_t entryFace = hull.faceNormals.size();
+    for (std::size_t f = 0; f < hull.faceNormals.size(); ++f) {
+        const double along = hull.faceNormals[f].dot(d), gap = hull.faceOffsets[f] - hull.faceNormals[f].dot(o);
+        if (along < 0.0) {
+            if (gap / along > enter) {
+                enter = gap / along;
+                entryFace = f;
+            }
+        } else if (along > 0.0) {
+            leave = std::min(leave, gap / along);
+        } else if (gap < 0.0) {
+            return std::nullopt;  // parallel to a face, outside it
+        }
+    }
+    if (entryFace == hull.faceNormals.size() || enter > leave || enter < 0.0) return std::nullopt;
+    return PeerRayHit{0, origin + enter * direction, rotation * hull.faceNormals[entryFace], enter};
+}
+
 void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     auto& q = *static_cast<RayQuery*>(data);
     const dGeomID other = o1 == q.ray ? o2 : o1;
@@ -45,11 +79,21 @@ void rayCallback(void* data, dGeomID o1, dGeomID o2) {
     const OdeBody* body = shape ? shape->owner() : nullptr;
     if (!body || shape->surface().trigger || (shape->surface().layer & q.mask) == 0) return;
     if (holds(*shape, q.origin)) return;  // ODE would report where the ray leaves it
-    dContactGeom hit;
-    if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
-    Vec3 normal = toVec3(hit.normal);
-    if (normal.dot(q.direction) > 0) normal = -normal;  // the surface normal facing the ray
-    const PeerRayHit h{body->userData(), toVec3(hit.pos), normal, hit.depth};  // depth: distance along the ray
+    PeerRayHit h{body->userData(), Vec3::Zero(), Vec3::Zero(), 0.0};
+    if (dGeomGetClass(other) == dConvexClass) {
+        const std::optional<PeerRayHit> entry = rayIntoHull(*shape, q.origin, q.direction, q.maxDistance);
+        if (!entry) return;
+        h.point = entry->point;
+        h.normal = entry->normal;
+        h.distance = entry->distance;
+    } else {
+        dContactGeom hit;
+        if (dCollide(q.ray, other, 1, &hit, sizeof(dContactGeom)) < 1) return;
+        h.point = toVec3(hit.pos);
+        h.normal = toVec3(hit.normal);
+        if (h.normal.dot(q.direction) > 0) h.normal = -h.normal;  // the surface normal facing the ray
+        h.distance = hit.depth;  // depth: distance along the ray
+    }
     const auto [it, inserted] = q.nearest.try_emplace(h.body, h);
     if (!inserted && h.distance < it->second.distance) it->second = h;
 }
@@ -89,7 +133,7 @@ std::vector<PeerRayHit> OdeWorld::raycast(const Vec3& origin, const Vec3& direct
     dGeomRaySetFirstContact(ray_, 0);  // the nearest hit per geom, not the first found
     dGeomRaySetBackfaceCull(ray_, 0);  // mesh back faces count too
     dGeomRaySetClosestHit(ray_, 1); // per mesh: its nearest triangle
-    RayQuery q{ray_, mask, origin, direction, {}};
+    RayQuery q{ray_, mask, origin, direction, maxDistance, {}};
     dSpaceCollide2(ray_, reinterpret_cast<dGeomID>(space_), &q, &rayCallback);
     std::vector<PeerRayHit> hits;
     hits.reserve(q.nearest.size());
