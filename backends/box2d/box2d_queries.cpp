@@ -10,10 +10,7 @@ namespace {
 
 const FixtureInfo& infoOf(const b2Fixture* f) { return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(f)->GetUserData().pointer); }
 
-// Queries answer about the user's shapes: a plane is its edges, not the basements below them.
-bool skipped(const b2Fixture* f, std::uint32_t mask) {
-    return f->IsSensor() || (infoOf(f).layer & mask) == 0 || infoOf(f).piece.basement;
-}
+bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (infoOf(f).layer & mask) == 0; }
 
 // Visits the broad phase's proxies along the ray and casts against each fixture's exact shape
 // (b2World::RayCast would cast against the skinned collision shapes).
@@ -26,7 +23,8 @@ public:
     float RayCastCallback(const b2RayCastInput& input, int32 proxyId) {
         const auto* proxy = static_cast<const b2FixtureProxy*>(broadPhase_.GetUserData(proxyId));
         const b2Fixture* f = proxy->fixture;
-        if (skipped(f, mask_)) return input.maxFraction;
+        // A ray meets a plane's surface, its edges; the basements lie under them.
+        if (skipped(f, mask_) || infoOf(f).piece.basement) return input.maxFraction;
         // A plane is solid below its surface: a ray starting there does not hit it, as a ray
         // starting inside a circle or polygon does not (Box2D's edges answer from either side).
         if (startsBelow(infoOf(f).piece, f->GetBody()->GetTransform())) return input.maxFraction;
@@ -89,7 +87,9 @@ public:
         const Piece& piece = infoOf(f).piece;
         const b2Transform& bodyXf = f->GetBody()->GetTransform();
         bool hit;
-        if (piece.plane) {  // a plane is a half-plane, not its edge: anything reaching below it overlaps
+        // A plane is a half-plane, not its edge: anything reaching below it overlaps. The broad
+        // phase finds a shape deep under a collision plane through the basements' boxes.
+        if (piece.plane) {
             const b2Vec2 n = b2Mul(bodyXf.q, piece.plane->normal);
             hit = lowest(*query_.exact, xf_, n) < piece.plane->offset + b2Dot(n, bodyXf.p);
         } else {

@@ -132,6 +132,13 @@ TEST_P(QueriesTest, OverlapFindsTheBodiesAShapeTouches) {
     const Vec3 at(0.85, planar ? 0.75 : 0.5, 0);
     EXPECT_TRUE(world.overlap(plate, Transform{at, Quat::Identity()}).empty());
     EXPECT_EQ(names(world.overlap(plate, Transform{at, turn})), Names{"b1"});
+    // The ground is solid below its surface: a shape wholly under it overlaps it, however deep.
+    // (Box2D's overlap found a plane only through its edges' bounding boxes, a box 5 m down none.)
+    for (const double depth : {0.5, 5.0, 500.0}) {
+        SCOPED_TRACE("box centred " + std::to_string(depth) + " m under the ground");
+        EXPECT_EQ(names(world.overlap(ShapeDef::box(Vec3(0.1, 0.1, 0.1)), Transform{Vec3(-3, -depth, 0), Quat::Identity()})),
+                  Names{"ground"});
+    }
 }
 
 // A ray does not hit a shape whose solid holds its origin (below a plane included), on every
