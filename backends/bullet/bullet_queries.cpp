@@ -2,6 +2,8 @@
 // bodies on a layer in the mask, sensors skipped.
 #include <algorithm>
 
+#include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
@@ -104,11 +106,40 @@ private:
     std::uint32_t mask_;
 };
 
+// Whether two boxes overlap, by Bullet's exact box-box test (btBoxBoxDetector reports points only
+// where the boxes overlap; it sees the true extents, margins included).
+bool boxesOverlap(const btBoxShape& a, const btTransform& poseA, const btBoxShape& b, const btTransform& poseB) {
+    struct AnyPoint final : btDiscreteCollisionDetectorInterface::Result {
+        bool found = false;
+        void setShapeIdentifiersA(int, int) override {}
+        void setShapeIdentifiersB(int, int) override {}
+        void addContactPoint(const btVector3&, const btVector3&, btScalar depth) override { found = found || depth <= 0; }
+    } any;
+    btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+    input.m_transformA = poseA;
+    input.m_transformB = poseB;
+    btBoxBoxDetector(&a, &b).getClosestPoints(input, any, nullptr);
+    return any.found;
+}
+
 class OverlapHits final : public btCollisionWorld::ContactResultCallback {
 public:
     OverlapHits(const btCollisionObject* query, std::uint32_t mask) : query_(query), mask_(mask) {}
 
-    bool needsCollision(btBroadphaseProxy* proxy) const override { return queryable(proxy, mask_); }
+    // A box against a box is answered here, exactly: contactTest would run GJK on the shapes
+    // rounded by their margins, and a cube's corner 2.9 cm into a box's face did not overlap it
+    // (a box's margin, up to 4 cm, rounds its corners). Other pairs go on to contactTest.
+    bool needsCollision(btBroadphaseProxy* proxy) const override {
+        if (!queryable(proxy, mask_)) return false;
+        const auto* other = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+        const btCollisionShape* mine = query_->getCollisionShape();
+        const btCollisionShape* theirs = other->getCollisionShape();
+        if (mine->getShapeType() != BOX_SHAPE_PROXYTYPE || theirs->getShapeType() != BOX_SHAPE_PROXYTYPE) return true;
+        if (boxesOverlap(*static_cast<const btBoxShape*>(mine), query_->getWorldTransform(),
+                         *static_cast<const btBoxShape*>(theirs), other->getWorldTransform()))
+            found.push_back(peerOf(other)->userData());  // a single shape: its surface is the body's
+        return false;
+    }
 
     btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* w0, int, int index0,
                              const btCollisionObjectWrapper* w1, int, int index1) override {
@@ -123,7 +154,7 @@ public:
         return 0;
     }
 
-    std::vector<std::uint64_t> found;
+    mutable std::vector<std::uint64_t> found;  // needsCollision adds the box pairs
 
 private:
     const btCollisionObject* query_;

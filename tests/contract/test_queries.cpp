@@ -243,6 +243,40 @@ TEST_P(QueriesTest, RaycastHitsRoundShapesWhereTheyAre) {
     }
 }
 
+// A cube balanced on a corner over a box's top face: the shallowest depth of the corner in the face
+// at which World::overlap reports the box (bisection to 0.1 um). The exact answer is 0.
+double cornerOverlapDepth(World& world, bool planar) {
+    // In a planar world the corner turns down about Z; in 3D the cube's diagonal points down.
+    const Quat turn = planar ? Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitZ()))
+                             : Quat::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3(0, -1, 0));
+    const double reach = 0.5 * (planar ? std::sqrt(2.0) : std::sqrt(3.0));  // centre to corner
+    double seen = 0.1, missed = -1e-3;  // m into the face
+    EXPECT_TRUE(world.overlap(ShapeDef::box(Vec3(0.5, 0.5, 0.5)), Transform{Vec3(0, reach - missed, 0), turn}).empty())
+        << "a corner 1 mm above the face";
+    while (seen - missed > 1e-7) {
+        const double depth = 0.5 * (seen + missed);
+        const bool found = !world.overlap(ShapeDef::box(Vec3(0.5, 0.5, 0.5)), Transform{Vec3(0, reach - depth, 0), turn}).empty();
+        (found ? seen : missed) = depth;
+    }
+    return seen;
+}
+
+// A shape overlaps a body as soon as it reaches into it: a cube's corner 0.1 mm into a box's face is
+// found (criterion queries.overlap_corner, within 1 mm), and 1 mm above it is not.
+TEST_P(QueriesTest, OverlapFindsACornerJustInsideAFace) {
+    ANYPHYS_REQUIRE(has("overlap") && caps().shapes.contains(ShapeType::Box), "query overlap on boxes");
+    World world(settings());
+    BodyDef box;
+    box.type = BodyType::Static;
+    box.shape = ShapeDef::box(Vec3(2, 1, 2));
+    box.position = Vec3(0, -1, 0);  // top face at y = 0
+    world.createBody(box);
+    const double depth = cornerOverlapDepth(world, planarWorld());
+    report(backend() + " cube corner into a box's face: overlap seen from", depth, "m");
+    expectCriterion(planarWorld() ? "planar.queries.overlap_corner" : "queries.overlap_corner", depth < 1e-3,
+                    "overlap seen from " + std::to_string(depth) + " m into the face (bound 0.001)", depth);
+}
+
 // Where a ray along +X from x = -5 at `height` enters a cube of half extent 1 at the origin turned
 // by `angle` about Z (slabs in the cube's frame); its outward normal there. Misses: distance < 0.
 std::pair<double, Vec3> rayIntoTurnedCube(double angle, double height) {
