@@ -344,6 +344,21 @@ void EventsTest::BodyPassingThroughSensorGetsTriggerEnterAndExit() {
     }
 }
 
+// Every enter the listener recorded came within [enter - early, enter + late] of the geometry's
+// time, every exit within [exit - early, exit + late] (steps of dt).
+void expectTriggerTimes(const CheckingListener& listener, double dt, double enter, double exit, double early, double late) {
+    for (const auto& r : listener.records) {
+        const double t = static_cast<double>(r.step) * dt;
+        if (r.event.phase == ContactPhase::Enter) {
+            EXPECT_GE(t, enter - early) << "trigger enter time";
+            EXPECT_LE(t, enter + late) << "trigger enter time";
+        } else if (r.event.phase == ContactPhase::Exit) {
+            EXPECT_GE(t, exit - early) << "trigger exit time";
+            EXPECT_LE(t, exit + late) << "trigger exit time";
+        }
+    }
+}
+
 // A plane is solid below its surface: a body that sinks through a trigger plane is inside it
 // until it rises out again, however deep it goes, level or tilted, near the origin or far along
 // the plane. (Box2D's plane is a run of edges, a line: its sensor once let the body out below.)
@@ -396,16 +411,7 @@ void EventsTest::BodySinkingThroughATriggerPlaneStaysInside() {
                 // earlier than within linearSlop of the surface (an engine's skin, as on collisions).
                 const double touch = (2.0 - reach) / speed, leave = 8.0 - touch;
                 const double early = s.linearSlop / speed + 1e-9, late = 2 * dt + 1e-9;
-                for (const auto& r : listener.records) {
-                    const double time = r.step * dt;
-                    if (r.event.phase == ContactPhase::Enter) {
-                        EXPECT_GE(time, touch - early) << "trigger enter time";
-                        EXPECT_LE(time, touch + late) << "trigger enter time";
-                    } else if (r.event.phase == ContactPhase::Exit) {
-                        EXPECT_GE(time, leave - early) << "trigger exit time";
-                        EXPECT_LE(time, leave + late) << "trigger exit time";
-                    }
-                }
+                expectTriggerTimes(listener, dt, touch, leave, early, late);
             }
 }
 
@@ -451,16 +457,7 @@ void EventsTest::KinematicBodiesMeetStaticAndKinematicTriggers() {
                     // within linearSlop (as BodySinkingThroughATriggerPlaneStaysInside).
                     const double dt = world.settings().timeStep, early = s.linearSlop / speed + 1e-9, late = 2 * dt + 1e-9;
                     const double enter = (plane ? 4.75 : 3.75) / speed, exit = 6.25 / speed;
-                    for (const auto& r : listener.records) {
-                        const double t = r.step * dt;
-                        if (r.event.phase == ContactPhase::Enter) {
-                            EXPECT_GE(t, enter - early) << "trigger enter time";
-                            EXPECT_LE(t, enter + late) << "trigger enter time";
-                        } else if (r.event.phase == ContactPhase::Exit) {
-                            EXPECT_GE(t, exit - early) << "trigger exit time";
-                            EXPECT_LE(t, exit + late) << "trigger exit time";
-                        }
-                    }
+                    expectTriggerTimes(listener, dt, enter, exit, early, late);
                 }
 }
 
