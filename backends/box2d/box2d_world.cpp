@@ -229,14 +229,13 @@ void Box2dWorld::setMaterialTable(const MaterialTable& table) {
 
 namespace {
 
-// The larger fraction of Box2D's per-step caps that one Box2D step of dt would use for this body
-// (after its flushForces: its step forces are part of its motion), if Box2D moves
-// it (awake, dynamic or kinematic: Box2D clamps both): its speed and spin now plus what the step's
-// gravity and held forces add by its end (bounds by the triangle inequality; damping ignored, it
-// only slows). Contact and joint impulses are not known before the solve: the headroom covers
-// them (kCapHeadroom). A non-finite velocity is the layer's to catch (findUnsound): left out here
-// (a NaN fails every comparison, so the caller's std::max keeps the other).
-// Inline: it runs for every body every step (out of line it cost a call per body).
+// The larger fraction of Box2D's per-step caps that one Box2D step of dt would use for this body,
+// if Box2D moves it (awake, dynamic or kinematic: Box2D clamps both): its speed and spin now plus
+// what the step's gravity and held forces add by its end (after its flushForces; bounds by the
+// triangle inequality; damping ignored, it only slows). Contact and joint impulses are not known
+// before the solve: the headroom covers them (kCapHeadroom). A non-finite velocity is the layer's
+// to catch (findUnsound): left out here (a NaN fails every comparison, so the caller's std::max
+// keeps the other). Inline: it runs for every body every step.
 [[gnu::always_inline]] inline double capShare(const Box2dBody& body, const b2Vec2& gravity, double dt) {
     const b2Body& b = *body.b2();
     if (b.GetType() == b2_staticBody || !b.IsAwake()) return 0.0;
@@ -396,7 +395,7 @@ void Box2dWorld::reportContacts(ContactReport& out) {
     const auto key = [](const b2Body* b) { return static_cast<std::uint64_t>(const_cast<b2Body*>(b)->GetUserData().pointer); };
     bool repeats = false;
     for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
-        if (!c->IsTouching() || !c->IsEnabled()) continue;  // disabled: a basement the edge above holds for
+        if (!c->IsTouching() || !c->IsEnabled()) continue;  // disabled: a basement's, its edge holding the piece
         const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
         const b2Body *ba = fa->GetBody(), *bb = fb->GetBody();
         if (!ba->IsAwake() && !bb->IsAwake()) continue;  // asleep: the layer keeps the pair
