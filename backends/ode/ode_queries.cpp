@@ -18,7 +18,7 @@ struct RayQuery {
     Vec3 origin;
     Vec3 direction;
     double maxDistance;
-    std::unordered_map<std::uint64_t, PeerRayHit> nearest;  // per body: its nearest hit
+    std::unordered_map<const OdeShape*, PeerRayHit> nearest;  // per shape (a compound's child too): its nearest hit
 };
 
 // Whether `p` lies strictly inside the shape's solid (below a plane). A ray from there does not
@@ -94,7 +94,7 @@ void rayCallback(void* data, dGeomID o1, dGeomID o2) {
         if (h.normal.dot(q.direction) > 0) h.normal = -h.normal;  // the surface normal facing the ray
         h.distance = hit.depth;  // depth: distance along the ray
     }
-    const auto [it, inserted] = q.nearest.try_emplace(h.body, h);
+    const auto [it, inserted] = q.nearest.try_emplace(shape, h);
     if (!inserted && h.distance < it->second.distance) it->second = h;
 }
 
@@ -138,7 +138,12 @@ std::vector<PeerRayHit> OdeWorld::raycast(const Vec3& origin, const Vec3& direct
     std::vector<PeerRayHit> hits;
     hits.reserve(q.nearest.size());
     for (const auto& [key, hit] : q.nearest) hits.push_back(hit);
-    std::sort(hits.begin(), hits.end(), [](const PeerRayHit& x, const PeerRayHit& y) { return x.distance < y.distance; });
+    // Nearest first in a fixed order (the map's is the pointers'); two of a compound's children
+    // hit at one point where they meet count once, as on the other backends.
+    std::sort(hits.begin(), hits.end(), [](const PeerRayHit& x, const PeerRayHit& y) {
+        return x.distance != y.distance ? x.distance < y.distance : x.body < y.body;
+    });
+    sortAndMergeSeamHits(hits);
     if (closestOnly && hits.size() > 1) hits.resize(1);
     return hits;
 }

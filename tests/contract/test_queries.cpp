@@ -243,6 +243,39 @@ TEST_P(QueriesTest, RaycastHitsRoundShapesWhereTheyAre) {
     }
 }
 
+// raycastAll answers once per shape, and a compound's children are shapes: a ray along a
+// compound of a box, a sphere and a capsule hits each child, and from inside one the others.
+// (ODE answered once per body: its nearest child alone.)
+TEST_P(QueriesTest, RaycastAllHitsEachOfACompoundsShapes) {
+    ANYPHYS_REQUIRE(has("raycast"), "query raycast");
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Sphere, ShapeType::Capsule, ShapeType::Compound}, Effects{});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    ShapeDef box = ShapeDef::box(Vec3(0.5, 0.5, 0.5)), ball = ShapeDef::sphere(0.5), capsule = ShapeDef::capsule(0.25, 0.5);
+    box.position = Vec3(-1, 0, 0);     // x from 8.5 to 9.5 in the world
+    ball.position = Vec3(1, 0, 0);     // centre at x = 11
+    capsule.position = Vec3(3, 0, 0);  // along Y, x from 12.75 to 13.25
+    BodyDef def;
+    def.type = BodyType::Static;
+    def.shape = ShapeDef::compound({box, ball, capsule});
+    def.position = Vec3(10, 0, 0);
+    const Body body = world.createBody(def);
+    const double ballEntry = 11.0 - std::sqrt(0.25 - 0.01);  // the ray runs 0.1 m off the ball's centre
+    const struct {
+        double from;
+        std::vector<double> distances;
+    } cases[] = {{0.0, {8.5, ballEntry, 12.75}}, {9.0, {ballEntry - 9.0, 12.75 - 9.0}}, {11.0, {12.75 - 11.0}}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE("from x = " + std::to_string(c.from));
+        const std::vector<RayHit> hits = world.raycastAll(Vec3(c.from, 0.1, 0), Vec3(1, 0, 0), 100.0);
+        ASSERT_EQ(hits.size(), c.distances.size());
+        for (std::size_t k = 0; k < hits.size(); ++k) {
+            EXPECT_TRUE(hits[k].body == body);
+            EXPECT_NEAR(hits[k].distance, c.distances[k], kExact + rounding(13.0, 32));
+        }
+    }
+}
+
 // A cube balanced on a corner over a box's top face: the shallowest depth of the corner in the face
 // at which World::overlap reports the box (bisection to 0.1 um). The exact answer is 0.
 double cornerOverlapDepth(World& world, bool planar) {
