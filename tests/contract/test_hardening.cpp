@@ -484,6 +484,15 @@ TEST_P(HardeningTest, JointLeversBeyondTheBodiesReachAreRefused) {
     j.anchorA = Vec3::Zero();
     j.anchorB = Vec3(1e7, 2, 0);
     expectError([&] { world.createJoint(j); }, ErrorKind::InvalidArgument, "JointDef.anchorB", {"radii of gyration"});
+    // A fixed joint's lever is the other body's centre as well (ODE welds the centres): a kinematic
+    // body 1.4e7 m away, anchor at the ball, aborted ODE's direct solver (API fuzzer).
+    BodyDef far = ball("far", Vec3(-0.83, 1e7, planarWorld() ? 0.0 : 1e7));
+    far.type = BodyType::Kinematic;
+    j.type = JointType::Fixed;
+    j.bodyA = world.createBody(far);
+    j.anchor = Vec3(0, 2, 0);
+    expectError([&] { world.createJoint(j); }, ErrorKind::InvalidArgument, "JointDef.bodyA", {"radii of gyration", "bodyB"});
+    j.bodyA = Body();
     EXPECT_EQ(world.jointCount(), 0u);
     j.type = JointType::Ball;
     j.anchor = Vec3(0, 1002, 0);  // a 1 km cable: 3 200 radii

@@ -85,6 +85,13 @@ Joint World::createJoint(const JointDef& input) {
     const bool distance = input.type == JointType::Distance;
     if (a) requireLeverWithinReach(*a, distance ? input.anchorA : input.anchor, distance ? "JointDef.anchorA" : "JointDef.anchor", "bodyA");
     requireLeverWithinReach(*b, distance ? input.anchorB : input.anchor, distance ? "JointDef.anchorB" : "JointDef.anchor", "bodyB");
+    // ODE welds a fixed joint's bodies by their centres, wherever the anchor is: the lever is the
+    // other body's centre (found by the API fuzzer: a 5 cm ball fixed to a kinematic body 1.4e7 m
+    // away, 4e8 of its radii of gyration, aborted ODE's direct solver).
+    if (input.type == JointType::Fixed && a) {
+        requireLeverWithinReach(*b, a->peer->state().position, "JointDef.bodyA", "bodyB");
+        requireLeverWithinReach(*a, b->peer->state().position, "JointDef.bodyB", "bodyA");
+    }
     if (settings_.planar) validatePlanar(input, "JointDef");
     if (input.motor)
         validateJointMotorSpeed(*input.motor, input.type, settings_.maxSpeed, settings_.maxAngularSpeed, "JointDef.motor");
