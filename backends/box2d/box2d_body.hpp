@@ -29,6 +29,16 @@ struct FixtureInfo {
     std::uint32_t shape = 0;  // which of the body's shapes (BodyPeerDef::shapes) the piece is of
 };
 
+/// The info every fixture of this backend carries in its user data.
+inline const FixtureInfo& fixtureInfo(const b2Fixture* fixture) {
+    return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(fixture)->GetUserData().pointer);
+}
+
+/// The layer's key, which rides on the b2Body (Box2D 2.4.1 has no const GetUserData).
+inline std::uint64_t bodyKey(const b2Body* body) {
+    return static_cast<std::uint64_t>(const_cast<b2Body*>(body)->GetUserData().pointer);
+}
+
 class Box2dBody final : public BodyPeer {
 public:
     Box2dBody(Box2dWorld& world, b2Body* body, const BodyPeerDef& def, const Embedding& embedding);

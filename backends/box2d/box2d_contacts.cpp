@@ -12,12 +12,6 @@
 
 namespace anyphys::box2d {
 
-namespace {
-const FixtureInfo& fixtureInfo(const b2Fixture* fixture) {
-    return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(fixture)->GetUserData().pointer);
-}
-}  // namespace
-
 Box2dBody& bodyOf(const b2Fixture* fixture) { return *fixtureInfo(fixture).body; }
 
 // Filter and materials are per fixture: a compound's children may carry their own.
@@ -121,7 +115,7 @@ bool basementLetsGo(const b2Contact& contact) {
         centre = static_cast<const b2PolygonShape&>(shape).m_centroid;
     else
         return false;
-    const HalfPlane& plane = *fixtureInfo(basement).piece.plane;
+    const HalfPlane& plane = *fixtureInfo(basement).piece.plane;  // in the basement's body frame
     const b2Transform xf = b2MulT(basement->GetBody()->GetTransform(), other->GetBody()->GetTransform());
     const float edgeLine = plane.offset - (b2_polygonRadius - static_cast<float>(kSkin));  // the edge's core (makePieces)
     return b2Dot(plane.normal, b2Mul(xf, centre)) >= edgeLine;

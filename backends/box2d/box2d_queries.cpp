@@ -8,9 +8,7 @@
 namespace anyphys::box2d {
 namespace {
 
-const FixtureInfo& infoOf(const b2Fixture* f) { return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture*>(f)->GetUserData().pointer); }
-
-bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (infoOf(f).layer & mask) == 0; }
+bool skipped(const b2Fixture* f, std::uint32_t mask) { return f->IsSensor() || (fixtureInfo(f).layer & mask) == 0; }
 
 // Visits the broad phase's proxies along the ray and casts against each fixture's exact shape
 // (b2World::RayCast would cast against the skinned collision shapes).
@@ -24,17 +22,17 @@ public:
         const auto* proxy = static_cast<const b2FixtureProxy*>(broadPhase_.GetUserData(proxyId));
         const b2Fixture* f = proxy->fixture;
         // A ray meets a plane's surface, its edges; the basements lie under them.
-        if (skipped(f, mask_) || infoOf(f).piece.basement) return input.maxFraction;
+        if (skipped(f, mask_) || fixtureInfo(f).piece.basement) return input.maxFraction;
         // A plane is solid below its surface: a ray starting there does not hit it, as a ray
         // starting inside a circle or polygon does not (Box2D's edges answer from either side).
-        if (startsBelow(infoOf(f).piece, f->GetBody()->GetTransform())) return input.maxFraction;
+        if (startsBelow(fixtureInfo(f).piece, f->GetBody()->GetTransform())) return input.maxFraction;
         b2RayCastOutput out;
-        if (!infoOf(f).piece.exact->RayCast(&out, input, f->GetBody()->GetTransform(), 0)) return input.maxFraction;
+        if (!fixtureInfo(f).piece.exact->RayCast(&out, input, f->GetBody()->GetTransform(), 0)) return input.maxFraction;
         const double distance = static_cast<double>(out.fraction) * maxDistance_;
         PeerRayHit hit{bodyOf(f).userData(), origin_ + distance * direction_, fromB2(out.normal), distance};
         if (!closestOnly_) {
             hits.push_back(hit);
-            shapes.push_back(infoOf(f).shape);
+            shapes.push_back(fixtureInfo(f).shape);
             return input.maxFraction;
         }
         hits.assign(1, hit);
@@ -65,8 +63,7 @@ public:
 private:
     bool startsBelow(const Piece& piece, const b2Transform& xf) const {
         if (!piece.plane) return false;
-        const b2Vec2 n = b2Mul(xf.q, piece.plane->normal);
-        const b2Vec2 point = xf.p + piece.plane->offset * n;  // on the plane
+        const b2Vec2 n = piece.plane->worldNormal(xf), point = piece.plane->worldPoint(xf);
         return n.x * (origin_.x() - point.x) + n.y * (origin_.y() - point.y) < 0.0;
     }
 
@@ -84,13 +81,13 @@ public:
 
     bool ReportFixture(b2Fixture* f) override {
         if (skipped(f, mask_)) return true;
-        const Piece& piece = infoOf(f).piece;
+        const Piece& piece = fixtureInfo(f).piece;
         const b2Transform& bodyXf = f->GetBody()->GetTransform();
         bool hit;
         // A plane is a half-plane, not its edge: anything reaching below it overlaps. The broad
         // phase finds a shape deep under a collision plane through the basements' boxes.
         if (piece.plane) {
-            const b2Vec2 n = b2Mul(bodyXf.q, piece.plane->normal);
+            const b2Vec2 n = piece.plane->worldNormal(bodyXf);
             hit = lowest(*query_.exact, xf_, n) < piece.plane->offset + b2Dot(n, bodyXf.p);
         } else {
             hit = b2TestOverlap(query_.exact.get(), 0, piece.exact.get(), 0, xf_, bodyXf);

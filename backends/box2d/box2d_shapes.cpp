@@ -228,6 +228,11 @@ std::vector<double> planeStops() {
     return stops;
 }
 
+// The plane of unit normal n through `centre` (body frame), as HalfPlane keeps it.
+HalfPlane halfPlane(const Vec2& n, const Vec2& centre) {
+    return HalfPlane{b2Vec2(static_cast<float>(n.x()), static_cast<float>(n.y())), static_cast<float>(n.dot(centre))};
+}
+
 // Edge i of a plane, from stops[i] to stops[i + 1] along t. Its ghost vertices are its
 // neighbours' far ends, so a body sliding across a joint meets one smooth surface; the run's
 // outer ends look past themselves.
@@ -245,7 +250,7 @@ Piece planeEdge(const Vec2& sunk, const Vec2& centre, const Vec2& t, const Vec2&
     Piece piece;
     piece.collision = std::move(collision);
     piece.exact = std::move(exact);
-    piece.plane = HalfPlane{point(n), static_cast<float>(n.dot(centre))};
+    piece.plane = halfPlane(n, centre);
     return piece;
 }
 
@@ -256,7 +261,7 @@ Piece planeBasement(const Vec2& centre, const Vec2& t, const Vec2& n, const std:
     const double depth = stops[i + 1] - stops[i];
     const Vec2 a = centre + stops[i] * t, b = centre + stops[i + 1] * t;
     Piece piece = polygonPiece(convexOutline({a, b, b - depth * n, a - depth * n}), path, "plane");
-    piece.plane = HalfPlane{b2Vec2(static_cast<float>(n.x()), static_cast<float>(n.y())), static_cast<float>(n.dot(centre))};
+    piece.plane = halfPlane(n, centre);
     piece.basement = true;
     return piece;
 }

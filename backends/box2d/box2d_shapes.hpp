@@ -18,6 +18,11 @@ namespace anyphys::box2d {
 struct HalfPlane {
     b2Vec2 normal;
     float offset = 0.0f;
+
+    /// The unit normal in the world, for the plane's body at xf.
+    b2Vec2 worldNormal(const b2Transform& xf) const { return b2Mul(xf.q, normal); }
+    /// A point on the plane in the world (the body frame's nearest to its origin).
+    b2Vec2 worldPoint(const b2Transform& xf) const { return xf.p + offset * worldNormal(xf); }
 };
 
 /// One Box2D fixture's geometry.

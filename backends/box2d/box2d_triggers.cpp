@@ -9,10 +9,6 @@ namespace anyphys::box2d {
 
 namespace {
 
-const FixtureInfo& infoOf(const b2Fixture& fixture) {
-    return *reinterpret_cast<const FixtureInfo*>(const_cast<b2Fixture&>(fixture).GetUserData().pointer);
-}
-
 // How far the exact piece at xf reaches below the plane of unit normal n through `point`, in
 // double: far from the origin floats would round the two sides of the difference apart.
 double heightAbove(const b2Shape& exact, const b2Transform& xf, const b2Vec2& n, const b2Vec2& point) {
@@ -25,9 +21,7 @@ double heightAbove(const b2Shape& exact, const b2Transform& xf, const b2Vec2& n,
 
 // Whether a piece at xf overlaps the half-plane of a plane piece on a body at planeXf.
 bool reachesBelow(const b2Shape& exact, const b2Transform& xf, const Piece& plane, const b2Transform& planeXf) {
-    const b2Vec2 n = b2Mul(planeXf.q, plane.plane->normal);
-    const b2Vec2 point = planeXf.p + plane.plane->offset * n;  // on the plane
-    return heightAbove(exact, xf, n, point) < kPairSkin;
+    return heightAbove(exact, xf, plane.plane->worldNormal(planeXf), plane.plane->worldPoint(planeXf)) < kPairSkin;
 }
 
 // Box2D leaves out pairs a joint joins without collideConnected (b2Body::ShouldCollide).
@@ -52,9 +46,9 @@ public:
         if (!fixture_.IsSensor() && !other->IsSensor()) return true;
         // A kinematic pair is listed once, from its body of lower key; trigger planes are
         // TriggerPlanes'. A collision plane's edges and basements answer with its half-plane.
-        if (theirs.GetType() == b2_kinematicBody && key(theirs) < key(mine)) return true;
+        if (theirs.GetType() == b2_kinematicBody && bodyKey(&theirs) < bodyKey(&mine)) return true;
         if (isTriggerPlane(*other)) return true;
-        const FixtureInfo &a = infoOf(fixture_), &b = infoOf(*other);
+        const FixtureInfo &a = fixtureInfo(&fixture_), &b = fixtureInfo(other);
         if (std::find(found_.begin(), found_.end(), &theirs) != found_.end()) return true;
         if (!layersCollide(a.layer, a.mask, b.layer, b.mask) || jointForbids(mine, theirs)) return true;
         const bool overlaps = b.piece.plane ? reachesBelow(*a.piece.exact, mine.GetTransform(), b.piece, theirs.GetTransform())
@@ -64,8 +58,6 @@ public:
         return true;
     }
 
-    static std::uint64_t key(const b2Body& b) { return static_cast<std::uint64_t>(const_cast<b2Body&>(b).GetUserData().pointer); }
-
 private:
     const b2Fixture& fixture_;
     std::vector<const b2Body*>& found_;
@@ -73,7 +65,7 @@ private:
 
 }  // namespace
 
-bool isTriggerPlane(const b2Fixture& fixture) { return fixture.IsSensor() && infoOf(fixture).piece.plane.has_value(); }
+bool isTriggerPlane(const b2Fixture& fixture) { return fixture.IsSensor() && fixtureInfo(&fixture).piece.plane.has_value(); }
 
 bool TriggerPlanes::addIfTriggerPlane(Box2dBody& body) {
     const b2Fixture* f = body.b2()->GetFixtureList();
@@ -115,7 +107,7 @@ void reportKinematicTriggers(const std::vector<Box2dBody*>& kinematic, const b2W
         for (const b2Body* other : found) {
             if (!b.IsAwake() && !other->IsAwake()) continue;  // asleep: the layer keeps the pair
             const bool asleep = !b.IsAwake() || (moves(*other) && !other->IsAwake());
-            out.addPair(body->userData(), KinematicOverlaps::key(*other), true, Vec3::Zero(), asleep);
+            out.addPair(body->userData(), bodyKey(other), true, Vec3::Zero(), asleep);
         }
     }
 }

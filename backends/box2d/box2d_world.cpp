@@ -391,8 +391,6 @@ bool touchesTwice(const b2Contact& c) {
 
 void Box2dWorld::reportContacts(ContactReport& out) {
     const auto asleep = [](const b2Body* b) { return b->GetType() != b2_staticBody && !b->IsAwake(); };
-    // The layer's key (see createBody); Box2D 2.4.1 has no const GetUserData.
-    const auto key = [](const b2Body* b) { return static_cast<std::uint64_t>(const_cast<b2Body*>(b)->GetUserData().pointer); };
     bool repeats = false;
     for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
         if (!c->IsTouching() || !c->IsEnabled()) continue;  // disabled: a basement's, its edge holding the piece
@@ -400,7 +398,7 @@ void Box2dWorld::reportContacts(ContactReport& out) {
         const b2Body *ba = fa->GetBody(), *bb = fb->GetBody();
         if (!ba->IsAwake() && !bb->IsAwake()) continue;  // asleep: the layer keeps the pair
         if (multiFixtureBodies_ > 0 && !repeats) repeats = touchesTwice(*c);
-        const std::uint64_t a = key(ba), b = key(bb);
+        const std::uint64_t a = bodyKey(ba), b = bodyKey(bb);
         const bool sleeping = asleep(ba) || asleep(bb);
         if (fa->IsSensor() || fb->IsSensor()) {  // a trigger overlap has no points
             out.addPair(a, b, true, Vec3::Zero(), sleeping);
