@@ -62,28 +62,18 @@ Backend makeNativeBackend() {
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
     caps.knownDeviations.insert({
-        {"assemblies.ragdoll_rest",
-         "the pile of four ragdolls still moves at 0.13 m/s after 10 s (bound 0.1; 0.44 before loaded contacts stiffened): nothing in the layer damps a joint or a rolling ball. The pile is chaotic: over 72 layouts with the bodies shifted by up to 2 mm the fastest body's median is 0.19 m/s, the slowest layout 0.70 m/s, measured before loaded contacts stiffened (0.15 and 0.77 before resting contacts were recycled)"},
         {"assemblies.ragdoll_limits",
          "an elbow goes 3.3 deg past its limit (bound 3 deg; 4.8 before loaded contacts stiffened) as a ragdoll of the pile lands, at the default 8 substeps x 1 iteration. The pile is chaotic: before that, over 72 layouts with the bodies shifted by up to 2 mm the worst overshoot's median is 3.1 deg (4.1 before impacts got their friction) and 39 of 72 go past 3 deg"},
         {"planar.assemblies.ragdoll_limits",
          "an elbow goes 4.0 deg past its limit (bound 3 deg; 3.4 before loaded contacts stiffened) as a ragdoll of the planar pile lands, at the default 8 substeps x 1 iteration: the limit rows are soft there and give under the landing"},
-        {"stability.stack10.soft_step.s1",
-         "at 1 substep (8 iterations; contacts capped at 30 Hz, half the step rate) a 10-box stack drifts 2.2 cm over 10 s (bound 1 cm); 4.4 mm at 4 substeps"},
-        {"stability.stack10.pgs.s1",
-         "PGS at 1 substep x 8 iterations: the 10-box stack drifts 3.3 cm over 10 s (bound 1 cm); more iterations help (the velocity solve converges slowly on a stack), a block solve of each manifold's points would"},
-        {"stability.stack10.pgs.s4",
-         "PGS at 4 substeps x 2 iterations: the 10-box stack drifts 1.5 cm over 10 s (as stability.stack10.pgs.s1)"},
-        {"stability.pyramid20.soft_step.s1",
-         "at 1 substep the 20-row pyramid's boxes drift up to 1.8 cm over 5 s (bound 1 cm); 4.6 mm at 4 substeps"},
         {"stability.pyramid20.pgs.s1",
-         "PGS at 1 substep: the 20-row pyramid's boxes drift 2.9 cm over 5 s and its top sinks 5.5 cm (as stability.stack10.pgs.s1)"},
+         "PGS at 1 substep x 8 iterations: the 20-row pyramid's boxes drift 1.6 cm over 5 s (bound 1 cm) and its top sinks 5.9 cm: the velocity solve converges slowly through 20 rows (2.9 cm before a manifold's rows were swept again on impact)"},
         {"stability.pyramid20.pgs.s4",
-         "PGS at 4 substeps x 2 iterations: the 20-row pyramid's boxes sway up to 1.1 cm (bound 1 cm) and back over 5 s; they end within 2 mm of where they started. The cause is not traced: before box faces stopped taking a neighbour's corner as a point (2026-11-27) they swayed 6.3 mm"},
+         "PGS at 4 substeps x 2 iterations: the 20-row pyramid's boxes sway up to 1.04 cm (bound 1 cm) and back over 5 s; they end within 2 mm of where they started. The cause is not traced: before box faces stopped taking a neighbour's corner as a point (2026-11-27) they swayed 6.3 mm"},
         {"planar.stability.stack10.soft_step.s1",
-         "as stability.stack10.soft_step.s1, planar: 1.5 cm"},
+         "at 1 substep (8 iterations; contacts capped at 30 Hz, half the step rate) the planar 10-box stack drifts 1.5 cm over 10 s (bound 1 cm). The 3D stack passes: its manifolds' rows are swept again on impact, the planar ones not (backends/native/solver/contact_solve.cpp)"},
         {"planar.stability.stack10.pgs.s1",
-         "as stability.stack10.pgs.s1, planar: the stack drifts 9.4 cm"},
+         "PGS at 1 substep x 8 iterations: the planar 10-box stack drifts 9.4 cm over 10 s (bound 1 cm); the 3D stack passes (as planar.stability.stack10.soft_step.s1)"},
         {"restitution.dead_heavy_ball_on_box",
          "a 65 kg ball with no restitution landing at 4 m/s on a 10 kg box resting on the ground rises 86 mm above "
          "the box (30 kg: 34 mm; bound 5 mm): the Gauss-Seidel passes, one per substep at the default 8 x 1, stop a "
@@ -100,13 +90,8 @@ Backend makeNativeBackend() {
     // Ceilings of the declared misses above, in each test's measure (stability: the worst of
     // drift, sink and lift as a multiple of its bound; about 1.5 x the figure measured).
     caps.deviationCeilings = {
-        {"assemblies.ragdoll_rest", 0.9},
         {"assemblies.ragdoll_limits", 7.5},
         {"planar.assemblies.ragdoll_limits", 6.0},
-        {"stability.stack10.soft_step.s1", 3.5},
-        {"stability.stack10.pgs.s1", 4},
-        {"stability.stack10.pgs.s4", 2.5},
-        {"stability.pyramid20.soft_step.s1", 2.7},
         {"stability.pyramid20.pgs.s1", 4.5},
         {"stability.pyramid20.pgs.s4", 1.7},
         {"planar.stability.stack10.soft_step.s1", 2.2},
@@ -128,20 +113,20 @@ Backend makeNativeBackend() {
          "Measured: 16 substeps 3.0 cm, 50 iterations 4.4 cm; the pgs solver lets the heavy box through (3.4 m)"},
         {"planar.hard.heavy_on_light.displacement",
          "as hard.heavy_on_light.displacement, planar: 8.2 cm"},
-        {"contacts.sunk_rises_straight",
-         "a unit box set 1.5 m into the ground (centre at -1 m) comes out 9.8 cm from where it began (from -0.2 m 4.4 cm; a "
-         "ball 0): the push out of the overlap (up to contactPushMaxVelocity) is solved point by point, and the two relax "
-         "passes leave the box 1.2 rad/s of spin after the first step, which friction turns into travel (frictionless: "
-         "none). Verified: backendOptions.relaxIterations 3 gives 1.2 cm, the pgs solver 2.9 cm"},
+        {"planar.contacts.paddle_push",
+         "a box on ice pushed face to face by a kinematic paddle leaves it 2.3 % faster than the paddle at 1 and 3 m/s (bound "
+         "0.5 %): the planar kernels solve a manifold's points once a pass, and the first takes more than its share of the "
+         "impact. The 3D kernels sweep such a manifold again and give the paddle's speed (backends/native/solver/contact_solve.cpp "
+         "says why the planar ones do not)"},
         {"planar.contacts.sunk_rises_straight",
-         "as contacts.sunk_rises_straight, planar: 6.3 cm from -1 m, 5.1 cm from -0.2 m"},
+         "a unit box set into the ground comes out 6.3 cm from where it began from a centre at -1 m, 5.1 cm from -0.2 m (a ball 0): the push out of the overlap is solved point by point and leaves the box spinning, which friction turns into travel. The 3D box comes out within 1 mm: its manifolds' rows are swept again when a pass moves them by much, the planar ones not (backends/native/solver/contact_solve.cpp)"},
     });
     caps.deviationCeilings.insert({
         {"hard.overlap25.speed", 4.5},
         {"planar.hard.overlap25.speed", 4.5},
         {"hard.heavy_on_light.displacement", 0.1},          // m, measured 0.0641
         {"planar.hard.heavy_on_light.displacement", 0.125},  // m, measured 0.0824
-        {"contacts.sunk_rises_straight", 0.2},           // m, measured 0.0983
+        {"planar.contacts.paddle_push", 0.035},  // fraction of the paddle's speed, measured 0.0234
         {"planar.contacts.sunk_rises_straight", 0.125},  // m, measured 0.0627
     });
     return backend;

@@ -584,7 +584,10 @@ TEST_P(HardeningTest, InertiaTooLightForTheMassIsRefusedNamingTheField) {
     // Twice the bound, on a 1 kg box: 2e-12 x 1 kg x (0.05^2 + 0.05^2) m^2 = 1e-14 kg m^2. Accepted,
     // and it steps finite with every solver. Nothing more is promised: its contact rows weigh its
     // turning 1e11 times its translation, which no solver here resolves (measured, 2026-12-02:
-    // some keep it on the ground, some let it fall through), and the height is printed.
+    // some keep it on the ground, some let it fall through), and the height is printed. Its spin is
+    // chaotic and may pass WorldSettings::maxAngularSpeed, so the divergence check may stop the run
+    // with an error of kind Diverged, the state still finite (native, 20 s at 1e-14 to 1e-13 kg m^2:
+    // 10 of 16 runs, 2026-12-06); any other error fails the test.
     core.mass = 1.0;
     core.inertia = Vec3::Constant(1e-14);
     for (Solver solver : caps().solvers) {
@@ -596,7 +599,15 @@ TEST_P(HardeningTest, InertiaTooLightForTheMassIsRefusedNamingTheField) {
         Body box = world.createBody(core);
         int firstNonFinite = -1;  // at every step, not only at the end
         for (int i = 0; i < 120 && firstNonFinite < 0; ++i) {
-            world.step();
+            try {
+                world.step();
+            } catch (const Error& e) {
+                ASSERT_EQ(toString(e.kind()), toString(ErrorKind::Diverged)) << e.what();
+                report(backend() + " " + std::string(toString(solver)) + ": spin when the divergence check stopped it at step " +
+                           std::to_string(i),
+                       box.state().angularVelocity.norm(), "rad/s");
+                break;
+            }
             const BodyState state = box.state();
             if (!(state.position.allFinite() && state.orientation.coeffs().allFinite() && state.linearVelocity.allFinite() &&
                   state.angularVelocity.allFinite()))
@@ -604,7 +615,7 @@ TEST_P(HardeningTest, InertiaTooLightForTheMassIsRefusedNamingTheField) {
         }
         EXPECT_EQ(firstNonFinite, -1) << "the state went non-finite at step " << firstNonFinite;
         const BodyState state = box.state();
-        report(backend() + " " + std::string(toString(solver)) + ": height of a 1 kg box of 1e-14 kg m^2 after 2 s (m)",
+        report(backend() + " " + std::string(toString(solver)) + ": height of a 1 kg box of 1e-14 kg m^2 after 2 s or where the check stopped it (m)",
                state.position.y());
     }
 }
