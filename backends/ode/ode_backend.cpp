@@ -190,6 +190,11 @@ Backend makeOdeBackend() {
     // Hard cases (`anyphys hardcases`, docs/hardcases.md) and the friction directions, measured
     // with sleeping off at the defaults; each ceiling is about 1.5 to 2 times the measured miss.
     caps.knownDeviations.insert({
+        {"contacts.paddle_push",
+         "a box on ice pushed face to face by a kinematic paddle leaves it 3.1 % faster than the paddle at 1 m/s, 4.9 % at "
+         "3 m/s (bound 0.5 %). Not traced: it is not the push out of overlap alone (backendOptions.erp 0.01 gives 13 %, "
+         "0.8 gives 10 %)"},
+        {"planar.contacts.paddle_push", "as contacts.paddle_push, planar: 6.1 % at 1 m/s, 8.3 % at 3 m/s"},
         {"contacts.overhang_stands",
          "four boxes over a table's edge at 90 % of the harmonic offsets (each partial stack's centre of mass 5 cm inside its edge) stand, but the top box shifts 4.3 cm sideways and down within 3 s before it settles: each box creeps toward the overhang (ODE also rests 1 to 4 mm low, and a single box 2 mm short of a table's edge creeps off it within 4 s)"},
         {"planar.contacts.overhang_stands", "as contacts.overhang_stands, planar: 3.2 cm"},
@@ -232,6 +237,8 @@ Backend makeOdeBackend() {
     });
     caps.deviationCeilings.insert({
         {"contacts.overhang_stands", 0.065},  // m, measured 0.0426
+        {"contacts.paddle_push", 0.075},         // fraction of the paddle's speed, measured 0.049
+        {"planar.contacts.paddle_push", 0.125},  // measured 0.083
         {"planar.contacts.overhang_stands", 0.05},  // m, measured 0.0317
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
         // that tear five times over, as their figure depends on the step the tear starts at.

@@ -180,6 +180,17 @@ TEST_P(PlanarTest, BodiesSetIntoAPlaneRiseOntoIt) {
     expectCriterion("planar.contacts.sunk_rises_straight", sideways < 0.05, "farthest sideways " + std::to_string(sideways) + " m (bound 0.05)", sideways);
 }
 
+// Planar twin of ContactsTest.KinematicPaddlePushesABoxAtItsOwnSpeed, same bounds.
+TEST_P(PlanarTest, KinematicPaddlePushesABoxAtItsOwnSpeed) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const PaddlePush push = paddlePushesABox(settings());
+    expectCriterion("planar.contacts.paddle_push", push.excess < 0.005 && push.spin < 0.01,
+                    "speed off by " + std::to_string(push.excess) + " of the paddle's (bound 0.005), spin " +
+                        std::to_string(push.spin) + " rad/s (bound 0.01)",
+                    push.excess);
+}
+
 // Motion stays in the plane: a box thrown spinning onto the ground, pushed out of the plane by a
 // force and an impulse (which the plane absorbs), keeps z = 0 and turns about Z only.
 TEST_P(PlanarTest, MotionStaysInThePlane) {
