@@ -140,12 +140,10 @@ Backend makeBulletBackend() {
          "as joints.chain_gap.direct, in a planar world"},
         {"planar.joints.chain_gap_heavy.direct",
          "as joints.chain_gap_heavy.direct, in a planar world"},
-        {"planar.assemblies.ragdoll_gap",
-         "joints of a planar pile of four ragdolls open by up to 60 mm as the ragdolls land on each other (bound 5 cm): Baumgarte joint rows at one 1/60 s step yield under the impacts. A chaotic pile: the 3D pile passes (40 mm), and the 10-ragdoll piles over 12 nudged runs spread from 4.2 to 8.8 cm (3D) and 5.1 to 5.7 cm (planar)"},
         {"assemblies.ragdoll_rest",
          "a pile of four ragdolls still moves at 0.34 m/s after 10 s (sleeping off; bound 0.1): its joints and contacts keep jittering. The 10-ragdoll pile over 12 nudged runs ends between 0.11 and 0.82 m/s (median 0.30), planar between 0.21 and 4.8 m/s; before capsules lying on boxes kept both ends, 0.17 to 0.63 and 0.24 to 6.3, and this pile 0.031"},
         {"assemblies.pinched_pile_gap",
-         "the soak run's pinched pile of ragdolls opens a joint 100 mm (median of nine nudged draws, all within 0.01 mm; bound 5 cm; 116 mm while limbs were clamped), as planar.assemblies.ragdoll_gap"},
+         "the soak run's pinched pile of ragdolls opens a joint 100 mm (median of nine nudged draws, all within 0.01 mm; bound 5 cm; 116 mm while limbs were clamped): Baumgarte joint rows at one 1/60 s step yield under the impacts"},
     };
     // Stability over the whole run, sleeping off, per solver and substep count
     // (tests/contract/test_stability.cpp: drift 1 cm, sink linearSlop per contact, lift 1 mm).
@@ -226,8 +224,8 @@ Backend makeBulletBackend() {
          "iterations 1.16 m, the direct solver 1.98 m"},
         {"planar.hard.heavy_on_light.displacement",
          "as hard.heavy_on_light.displacement, planar: 1.41 m (8 substeps 4.2 mm)"},
-        {"hard.column40.drift", "the 40-box column falls (its top box ends 65 m away within 30 s): as hard.stack20.drift, worse with height"},
-        {"planar.hard.column40.drift", "as hard.column40.drift, planar: the top box ends 40 m away"},
+        {"hard.column40.drift", "the 40-box column falls (its top box ends 70 m away within 30 s): as hard.stack20.drift, worse with height"},
+        {"planar.hard.column40.drift", "as hard.column40.drift, planar: the top box ends 65 m away"},
         {"planar.hard.pyramid100.drift",
          "the 5050-box planar pyramid collapses (boxes 10 m from where they started within 5 s; as pyramid20.drift)"},
         {"hard.arch.displacement",
@@ -235,11 +233,11 @@ Backend makeBulletBackend() {
         {"planar.hard.arch.displacement",
          "as hard.arch.displacement, planar: 1.13 cm"},
         {"hard.mixed_pile_mesh.sink",
-         "a tumbling piece sinks 6.25 cm into the floor (a hull landing at 5.9 m/s and turning at 19 rad/s, 1.2 s in; over 16 runs with the pieces moved k x 0.1 mm along x, 2.1 to 11.7 cm, median 2.2, and k x 1 mm, 2.1 to 7.6 cm, median 4.8, once boxes, hulls, capsules and spheres kept whole faces on mesh triangles, bullet_face_on_triangle.hpp; before that, 5.2 cm unnudged, and so moved 2.1 to 14.8 cm, median 3.8, and 2.6 to 13.4 cm, median 7.1; over 12 nudged runs 2.4 to 8.0 cm, median 5.25, after mesh edge normals were corrected and hull and capsule pairs kept whole faces and lines; 3.0 to 10.1 cm, median 6.5, before; over six, 3.0 to 9.2 cm, and 4.6 to 10.5 before contacts were kept out to twice linearSlop, and 10.5 in the unnudged run; 5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size and at least twice linearSlop (10 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
+         "a tumbling piece sinks 7.35 cm into the floor (6.25 cm, a hull landing at 5.9 m/s and turning at 19 rad/s, 1.2 s in, before swept bodies met the floor at their surface; over 16 runs with the pieces moved k x 0.1 mm along x, 2.1 to 11.7 cm, median 2.2, and k x 1 mm, 2.1 to 7.6 cm, median 4.8, once boxes, hulls, capsules and spheres kept whole faces on mesh triangles, bullet_face_on_triangle.hpp; before that, 5.2 cm unnudged, and so moved 2.1 to 14.8 cm, median 3.8, and 2.6 to 13.4 cm, median 7.1; over 12 nudged runs 2.4 to 8.0 cm, median 5.25, after mesh edge normals were corrected and hull and capsule pairs kept whole faces and lines; 3.0 to 10.1 cm, median 6.5, before; over six, 3.0 to 9.2 cm, and 4.6 to 10.5 before contacts were kept out to twice linearSlop, and 10.5 in the unnudged run; 5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size and at least twice linearSlop (10 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
         {"hard.ragdoll_pile.joint_gap",
-         "joints of a pile of 10 ragdolls open by up to 5.2 cm (as planar.assemblies.ragdoll_gap; a chaotic pile: over 12 nudged runs 4.2 to 8.8 cm, median 5.1; 18.5 cm while limbs were clamped)"},
+         "joints of a pile of 10 ragdolls open by up to 5.6 cm: Baumgarte joint rows at one 1/60 s step yield under the impacts (a chaotic pile: over 12 nudged runs 4.2 to 8.8 cm, median 5.1, before swept bodies met the ground at their surface, 5.2 cm unnudged; 18.5 cm while limbs were clamped)"},
         {"planar.hard.ragdoll_pile.joint_gap",
-         "as hard.ragdoll_pile.joint_gap, planar: 5.3 cm (over 12 nudged runs 5.1 to 5.7 cm; 21 cm while limbs were clamped)"},
+         "as hard.ragdoll_pile.joint_gap, planar: 5.1 cm (over 12 nudged runs 5.1 to 5.7 cm, 5.3 unnudged, before swept bodies met the ground at their surface; 21 cm while limbs were clamped)"},
         {"compound.fast_body_passes_filtered_child",
          "a body fast enough for continuous collision (over half its inner radius per step) is held at a compound "
          "child whose filter lets it through: a 40 m/s ball is 1.01 m behind free flight after passing it (then lands "
@@ -280,7 +278,6 @@ Backend makeBulletBackend() {
         {"planar.joints.pendulum_energy", 0.123},
         {"planar.joints.wide_pendulum_energy", 0.951},
         {"planar.joints.wide_pendulum_period", 0.0897},
-        {"planar.assemblies.ragdoll_gap", 0.18},
         {"assemblies.ragdoll_rest", 1.0},
         {"assemblies.pinched_pile_gap", 0.15},
         {"friction.impact.default", 12.5},  // in multiples of its bounds
@@ -295,7 +292,7 @@ Backend makeBulletBackend() {
         {"planar.hard.pyramid100.drift", 15},
         {"hard.arch.displacement", 0.03},
         {"planar.hard.arch.displacement", 0.025},
-        {"hard.mixed_pile_mesh.sink", 0.13},  // m, measured 0.0625 (moved runs up to 0.117)
+        {"hard.mixed_pile_mesh.sink", 0.13},  // m, measured 0.0735 (moved runs up to 0.117)
         {"hard.ragdoll_pile.joint_gap", 0.15},
         {"planar.hard.ragdoll_pile.joint_gap", 0.15},
     });

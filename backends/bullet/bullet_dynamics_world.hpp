@@ -17,8 +17,10 @@
 //    that the layer's filter keeps apart are dropped and those of sensor children taken out as
 //    trigger overlaps (Bullet's filter and contact response are per body, not per child);
 //  - createPredictiveContacts, integrateTransforms (continuous collision's sweeps): a compound of
-//    solid and sensor children shows only its solid part while they run; a body held by a joint
-//    is not clamped to its first hit (integrateTransforms), only held by its predictive contacts;
+//    solid and sensor children shows only its solid part while they run; a predictive point sits
+//    on the body's surface facing the hit, not at its centre, so friction turns the body; a body
+//    held by a joint is not clamped to its first hit (integrateTransforms), only held by its
+//    predictive contacts;
 //  - saveKinematicState: a no-op; Bullet would recompute a kinematic body's velocity from its
 //    last two poses, but anyphys moves kinematic bodies itself at their exact velocity.
 #include <vector>

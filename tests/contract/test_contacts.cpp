@@ -439,6 +439,16 @@ TEST_P(ContactsTest, ObliqueLandingGetsItsFrictionInTheImpact) {
     }
 }
 
+// The same for a small ball fast enough to be swept (contact_helpers.hpp), default settings.
+TEST_P(ContactsTest, FastObliqueLandingGetsItsFrictionInTheImpact) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane},
+                                        Effect::Contacts | Effect::Friction | Effect::ContinuousCollision);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const WorstCheck worst = fastObliqueLandings(settings(), {Vec3::UnitX(), Vec3(0.6, 0, 0.8)});
+    report(backend() + " fast oblique landing: worst check as a multiple of its bound (" + worst.what + ")", worst.value);
+    expectCriterion("friction.impact_fast", worst.value <= 1.0, "worst " + worst.what, worst.value);
+}
+
 TEST_P(ContactsTest, SlidingBoxStopsAtTheSameDistanceInEveryDirection) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
     ANYPHYS_REQUIRE(missing.empty(), missing);

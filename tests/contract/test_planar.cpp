@@ -91,6 +91,16 @@ TEST_P(PlanarTest, ObliqueLandingGetsItsFrictionInTheImpact) {
     expectCriterion("planar.friction.impact", worst.value <= 1.0, "worst " + worst.what, worst.value);
 }
 
+// The fast oblique landing of ContactsTest, in the plane: along +x and -x.
+TEST_P(PlanarTest, FastObliqueLandingGetsItsFrictionInTheImpact) {
+    const std::string missing = lacking(caps(), {ShapeType::Sphere, ShapeType::Plane},
+                                        Effect::Contacts | Effect::Friction | Effect::ContinuousCollision);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const WorstCheck worst = fastObliqueLandings(settings(), {Vec3::UnitX(), -Vec3::UnitX()});
+    report(backend() + " planar fast oblique landing: worst check as a multiple of its bound (" + worst.what + ")", worst.value);
+    expectCriterion("planar.friction.impact_fast", worst.value <= 1.0, "worst " + worst.what, worst.value);
+}
+
 // The glancing hit of ContactsTest, in the plane (its paths and line of centres lie in XY).
 TEST_P(PlanarTest, GlancingBallsLeaveInTheElasticDirections) {
     const std::string missing = lacking(caps(), {ShapeType::Sphere}, Effect::Contacts | Effect::Restitution);
