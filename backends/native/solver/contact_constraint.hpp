@@ -45,6 +45,7 @@ struct WideContact {
     bool writeB[wide::kLanes];
     int pointCount;                    // most points in any lane
     bool reverse = false;              // the next solve visits the points last to first
+    bool unjointed[wide::kLanes];      // no joint holds either body: friction joins the later sweeps (manifold_sweeps.hpp)
     wide::FloatW invMassA, invMassB;   // the same along every axis (a planar world has PlanarContact)
     wide::SymMat3W invIA, invIB;
     wide::Vec3W normal, tangent1;      // second tangent: normal x tangent1 (secondTangent)

@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "solver/contact_constraint.hpp"
+#include "solver/manifold_sweeps.hpp"
 #include "solver/restitution_math.hpp"
 #include "solver/restitution_rows.hpp"
 #include "solver/rigid_bias.hpp"
@@ -191,39 +192,10 @@ ANYPHYS_KERNEL FloatW separation(const WideContact& c, const WideContactPoint& c
     return dot(c.normal, moved) + cp.baseSeparation;
 }
 
-// ---- a manifold's normal rows ------------------------------------------------------------------
-//
-// The rows are solved point by point, so in a pass that moves the impulses by much (an impact: a
-// face landing flat, a paddle meeting a box) the points solved first take more than their share:
-// the pair turns, and the points solved last push against the turn. One sweep left a box pushed
-// by a kinematic paddle at 1 m/s moving off at 1.046 m/s and spinning at 0.18 rad/s, and a box
-// landing flat spinning at 0.1 rad/s. Sweeping the rows of such a manifold again, on the
-// two bodies the pass already holds, evens the points out (1.000 m/s and no spin; the landing
-// under 0.0003 rad/s). Lanes whose points all moved less than kSweepAgainSpeed in the first sweep
-// are not swept again, so a resting pile pays for the test only. Four sweeps: two left a planar
-// landing at 0.011 rad/s and three the paddle at 1.0015 m/s.
-//
-// The planar kernels keep one sweep: there the extra sweeps opened the planar ragdoll pile's joints
-// (the largest gap, median of 30 nudged starts, 0.031 -> 0.062 m; likely the contacts stopping a
-// limb faster than its joint can follow). The 3D pile's did not open (0.034 -> 0.036 m).
-
-constexpr int kMaxNormalSweeps = 4;
-/// m/s: the normal velocity one sweep's impulse gives a point, beyond which its manifold's lane is
-/// swept again. Gravity brings a resting contact 0.02 m/s a substep at 8 substeps of 1/60 s, and
-/// the warm start applies most of it before the pass.
-constexpr double kSweepAgainSpeed = 0.05;
-
-/// A pass's rows for a manifold's points: each one's velocity bias and softness (mass scale and
-/// impulse scale; 1 and 0 for a rigid row), found once and kept for the later sweeps.
-struct NormalRowsW {
-    FloatW bias[4];
-    FloatW massScale[4] = {splat(1.0), splat(1.0), splat(1.0), splat(1.0)};
-    FloatW impulseScale[4] = {};
-};
+// ---- a manifold's rows, swept again after an impact (manifold_sweeps.hpp) ----------------------
 
 // One sweep of a manifold's normal rows; after the first, only in `lanes` (the others keep their
-// impulses). Returns the lanes where the first sweep moved a point by more than kSweepAgainSpeed
-// (applied / normalMass is its velocity change, compared without dividing).
+// impulses). Returns the lanes where the first sweep moved a point by much.
 template <bool kFirst>
 ANYPHYS_KERNEL MaskW sweepNormalRows(WideContact& c, BodyW& a, BodyW& b, const NormalRowsW& rows, bool reverse, MaskW lanes,
                                      bool endOfSubstep) {
@@ -236,7 +208,7 @@ ANYPHYS_KERNEL MaskW sweepNormalRows(WideContact& c, BodyW& a, BodyW& b, const N
         FloatW total = max(cp.normalImpulse + impulse, zero());
         if constexpr (!kFirst) total = select(lanes, total, cp.normalImpulse);
         const FloatW applied = total - cp.normalImpulse;
-        if constexpr (kFirst) moved = moved | (max(applied, -applied) > splat(kSweepAgainSpeed) * cp.normalMass);
+        if constexpr (kFirst) moved = moved | movedMuch(applied, cp.normalMass);
         cp.normalImpulse = total;
         cp.maxImpulse = max(cp.maxImpulse, total);
         if (endOfSubstep) cp.stepImpulse += kFirst ? total : applied;  // the substep's final impulse
@@ -312,8 +284,17 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
             }
         }
         const MaskW again = sweepNormalRows<true>(c, a, b, rows, reverse, kAllLanes, endOfSubstep);
-        if (c.pointCount > 1 && !noLane(again))
+        const MaskW frictionAgain = params.friction ? again & laneMask(c.unjointed) : MaskW{};
+        const bool normalAgain = c.pointCount > 1 && !noLane(again);
+        if (normalAgain)
             for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
+        if (!noLane(frictionAgain))
+            for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
+                FloatW load[4];
+                for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
+                solveFriction(c, a, b, load, frictionAgain);
+                if (normalAgain) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
+            }
         if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);

@@ -36,6 +36,7 @@ struct PlanarContact {
     bool writeB[wide::kLanes];
     int pointCount;
     bool reverse = false;  // PGS: the next solve visits the points last to first
+    bool unjointed[wide::kLanes];  // no joint holds either body: the lane may be swept again (manifold_sweeps.hpp)
     wide::FloatW invMassA, invMassB, invIA, invIB;  // in-plane mass, inverse inertia about Z
     wide::FloatW normalX, normalY;                  // tangent = (-normalY, normalX)
     wide::FloatW centerAx, centerAy, centerBx, centerBy;  // friction centre relative to each centre of mass

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "solver/manifold_sweeps.hpp"
 #include "solver/restitution_math.hpp"
 #include "solver/restitution_rows.hpp"
 #include "solver/rigid_bias.hpp"
@@ -133,6 +134,29 @@ ANYPHYS_KERNEL FloatW separation(const PlanarContact& c, const PlanarContactPoin
     return c.normalX * movedX + c.normalY * movedY + cp.baseSeparation;
 }
 
+// One sweep of a manifold's normal rows; after the first, only in `lanes` (the others keep their
+// impulses). Returns the lanes where the first sweep moved a point by much (manifold_sweeps.hpp).
+template <bool kFirst>
+ANYPHYS_KERNEL MaskW sweepNormalRows(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b, const NormalRowsW& rows, bool reverse,
+                                     MaskW lanes, bool endOfSubstep) {
+    MaskW moved{};
+    for (int n = 0; n < c.pointCount; ++n) {
+        const int k = reverse ? c.pointCount - 1 - n : n;
+        PlanarContactPoint& cp = c.points[k];
+        const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
+        const FloatW impulse = -cp.normalMass * rows.massScale[k] * (vn + rows.bias[k]) - rows.impulseScale[k] * cp.normalImpulse;
+        FloatW total = max(cp.normalImpulse + impulse, zero());
+        if constexpr (!kFirst) total = select(lanes, total, cp.normalImpulse);
+        const FloatW applied = total - cp.normalImpulse;
+        if constexpr (kFirst) moved = moved | movedMuch(applied, cp.normalMass);
+        cp.normalImpulse = total;
+        cp.maxImpulse = max(cp.maxImpulse, total);
+        if (endOfSubstep) cp.stepImpulse += kFirst ? total : applied;  // the substep's final impulse
+        applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX, applied * c.normalY);
+    }
+    return moved;
+}
+
 ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
                               bool useBias, bool endOfSubstep) {
     const FloatW invH = splat(params.invH);
@@ -176,32 +200,34 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
         // PGS alternates the order of the points from pass to pass, as the 3D path does.
         const bool reverse = !params.soft && c.reverse;
         c.reverse = !c.reverse;
-        for (int n = 0; n < c.pointCount; ++n) {
-            const int k = reverse ? c.pointCount - 1 - n : n;
-            PlanarContactPoint& cp = c.points[k];
-            FloatW bias = zero(), pointMassScale = one, pointImpulseScale = zero();
+        NormalRowsW rows;
+        for (int k = 0; k < c.pointCount; ++k) {
+            const PlanarContactPoint& cp = c.points[k];
             if (predictLoad) {
-                bias = rowBias[k];
+                rows.bias[k] = rowBias[k];
             } else if (useBias && params.soft) {
                 const FloatW s = separation(c, cp, a, b, dpx, dpy);
                 // A speculative point allows the approach to close exactly the gap this substep.
                 const MaskW speculative = s > zero();
-                bias = select(speculative, s * invH, max(biasRate * s, maxPush));
-                pointMassScale = select(speculative, one, massScale);
-                pointImpulseScale = select(speculative, zero(), impulseScale);
+                rows.bias[k] = select(speculative, s * invH, max(biasRate * s, maxPush));
+                rows.massScale[k] = select(speculative, one, massScale);
+                rows.impulseScale[k] = select(speculative, zero(), impulseScale);
             } else {  // a rigid row: the relax pass; PGS (Baumgarte)
-                bias = rigidBias(rigid, separation(c, cp, a, b, dpx, dpy));
+                rows.bias[k] = rigidBias(rigid, separation(c, cp, a, b, dpx, dpy));
             }
-            const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-            const FloatW impulse = -cp.normalMass * pointMassScale * (vn + bias) - pointImpulseScale * cp.normalImpulse;
-            const FloatW total = max(cp.normalImpulse + impulse, zero());
-            const FloatW applied = total - cp.normalImpulse;
-            cp.normalImpulse = total;
-            cp.maxImpulse = max(cp.maxImpulse, total);
-            if (endOfSubstep) cp.stepImpulse += total;
-            applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
-                         applied * c.normalY);
         }
+        // Only where no joint holds either body (manifold_sweeps.hpp).
+        const MaskW again = sweepNormalRows<true>(c, a, b, rows, reverse, kAllLanes, endOfSubstep) & laneMask(c.unjointed);
+        const bool normalAgain = c.pointCount > 1 && !noLane(again);
+        if (normalAgain)
+            for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
+        if (params.friction && !noLane(again))
+            for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
+                FloatW load[4];
+                for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
+                solveFriction(c, a, b, load, again);
+                if (normalAgain) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
+            }
         if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);

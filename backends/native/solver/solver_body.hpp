@@ -34,6 +34,7 @@ static_assert(sizeof(SolverState) == 16 * sizeof(double), "SolverState is four r
 struct SolverBody {
     std::uint32_t body = 0;                // index in NativeWorld::bodies()
     bool dynamic = false;                  // kinematic bodies keep their velocity
+    bool jointed = false;                  // an enabled joint holds it this step (contact_solve.cpp's sweeps)
     Vec3 invMass = Vec3::Zero();           // per world axis (zero along Z in a planar world)
     Mat3 invInertia = Mat3::Zero();        // world frame, at the step start
     Vec3 inertia = Vec3::Zero();           // principal moments (gyroscopic term)

@@ -234,6 +234,8 @@ void StepSolver::buildConstraints() {
         };
         side(joint.bodyA, c.a, c.fixedA);
         side(joint.bodyB, c.b, c.fixedB);
+        for (std::int32_t body : {c.a, c.b})
+            if (body != kStaticBody) bodies_[static_cast<std::size_t>(body)].jointed = true;
         joints_.push_back(c);
     }
     countSpringsPerBody();
