@@ -731,4 +731,42 @@ inline CriterionResult paddlePushesABox(const WorldSettings& s, const std::strin
             worstExcess};
 }
 
+/// A 10 cm box falls flat onto the ground at v down and 0.3 v across (v = 20, 40 and 60 m/s: a
+/// third of a metre to a metre a step), mu 0.5, nothing bouncy. Mu times the landing's normal
+/// impulse (v) exceeds the slide's 0.3 v, so the landing stops the slide: the box ends where it
+/// met the ground, 0.3 v t along, t the fall's time under gravity. Native solved the friction
+/// once, before the normal rows turned the box back, and the box slid on: 10.9 m at 60 m/s. The
+/// bound, 5 cm (half the box): a slide the landing did not stop goes on for decimetres. Returns
+/// the worst distance from that end, over the speeds.
+inline CriterionResult fastBoxLandings(const WorldSettings& s, const std::string& criterion) {
+    MaterialLibrary materials;
+    materials.add("grip", Material{0.5, 0.0, 1000.0});
+    double worst = 0.0;
+    std::string where;
+    for (const double v : {20.0, 40.0, 60.0}) {
+        World world(s, materials);
+        BodyDef ground = groundDef("grip");
+        world.createBody(ground);
+        constexpr double kHalf = 0.05, kStepsAbove = 5.3;  // starts 5.3 steps of its speed above the ground
+        const double drop = kStepsAbove * v * s.timeStep;
+        BodyDef def = boxDef("box", Vec3::Constant(kHalf), Vec3(0, kHalf + drop, 0), "grip");
+        def.linearVelocity = Vec3(0.3 * v, -v, 0);
+        def.allowSleep = false;
+        Body box = world.createBody(def);
+        for (int i = 0; i < static_cast<int>(std::lround(2.0 / s.timeStep)); ++i) world.step();
+        const double g = -s.gravity.y();
+        const double fall = (std::sqrt(v * v + 2.0 * g * drop) - v) / g;  // v t + g t^2 / 2 = drop
+        const double exact = 0.3 * v * fall;
+        const double off = std::abs(box.position().x() - exact);
+        report(s.backend + " box landing at " + std::to_string(v) + " m/s: end x (exact " + std::to_string(exact) + ")",
+               box.position().x(), "m");
+        if (off > worst) {
+            worst = off;
+            where = " at " + std::to_string(v) + " m/s";
+        }
+    }
+    return {criterion, worst <= 0.05, "ends " + std::to_string(worst) + " m from where it met the ground" + where + " (bound 0.05)",
+            worst};
+}
+
 }  // namespace anyphys::test

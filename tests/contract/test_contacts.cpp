@@ -449,6 +449,14 @@ TEST_P(ContactsTest, FastObliqueLandingGetsItsFrictionInTheImpact) {
     expectCriterion("friction.impact_fast", worst.value <= 1.0, "worst " + worst.what, worst.value);
 }
 
+// A fast box landing flat stops its slide in the landing (contact_helpers.hpp).
+TEST_P(ContactsTest, FastBoxLandingStopsItsSlide) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = fastBoxLandings(settings(), "friction.fast_box_landing");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 TEST_P(ContactsTest, SlidingBoxStopsAtTheSameDistanceInEveryDirection) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
     ANYPHYS_REQUIRE(missing.empty(), missing);

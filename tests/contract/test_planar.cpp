@@ -101,6 +101,14 @@ TEST_P(PlanarTest, FastObliqueLandingGetsItsFrictionInTheImpact) {
     expectCriterion("planar.friction.impact_fast", worst.value <= 1.0, "worst " + worst.what, worst.value);
 }
 
+// Planar twin of ContactsTest.FastBoxLandingStopsItsSlide, same bound.
+TEST_P(PlanarTest, FastBoxLandingStopsItsSlide) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts | Effect::Friction);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = fastBoxLandings(settings(), "planar.friction.fast_box_landing");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 // The glancing hit of ContactsTest, in the plane (its paths and line of centres lie in XY).
 TEST_P(PlanarTest, GlancingBallsLeaveInTheElasticDirections) {
     const std::string missing = lacking(caps(), {ShapeType::Sphere}, Effect::Contacts | Effect::Restitution);
