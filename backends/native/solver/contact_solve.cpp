@@ -194,17 +194,39 @@ ANYPHYS_KERNEL FloatW separation(const WideContact& c, const WideContactPoint& c
 
 // ---- a manifold's rows, swept again after an impact (manifold_sweeps.hpp) ----------------------
 
+/// Point k's row in this pass: its velocity bias, and its softness (mass scale and impulse scale;
+/// 1 and 0 for a rigid row). The same every sweep of the pass: positions do not move within it.
+ANYPHYS_KERNEL void rowOf(const PassRows& p, const WideContact& c, int k, const BodyW& a, const BodyW& b, const Vec3W& dp,
+                          FloatW& bias, FloatW& massScale, FloatW& impulseScale) {
+    massScale = splat(1.0);
+    impulseScale = zero();
+    if (p.predictLoad) {
+        bias = p.rowBias[k];
+    } else if (p.soft) {
+        const FloatW s = separation(c, c.points[k], a, b, dp);
+        // A speculative point allows the approach to close exactly the gap this substep.
+        const MaskW speculative = s > zero();
+        bias = select(speculative, s * p.invH, max(p.biasRate * s, p.maxPush));
+        massScale = select(speculative, splat(1.0), p.massScale);
+        impulseScale = select(speculative, zero(), p.impulseScale);
+    } else {  // a rigid row: the relax pass; PGS (Baumgarte)
+        bias = rigidBias(p.rigid, separation(c, c.points[k], a, b, dp));
+    }
+}
+
 // One sweep of a manifold's normal rows; after the first, only in `lanes` (the others keep their
 // impulses). Returns the lanes where the first sweep moved a point by much.
 template <bool kFirst>
-ANYPHYS_KERNEL MaskW sweepNormalRows(WideContact& c, BodyW& a, BodyW& b, const NormalRowsW& rows, bool reverse, MaskW lanes,
-                                     bool endOfSubstep) {
+ANYPHYS_KERNEL MaskW sweepNormalRows(WideContact& c, BodyW& a, BodyW& b, const Vec3W& dp, const PassRows& rows, bool reverse,
+                                     MaskW lanes, bool endOfSubstep) {
     MaskW moved{};
     for (int n = 0; n < c.pointCount; ++n) {
         const int k = reverse ? c.pointCount - 1 - n : n;
         WideContactPoint& cp = c.points[k];
+        FloatW bias, massScale, impulseScale;
+        rowOf(rows, c, k, a, b, dp, bias, massScale, impulseScale);
         const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-        const FloatW impulse = -cp.normalMass * rows.massScale[k] * (vn + rows.bias[k]) - rows.impulseScale[k] * cp.normalImpulse;
+        const FloatW impulse = -cp.normalMass * massScale * (vn + bias) - impulseScale * cp.normalImpulse;
         FloatW total = max(cp.normalImpulse + impulse, zero());
         if constexpr (!kFirst) total = select(lanes, total, cp.normalImpulse);
         const FloatW applied = total - cp.normalImpulse;
@@ -215,6 +237,23 @@ ANYPHYS_KERNEL MaskW sweepNormalRows(WideContact& c, BodyW& a, BodyW& b, const N
         applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
     }
     return moved;
+}
+
+// The later sweeps of the lanes an impact moved (manifold_sweeps.hpp): the normal rows (with more
+// than one point), then friction, where no joint holds a body, and the normal rows in turn.
+ANYPHYS_KERNEL void sweepAgain(WideContact& c, BodyW& a, BodyW& b, const Vec3W& dp, const PassRows& rows, bool reverse, MaskW again,
+                               bool friction, bool endOfSubstep) {
+    const bool normalAgain = c.pointCount > 1;
+    if (normalAgain)
+        for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, dp, rows, reverse, again, endOfSubstep);
+    const MaskW frictionAgain = friction ? again & laneMask(c.unjointed) : MaskW{};
+    if (noLane(frictionAgain)) return;
+    for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
+        FloatW load[4];
+        for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
+        solveFriction(c, a, b, load, frictionAgain);
+        if (normalAgain) sweepNormalRows<false>(c, a, b, dp, rows, reverse, again, endOfSubstep);
+    }
 }
 
 ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int count, SolverState* states,
@@ -254,12 +293,9 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
             solveFriction(c, a, b, load, kAllLanes);
         }
 
-        FloatW biasRate = zero(), massScale = one, impulseScale = zero();
-        if (useBias && params.soft) {
-            biasRate = c.biasRate;
-            massScale = c.massScale;
-            impulseScale = c.impulseScale;
-        }
+        const bool softRows = useBias && params.soft;
+        const PassRows rows{rigid, invH, maxPush, softRows ? c.biasRate : zero(), softRows ? c.massScale : one,
+                            softRows ? c.impulseScale : zero(), predictLoad, softRows, rowBias};
         // PGS alternates the order of a manifold's points from pass to pass: always first, the
         // first point of a symmetric face (a box on a box) takes more than its share and the pair
         // starts to turn; a 10-box stack toppled at 1 substep (drift 2.9 m; 3.3 cm alternating). The soft
@@ -267,34 +303,8 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
         // there opened a ragdoll pile's joints (31 -> 73 mm).
         const bool reverse = !params.soft && c.reverse;
         c.reverse = !c.reverse;
-        NormalRowsW rows;
-        for (int k = 0; k < c.pointCount; ++k) {
-            const WideContactPoint& cp = c.points[k];
-            if (predictLoad) {
-                rows.bias[k] = rowBias[k];
-            } else if (useBias && params.soft) {
-                const FloatW s = separation(c, cp, a, b, dp);
-                // A speculative point allows the approach to close exactly the gap this substep.
-                const MaskW speculative = s > zero();
-                rows.bias[k] = select(speculative, s * invH, max(biasRate * s, maxPush));
-                rows.massScale[k] = select(speculative, one, massScale);
-                rows.impulseScale[k] = select(speculative, zero(), impulseScale);
-            } else {  // a rigid row: the relax pass; PGS (Baumgarte)
-                rows.bias[k] = rigidBias(rigid, separation(c, cp, a, b, dp));
-            }
-        }
-        const MaskW again = sweepNormalRows<true>(c, a, b, rows, reverse, kAllLanes, endOfSubstep);
-        const MaskW frictionAgain = params.friction ? again & laneMask(c.unjointed) : MaskW{};
-        const bool normalAgain = c.pointCount > 1 && !noLane(again);
-        if (normalAgain)
-            for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
-        if (!noLane(frictionAgain))
-            for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
-                FloatW load[4];
-                for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
-                solveFriction(c, a, b, load, frictionAgain);
-                if (normalAgain) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
-            }
+        const MaskW again = sweepNormalRows<true>(c, a, b, dp, rows, reverse, kAllLanes, endOfSubstep);
+        if (!noLane(again)) sweepAgain(c, a, b, dp, rows, reverse, again, params.friction, endOfSubstep);
         if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);

@@ -26,6 +26,7 @@
 // to a median gap of 62 mm, 37 before), and in planar worlds neither are the normal rows (they
 // opened the planar ragdoll pile's joints: the largest gap, median of 30 nudged starts, 0.031 to
 // 0.062 m). The 3D pile's did not open with the normal sweeps (0.034 to 0.037 m).
+#include "solver/rigid_bias.hpp"
 #include "solver/wide.hpp"
 
 namespace anyphys::native::wide {
@@ -37,12 +38,14 @@ inline constexpr int kMaxFrictionSweeps = 8;
 /// the warm start applies most of it before the pass.
 inline constexpr double kSweepAgainSpeed = 0.05;
 
-/// A pass's rows for a manifold's points: each one's velocity bias and softness (mass scale and
-/// impulse scale; 1 and 0 for a rigid row), found once and kept for the later sweeps.
-struct NormalRowsW {
-    FloatW bias[4];
-    FloatW massScale[4] = {splat(1.0), splat(1.0), splat(1.0), splat(1.0)};
-    FloatW impulseScale[4] = {};
+/// What a pass's normal rows are made of beside the manifold, so a later sweep can find each
+/// point's row again (positions do not move within a pass): the pass's constants and, where the
+/// rows are rigid and friction predicted their load, each point's bias as friction found it.
+struct PassRows {
+    RigidBias rigid;
+    FloatW invH, maxPush, biasRate, massScale, impulseScale;
+    bool predictLoad, soft;  // soft: the solve pass's soft rows
+    const FloatW* rowBias;
 };
 
 /// Whether a point's impulse change `applied` moved its velocity by more than kSweepAgainSpeed

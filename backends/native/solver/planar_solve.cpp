@@ -134,17 +134,38 @@ ANYPHYS_KERNEL FloatW separation(const PlanarContact& c, const PlanarContactPoin
     return c.normalX * movedX + c.normalY * movedY + cp.baseSeparation;
 }
 
+/// Point k's row in this pass: its velocity bias and softness, the same every sweep of the pass.
+ANYPHYS_KERNEL void rowOf(const PassRows& p, const PlanarContact& c, int k, const PlanarBodyW& a, const PlanarBodyW& b, FloatW dpx,
+                          FloatW dpy, FloatW& bias, FloatW& massScale, FloatW& impulseScale) {
+    massScale = splat(1.0);
+    impulseScale = zero();
+    if (p.predictLoad) {
+        bias = p.rowBias[k];
+    } else if (p.soft) {
+        const FloatW s = separation(c, c.points[k], a, b, dpx, dpy);
+        // A speculative point allows the approach to close exactly the gap this substep.
+        const MaskW speculative = s > zero();
+        bias = select(speculative, s * p.invH, max(p.biasRate * s, p.maxPush));
+        massScale = select(speculative, splat(1.0), p.massScale);
+        impulseScale = select(speculative, zero(), p.impulseScale);
+    } else {  // a rigid row: the relax pass; PGS (Baumgarte)
+        bias = rigidBias(p.rigid, separation(c, c.points[k], a, b, dpx, dpy));
+    }
+}
+
 // One sweep of a manifold's normal rows; after the first, only in `lanes` (the others keep their
 // impulses). Returns the lanes where the first sweep moved a point by much (manifold_sweeps.hpp).
 template <bool kFirst>
-ANYPHYS_KERNEL MaskW sweepNormalRows(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b, const NormalRowsW& rows, bool reverse,
-                                     MaskW lanes, bool endOfSubstep) {
+ANYPHYS_KERNEL MaskW sweepNormalRows(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b, FloatW dpx, FloatW dpy, const PassRows& rows,
+                                     bool reverse, MaskW lanes, bool endOfSubstep) {
     MaskW moved{};
     for (int n = 0; n < c.pointCount; ++n) {
         const int k = reverse ? c.pointCount - 1 - n : n;
         PlanarContactPoint& cp = c.points[k];
+        FloatW bias, massScale, impulseScale;
+        rowOf(rows, c, k, a, b, dpx, dpy, bias, massScale, impulseScale);
         const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-        const FloatW impulse = -cp.normalMass * rows.massScale[k] * (vn + rows.bias[k]) - rows.impulseScale[k] * cp.normalImpulse;
+        const FloatW impulse = -cp.normalMass * massScale * (vn + bias) - impulseScale * cp.normalImpulse;
         FloatW total = max(cp.normalImpulse + impulse, zero());
         if constexpr (!kFirst) total = select(lanes, total, cp.normalImpulse);
         const FloatW applied = total - cp.normalImpulse;
@@ -155,6 +176,24 @@ ANYPHYS_KERNEL MaskW sweepNormalRows(PlanarContact& c, PlanarBodyW& a, PlanarBod
         applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX, applied * c.normalY);
     }
     return moved;
+}
+
+// The later sweeps of the lanes an impact moved where no joint holds a body (manifold_sweeps.hpp):
+// the normal rows (with more than one point), then friction and the normal rows in turn.
+ANYPHYS_KERNEL void sweepAgain(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b, FloatW dpx, FloatW dpy, const PassRows& rows,
+                               bool reverse, MaskW moved, bool friction, bool endOfSubstep) {
+    const MaskW again = moved & laneMask(c.unjointed);
+    if (noLane(again)) return;
+    const bool normalAgain = c.pointCount > 1;
+    if (normalAgain)
+        for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, dpx, dpy, rows, reverse, again, endOfSubstep);
+    if (!friction) return;
+    for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
+        FloatW load[4];
+        for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
+        solveFriction(c, a, b, load, again);
+        if (normalAgain) sweepNormalRows<false>(c, a, b, dpx, dpy, rows, reverse, again, endOfSubstep);
+    }
 }
 
 ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
@@ -191,43 +230,14 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
             }
             solveFriction(c, a, b, load, kAllLanes);
         }
-        FloatW biasRate = zero(), massScale = one, impulseScale = zero();
-        if (useBias && params.soft) {
-            biasRate = c.biasRate;
-            massScale = c.massScale;
-            impulseScale = c.impulseScale;
-        }
+        const bool softRows = useBias && params.soft;
+        const PassRows rows{rigid, invH, maxPush, softRows ? c.biasRate : zero(), softRows ? c.massScale : one,
+                            softRows ? c.impulseScale : zero(), predictLoad, softRows, rowBias};
         // PGS alternates the order of the points from pass to pass, as the 3D path does.
         const bool reverse = !params.soft && c.reverse;
         c.reverse = !c.reverse;
-        NormalRowsW rows;
-        for (int k = 0; k < c.pointCount; ++k) {
-            const PlanarContactPoint& cp = c.points[k];
-            if (predictLoad) {
-                rows.bias[k] = rowBias[k];
-            } else if (useBias && params.soft) {
-                const FloatW s = separation(c, cp, a, b, dpx, dpy);
-                // A speculative point allows the approach to close exactly the gap this substep.
-                const MaskW speculative = s > zero();
-                rows.bias[k] = select(speculative, s * invH, max(biasRate * s, maxPush));
-                rows.massScale[k] = select(speculative, one, massScale);
-                rows.impulseScale[k] = select(speculative, zero(), impulseScale);
-            } else {  // a rigid row: the relax pass; PGS (Baumgarte)
-                rows.bias[k] = rigidBias(rigid, separation(c, cp, a, b, dpx, dpy));
-            }
-        }
-        // Only where no joint holds either body (manifold_sweeps.hpp).
-        const MaskW again = sweepNormalRows<true>(c, a, b, rows, reverse, kAllLanes, endOfSubstep) & laneMask(c.unjointed);
-        const bool normalAgain = c.pointCount > 1 && !noLane(again);
-        if (normalAgain)
-            for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
-        if (params.friction && !noLane(again))
-            for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
-                FloatW load[4];
-                for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
-                solveFriction(c, a, b, load, again);
-                if (normalAgain) sweepNormalRows<false>(c, a, b, rows, reverse, again, endOfSubstep);
-            }
+        const MaskW moved = sweepNormalRows<true>(c, a, b, dpx, dpy, rows, reverse, kAllLanes, endOfSubstep);
+        if (!noLane(moved)) sweepAgain(c, a, b, dpx, dpy, rows, reverse, moved, params.friction, endOfSubstep);
         if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
