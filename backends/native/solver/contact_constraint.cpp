@@ -139,7 +139,7 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
     wc.bodyB[lane] = in.bodyB;
     wc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
     wc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
-    wc.unjointed[lane] = (in.bodyA == kStaticBody || !bodies[in.bodyA].jointed) && (in.bodyB == kStaticBody || !bodies[in.bodyB].jointed);
+    wc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
     cold.manifold[lane] = &m;
     wc.pointCount = std::max(wc.pointCount, m.pointCount);
 

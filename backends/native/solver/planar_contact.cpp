@@ -46,7 +46,7 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
     pc.bodyB[lane] = in.bodyB;
     pc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
     pc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
-    pc.unjointed[lane] = (in.bodyA == kStaticBody || !bodies[in.bodyA].jointed) && (in.bodyB == kStaticBody || !bodies[in.bodyB].jointed);
+    pc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
     cold.manifold[lane] = &m;
     pc.pointCount = std::max(pc.pointCount, m.pointCount);
     pc.invMassA[lane] = a.invMass;

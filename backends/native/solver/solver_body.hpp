@@ -48,4 +48,9 @@ struct SolverBody {
     GyroscopicMode gyroscopic = GyroscopicMode::None;  // None unless the effect applies to this body
 };
 
+/// Whether an enabled joint holds solver body `index` this step (a static body: never).
+inline bool heldByJoint(const SolverBody* bodies, std::int32_t index) {
+    return index != kStaticBody && bodies[index].jointed;
+}
+
 }  // namespace anyphys::native
