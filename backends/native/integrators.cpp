@@ -138,7 +138,7 @@ Quat orientationRate(const Vec3& w, const Quat& q) {
 }
 
 Quat rotateBy(const Quat& q, const Vec3& w, double h) {
-    return (rotationFromVector(h * w) * q).normalized();
+    return renormalized(rotationFromVector(h * w) * q);
 }
 
 void integrate(Integrator method, double t, double h, std::span<BodyState> states, AccelerationFn accelerations,

@@ -18,5 +18,8 @@ void displaceBody(SolverState& s, const Vec3& move, const Vec3& turn);
 
 /// Rotation by the rotation vector r (angle |r| about r / |r|), exact for every angle.
 Quat rotationFromVector(const Vec3& r);
+/// q scaled back to unit length: cheap for a quaternion already unit to rounding (a product of
+/// unit quaternions), exact normalisation otherwise.
+Quat renormalized(const Quat& q);
 
 }  // namespace anyphys::native
