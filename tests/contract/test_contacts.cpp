@@ -647,6 +647,14 @@ TEST_P(ContactsTest, KinematicPaddlePushesABoxAtItsOwnSpeed) {
     expectCriterion(r.id, r.met, r.measured, r.value);
 }
 
+// A box sliding into a wall with no restitution stops there (contact_helpers.hpp, with the bounds).
+TEST_P(ContactsTest, BoxSlidingIntoAWallStopsThere) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = boxSlidesIntoAWall(settings(), "contacts.wall_stop");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 ANYPHYS_CONTRACT_SUITE(ContactsTest);
 
 }  // namespace

@@ -206,6 +206,14 @@ TEST_P(PlanarTest, KinematicPaddlePushesABoxAtItsOwnSpeed) {
     expectCriterion(r.id, r.met, r.measured, r.value);
 }
 
+// Planar twin of ContactsTest.BoxSlidingIntoAWallStopsThere, same bounds.
+TEST_P(PlanarTest, BoxSlidingIntoAWallStopsThere) {
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = boxSlidesIntoAWall(settings(), "planar.contacts.wall_stop");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 // Motion stays in the plane: a box thrown spinning onto the ground, pushed out of the plane by a
 // force and an impulse (which the plane absorbs), keeps z = 0 and turns about Z only.
 TEST_P(PlanarTest, MotionStaysInThePlane) {
