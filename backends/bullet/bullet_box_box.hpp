@@ -46,6 +46,7 @@ public:
 
 private:
     btScalar touchingBand_;
+    btScalar baseBreaking_ = 0;  // the manifold's breaking threshold as the dispatcher made it
 };
 
 }  // namespace anyphys::bullet
