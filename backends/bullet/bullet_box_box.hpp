@@ -46,7 +46,6 @@ public:
 
 private:
     btScalar touchingBand_;
-    btScalar baseBreaking_ = 0;  // the manifold's breaking threshold as the dispatcher made it
 };
 
 }  // namespace anyphys::bullet
