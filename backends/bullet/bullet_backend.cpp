@@ -235,15 +235,15 @@ Backend makeBulletBackend() {
         {"hard.mixed_pile_mesh.sink",
          "a tumbling piece sinks 7.35 cm into the floor (6.25 cm, a hull landing at 5.9 m/s and turning at 19 rad/s, 1.2 s in, before swept bodies met the floor at their surface; over 16 runs with the pieces moved k x 0.1 mm along x, 2.1 to 11.7 cm, median 2.2, and k x 1 mm, 2.1 to 7.6 cm, median 4.8, once boxes, hulls, capsules and spheres kept whole faces on mesh triangles, bullet_face_on_triangle.hpp; before that, 5.2 cm unnudged, and so moved 2.1 to 14.8 cm, median 3.8, and 2.6 to 13.4 cm, median 7.1; over 12 nudged runs 2.4 to 8.0 cm, median 5.25, after mesh edge normals were corrected and hull and capsule pairs kept whole faces and lines; 3.0 to 10.1 cm, median 6.5, before; over six, 3.0 to 9.2 cm, and 4.6 to 10.5 before contacts were kept out to twice linearSlop, and 10.5 in the unnudged run; 5.5 before boxes gained polyhedral features, which changed the pile's course; before it, 5.7 cm when the floor is a box): Bullet keeps contact points only out to its breaking threshold, 2 % of a shape's size and at least twice linearSlop (10 mm for these pieces), so a vertex swinging down faster than that per step (0.8 m/s) is first seen inside the floor. Verified: 4 substeps leave 4.7 mm, and a ball ending a step 1 cm above any ground at 3.55 m/s sinks 5.2 cm where 4 mm above it is caught at the surface. (A second, mesh-only cause is fixed: triangles were tested only once bounding boxes overlapped, 6.2 cm before)"},
         {"contacts.wall_stop",
-         "a box on ice sliding into a static wall with no restitution bounces back at up to 12.8 % of its speed (3 m/s; 0 to "
-         "12 % at 1 m/s, by the step's phase at impact; bound 0.5 %): the box-box test keeps points only within 5 mm, so a "
+         "a box on ice sliding into a static wall with no restitution bounces back at up to 16 % of its speed (3 m/s; 0 to "
+         "12 % at 1 m/s, by the step's phase at impact, none at 0.3 m/s; bound 0.5 %): the box-box test keeps points only within 5 mm, so a "
          "box closing faster than that per step is first found inside the wall, and Baumgarte (below the split-impulse "
          "depth) pushes the overlap out as a velocity. Tried: speculative points for box pairs closing faster than the "
          "reach (found out to the step's approach, kept where their own closing covers the gap) stop it dead at every "
          "phase, but the top box of a column of ten unit cubes dropped onto a box then slid at 0.45 to 0.47 m/s after 10 "
          "s in three of five drops (starts nudged by 0, 0.1, 1, 3 and 10 mm; without them 0.002 to 0.017 m/s), though "
          "no speculative point was made after the landings; cause not found"},
-        {"planar.contacts.wall_stop", "as contacts.wall_stop, planar: up to 12.8 %"},
+        {"planar.contacts.wall_stop", "as contacts.wall_stop, planar: up to 16 %"},
         {"hard.ragdoll_pile.joint_gap",
          "joints of a pile of 10 ragdolls open by up to 5.6 cm: Baumgarte joint rows at one 1/60 s step yield under the impacts (a chaotic pile: over 12 nudged runs 4.2 to 8.8 cm, median 5.1, before swept bodies met the ground at their surface, 5.2 cm unnudged; 18.5 cm while limbs were clamped)"},
         {"planar.hard.ragdoll_pile.joint_gap",
@@ -304,8 +304,8 @@ Backend makeBulletBackend() {
         {"planar.hard.arch.displacement", 0.025},
         {"hard.mixed_pile_mesh.sink", 0.13},  // m, measured 0.0735 (moved runs up to 0.117)
         {"hard.ragdoll_pile.joint_gap", 0.15},
-        {"contacts.wall_stop", 0.2},         // fraction of the impact speed, measured 0.128
-        {"planar.contacts.wall_stop", 0.2},  // measured 0.128
+        {"contacts.wall_stop", 0.25},         // fraction of the impact speed, measured 0.16
+        {"planar.contacts.wall_stop", 0.25},  // measured 0.16
         {"planar.hard.ragdoll_pile.joint_gap", 0.15},
     });
     return backend;

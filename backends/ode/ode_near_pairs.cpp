@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "ode_math.hpp"
+
 namespace anyphys::ode {
 
 NearProbe::~NearProbe() {
@@ -68,6 +70,20 @@ int NearProbe::collide(const OdeShape& first, const OdeShape& second, double rea
         out[kept++] = c;
     }
     return kept;
+}
+
+bool NearProbe::meetsAfter(const OdeShape& moving, const Vec3& pivot, const Vec3& move, const Quat& turn,
+                           const OdeShape& other, double reach) {
+    if (moving.type() == ShapeType::Plane) return false;  // never moves
+    const dGeomID probe = grown(moving, reach);
+    if (!probe) return false;
+    const Vec3 at = pivot + move + turn * (toVec3(dGeomGetPosition(probe)) - pivot);
+    dMatrix3 axes;
+    toOde(turn.toRotationMatrix() * toMat3(dGeomGetRotation(probe)), axes);
+    dGeomSetPosition(probe, at.x(), at.y(), at.z());
+    dGeomSetRotation(probe, axes);
+    dContactGeom contact;
+    return dCollide(probe, other.geom(), 1, &contact, sizeof(dContactGeom)) > 0;
 }
 
 }  // namespace anyphys::ode

@@ -91,7 +91,20 @@ private:
     /// Queues the sleeping one of a touching pair (wokenInPass).
     void wakeIfTouched(OdeBody& a, OdeBody& b);
     void collideWokenBodies();
-    void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count);
+    /// Whether the pair of `a` (geom 1) and `b`, apart or barely touching, gets speculative
+    /// contacts (ode_speculative.hpp): `a` can grow, the pair does not bounce, and it closes by more than kLeastApproach and at most kMostApproach in the step.
+    bool speculates(const OdeShape& a, const OdeShape& b, const GeomSurface& sa, const GeomSurface& sb) const;
+    /// m: how far a speculative contact lets its pair into each other. ODE's colliders give shapes
+    /// that touch at depth zero a partial manifold (a box's face against a wall: one edge, on which
+    /// the box tipped and went 5 mm in), so the pair meets overlapping a little: half the surface
+    /// layer, which ERP does not push out (10 um on the direct solver, which has none).
+    double meetingOverlap() const { return 0.5 * dWorldGetContactSurfaceLayer(world_) + 1e-5; }
+    /// The pairs the broad phase leaves out because their bounds do not overlap yet, though a
+    /// moving body reaches them within the step: collided (collidePair) for speculative contacts.
+    void collideAhead();
+    /// `speculative`: the contacts are speculativeContacts' (rows that let the pair close its gap).
+    void createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts, int count,
+                             bool speculative);
     void aimBounce(dContact& contact, double e, const Vec3& relative, const Vec3& fall) const;
     /// The velocity gravity adds to the body over one ODE step (m/s): with its velocity now at a
     /// point, the point's velocity at the step's end before contacts (slip-aligned friction).
@@ -160,7 +173,10 @@ private:
 
     std::uint64_t directSteps_ = 0, quickSteps_ = 0, directFallbacks_ = 0;
     DirectStepper directStepper_;
-    NearProbe nearProbe_;  // reportNearPair's grown shapes
+    NearProbe nearProbe_;  // reportNearPair's and speculativeContacts' grown shapes
+    NearProbe aheadProbe_;  // collideAhead's query shapes
+    // collideAhead's pairs, listed before any is collided (collidePair uses nearProbe_'s geoms).
+    std::vector<std::pair<dGeomID, dGeomID>> aheadPairs_;
     unsigned long randomSeed_ = 0;  // this world's stream of ODE's global generator (quickstep reorders rows)
 };
 

@@ -1,0 +1,199 @@
+#include "ode_speculative.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ode_body.hpp"
+#include "ode_math.hpp"
+#include "ode_shapes.hpp"
+#include "ode_slip_friction.hpp"
+#include "ode_tuning.hpp"
+#include "ode_world.hpp"
+
+namespace anyphys::ode {
+namespace {
+
+struct Motion {
+    Vec3 velocity = Vec3::Zero(), spin = Vec3::Zero(), centre = Vec3::Zero();
+};
+
+Motion motionOf(const OdeShape& shape) {
+    Motion m;
+    const dBodyID body = shape.owner() ? shape.owner()->id() : nullptr;
+    if (!body) return m;  // static: a geom without a body
+    m.velocity = toVec3(dBodyGetLinearVel(body));
+    m.spin = toVec3(dBodyGetAngularVel(body));
+    m.centre = toVec3(dBodyGetPosition(body));
+    return m;
+}
+
+// The point of `shape`'s true surface nearest `p` on its side facing along -`normal` (ODE's normal
+// points into the shape): a grown shape's contact lies on the grown surface, up to the growth
+// outside the true one, where friction would have a longer lever.
+Vec3 onTrueSurface(const OdeShape& shape, const Vec3& p, const Vec3& normal) {
+    const dGeomID g = shape.geom();
+    const Vec3 centre = toVec3(dGeomGetPosition(g));
+    switch (shape.type()) {
+        case ShapeType::Box: {
+            dVector3 lengths;
+            dGeomBoxGetLengths(g, lengths);
+            const Mat3 axes = toMat3(dGeomGetRotation(g));
+            Vec3 local = axes.transpose() * (p - centre);
+            for (int k = 0; k < 3; ++k) local[k] = std::clamp(local[k], -0.5 * lengths[k], 0.5 * lengths[k]);
+            return centre + axes * local;
+        }
+        case ShapeType::Sphere: return centre - dGeomSphereGetRadius(g) * normal;
+        case ShapeType::Capsule: {
+            dReal radius = 0, length = 0;
+            dGeomCapsuleGetParams(g, &radius, &length);
+            const Vec3 axis = toMat3(dGeomGetRotation(g)).col(2);  // ODE's capsules lie along their Z
+            const double along = std::clamp((p - centre).dot(axis), -0.5 * length, 0.5 * length);
+            return centre + along * axis - radius * normal;
+        }
+        default: return p;
+    }
+}
+
+bool measurable(ShapeType type) {  // depthInside knows it
+    return type == ShapeType::Box || type == ShapeType::Sphere || type == ShapeType::Capsule || type == ShapeType::Plane;
+}
+
+// How deep `p` lies inside `shape` (negative: outside, by the distance to its surface), for the
+// measurable shapes.
+double depthInside(const OdeShape& shape, const Vec3& p) {
+    const dGeomID g = shape.geom();
+    switch (shape.type()) {
+        case ShapeType::Box: {
+            // Not dGeomBoxPointDepth: outside, it gives the distance to the farthest face.
+            dVector3 lengths;
+            dGeomBoxGetLengths(g, lengths);
+            const Vec3 local = toMat3(dGeomGetRotation(g)).transpose() * (p - toVec3(dGeomGetPosition(g)));
+            const Vec3 beyond = local.cwiseAbs() - 0.5 * Vec3(lengths[0], lengths[1], lengths[2]);  // per axis, > 0 outside
+            if (beyond.maxCoeff() <= 0.0) return -beyond.maxCoeff();
+            return -beyond.cwiseMax(0.0).norm();
+        }
+        case ShapeType::Sphere: return dGeomSpherePointDepth(g, p.x(), p.y(), p.z());
+        case ShapeType::Capsule: return dGeomCapsulePointDepth(g, p.x(), p.y(), p.z());
+        case ShapeType::Plane: return dGeomPlanePointDepth(g, p.x(), p.y(), p.z());
+        default: return 0.0;
+    }
+}
+
+}  // namespace
+
+double shapeReach(const OdeShape& shape) {
+    dReal box[6];
+    dGeomGetAABB(shape.geom(), box);
+    const Motion m = motionOf(shape);
+    Vec3 farthest = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) farthest[k] = std::max(std::abs(box[2 * k] - m.centre[k]), std::abs(box[2 * k + 1] - m.centre[k]));
+    return farthest.norm();
+}
+
+double stepApproach(const OdeShape& a, const OdeShape& b, double h) {
+    const Motion ma = motionOf(a), mb = motionOf(b);
+    double speed = (ma.velocity - mb.velocity).norm();
+    if (ma.spin != Vec3::Zero()) speed += ma.spin.norm() * shapeReach(a);
+    if (mb.spin != Vec3::Zero()) speed += mb.spin.norm() * shapeReach(b);
+    return speed * h;
+}
+
+int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, double approach, double slop, double h,
+                        dContact* out, int most) {
+    const Motion ma = motionOf(a), mb = motionOf(b);
+    // Where a ends the step relative to b (b's own turn left out: a first-order look ahead).
+    const Vec3 move = (ma.velocity - mb.velocity) * h;
+    const double turnAngle = ma.spin.norm() * h;
+    const Quat turn = turnAngle > 0.0 ? Quat(Eigen::AngleAxisd(turnAngle, ma.spin / ma.spin.norm())) : Quat::Identity();
+    if (!probe.meetsAfter(a, ma.centre, move, turn, b, slop)) return 0;
+    dContactGeom found[kMaxContactsPerPair];
+    const int n = probe.collide(a, b, approach + slop, found, std::min(most, kMaxContactsPerPair));
+    int kept = 0;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 normal = toVec3(found[i].normal);  // into a
+        // The grown shape's point taken back to a's true surface, and its own gap to b measured
+        // there: a grown box is wide at its corners by up to 0.73 of the growth. Against a hull or
+        // a mesh, the grown pair's depth less the growth (exact where faces meet).
+        const Vec3 point = onTrueSurface(a, toVec3(found[i].pos), normal);
+        const double depth = measurable(b.type()) ? depthInside(b, point) : found[i].depth;
+        if (depth < 0.0) {
+            const Vec3 relative = pointVelocity(a.owner() ? a.owner()->id() : nullptr, point) -
+                                  pointVelocity(b.owner() ? b.owner()->id() : nullptr, point);
+            const double closing = -relative.dot(normal);
+            if (closing * h < -depth - slop) continue;  // does not reach b this step
+        }
+        dContact& c = out[kept++];
+        c = dContact{};
+        c.geom = found[i];
+        c.geom.g1 = a.geom();  // not the probe's scratch geom
+        c.geom.g2 = b.geom();
+        c.geom.depth = depth;
+        for (int k = 0; k < 3; ++k) c.geom.pos[k] = point[k];
+    }
+    return kept;
+}
+
+bool OdeWorld::speculates(const OdeShape& a, const OdeShape& b, const GeomSurface& sa, const GeomSurface& sb) const {
+    if (!NearProbe::growable(a.type()) || a.type() == ShapeType::Plane) return false;
+    const double approach = stepApproach(a, b, odeStep());
+    if (approach <= kLeastApproach * settings_.linearSlop) return false;
+    // A bounce is aimed from the depth ODE finds it at (aimBounce): bouncing pairs keep ODE's contacts.
+    if (effects_.has(Effect::Restitution) && materials_.get(sa.material, sb.material).restitution > 0) return false;
+    // A body closing by more than half its core in a step is continuous collision's
+    // (ode_continuous.cpp), and a shape grown that far is a poor guess at the surfaces.
+    for (const OdeBody* body : {a.owner(), b.owner()})
+        if (body && body->isDynamic() && approach > kMostApproach * body->coreExtent()) return false;
+    return true;
+}
+
+void OdeWorld::collideAhead() {
+    const double h = odeStep(), slop = settings_.linearSlop;
+    aheadPairs_.clear();
+    struct Query {
+        dGeomID own;
+        const OdeBody* body;
+        std::vector<std::pair<dGeomID, dGeomID>>* pairs;
+        double h, slop;
+    };
+    for (const OdeBody* body : bodies_) {
+        if (!body->moves() || !body->activeInPass) continue;
+        const dBodyID id = body->id();
+        const double speed = toVec3(dBodyGetLinearVel(id)).norm(), spin = toVec3(dBodyGetAngularVel(id)).norm();
+        if (speed == 0.0 && spin == 0.0) continue;
+        for (std::size_t i = 0; i < body->shapeCount(); ++i) {
+            const OdeShape& shape = body->shape(i);
+            const double travel = (speed + spin * shapeReach(shape)) * h;
+            if (travel <= kLeastApproach * slop || shape.surface().trigger) continue;
+            // Twice its own travel: a pair closing head on is found from the faster body.
+            const dGeomID probe = aheadProbe_.grown(shape, 2.0 * travel + slop);
+            if (!probe) continue;
+            dGeomSetCategoryBits(probe, dGeomGetCategoryBits(shape.geom()));
+            dGeomSetCollideBits(probe, dGeomGetCollideBits(shape.geom()));
+            Query query{shape.geom(), body, &aheadPairs_, h, slop};
+            dSpaceCollide2(probe, reinterpret_cast<dGeomID>(space_), &query, [](void* data, dGeomID, dGeomID other) {
+                auto& q = *static_cast<Query*>(data);
+                const OdeShape* found = shapeOfGeom(other);
+                if (!found || found->owner() == q.body) return;
+                // Bodies moving together (a falling grid's neighbours) never meet.
+                if (stepApproach(*shapeOfGeom(q.own), *found, q.h) <= kLeastApproach * q.slop) return;
+                dReal mine[6], theirs[6];
+                dGeomGetAABB(q.own, mine);
+                dGeomGetAABB(other, theirs);
+                for (int k = 0; k < 3; ++k)
+                    if (mine[2 * k] > theirs[2 * k + 1] || theirs[2 * k] > mine[2 * k + 1]) {
+                        q.pairs->emplace_back(q.own, other);  // bounds apart: the broad phase left it out
+                        return;
+                    }
+            });
+        }
+    }
+    for (std::size_t k = 0; k < aheadPairs_.size(); ++k) {
+        const auto [own, other] = aheadPairs_[k];
+        // Two moving bodies may each have found the other: the pair is collided once.
+        const auto same = [&](const std::pair<dGeomID, dGeomID>& p) { return p.first == other && p.second == own; };
+        if (bodyOfGeom(other)->moves() && std::any_of(aheadPairs_.begin(), aheadPairs_.begin() + k, same)) continue;
+        collidePair(own, other);
+    }
+}
+
+}  // namespace anyphys::ode
