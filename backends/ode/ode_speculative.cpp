@@ -188,7 +188,7 @@ void OdeWorld::collideAhead() {
         }
     }
     for (std::size_t k = 0; k < aheadPairs_.size(); ++k) {
-        const auto [own, other] = aheadPairs_[k];
+        const dGeomID own = aheadPairs_[k].first, other = aheadPairs_[k].second;  // a lambda below uses both
         // Two moving bodies may each have found the other: the pair is collided once.
         const auto same = [&](const std::pair<dGeomID, dGeomID>& p) { return p.first == other && p.second == own; };
         if (bodyOfGeom(other)->moves() && std::any_of(aheadPairs_.begin(), aheadPairs_.begin() + k, same)) continue;
