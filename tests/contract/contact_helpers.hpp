@@ -687,6 +687,16 @@ inline double sunkBodiesRiseOntoThePlane(const WorldSettings& s) {
     return sideways;
 }
 
+/// A library with one material, "ice": no friction, nothing bouncy.
+inline MaterialLibrary iceMaterials() {
+    MaterialLibrary materials;
+    Material ice;
+    ice.friction = 0.0;
+    ice.restitution = 0.0;
+    materials.add("ice", ice);
+    return materials;
+}
+
 /// A kinematic paddle (1 m tall, 1 m wide) moving along +X at 1 and then 3 m/s meets a 0.5 m box
 /// at rest on frictionless ground face to face, nothing bouncy: the box must move off at the
 /// paddle's speed, touching it, without turning. The box's manifold with the paddle is a face of
@@ -695,11 +705,7 @@ inline double sunkBodiesRiseOntoThePlane(const WorldSettings& s) {
 /// 0.5 % of the speed (5 mm/s at 1 m/s, far above rounding; native's single sweep left 4.6 %) and
 /// 0.01 rad/s of spin (it left 0.18). Measures the worst relative speed error over the speeds.
 inline CriterionResult paddlePushesABox(const WorldSettings& s, const std::string& criterion) {
-    MaterialLibrary materials;
-    Material ice;
-    ice.friction = 0.0;
-    ice.restitution = 0.0;
-    materials.add("ice", ice);
+    const MaterialLibrary materials = iceMaterials();
     double worstExcess = 0.0, worstSpin = 0.0;
     for (const double speed : {1.0, 3.0}) {
         World world(s, materials);
@@ -740,11 +746,7 @@ inline CriterionResult paddlePushesABox(const WorldSettings& s, const std::strin
 /// 0.5 % of the impact speed (5 mm/s at 1 m/s; a restitution of 0 stops the box dead, and rounding
 /// leaves nothing near that). Returns the worst rebound speed as a fraction of the impact speed.
 inline CriterionResult boxSlidesIntoAWall(const WorldSettings& s, const std::string& criterion) {
-    MaterialLibrary materials;
-    Material ice;
-    ice.friction = 0.0;
-    ice.restitution = 0.0;
-    materials.add("ice", ice);
+    const MaterialLibrary materials = iceMaterials();
     double worst = 0.0;
     std::string where;
     for (const double speed : {0.3, 1.0, 3.0})
