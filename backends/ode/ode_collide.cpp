@@ -151,11 +151,13 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     // Apart, or barely touching (where ODE's colliders give a partial manifold: a box's face just
     // meeting a wall, one edge, on which it tipped and went 5 mm in), but closing within the step:
     // contacts that let the pair close its gap and no more (ode_speculative.hpp).
-    const bool speculative = (n == 0 || deepest(found, n) < 0.5 * meetingOverlap()) && !trigger &&
-                             speculates(*shapeA, *shapeB, *sa, *sb);
+    const double approach = (n == 0 || deepest(found, n) < 0.5 * meetingOverlap()) && !trigger
+                                ? speculativeApproach(*shapeA, *shapeB, *sa, *sb)
+                                : 0.0;
+    const bool speculative = approach > 0.0;
     if (speculative)
-        n = speculativeContacts(nearProbe_, *shapeA, *shapeB, stepApproach(*shapeA, *shapeB, odeStep()),
-                                settings_.linearSlop, odeStep(), found, kMaxContactsPerPair);
+        n = speculativeContacts(nearProbe_, *shapeA, *shapeB, approach, settings_.linearSlop, odeStep(), found,
+                                kMaxContactsPerPair);
     if (n <= 0) return;
     if (n == 1 && !trigger && !speculative) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
     if (effects_.has(Effect::Events)) {  // ODE's points, before the joints' sphere points

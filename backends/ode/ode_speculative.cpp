@@ -133,17 +133,18 @@ int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, 
     return kept;
 }
 
-bool OdeWorld::speculates(const OdeShape& a, const OdeShape& b, const GeomSurface& sa, const GeomSurface& sb) const {
-    if (!NearProbe::growable(a.type()) || a.type() == ShapeType::Plane) return false;
+double OdeWorld::speculativeApproach(const OdeShape& a, const OdeShape& b, const GeomSurface& sa,
+                                     const GeomSurface& sb) const {
+    if (!NearProbe::growable(a.type()) || a.type() == ShapeType::Plane) return 0.0;
     const double approach = stepApproach(a, b, odeStep());
-    if (approach <= kLeastApproach * settings_.linearSlop) return false;
+    if (approach <= kLeastApproach * settings_.linearSlop) return 0.0;
     // A bounce is aimed from the depth ODE finds it at (aimBounce): bouncing pairs keep ODE's contacts.
-    if (effects_.has(Effect::Restitution) && materials_.get(sa.material, sb.material).restitution > 0) return false;
+    if (effects_.has(Effect::Restitution) && materials_.get(sa.material, sb.material).restitution > 0) return 0.0;
     // A body closing by more than half its core in a step is continuous collision's
     // (ode_continuous.cpp), and a shape grown that far is a poor guess at the surfaces.
     for (const OdeBody* body : {a.owner(), b.owner()})
-        if (body && body->isDynamic() && approach > kMostApproach * body->coreExtent()) return false;
-    return true;
+        if (body && body->isDynamic() && approach > kMostApproach * body->coreExtent()) return 0.0;
+    return approach;
 }
 
 void OdeWorld::collideAhead() {

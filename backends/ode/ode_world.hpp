@@ -91,9 +91,11 @@ private:
     /// Queues the sleeping one of a touching pair (wokenInPass).
     void wakeIfTouched(OdeBody& a, OdeBody& b);
     void collideWokenBodies();
-    /// Whether the pair of `a` (geom 1) and `b`, apart or barely touching, gets speculative
-    /// contacts (ode_speculative.hpp): `a` can grow, the pair does not bounce, and it closes by more than kLeastApproach and at most kMostApproach in the step.
-    bool speculates(const OdeShape& a, const OdeShape& b, const GeomSurface& sa, const GeomSurface& sb) const;
+    /// m: how far the pair of `a` (geom 1) and `b`, apart or barely touching, closes in the step
+    /// if it gets speculative contacts (ode_speculative.hpp), else 0: `a` can grow, the pair does
+    /// not bounce, and it closes by more than kLeastApproach and at most kMostApproach.
+    double speculativeApproach(const OdeShape& a, const OdeShape& b, const GeomSurface& sa,
+                               const GeomSurface& sb) const;
     /// m: how far a speculative contact lets its pair into each other. ODE's colliders give shapes
     /// that touch at depth zero a partial manifold (a box's face against a wall: one edge, on which
     /// the box tipped and went 5 mm in), so the pair meets overlapping a little: half the surface
