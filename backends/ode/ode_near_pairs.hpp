@@ -27,16 +27,16 @@ public:
     /// about `pivot` (its body's centre) from where it is. A shape that cannot grow never meets.
     bool meetsAfter(const OdeShape& moving, const Vec3& pivot, const Vec3& move, const Quat& turn, const OdeShape& other,
                     double reach);
-    /// A scratch geom of the shape's kind, `reach` larger, at the shape's pose; null for shapes
-    /// that do not grow simply (a hull's offset surface is not a hull; a mesh has no inside).
-    /// Valid until the next call.
-    dGeomID grown(const OdeShape& shape, double reach);
     /// Whether grown() can grow shapes of this type.
     static bool growable(ShapeType type) {
         return type == ShapeType::Box || type == ShapeType::Sphere || type == ShapeType::Capsule || type == ShapeType::Plane;
     }
 
 private:
+    /// A scratch geom of the shape's kind, `reach` larger, at the shape's pose; null for shapes
+    /// that do not grow simply (a hull's offset surface is not a hull; a mesh has no inside).
+    /// Valid until the next call.
+    dGeomID grown(const OdeShape& shape, double reach);
     dGeomID box_ = nullptr, sphere_ = nullptr, capsule_ = nullptr, plane_ = nullptr;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ode_ahead_sweep.hpp"
 #include "ode_body.hpp"
 #include "ode_math.hpp"
 #include "ode_shapes.hpp"
@@ -149,51 +150,42 @@ double OdeWorld::speculativeApproach(const OdeShape& a, const OdeShape& b, const
 
 void OdeWorld::collideAhead() {
     const double h = odeStep(), slop = settings_.linearSlop;
-    aheadPairs_.clear();
-    struct Query {
-        dGeomID own;
-        const OdeBody* body;
-        std::vector<std::pair<dGeomID, dGeomID>>* pairs;
-        double h, slop;
+    // How far each shape may reach: its own travel twice over, as a pair closing head on is found
+    // from the faster body. Only awake bodies that move more than kLeastApproach reach anything.
+    const auto reachOf = [&](const OdeBody& body, const OdeShape& shape) {
+        if (!body.moves() || !body.activeInPass || shape.surface().trigger || !NearProbe::growable(shape.type()))
+            return 0.0;
+        const double speed = toVec3(dBodyGetLinearVel(body.id())).norm(), spin = toVec3(dBodyGetAngularVel(body.id())).norm();
+        const double travel = (speed + (spin > 0.0 ? spin * shapeReach(shape) : 0.0)) * h;
+        return travel > kLeastApproach * slop ? 2.0 * travel + slop : 0.0;
     };
-    for (const OdeBody* body : bodies_) {
-        if (!body->moves() || !body->activeInPass) continue;
-        const dBodyID id = body->id();
-        const double speed = toVec3(dBodyGetLinearVel(id)).norm(), spin = toVec3(dBodyGetAngularVel(id)).norm();
-        if (speed == 0.0 && spin == 0.0) continue;
+    const bool anyMoves = std::any_of(bodies_.begin(), bodies_.end(), [&](const OdeBody* body) {
+        for (std::size_t i = 0; i < body->shapeCount(); ++i)
+            if (reachOf(*body, body->shape(i)) > 0.0) return true;
+        return false;
+    });
+    if (!anyMoves) return;
+    aheadShapes_.clear();
+    aheadBounds_.clear();
+    for (const OdeBody* body : bodies_)
         for (std::size_t i = 0; i < body->shapeCount(); ++i) {
             const OdeShape& shape = body->shape(i);
-            const double travel = (speed + spin * shapeReach(shape)) * h;
-            if (travel <= kLeastApproach * slop || shape.surface().trigger) continue;
-            // Twice its own travel: a pair closing head on is found from the faster body.
-            const dGeomID probe = aheadProbe_.grown(shape, 2.0 * travel + slop);
-            if (!probe) continue;
-            dGeomSetCategoryBits(probe, dGeomGetCategoryBits(shape.geom()));
-            dGeomSetCollideBits(probe, dGeomGetCollideBits(shape.geom()));
-            Query query{shape.geom(), body, &aheadPairs_, h, slop};
-            dSpaceCollide2(probe, reinterpret_cast<dGeomID>(space_), &query, [](void* data, dGeomID, dGeomID other) {
-                auto& q = *static_cast<Query*>(data);
-                const OdeShape* found = shapeOfGeom(other);
-                if (!found || found->owner() == q.body) return;
-                // Bodies moving together (a falling grid's neighbours) never meet.
-                if (stepApproach(*shapeOfGeom(q.own), *found, q.h) <= kLeastApproach * q.slop) return;
-                dReal mine[6], theirs[6];
-                dGeomGetAABB(q.own, mine);
-                dGeomGetAABB(other, theirs);
-                for (int k = 0; k < 3; ++k)
-                    if (mine[2 * k] > theirs[2 * k + 1] || theirs[2 * k] > mine[2 * k + 1]) {
-                        q.pairs->emplace_back(q.own, other);  // bounds apart: the broad phase left it out
-                        return;
-                    }
-            });
+            if (shape.surface().trigger) continue;  // a sensor's pairs are overlaps: never speculative
+            dReal box[6];
+            dGeomGetAABB(shape.geom(), box);
+            // A plane's are infinite, at most on one side along an axis it faces; NaN bounds
+            // (a body whose state went bad) meet nothing and would break the sweep's sort.
+            if (std::any_of(box, box + 6, [](dReal x) { return std::isnan(x); })) continue;
+            aheadShapes_.push_back(&shape);
+            aheadBounds_.push_back({{box[0], box[2], box[4]}, {box[1], box[3], box[5]}, reachOf(*body, shape)});
         }
-    }
-    for (std::size_t k = 0; k < aheadPairs_.size(); ++k) {
-        const dGeomID own = aheadPairs_[k].first, other = aheadPairs_[k].second;  // a lambda below uses both
-        // Two moving bodies may each have found the other: the pair is collided once.
-        const auto same = [&](const std::pair<dGeomID, dGeomID>& p) { return p.first == other && p.second == own; };
-        if (bodyOfGeom(other)->moves() && std::any_of(aheadPairs_.begin(), aheadPairs_.begin() + k, same)) continue;
-        collidePair(own, other);
+    for (const auto& [own, other] : aheadSweep_.find(aheadBounds_)) {
+        const OdeShape& mover = *aheadShapes_[own];
+        const OdeShape& found = *aheadShapes_[other];
+        if (found.owner() == mover.owner()) continue;
+        // Bodies moving together (a falling grid's neighbours) never meet.
+        if (stepApproach(mover, found, h) <= kLeastApproach * slop) continue;
+        collidePair(mover.geom(), found.geom());
     }
 }
 

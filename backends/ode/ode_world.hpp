@@ -14,6 +14,7 @@
 #include "anyphys/peers/springs_per_body.hpp"
 #include "anyphys/peers/world_peer.hpp"
 #include "anyphys/world_settings.hpp"
+#include "ode_ahead_sweep.hpp"
 #include "ode_body.hpp"
 #include "ode_direct_step.hpp"
 #include "ode_joints.hpp"
@@ -176,9 +177,10 @@ private:
     std::uint64_t directSteps_ = 0, quickSteps_ = 0, directFallbacks_ = 0;
     DirectStepper directStepper_;
     NearProbe nearProbe_;  // reportNearPair's and speculativeContacts' grown shapes
-    NearProbe aheadProbe_;  // collideAhead's query shapes
-    // collideAhead's pairs, listed before any is collided (collidePair uses nearProbe_'s geoms).
-    std::vector<std::pair<dGeomID, dGeomID>> aheadPairs_;
+    // collideAhead's shapes (every shape but sensors) and their bounds, and its sweep.
+    std::vector<const OdeShape*> aheadShapes_;
+    std::vector<SweptBounds> aheadBounds_;
+    AheadSweep aheadSweep_;
     unsigned long randomSeed_ = 0;  // this world's stream of ODE's global generator (quickstep reorders rows)
 };
 
