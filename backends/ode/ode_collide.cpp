@@ -162,8 +162,8 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
                                 : 0.0;
     const bool speculative = approach > 0.0;
     if (speculative)
-        n = speculativeContacts(nearProbe_, *shapeA, *shapeB, approach, settings_.linearSlop, odeStep(), found,
-                                kMaxContactsPerPair);
+        n = speculativeContacts(nearProbe_, *shapeA, *shapeB, n > 0, stepFall(*a) - stepFall(*b), approach,
+                                settings_.linearSlop, odeStep(), found, kMaxContactsPerPair);
     if (n <= 0) return;
     if (n == 1 && !trigger && !speculative) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
     if (effects_.has(Effect::Events)) {  // ODE's points, before the joints' sphere points

@@ -99,14 +99,15 @@ double stepApproach(const OdeShape& a, const OdeShape& b, double h) {
     return speed * h;
 }
 
-int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, double approach, double slop, double h,
-                        dContact* out, int most) {
+int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, bool touching, const Vec3& fall,
+                        double approach, double slop, double h, dContact* out, int most) {
     const Motion ma = motionOf(a), mb = motionOf(b);
-    // Where a ends the step relative to b (b's own turn left out: a first-order look ahead).
-    const Vec3 move = (ma.velocity - mb.velocity) * h;
+    // Where a ends the step relative to b (b's own turn left out: a first-order look ahead). ODE
+    // moves the bodies with the step's last velocity, gravity's share included.
+    const Vec3 move = (ma.velocity - mb.velocity + fall) * h;
     const double turnAngle = ma.spin.norm() * h;
     const Quat turn = turnAngle > 0.0 ? Quat(Eigen::AngleAxisd(turnAngle, ma.spin / ma.spin.norm())) : Quat::Identity();
-    if (!probe.meetsAfter(a, ma.centre, move, turn, b, slop)) return 0;
+    if (!touching && !probe.meetsAfter(a, ma.centre, move, turn, b, slop)) return 0;
     dContactGeom found[kMaxContactsPerPair];
     const int n = probe.collide(a, b, approach + slop, found, std::min(most, kMaxContactsPerPair));
     int kept = 0;
@@ -119,9 +120,13 @@ int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, 
         const double depth = measurable(b.type()) ? depthInside(b, point) : found[i].depth;
         if (depth < 0.0) {
             const Vec3 relative = pointVelocity(a.owner() ? a.owner()->id() : nullptr, point) -
-                                  pointVelocity(b.owner() ? b.owner()->id() : nullptr, point);
+                                  pointVelocity(b.owner() ? b.owner()->id() : nullptr, point) + fall;
+            // Does not reach b this step, to within the least approach that gets speculative
+            // contacts (an overlap that small stays inside ODE's surface layer, which ERP leaves
+            // alone). Within linearSlop instead, every side neighbour a hair from a jittering box
+            // in a resting pyramid got four rows: 2.3 % more contact joints than ODE's own.
             const double closing = -relative.dot(normal);
-            if (closing * h < -depth - slop) continue;  // does not reach b this step
+            if (closing * h < -depth - kLeastApproach * slop) continue;
         }
         dContact& c = out[kept++];
         c = dContact{};
