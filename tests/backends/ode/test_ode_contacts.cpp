@@ -77,6 +77,31 @@ TEST(OdeContacts, BoxDroppedOnASleepingPileWakesWhatItHits) {
     EXPECT_GT(dropped.position().y(), below.position().y() + 0.9) << "the dropped box passed through";
 }
 
+// Colliding geom by geom costs each awake geom a test of every geom in the space: in a large space
+// a few hundred awake geoms cost more than the whole pass, though they are under one in ten.
+TEST(OdeContacts, ManyAwakeInALargeSpaceCollideTheWholeSpace) {
+    World world(test::backendSettings("ode"));
+    world.createBody(test::groundDef());
+    restingStacks(world, 30, 4, false);  // 3 600 boxes asleep
+    BodyDef def = test::boxDef("", Vec3(0.5, 0.5, 0.5), Vec3::Zero());
+    for (int i = 0; i < 150; ++i) {  // awake, falling far above the stacks: 150 of 3 751 geoms
+        def.position = Vec3(1.2 * (i % 30), 20.0 + 2.0 * (i / 30), 0.0);
+        world.createBody(def);
+    }
+    world.step();
+    EXPECT_EQ(peerOf(world).lastCollidePass(), Pass::WholeSpace);
+    // A few awake among as many: geom by geom.
+    World few(test::backendSettings("ode"));
+    few.createBody(test::groundDef());
+    restingStacks(few, 30, 4, false);
+    for (int i = 0; i < 50; ++i) {
+        def.position = Vec3(1.2 * (i % 30), 20.0 + 2.0 * (i / 30), 0.0);
+        few.createBody(def);
+    }
+    few.step();
+    EXPECT_EQ(peerOf(few).lastCollidePass(), Pass::PerAwakeGeom);
+}
+
 // With most bodies awake the whole space is collided at once, as before.
 TEST(OdeContacts, MostlyAwakeWorldCollidesTheWholeSpace) {
     World world(test::backendSettings("ode"));
