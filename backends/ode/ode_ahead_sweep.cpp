@@ -4,19 +4,19 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace anyphys::ode {
 namespace {
 
-// Shapes longer than this many times the median along the sweep's axis (a ground, a wall) are
-// left out of the sorted list, where each would widen every moving shape's backward scan to its
-// own length; every moving shape tests them directly instead.
+// Shapes longer than this many times the median (a ground, a wall) are left out of the sorted
+// list, where each would widen every moving shape's columns and backward scan to its own length;
+// every moving shape tests them directly instead.
 constexpr double kBigExtent = 4.0;
 // Testing a moving shape against every shape costs about as much as sorting two shapes (a
 // comparison each per level of the sort): below this many moving shapes per bit of the count,
 // the direct tests are cheaper.
 constexpr std::size_t kFewMoversPerLog2 = 2;
-constexpr std::uint32_t kNotSorted = std::numeric_limits<std::uint32_t>::max();
 
 // Whether `a` grown by `reach` on every side overlaps `b`.
 bool within(const SweptBounds& a, const SweptBounds& b, double reach) {
@@ -74,41 +74,61 @@ const std::vector<AheadSweep::Pair>& AheadSweep::find(const std::vector<SweptBou
         return pairs_;
     }
 
-    const int axis = widestAxis(shapes);
-    const auto extent = [&](std::uint32_t i) { return shapes[i].hi[axis] - shapes[i].lo[axis]; };
+    // Sorted along the axis the centres spread most, in columns across it as wide as the widest
+    // shape plus the longest reach: a moving shape then meets only shapes whose bounds start in
+    // its own column or the eight beside it, near it along the axis. (Along the axis alone, a box
+    // in a 10 x 10 x 10 pile visited the hundred boxes of its slab.)
+    const int axis = widestAxis(shapes), across1 = (axis + 1) % 3, across2 = (axis + 2) % 3;
+    const auto size = [&](std::uint32_t i) {  // the longest side
+        const SweptBounds& b = shapes[i];
+        return std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+    };
     extents_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) extents_[i] = extent(i);
+    for (std::uint32_t i = 0; i < n; ++i) extents_[i] = size(i);
     std::nth_element(extents_.begin(), extents_.begin() + n / 2, extents_.end());
     const double median = extents_[n / 2];
     const double bigAbove = median > 0.0 ? kBigExtent * median : std::numeric_limits<double>::infinity();
     sorted_.clear();
     big_.clear();
-    double widest = 0.0;  // of the sorted shapes, along the axis: how far back a scan must look
+    double widest = 0.0, longestReach = 0.0;
     for (std::uint32_t i = 0; i < n; ++i) {
-        if (extent(i) > bigAbove) {
+        if (size(i) > bigAbove) {
             big_.push_back(i);
         } else {
             sorted_.push_back(i);
-            widest = std::max(widest, extent(i));
+            widest = std::max(widest, size(i));
         }
+        longestReach = std::max(longestReach, shapes[i].reach);
     }
-    std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return shapes[a].lo[axis] < shapes[b].lo[axis] || (shapes[a].lo[axis] == shapes[b].lo[axis] && a < b);
-    });
-    positionOf_.assign(n, kNotSorted);
-    for (std::uint32_t p = 0; p < sorted_.size(); ++p) positionOf_[sorted_[p]] = p;
+    const double column = widest + longestReach;
+    if (!std::isfinite(column)) {  // most shapes unbounded (planes): nothing to sort them by
+        for (const std::uint32_t m : movers_)
+            for (std::uint32_t j = 0; j < n; ++j) consider(m, j);
+        std::sort(pairs_.begin(), pairs_.end());
+        return pairs_;
+    }
+    columnOf_.resize(n);
+    for (const std::uint32_t i : sorted_)
+        columnOf_[i] = {static_cast<std::int64_t>(std::floor(shapes[i].lo[across1] / column)),
+                        static_cast<std::int64_t>(std::floor(shapes[i].lo[across2] / column))};
+    const auto key = [&](std::uint32_t i) { return std::tuple(columnOf_[i].first, columnOf_[i].second, shapes[i].lo[axis], i); };
+    std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
 
     for (const std::uint32_t m : movers_) {
         const SweptBounds& a = shapes[m];
-        const std::uint32_t p = positionOf_[m];
-        if (p == kNotSorted) {  // a big shape that moves (a platform): against every shape
+        if (size(m) > bigAbove) {  // a big shape that moves (a platform): against every shape
             for (std::uint32_t j = 0; j < n; ++j) consider(m, j);
             continue;
         }
-        for (std::size_t q = p + 1; q < sorted_.size() && shapes[sorted_[q]].lo[axis] <= a.hi[axis] + a.reach; ++q)
-            consider(m, sorted_[q]);
-        for (std::size_t q = p; q-- > 0 && shapes[sorted_[q]].lo[axis] >= a.lo[axis] - widest - a.reach;)
-            consider(m, sorted_[q]);
+        const double from = a.lo[axis] - widest - a.reach, to = a.hi[axis] + a.reach;
+        for (std::int64_t d1 = -1; d1 <= 1; ++d1)
+            for (std::int64_t d2 = -1; d2 <= 1; ++d2) {
+                const std::pair<std::int64_t, std::int64_t> beside{columnOf_[m].first + d1, columnOf_[m].second + d2};
+                auto q = std::lower_bound(sorted_.begin(), sorted_.end(), beside, [&](std::uint32_t i, const auto& c) {
+                    return columnOf_[i] < c || (columnOf_[i] == c && shapes[i].lo[axis] < from);
+                });
+                for (; q != sorted_.end() && columnOf_[*q] == beside && shapes[*q].lo[axis] <= to; ++q) consider(m, *q);
+            }
         for (const std::uint32_t b : big_) consider(m, b);
     }
     std::sort(pairs_.begin(), pairs_.end());

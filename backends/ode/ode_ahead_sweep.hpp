@@ -5,8 +5,8 @@
 // ODE's dSpaceCollide2 of one geom against a hash space tests every geom of the space (its source
 // says so: "could take advantage of the hash structure ... but it does not yet"), so asking it
 // once per moving shape cost moving x all: half of a 4 000-box drop's step while the boxes fell.
-// This sweeps the bounds once along their widest axis instead, and each moving shape visits only
-// the shapes beside it on that axis.
+// This sorts the bounds once along their widest axis, in columns across it, and each moving shape
+// visits only the shapes beside it.
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -29,8 +29,9 @@ public:
     const std::vector<Pair>& find(const std::vector<SweptBounds>& shapes);
 
 private:
-    std::vector<std::uint32_t> sorted_, big_, movers_, positionOf_;
+    std::vector<std::uint32_t> sorted_, big_, movers_;
     std::vector<double> extents_;
+    std::vector<std::pair<std::int64_t, std::int64_t>> columnOf_;  // by shape: its column across the sort axis
     std::vector<Pair> pairs_;
 };
 
