@@ -107,10 +107,10 @@ const std::vector<AheadSweep::Pair>& AheadSweep::find(const std::vector<SweptBou
         std::sort(pairs_.begin(), pairs_.end());
         return pairs_;
     }
+    // Clamped so the conversion is defined however far out a shape is (columns then merge there).
+    const auto columnAt = [&](double x) { return static_cast<std::int64_t>(std::clamp(std::floor(x / column), -1e15, 1e15)); };
     columnOf_.resize(n);
-    for (const std::uint32_t i : sorted_)
-        columnOf_[i] = {static_cast<std::int64_t>(std::floor(shapes[i].lo[across1] / column)),
-                        static_cast<std::int64_t>(std::floor(shapes[i].lo[across2] / column))};
+    for (const std::uint32_t i : sorted_) columnOf_[i] = {columnAt(shapes[i].lo[across1]), columnAt(shapes[i].lo[across2])};
     const auto key = [&](std::uint32_t i) { return std::tuple(columnOf_[i].first, columnOf_[i].second, shapes[i].lo[axis], i); };
     std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
 
