@@ -154,25 +154,15 @@ double OdeWorld::speculativeApproach(const OdeShape& a, const OdeShape& b, const
 }
 
 void OdeWorld::collideAhead() {
+    if (awakeBodies_ == 0) return;  // only awake bodies move
     const double h = odeStep(), slop = settings_.linearSlop;
-    // How far each shape may reach: its own travel twice over, as a pair closing head on is found
-    // from the faster body. Only awake bodies that move more than kLeastApproach reach anything.
-    const auto reachOf = [&](const OdeBody& body, const OdeShape& shape) {
-        if (!body.moves() || !body.activeInPass || shape.surface().trigger || !NearProbe::growable(shape.type()))
-            return 0.0;
-        const double speed = toVec3(dBodyGetLinearVel(body.id())).norm(), spin = toVec3(dBodyGetAngularVel(body.id())).norm();
-        const double travel = (speed + (spin > 0.0 ? spin * shapeReach(shape) : 0.0)) * h;
-        return travel > kLeastApproach * slop ? 2.0 * travel + slop : 0.0;
-    };
-    const bool anyMoves = std::any_of(bodies_.begin(), bodies_.end(), [&](const OdeBody* body) {
-        for (std::size_t i = 0; i < body->shapeCount(); ++i)
-            if (reachOf(*body, body->shape(i)) > 0.0) return true;
-        return false;
-    });
-    if (!anyMoves) return;
     aheadShapes_.clear();
     aheadBounds_.clear();
-    for (const OdeBody* body : bodies_)
+    bool anyMoves = false;
+    for (const OdeBody* body : bodies_) {
+        const bool awakeMover = body->moves() && body->activeInPass;
+        const double speed = awakeMover ? toVec3(dBodyGetLinearVel(body->id())).norm() : 0.0;
+        const double spin = awakeMover ? toVec3(dBodyGetAngularVel(body->id())).norm() : 0.0;
         for (std::size_t i = 0; i < body->shapeCount(); ++i) {
             const OdeShape& shape = body->shape(i);
             if (shape.surface().trigger) continue;  // a sensor's pairs are overlaps: never speculative
@@ -181,9 +171,16 @@ void OdeWorld::collideAhead() {
             // A plane's are infinite, at most on one side along an axis it faces; NaN bounds
             // (a body whose state went bad) meet nothing and would break the sweep's sort.
             if (std::any_of(box, box + 6, [](dReal x) { return std::isnan(x); })) continue;
+            // How far it may reach: its own travel twice over, as a pair closing head on is found
+            // from the faster body; nothing unless it travels more than kLeastApproach.
+            const double travel = (speed + (spin > 0.0 ? spin * shapeReach(shape) : 0.0)) * h;
+            const bool reaches = travel > kLeastApproach * slop && NearProbe::growable(shape.type());
+            anyMoves = anyMoves || reaches;
             aheadShapes_.push_back(&shape);
-            aheadBounds_.push_back({{box[0], box[2], box[4]}, {box[1], box[3], box[5]}, reachOf(*body, shape)});
+            aheadBounds_.push_back({{box[0], box[2], box[4]}, {box[1], box[3], box[5]}, reaches ? 2.0 * travel + slop : 0.0});
         }
+    }
+    if (!anyMoves) return;
     for (const auto& [own, other] : aheadSweep_.find(aheadBounds_)) {
         const OdeShape& mover = *aheadShapes_[own];
         const OdeShape& found = *aheadShapes_[other];
