@@ -32,10 +32,6 @@ namespace {
 constexpr std::size_t kAwakeShareForWholeSpace = 10;  // 1 geom in 10 awake
 constexpr std::size_t kAwakeAloneBase = 100, kAwakeAloneShare = 150;
 
-}  // namespace
-
-namespace {
-
 // The deepest of the contacts' depths.
 double deepest(const dContact* contacts, int count) {
     double depth = contacts[0].geom.depth;
@@ -162,8 +158,9 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
                                 : 0.0;
     const bool speculative = approach > 0.0;
     if (speculative)
-        n = speculativeContacts(nearProbe_, *shapeA, *shapeB, n > 0, stepFall(*a) - stepFall(*b), approach,
-                                settings_.linearSlop, odeStep(), found, kMaxContactsPerPair);
+        n = speculativeContacts(nearProbe_, *shapeA, *shapeB,
+                                {n > 0, stepFall(*a) - stepFall(*b), approach, settings_.linearSlop, odeStep()}, found,
+                                kMaxContactsPerPair);
     if (n <= 0) return;
     if (n == 1 && !trigger && !speculative) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
     if (effects_.has(Effect::Events)) {  // ODE's points, before the joints' sphere points

@@ -99,8 +99,8 @@ double stepApproach(const OdeShape& a, const OdeShape& b, double h) {
     return speed * h;
 }
 
-int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, bool touching, const Vec3& fall,
-                        double approach, double slop, double h, dContact* out, int most) {
+int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, const StepAhead& step, dContact* out, int most) {
+    const auto& [touching, fall, approach, slop, h] = step;
     const Motion ma = motionOf(a), mb = motionOf(b);
     // Where a ends the step relative to b (b's own turn left out: a first-order look ahead). ODE
     // moves the bodies with the step's last velocity, gravity's share included.

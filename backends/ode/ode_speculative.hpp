@@ -36,15 +36,23 @@ double shapeReach(const OdeShape& shape);
 /// relative speed plus each body's spin times its shape's reach. 0 for two bodies at rest.
 double stepApproach(const OdeShape& a, const OdeShape& b, double h);
 
-/// Contacts for `a` and `b`, apart now, that the step of `h` brings together: from the pair
-/// collided with `a` grown by `approach` + `slop`, each point taken back to `a`'s true surface,
-/// its depth measured there (negative: the gap), and kept if it overlaps or its closing speed
-/// along the normal covers its gap (less kLeastApproach of `slop`). `fall`: the velocity gravity
-/// adds over the step, a's less b's (ODE moves the bodies with the step's last velocity). Normals
-/// point into `a` (ODE's convention). Unless `touching` (ODE found the pair touching), none
-/// unless `a`, moved over the step by the pair's relative motion, comes within `slop` of `b`: a
-/// box passing beside another meets the grown one's face. `probe` holds scratch geoms.
-int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, bool touching, const Vec3& fall,
-                        double approach, double slop, double h, dContact* out, int most);
+/// What the look ahead of one pair knows of the step.
+struct StepAhead {
+    bool touching = false;     ///< ODE found the pair touching (then no passing-beside test)
+    Vec3 fall = Vec3::Zero();  ///< the velocity gravity adds over the step, a's less b's
+    double approach = 0.0;     ///< how far the pair can close over the step (stepApproach)
+    double slop = 0.0;         ///< the world's linearSlop
+    double h = 0.0;            ///< the ODE step
+};
+
+/// Contacts for `a` and `b`, apart now, that the step brings together: from the pair collided
+/// with `a` grown by `approach` + `slop`, each point taken back to `a`'s true surface, its depth
+/// measured there (negative: the gap), and kept if it overlaps or its closing speed along the
+/// normal covers its gap (less kLeastApproach of `slop`), gravity's `fall` counted (ODE moves the
+/// bodies with the step's last velocity). Normals point into `a` (ODE's convention). Unless
+/// `touching`, none unless `a`, moved over the step by the pair's relative motion, comes within
+/// `slop` of `b`: a box passing beside another meets the grown one's face. `probe` holds scratch
+/// geoms.
+int speculativeContacts(NearProbe& probe, const OdeShape& a, const OdeShape& b, const StepAhead& step, dContact* out, int most);
 
 }  // namespace anyphys::ode
