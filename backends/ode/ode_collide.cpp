@@ -57,11 +57,11 @@ int dropDegenerateContacts(dContact* contacts, int count) {
 }
 
 // Whether ODE collides this pair with libccd's MPR (a hull against a box or a hull): the colliders
-// the backend installs (ode_convex_sphere.hpp, ode_convex_capsule.hpp) are not.
-bool collidesThroughMpr(dGeomID o1, dGeomID o2) {
-    const int a = dGeomGetClass(o1), b = dGeomGetClass(o2);
-    const auto flat = [](int c) { return c == dBoxClass || c == dConvexClass; };
-    return (a == dConvexClass || b == dConvexClass) && flat(a) && flat(b);
+// the backend installs (ode_convex_sphere.hpp, ode_convex_capsule.hpp) are not. By the shapes'
+// types, which name their geoms' classes (OdeShape), not by asking ODE twice per pair.
+bool collidesThroughMpr(ShapeType a, ShapeType b) {
+    const auto flat = [](ShapeType t) { return t == ShapeType::Box || t == ShapeType::Convex; };
+    return (a == ShapeType::Convex || b == ShapeType::Convex) && flat(a) && flat(b);
 }
 
 // MPR's normal is undefined where the shapes touch without overlapping: the origin then lies on
@@ -74,8 +74,8 @@ bool collidesThroughMpr(dGeomID o1, dGeomID o2) {
 // far below a resting overlap (about 1 mm).
 constexpr double kLeastMprDepth = 1e-9;  // m
 
-int dropUntouchingMprContacts(dGeomID o1, dGeomID o2, dContact* contacts, int count) {
-    if (!collidesThroughMpr(o1, o2)) return count;
+int dropUntouchingMprContacts(ShapeType a, ShapeType b, dContact* contacts, int count) {
+    if (!collidesThroughMpr(a, b)) return count;
     const auto untouching = [](const dContact& c) { return !(c.geom.depth > kLeastMprDepth); };
     return static_cast<int>(std::remove_if(contacts, contacts + count, untouching) - contacts);
 }
@@ -149,7 +149,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
                 ? collideWithMesh(o1, o2, *shapeA, *shapeB, nearProbe_, found, kMaxContactsPerPair)
                 : dCollide(o1, o2, trigger ? 1 : kMaxContactsPerPair, &found[0].geom, sizeof(dContact));
     n = dropDegenerateContacts(found, n);
-    if (!trigger) n = dropUntouchingMprContacts(o1, o2, found, n);  // a sensor's touch is an overlap all the same
+    if (!trigger) n = dropUntouchingMprContacts(shapeA->type(), shapeB->type(), found, n);  // a sensor's touch is an overlap all the same
     // Apart, or barely touching (where ODE's colliders give a partial manifold: a box's face just
     // meeting a wall, one edge, on which it tipped and went 5 mm in), but closing within the step:
     // contacts that let the pair close its gap and no more (ode_speculative.hpp).
@@ -175,7 +175,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     if (trigger) return;  // sensors never collide
     if (!b->isDynamic() && !speculative) movePointsOntoTheSphere(o1, o2, found, n, dWorldGetContactSurfaceLayer(world_));
     createContactJoints(*a, *b, materials_.get(sa->material, sb->material), found, n, speculative);
-    wakeIfTouched(*a, *b);
+    if (!a->activeInPass || !b->activeInPass) wakeIfTouched(*a, *b);  // two awake bodies wake nothing
 }
 
 void OdeWorld::createContactJoints(const OdeBody& a, const OdeBody& b, const ContactMaterial& m, dContact* contacts,

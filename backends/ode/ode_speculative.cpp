@@ -82,13 +82,16 @@ double depthInside(const OdeShape& shape, const Vec3& p) {
 
 }  // namespace
 
+double reachFromBounds(const dReal box[6], const Vec3& centre) {
+    Vec3 farthest = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) farthest[k] = std::max(std::abs(box[2 * k] - centre[k]), std::abs(box[2 * k + 1] - centre[k]));
+    return farthest.norm();
+}
+
 double shapeReach(const OdeShape& shape) {
     dReal box[6];
     dGeomGetAABB(shape.geom(), box);
-    const Motion m = motionOf(shape);
-    Vec3 farthest = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) farthest[k] = std::max(std::abs(box[2 * k] - m.centre[k]), std::abs(box[2 * k + 1] - m.centre[k]));
-    return farthest.norm();
+    return reachFromBounds(box, motionOf(shape).centre);
 }
 
 double stepApproach(const OdeShape& a, const OdeShape& b, double h) {
@@ -163,6 +166,7 @@ void OdeWorld::collideAhead() {
         const bool awakeMover = body->moves() && body->activeInPass;
         const double speed = awakeMover ? toVec3(dBodyGetLinearVel(body->id())).norm() : 0.0;
         const double spin = awakeMover ? toVec3(dBodyGetAngularVel(body->id())).norm() : 0.0;
+        const Vec3 centre = spin > 0.0 ? toVec3(dBodyGetPosition(body->id())) : Vec3::Zero();
         for (std::size_t i = 0; i < body->shapeCount(); ++i) {
             const OdeShape& shape = body->shape(i);
             if (shape.surface().trigger) continue;  // a sensor's pairs are overlaps: never speculative
@@ -173,7 +177,7 @@ void OdeWorld::collideAhead() {
             if (std::any_of(box, box + 6, [](dReal x) { return std::isnan(x); })) continue;
             // How far it may reach: its own travel twice over, as a pair closing head on is found
             // from the faster body; nothing unless it travels more than kLeastApproach.
-            const double travel = (speed + (spin > 0.0 ? spin * shapeReach(shape) : 0.0)) * h;
+            const double travel = (speed + (spin > 0.0 ? spin * reachFromBounds(box, centre) : 0.0)) * h;
             const bool reaches = travel > kLeastApproach * slop && NearProbe::growable(shape.type());
             anyMoves = anyMoves || reaches;
             aheadShapes_.push_back(&shape);
