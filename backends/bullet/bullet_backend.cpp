@@ -164,6 +164,27 @@ Backend makeBulletBackend() {
          "as stability.pyramid20.pgs.s1, planar: drift 14 cm, top lifts 6.4 cm"},
         {"planar.stability.pyramid20.pgs.s4",
          "as stability.pyramid20.pgs.s4, planar: drift 4.5 cm, top lifts 7.6 cm"},
+        {"stability.dropped_column.pgs.s1.box",
+         "a column of ten cubes dropped onto a static box rocks harder every second: its fastest cube moves at 0.61 m/s "
+         "over 15 to 20 s (1 mm gaps; bound 1 cm/s), 0.19 m/s at 10 s. Bullet starts each contact row from 0.85 of "
+         "the last step's impulse (the backend's warm-start fraction), and that impulse holds the Baumgarte push "
+         "(erp2 0.2): past 1 / (1 + erp2) = 0.83 the carried push drives a motion the 30 iterations do not "
+         "converge on, and it grows. A fraction of 0.75 settles columns of ten but lets taller stacks lean "
+         "(hard_stack_20 0.28 -> 0.56 m against a 0.6 ceiling); erp2 0.1 settles them but tips the 20-box stack "
+         "over its ceiling; split impulse at every depth topples the stacks: not changed yet"},
+        {"stability.dropped_column.pgs.s1.plane",
+         "as stability.dropped_column.pgs.s1.box, onto the plane (Bullet's own box-plane collision): 1.8 cm/s, settling slowly"},
+        {"stability.dropped_column.direct.s1.box", "as stability.dropped_column.pgs.s1.box, the MLCP solver: 0.62 m/s"},
+        {"stability.dropped_column.direct.s1.plane", "as stability.dropped_column.pgs.s1.box, the MLCP solver, onto the plane: 0.48 m/s"},
+        {"stability.dropped_column.pgs.s4.box",
+         "as stability.dropped_column.pgs.s1.box at 4 substeps: 0.18 m/s with 5 cm gaps (1 mm gaps settle)"},
+        {"stability.dropped_column.pgs.s4.plane", "as stability.dropped_column.pgs.s4.box, onto the plane: 3.6 cm/s"},
+        {"stability.dropped_column.direct.s4.box", "as stability.dropped_column.pgs.s4.box, the MLCP solver: 0.18 m/s"},
+        {"stability.dropped_column.direct.s4.plane", "as stability.dropped_column.pgs.s4.plane, the MLCP solver: 0.16 m/s"},
+        {"planar.stability.dropped_column.pgs.s1.box", "as stability.dropped_column.pgs.s1.box, planar: 0.12 m/s with 5 cm gaps"},
+        {"planar.stability.dropped_column.pgs.s1.plane", "as stability.dropped_column.pgs.s1.plane, planar: 6.4 cm/s with 5 cm gaps"},
+        {"planar.stability.dropped_column.direct.s1.box", "as stability.dropped_column.direct.s1.box, planar: 0.32 m/s with 5 cm gaps"},
+        {"planar.stability.dropped_column.direct.s1.plane", "as stability.dropped_column.direct.s1.plane, planar: 7.6 cm/s with 5 cm gaps"},
         {"planar.restitution.very_heavy_ball_on_box",
          "a 65 kg ball (e = 0.5) landing at 2.5 to 4 m/s on a 10 kg box resting on the ground rises down to 85 % of "
          "e^2 h (3.9 m/s, 1.07 times the bound; 92 % in 3D, within it): the sequential-impulse iterations pass the "
@@ -197,6 +218,20 @@ Backend makeBulletBackend() {
         {"stack10.top_drift", 0.036},
         {"stability.stack10.pgs.s1", 3.6},
         {"stability.stack10.direct.s1", 3.6},
+        // Dropped columns, in multiples of the bounds (1 cm/s, 1 deg, 0.1 m). The rocking grows
+        // with the run; a toppled column's tilt alone is 90.
+        {"stability.dropped_column.pgs.s1.box", 80},  // measured 61.1
+        {"stability.dropped_column.pgs.s1.plane", 80},  // measured 1.78 (the same rocking at other starts: 48.5)
+        {"stability.dropped_column.direct.s1.box", 80},  // measured 61.9
+        {"stability.dropped_column.direct.s1.plane", 80},  // measured 48.5
+        {"stability.dropped_column.pgs.s4.box", 40},  // measured 17.7
+        {"stability.dropped_column.pgs.s4.plane", 40},  // measured 3.64
+        {"stability.dropped_column.direct.s4.box", 40},  // measured 17.8
+        {"stability.dropped_column.direct.s4.plane", 40},  // measured 16.0
+        {"planar.stability.dropped_column.pgs.s1.box", 80},  // measured 12.3
+        {"planar.stability.dropped_column.pgs.s1.plane", 80},  // measured 6.37
+        {"planar.stability.dropped_column.direct.s1.box", 80},  // measured 32.4
+        {"planar.stability.dropped_column.direct.s1.plane", 80},  // measured 7.58
         {"stability.pyramid20.pgs.s1", 210},
         {"stability.pyramid20.pgs.s4", 225},
         {"planar.stability.stack10.pgs.s1", 3},
