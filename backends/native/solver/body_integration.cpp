@@ -5,6 +5,7 @@
 
 #include "anyphys/peers/gyroscopic.hpp"
 #include "solver/contact_constraint.hpp"
+#include "solver/isa_kernels.hpp"
 #include "solver/state_runs.hpp"
 #include "solver/wide.hpp"
 
@@ -182,7 +183,7 @@ void integrateOnePosition(SolverState& s, double h) {
 /// slowly turning body): the same operations, so the same bits, as one at a time. Inlined into
 /// each instruction set's entry point: built for SSE2, the four lanes' vectors went through the
 /// stack and the pass took longer than one body at a time.
-[[gnu::always_inline]] inline void integratePositionsImpl(SolverState* states, int begin, int end, double h) {
+ANYPHYS_KERNEL void integratePositionsImpl(SolverState* states, int begin, int end, double h) {
     int i = begin;
     for (; i + wide::kLanes <= end; i += wide::kLanes)
         if (!integrateFourPositions(states + i, h))
@@ -190,11 +191,10 @@ void integrateOnePosition(SolverState& s, double h) {
     for (; i < end; ++i) integrateOnePosition(states[i], h);
 }
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-__attribute__((target("avx2"))) void integratePositionsAvx2(SolverState* states, int begin, int end, double h) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+ANYPHYS_AVX2 void integratePositionsAvx2(SolverState* states, int begin, int end, double h) {
     integratePositionsImpl(states, begin, end, h);
 }
-#define ANYPHYS_HAS_AVX2_INTEGRATION 1
 #endif
 
 void integratePositionsBase(SolverState* states, int begin, int end, double h) {
@@ -204,7 +204,7 @@ void integratePositionsBase(SolverState* states, int begin, int end, double h) {
 }  // namespace
 
 void integratePositions(SolverState* states, int begin, int end, double h) {
-#if ANYPHYS_HAS_AVX2_INTEGRATION
+#if ANYPHYS_HAS_AVX2_KERNELS
     // The contact kernels' choice (the CPU has AVX2 and no one turned it off): both give the same bits.
     if (contactKernelsUseAvx2()) return integratePositionsAvx2(states, begin, end, h);
 #endif

@@ -10,14 +10,10 @@
 #include "solver/restitution_math.hpp"
 #include "solver/restitution_rows.hpp"
 #include "solver/rigid_bias.hpp"
+#include "solver/isa_kernels.hpp"
 #include "solver/state_runs.hpp"
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define ANYPHYS_HAS_AVX2_KERNELS 1
-#endif
 
-// Inlined into each ISA's entry point, so each gets its own instructions.
-#define ANYPHYS_KERNEL [[gnu::always_inline]] inline
 
 namespace anyphys::native {
 
@@ -385,7 +381,6 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
 }
 
 #if ANYPHYS_HAS_AVX2_KERNELS
-#define ANYPHYS_AVX2 __attribute__((target("avx2")))
 ANYPHYS_AVX2 void summarizeAvx2(const WideContact* c, WideWarmStart* w, int n) { summarizeImpl(c, w, n); }
 ANYPHYS_AVX2 void warmStartAvx2(const WideWarmStart* w, int n, SolverState* s) { warmStartImpl(w, n, s); }
 ANYPHYS_AVX2 void solveAvx2(WideContact* c, WideWarmStart* w, int n, SolverState* s, const ContactSolveParams& p, bool bias,

@@ -9,13 +9,10 @@
 #include "solver/restitution_math.hpp"
 #include "solver/restitution_rows.hpp"
 #include "solver/rigid_bias.hpp"
+#include "solver/isa_kernels.hpp"
 #include "solver/state_runs.hpp"
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define ANYPHYS_HAS_AVX2_KERNELS 1
-#endif
 
-#define ANYPHYS_KERNEL [[gnu::always_inline]] inline
 
 namespace anyphys::native {
 
@@ -313,7 +310,6 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
 }
 
 #if ANYPHYS_HAS_AVX2_KERNELS
-#define ANYPHYS_AVX2 __attribute__((target("avx2")))
 ANYPHYS_AVX2 void warmStartAvx2(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
 ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
     solveImpl(c, n, s, p, bias, end);
