@@ -166,7 +166,7 @@ Backend makeBulletBackend() {
          "as stability.pyramid20.pgs.s4, planar: drift 4.5 cm, top lifts 7.6 cm"},
         {"stability.dropped_column.pgs.s1.box",
          "a column of ten cubes dropped onto a static box rocks harder every second: its fastest cube moves at 0.61 m/s "
-         "over 15 to 20 s (1 mm gaps; bound 1 cm/s), 0.19 m/s at 10 s. Bullet starts each contact row from 0.85 of "
+         "over 15 to 20 s (1 mm gaps; bound 1 cm/s), 0.21 m/s in its tenth second. Bullet starts each contact row from 0.85 of "
          "the last step's impulse (the backend's warm-start fraction), and that impulse holds the Baumgarte push "
          "(erp2 0.2): past 1 / (1 + erp2) = 0.83 the carried push drives a motion the 30 iterations do not "
          "converge on, and it grows. A fraction of 0.75 settles columns of ten but lets taller stacks lean "
