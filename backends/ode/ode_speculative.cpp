@@ -80,8 +80,9 @@ double depthInside(const OdeShape& shape, const Vec3& p) {
     }
 }
 
-}  // namespace
-
+// How far a moving shape reaches from its body's centre of mass: the distance to the far corner
+// of its bounds (ODE's order: min x, max x, min y, ...), so its spin moves no point of it faster
+// than spin x reach.
 double reachFromBounds(const dReal box[6], const Vec3& centre) {
     Vec3 farthest = Vec3::Zero();
     for (int k = 0; k < 3; ++k) farthest[k] = std::max(std::abs(box[2 * k] - centre[k]), std::abs(box[2 * k + 1] - centre[k]));
@@ -93,6 +94,8 @@ double shapeReach(const OdeShape& shape) {
     dGeomGetAABB(shape.geom(), box);
     return reachFromBounds(box, motionOf(shape).centre);
 }
+
+}  // namespace
 
 double stepApproach(const OdeShape& a, const OdeShape& b, double h) {
     const Motion ma = motionOf(a), mb = motionOf(b);

@@ -28,12 +28,6 @@ inline constexpr double kLeastApproach = 0.1;
 /// contacts. Faster is continuous collision's, which starts at half the core.
 inline constexpr double kMostApproach = 0.5;
 
-/// How far a moving shape reaches from its body's centre of mass: the distance to the far corner
-/// of its bounding box (so its spin moves no point of it faster than spin x reach).
-double shapeReach(const OdeShape& shape);
-/// The same from the shape's bounds (ODE's order: min x, max x, min y, ...) and its body's centre.
-double reachFromBounds(const dReal box[6], const Vec3& centre);
-
 /// How far the shapes `a` and `b` can close on each other over a step of `h`: their bodies'
 /// relative speed plus each body's spin times its shape's reach. 0 for two bodies at rest.
 double stepApproach(const OdeShape& a, const OdeShape& b, double h);
