@@ -882,22 +882,35 @@ void requireRayInPlane(const Vec3& origin, const Vec3& direction, const char* wh
     if (std::abs(origin.z()) > detail::kPlanarTolerance) throw Error::invalid(w + ".origin", formatVec3(origin), rule);
     if (std::abs(direction.z()) > detail::kPlanarTolerance) throw Error::invalid(w + ".direction", formatVec3(direction), rule);
 }
+
+// Where a ray starts exactly on a surface the engines disagree: ODE and Box2D met it both ways,
+// Bullet neither, native heading in only. Each ray therefore starts this far behind its origin,
+// measured back along it: a surface through the origin is then met heading in (at distance 0
+// once the distances are measured from the origin again) and, heading out, holds the ray's start
+// inside its solid, which no backend hits. A millionth of the origin's largest coordinate (at
+// least 1 micrometre), on every backend, so that "on a surface" means the same everywhere: eight
+// float roundings there, so Box2D's float rays start behind too, and 100 times what Bullet's convex
+// cast needs to meet a surface it starts next to (1e-8 relative met it, 1e-9 did not).
+double rayStartBehind(const Vec3& origin) { return 1e-6 * std::max(1.0, origin.cwiseAbs().maxCoeff()); }
 }  // namespace
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycast");
     if (settings_.planar) requireRayInPlane(origin, direction, "World.raycast");
-    const auto hits = impl_->peer->raycast(origin, ray.direction, ray.maxDistance, true, mask);
+    const double behind = rayStartBehind(origin);
+    const auto hits = impl_->peer->raycast(origin - behind * ray.direction, ray.direction, ray.maxDistance + behind, true, mask);
     if (hits.empty()) return std::nullopt;
-    return RayHit{Body(this, unpackId(hits.front().body)), hits.front().point, hits.front().normal, hits.front().distance};
+    const PeerRayHit& h = hits.front();
+    return RayHit{Body(this, unpackId(h.body)), h.point, h.normal, std::max(0.0, h.distance - behind)};
 }
 
 std::vector<RayHit> World::raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycastAll");
     if (settings_.planar) requireRayInPlane(origin, direction, "World.raycastAll");
+    const double behind = rayStartBehind(origin);
     std::vector<RayHit> out;
-    for (const PeerRayHit& h : impl_->peer->raycast(origin, ray.direction, ray.maxDistance, false, mask))
-        out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, h.distance});
+    for (const PeerRayHit& h : impl_->peer->raycast(origin - behind * ray.direction, ray.direction, ray.maxDistance + behind, false, mask))
+        out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, std::max(0.0, h.distance - behind)});
     return out;
 }
 

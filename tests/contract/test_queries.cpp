@@ -144,7 +144,7 @@ TEST_P(QueriesTest, OverlapFindsTheBodiesAShapeTouches) {
 // A ray does not hit a shape whose solid holds its origin (below a plane included), on every
 // backend, as Box2D's and Unity's rays do; it goes on to hit what lies beyond. ODE reported where
 // the ray left a box, sphere, capsule or hull, and ODE, Bullet and Box2D hit a plane from below.
-// (Where a ray starts exactly on a surface the backends differ; that is left open.) The counts also
+// (A ray starting exactly on a surface: the next case.) The counts also
 // hold Box2D's capsule, three fixtures, to one hit: it gave one per piece the ray crossed.
 TEST_P(QueriesTest, RaycastIgnoresAShapeItStartsInside) {
     ANYPHYS_REQUIRE(has("raycast"), "query raycast");
@@ -194,6 +194,86 @@ TEST_P(QueriesTest, RaycastIgnoresAShapeItStartsInside) {
     for (const Vec3& direction : {Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0.6, 0.8, 0)}) {
         SCOPED_TRACE("from under the ground along " + ::testing::PrintToString(direction.transpose()));
         EXPECT_TRUE(world.raycastAll(Vec3(-3, -1, 0), direction, 100.0).empty());
+    }
+}
+
+// A ray that starts exactly on a surface meets it at distance 0 heading in, and does not meet it
+// heading out (the solid then holds the ray's start, as in the case above), on every backend and
+// every shape. Before, each engine had its own answer: ODE and Box2D hit both ways (Box2D at
+// -0.000 m), Bullet neither, native only heading in; the layer now starts each ray a hair behind
+// its origin (World::raycast). Points on the surfaces are exact in float and double; the distance
+// and point are checked to 1e-5 m, about twenty float roundings of these coordinates (Box2D
+// solves in float).
+TEST_P(QueriesTest, RayStartingOnASurfaceMeetsItOnlyHeadingIn) {
+    ANYPHYS_REQUIRE(has("raycast"), "query raycast");
+    const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Sphere, ShapeType::Capsule, ShapeType::Plane}, Effects{});
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    World world(settings());
+    BodyDef groundDef;
+    groundDef.type = BodyType::Static;
+    groundDef.shape = ShapeDef::plane(Vec3(0, 1, 0), 0.0);
+    groundDef.name = "ground";
+    const Body ground = world.createBody(groundDef);
+    struct OnSurface {
+        Body body;
+        Vec3 point, outward;  // on the surface; its outward normal there
+    };
+    std::vector<OnSurface> cases{{ground, Vec3(-3, 0, 0), Vec3(0, 1, 0)}};
+    const auto add = [&](const char* name, const ShapeDef& shape, const Vec3& centre, std::vector<std::pair<Vec3, Vec3>> points) {
+        BodyDef def;
+        def.type = BodyType::Static;
+        def.shape = shape;
+        def.position = centre;
+        def.name = name;
+        const Body body = world.createBody(def);
+        for (const auto& [offset, outward] : points) cases.push_back({body, centre + offset, outward});
+    };
+    // Centres 10 m apart along +X at y = 5, each 2 m across: a ray along X from one meets the next.
+    add("box", ShapeDef::box(Vec3(1, 1, 1)), Vec3(10, 5, 0), {{Vec3(-1, 0.25, 0), Vec3(-1, 0, 0)}, {Vec3(0.5, 1, 0), Vec3(0, 1, 0)}});
+    add("sphere", ShapeDef::sphere(1.0), Vec3(20, 5, 0), {{Vec3(-1, 0, 0), Vec3(-1, 0, 0)}, {Vec3(0, 1, 0), Vec3(0, 1, 0)}});
+    add("capsule", ShapeDef::capsule(1.0, 0.5), Vec3(30, 5, 0), {{Vec3(-1, 0.25, 0), Vec3(-1, 0, 0)}, {Vec3(0, 1.5, 0), Vec3(0, 1, 0)}});
+    if (caps().shapes.contains(ShapeType::Convex)) {
+        std::vector<Vec3> corners;
+        for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+        add("hull", ShapeDef::convex(corners), Vec3(40, 5, 0), {{Vec3(-1, 0.25, 0), Vec3(-1, 0, 0)}, {Vec3(0.5, 1, 0), Vec3(0, 1, 0)}});
+    }
+    for (const OnSurface& c : cases) {
+        SCOPED_TRACE(c.body.name() + " at " + ::testing::PrintToString(c.point.transpose()));
+        // Heading in, straight or slanted (in the XY plane, for planar worlds): the surface itself, at distance 0.
+        const Vec3 along(-c.outward.y(), c.outward.x(), 0.0);
+        for (const Vec3& in : {Vec3(-c.outward), Vec3(-c.outward + 0.3 * along)}) {
+            const auto hit = world.raycast(c.point, in, 100.0);
+            ASSERT_TRUE(hit.has_value()) << "heading " << in.transpose();
+            EXPECT_TRUE(hit->body == c.body) << "heading " << in.transpose() << ": hit " << hit->body.name();
+            EXPECT_LE(hit->distance, 1e-5) << "heading " << in.transpose();
+            EXPECT_GE(hit->distance, 0.0) << "heading " << in.transpose();
+            EXPECT_LT((hit->point - c.point).norm(), 1e-5) << "heading " << in.transpose();
+            EXPECT_GT(hit->normal.dot(c.outward), 0.99) << "heading " << in.transpose();
+        }
+        // Heading out: not this shape (another may lie ahead, metres away).
+        for (const RayHit& hit : world.raycastAll(c.point, c.outward, 100.0)) {
+            EXPECT_FALSE(hit.body == c.body) << "heading out, hit at " << hit.distance << " m";
+            EXPECT_GT(hit.distance, 1.0);
+        }
+    }
+    // A mesh is a sheet with no solid, met from either side: from on it, either way at distance 0,
+    // its normal facing the ray. In a world of its own (ODE collides no hull with a mesh).
+    if (!caps().shapes.contains(ShapeType::Mesh)) return;
+    World sheetWorld(settings());
+    BodyDef sheet;
+    sheet.type = BodyType::Static;
+    sheet.name = "sheet";
+    const double depth = planarWorld() ? 1.0 : 5.0;  // a planar world's bodies span z = 0
+    sheet.shape = ShapeDef::mesh({Vec3(-5, 0, -depth), Vec3(5, 0, -depth), Vec3(5, 0, depth), Vec3(-5, 0, depth)}, {0, 2, 1, 0, 3, 2});
+    sheet.position = Vec3(60, 5, 0);
+    const Body mesh = sheetWorld.createBody(sheet);
+    for (const double up : {1.0, -1.0}) {
+        SCOPED_TRACE("from on the sheet, heading " + std::string(up > 0 ? "up" : "down"));
+        const auto hit = sheetWorld.raycast(Vec3(60.5, 5, 0), Vec3(0, up, 0), 100.0);
+        ASSERT_TRUE(hit.has_value());
+        EXPECT_TRUE(hit->body == mesh) << "hit " << hit->body.name();
+        EXPECT_LE(hit->distance, 1e-5);
+        EXPECT_LT(hit->normal.y() * up, -0.99);
     }
 }
 

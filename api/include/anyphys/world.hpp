@@ -181,7 +181,9 @@ public:
     /// Closest hit of the ray origin + t direction, 0 <= t <= maxDistance (direction need not
     /// be unit), on bodies whose layer is in `mask`. Triggers are not hit, nor is a shape whose
     /// solid holds the origin (below a plane included): a ray cast from inside a body finds what
-    /// lies beyond it. Where the origin lies exactly on a surface, backends differ.
+    /// lies beyond it. A ray whose origin lies on a surface (within a millionth of the origin's
+    /// largest coordinate, at least 1 um) meets it at distance 0 heading in, and not heading out;
+    /// a mesh, a sheet without a solid, is met from either side.
     std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance,
                                   std::uint32_t mask = 0xFFFFFFFFu);
     /// Every hit along the ray, nearest first (at most one per shape).
