@@ -202,8 +202,8 @@ TEST_P(QueriesTest, RaycastIgnoresAShapeItStartsInside) {
 // every shape. Before, each engine had its own answer: ODE and Box2D hit both ways (Box2D at
 // -0.000 m), Bullet neither, native only heading in; the layer now starts each ray a hair behind
 // its origin (World::raycast). Points on the surfaces are exact in float and double; the distance
-// and point are checked to 1e-5 m, about twenty float roundings of these coordinates (Box2D
-// solves in float).
+// and point are checked to 1e-5 m, four float roundings of coordinates up to 41 m (Box2D solves
+// in float).
 TEST_P(QueriesTest, RayStartingOnASurfaceMeetsItOnlyHeadingIn) {
     ANYPHYS_REQUIRE(has("raycast"), "query raycast");
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Sphere, ShapeType::Capsule, ShapeType::Plane}, Effects{});
