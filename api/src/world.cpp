@@ -888,9 +888,10 @@ void requireRayInPlane(const Vec3& origin, const Vec3& direction, const char* wh
 // measured back along it: a surface through the origin is then met heading in (at distance 0
 // once the distances are measured from the origin again) and, heading out, holds the ray's start
 // inside its solid, which no backend hits. A millionth of the origin's largest coordinate (at
-// least 1 micrometre), on every backend, so that "on a surface" means the same everywhere: eight
-// float roundings there, so Box2D's float rays start behind too, and 100 times what Bullet's convex
-// cast needs to meet a surface it starts next to (1e-8 relative met it, 1e-9 did not).
+// least 1 micrometre), on every backend, so that "on a surface" means the same everywhere: ten
+// times what Box2D's float rays need to start behind the surface (1e-7 relative did in the
+// contract case, 3e-8 did not), 100 times what Bullet's convex cast needs to meet a surface it
+// starts next to (1e-8 met it, 1e-9 did not).
 double rayStartBehind(const Vec3& origin) { return 1e-6 * std::max(1.0, origin.cwiseAbs().maxCoeff()); }
 }  // namespace
 
