@@ -893,25 +893,31 @@ void requireRayInPlane(const Vec3& origin, const Vec3& direction, const char* wh
 // contract case, 3e-8 did not), 100 times what Bullet's convex cast needs to meet a surface it
 // starts next to (1e-8 met it, 1e-9 did not).
 double rayStartBehind(const Vec3& origin) { return 1e-6 * std::max(1.0, origin.cwiseAbs().maxCoeff()); }
+
+/// The peer's hits of a validated ray, started rayStartBehind its origin, with their distances
+/// measured from the origin again.
+std::vector<PeerRayHit> castFromOrigin(WorldPeer& peer, const Vec3& origin, const Ray& ray, bool closestOnly, std::uint32_t mask) {
+    const double behind = rayStartBehind(origin);
+    std::vector<PeerRayHit> hits = peer.raycast(origin - behind * ray.direction, ray.direction, ray.maxDistance + behind, closestOnly, mask);
+    for (PeerRayHit& h : hits) h.distance = std::max(0.0, h.distance - behind);
+    return hits;
+}
 }  // namespace
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycast");
     if (settings_.planar) requireRayInPlane(origin, direction, "World.raycast");
-    const double behind = rayStartBehind(origin);
-    const auto hits = impl_->peer->raycast(origin - behind * ray.direction, ray.direction, ray.maxDistance + behind, true, mask);
+    const auto hits = castFromOrigin(*impl_->peer, origin, ray, true, mask);
     if (hits.empty()) return std::nullopt;
-    const PeerRayHit& h = hits.front();
-    return RayHit{Body(this, unpackId(h.body)), h.point, h.normal, std::max(0.0, h.distance - behind)};
+    return RayHit{Body(this, unpackId(hits.front().body)), hits.front().point, hits.front().normal, hits.front().distance};
 }
 
 std::vector<RayHit> World::raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycastAll");
     if (settings_.planar) requireRayInPlane(origin, direction, "World.raycastAll");
-    const double behind = rayStartBehind(origin);
     std::vector<RayHit> out;
-    for (const PeerRayHit& h : impl_->peer->raycast(origin - behind * ray.direction, ray.direction, ray.maxDistance + behind, false, mask))
-        out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, std::max(0.0, h.distance - behind)});
+    for (const PeerRayHit& h : castFromOrigin(*impl_->peer, origin, ray, false, mask))
+        out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, h.distance});
     return out;
 }
 
