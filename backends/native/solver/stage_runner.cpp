@@ -44,12 +44,19 @@ void StageRunner::run(TaskSystem* tasks, const std::vector<Stage>& stages, Work&
 
     stages_ = &stages;
     work_ = &work;
+    workers_ = workers;
     if (counters_.size() < stages.size()) counters_.resize(stages.size());
+    int blocks = 0;
     for (std::size_t s = 0; s < stages.size(); ++s) {
-        // mainOnly stages have nothing to claim.
-        counters_[s].claimed.store(stages[s].mainOnly ? stages[s].blocks : 0, std::memory_order_relaxed);
+        counters_[s].firstBlock = blocks;
         counters_[s].completed.store(0, std::memory_order_relaxed);
+        blocks += stages[s].blocks;
     }
+    if (claims_.size() < static_cast<std::size_t>(blocks)) claims_.resize(static_cast<std::size_t>(blocks));
+    for (int b = 0; b < blocks; ++b) claims_[static_cast<std::size_t>(b)].taken.store(false, std::memory_order_relaxed);
+    for (std::size_t s = 0; s < stages.size(); ++s)  // mainOnly stages have nothing to claim
+        for (int b = 0; stages[s].mainOnly && b < stages[s].blocks; ++b)
+            claims_[static_cast<std::size_t>(counters_[s].firstBlock + b)].taken.store(true, std::memory_order_relaxed);
     finished_.store(false, std::memory_order_relaxed);
     openStage_.store(-1, std::memory_order_release);
 
@@ -92,11 +99,16 @@ void StageRunner::helperLoop(int worker) {
 void StageRunner::claimBlocks(int index, int worker) {
     Counters& c = counters_[static_cast<std::size_t>(index)];
     const int blocks = (*stages_)[static_cast<std::size_t>(index)].blocks;
-    for (int b = c.claimed.fetch_add(1, std::memory_order_relaxed); b < blocks;
-         b = c.claimed.fetch_add(1, std::memory_order_relaxed)) {
+    const auto tryRun = [&](int b) {
+        Claim& claim = claims_[static_cast<std::size_t>(c.firstBlock + b)];
+        // A relaxed look first: a block another worker took costs no write to its cache line.
+        if (claim.taken.load(std::memory_order_relaxed) || claim.taken.exchange(true, std::memory_order_relaxed)) return;
         work_->runBlock(index, b, worker);
         c.completed.fetch_add(1, std::memory_order_release);
-    }
+    };
+    const int start = static_cast<int>(static_cast<long long>(worker) * blocks / workers_);
+    for (int b = start; b < blocks; ++b) tryRun(b);
+    for (int b = start - 1; b >= 0; --b) tryRun(b);
 }
 
 }  // namespace anyphys::native
