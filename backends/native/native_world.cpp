@@ -223,18 +223,26 @@ std::vector<std::string> NativeWorld::activeStageNames() {
 
 void NativeWorld::step(double time, double dt) {
     rebuildPipelineIfNeeded();
-    anyActive_ = false;
     const Vec3 gravity = effects_.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
     const bool bounces = effects_.has(Effect::Restitution);
     const auto dot = [](const Vec3& x, const Vec3& y) { return x.dot(y); };
-    for (NativeBody& b : bodies_) {
-        if (!b.isActive()) continue;
-        anyActive_ = true;
-        if (bounces) b.fall.note(fallNotedLastStep_, b.state.linearVelocity, b.gravityScale * gravity, lastStepDt_, dot);
-        b.stepStartPosition = b.state.position;
-        b.stepStartOrientation = b.state.orientation;
-        b.constrained = false;
-    }
+    const int workers = tasks_ ? tasks_->workerCount() : 1;
+    activeSeen_.assign(static_cast<std::size_t>(workers), 0);
+    // Each body on its own: a walk over every body, split among the workers.
+    const auto startBodies = [&](int begin, int end, int worker) {
+        for (int i = begin; i < end; ++i) {
+            NativeBody& b = bodies_[static_cast<std::size_t>(i)];
+            if (!b.isActive()) continue;
+            activeSeen_[static_cast<std::size_t>(worker)] = 1;
+            if (bounces) b.fall.note(fallNotedLastStep_, b.state.linearVelocity, b.gravityScale * gravity, lastStepDt_, dot);
+            b.stepStartPosition = b.state.position;
+            b.stepStartOrientation = b.state.orientation;
+            b.constrained = false;
+        }
+    };
+    constexpr int kMinBodiesPerRange = 256;
+    parallelFor(tasks_, static_cast<int>(bodies_.size()), kMinBodiesPerRange, startBodies);
+    anyActive_ = std::find(activeSeen_.begin(), activeSeen_.end(), 1) != activeSeen_.end();
     for (Stage* stage : active_) stage->run(*this, {time, dt});
     lastStepDt_ = dt;
     fallNotedLastStep_ = bounces;

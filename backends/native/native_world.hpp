@@ -71,7 +71,9 @@ public:
     const std::vector<NativeBody>& bodies() const { return bodies_; }
     const ForceHook& forceHook() const { return forceHook_; }
     BroadPhase& broadPhase() { return broadPhase_; }
+    const BroadPhase& broadPhase() const { return broadPhase_; }
     ContactManager& contactManager() { return contacts_; }
+    const ContactManager& contactManager() const { return contacts_; }
     StepSolver& solver() { return solver_; }
     /// Where parallel work runs; null: on the calling thread.
     TaskSystem* taskSystem() const { return tasks_; }
@@ -118,6 +120,7 @@ private:
     std::vector<Stage*> active_;
     bool pipelineDirty_ = true;
     bool anyActive_ = true;
+    std::vector<std::uint8_t> activeSeen_;  // per worker: met an active body this step
     int awakeBodies_ = 0;       // dynamic and kinematic bodies awake
     int multiShapeBodies_ = 0;  // bodies with several shapes (their contacts need merging per body pair)
     BroadPhase broadPhase_;

@@ -291,41 +291,76 @@ public:
     }
     void run(NativeWorld& world, const StepInfo&) override {
         auto& bodies = world.bodies();
-        const double target = world.settings().linearSlop;
-        for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-            NativeBody& b = bodies[i];
-            if (!b.isActive() || !b.isDynamic() || b.trigger || b.shapes.empty()) continue;
-            const Vec3 travel = b.state.position - b.stepStartPosition;
-            if (travel.norm() < 0.5 * b.coreExtent) continue;  // the speculative margin covers it
-            const Transform start{b.stepStartPosition, b.stepStartOrientation}, end = b.pose();
-            double first = 1.0;
-            for (std::size_t k = 0; k < b.shapes.size(); ++k) {
-                const Shape& shape = b.shapes[k];
-                const ShapeSurface& mine = b.surfaces[k];
-                if (mine.trigger) continue;  // a sensor child never stops the body
-                const Transform from = shapeWorldPose(shape, start), to = shapeWorldPose(shape, end);
-                const Aabb swept = computeAabb(shape, from).merged(computeAabb(shape, to));
-                world.broadPhase().query(swept, [&](std::uint64_t key) {
-                    const NativeBody& other = bodies[proxyBody(key)];
-                    if (proxyBody(key) == i || other.type != BodyType::Static) return true;
-                    // A joint that keeps the pair apart from contacts keeps it from sweeps too.
-                    if (world.contactManager().excludes(i, proxyBody(key))) return true;
-                    const ShapeSurface& theirs = other.surfaces[proxyShape(key)];
-                    if (theirs.trigger || !layersCollide(mine.layer, mine.mask, theirs.layer, theirs.mask)) return true;
-                    const Shape& fixed = other.shapes[proxyShape(key)];
-                    // Already touching at the start: the contact solver owns that pair (a body
-                    // sliding fast along the ground must not be frozen in place).
-                    const double t = timeOfImpact(shape, from, to, fixed, shapeWorldPose(fixed, other.pose()), target);
-                    if (t > 0.0) first = std::min(first, t);
-                    return true;
-                });
+        TaskSystem* tasks = world.taskSystem();
+        const int workers = tasks ? tasks->workerCount() : 1;
+        if (static_cast<int>(stops_.size()) < workers) stops_.resize(static_cast<std::size_t>(workers));
+        for (auto& stops : stops_) stops.clear();
+        // The sweeps only read (the moving body, the static ones, the trees): any body on any worker.
+        const auto sweepRange = [&](int begin, int end, int worker) {
+            for (int i = begin; i < end; ++i) {
+                const double first = firstImpact(world, static_cast<std::uint32_t>(i));
+                if (first < 1.0) stops_[static_cast<std::size_t>(worker)].push_back({static_cast<std::uint32_t>(i), first});
             }
-            if (first >= 1.0) continue;
-            b.state.position = start.position + first * travel;
-            b.state.orientation = start.orientation.slerp(first, end.orientation);
-            world.updateProxies(i, Vec3::Zero());
+        };
+        constexpr int kMinBodiesPerRange = 256;
+        parallelFor(tasks, static_cast<int>(bodies.size()), kMinBodiesPerRange, sweepRange);
+        // Stopped in body order, whatever the workers: the tree comes out the same every run.
+        std::vector<Stop>& all = stops_.front();
+        for (std::size_t w = 1; w < stops_.size(); ++w) all.insert(all.end(), stops_[w].begin(), stops_[w].end());
+        for (auto& stops : stops_) stops.reserve(all.size());  // any worker may find them all next step
+        std::sort(all.begin(), all.end(), [](const Stop& x, const Stop& y) { return x.body < y.body; });
+        for (const Stop& stop : all) {
+            NativeBody& b = bodies[stop.body];
+            const Vec3 travel = b.state.position - b.stepStartPosition;
+            const Quat end = b.state.orientation;
+            b.state.position = b.stepStartPosition + stop.first * travel;
+            b.state.orientation = b.stepStartOrientation.slerp(stop.first, end);
+            world.updateProxies(stop.body, Vec3::Zero());
         }
     }
+
+private:
+    struct Stop {
+        std::uint32_t body;
+        double first;  // fraction of the step's motion before it would first touch a static body
+    };
+
+    /// The fraction of body i's motion this step before it first meets a static body it was not
+    /// touching at the start; 1 when it meets none or moved too little to tunnel.
+    static double firstImpact(const NativeWorld& world, std::uint32_t i) {
+        const auto& bodies = world.bodies();
+        const NativeBody& b = bodies[i];
+        if (!b.isActive() || !b.isDynamic() || b.trigger || b.shapes.empty()) return 1.0;
+        const Vec3 travel = b.state.position - b.stepStartPosition;
+        if (travel.norm() < 0.5 * b.coreExtent) return 1.0;  // the speculative margin covers it
+        const double target = world.settings().linearSlop;
+        const Transform start{b.stepStartPosition, b.stepStartOrientation}, end = b.pose();
+        double first = 1.0;
+        for (std::size_t k = 0; k < b.shapes.size(); ++k) {
+            const Shape& shape = b.shapes[k];
+            const ShapeSurface& mine = b.surfaces[k];
+            if (mine.trigger) continue;  // a sensor child never stops the body
+            const Transform from = shapeWorldPose(shape, start), to = shapeWorldPose(shape, end);
+            const Aabb swept = computeAabb(shape, from).merged(computeAabb(shape, to));
+            world.broadPhase().query(swept, [&](std::uint64_t key) {
+                const NativeBody& other = bodies[proxyBody(key)];
+                if (proxyBody(key) == i || other.type != BodyType::Static) return true;
+                // A joint that keeps the pair apart from contacts keeps it from sweeps too.
+                if (world.contactManager().excludes(i, proxyBody(key))) return true;
+                const ShapeSurface& theirs = other.surfaces[proxyShape(key)];
+                if (theirs.trigger || !layersCollide(mine.layer, mine.mask, theirs.layer, theirs.mask)) return true;
+                const Shape& fixed = other.shapes[proxyShape(key)];
+                // Already touching at the start: the contact solver owns that pair (a body
+                // sliding fast along the ground must not be frozen in place).
+                const double t = timeOfImpact(shape, from, to, fixed, shapeWorldPose(fixed, other.pose()), target);
+                if (t > 0.0) first = std::min(first, t);
+                return true;
+            });
+        }
+        return first;
+    }
+
+    std::vector<std::vector<Stop>> stops_;  // one list per worker
 };
 
 // Islands of touching bodies fall asleep together once all of them have rested long enough.
