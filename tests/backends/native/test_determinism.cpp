@@ -7,41 +7,13 @@
 
 #include "anyphys/anyphys.hpp"
 #include "anyphys/thread_pool.hpp"
+#include "late_reverse_tasks.hpp"
 #include "solver/contact_constraint.hpp"
 
 namespace anyphys {
 namespace {
 
-// Runs every range on the calling thread, in reverse order, and only when finish is called:
-// the stepping thread must never wait for a worker that has not started.
-class LateReverseTasks final : public TaskSystem {
-public:
-    explicit LateReverseTasks(int workers) : workers_(workers) {}
-    int workerCount() const override { return workers_; }
-    void* enqueue(int count, int minRange, RangeFn fn, void* context) override {
-        pending_.push_back({count, std::max(minRange, 1), fn, context});
-        return &pending_.back();
-    }
-    void finish(void* handle) override {
-        const Pending p = *static_cast<Pending*>(handle);
-        pending_.pop_back();
-        int worker = 0;
-        for (int end = p.count; end > 0; end -= p.size) {
-            const int begin = std::max(0, end - p.size);
-            p.fn(begin, end, worker, p.context);
-            worker = (worker + 1) % workers_;
-        }
-    }
-
-private:
-    struct Pending {
-        int count, size;
-        RangeFn fn;
-        void* context;
-    };
-    int workers_;
-    std::vector<Pending> pending_;
-};
+using test::LateReverseTasks;
 
 /// Every body's state, bit for bit, after `steps` steps of a tumbling pile. `planar`: the pile
 /// in the XY plane (a planar world, which has its own contact kernels). `events`, if given,
