@@ -7,6 +7,7 @@
 //     is the speed-up a section of that size can reach.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -18,11 +19,11 @@ namespace {
 constexpr int kItems = 4096;
 constexpr int kMinRange = 256;
 
-/// About `us` microseconds of arithmetic that the compiler cannot drop.
+/// Keeps the calling thread busy for `us` microseconds, as a step's serial part would.
 void serialWork(double us) {
-    double x = 0.0;
-    for (int i = 0; i < static_cast<int>(us * 400.0); ++i) x += std::sqrt(static_cast<double>(i));
-    benchmark::DoNotOptimize(x);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double, std::micro>(us);
+    while (std::chrono::steady_clock::now() < until) {
+    }
 }
 
 void parallelSection(benchmark::State& state) {

@@ -46,7 +46,7 @@ private:
     bool runOne(std::unique_lock<std::mutex>& lock, int worker);
     /// Unlocks and spins until a range is queued or finished, or kSpinTime has passed, then
     /// locks again. A step opens its parallel sections tens of microseconds apart, and waking a
-    /// thread asleep on a condition variable took about 40 us here (bench/thread_pool.cpp).
+    /// thread asleep on a condition variable takes about as long (bench/thread_pool.cpp).
     void spinForChange(std::unique_lock<std::mutex>& lock);
     static constexpr std::chrono::microseconds kSpinTime{50};
 
