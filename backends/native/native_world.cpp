@@ -226,14 +226,12 @@ void NativeWorld::step(double time, double dt) {
     const Vec3 gravity = effects_.has(Effect::Gravity) ? settings_.gravity : Vec3::Zero();
     const bool bounces = effects_.has(Effect::Restitution);
     const auto dot = [](const Vec3& x, const Vec3& y) { return x.dot(y); };
-    const int workers = tasks_ ? tasks_->workerCount() : 1;
-    activeSeen_.assign(static_cast<std::size_t>(workers), 0);
+    anyActive_ = awakeBodies_ > 0;  // counts exactly the bodies isActive() accepts
     // Each body on its own: a walk over every body, split among the workers.
-    const auto startBodies = [&](int begin, int end, int worker) {
+    const auto startBodies = [&](int begin, int end, int) {
         for (int i = begin; i < end; ++i) {
             NativeBody& b = bodies_[static_cast<std::size_t>(i)];
             if (!b.isActive()) continue;
-            activeSeen_[static_cast<std::size_t>(worker)] = 1;
             if (bounces) b.fall.note(fallNotedLastStep_, b.state.linearVelocity, b.gravityScale * gravity, lastStepDt_, dot);
             b.stepStartPosition = b.state.position;
             b.stepStartOrientation = b.state.orientation;
@@ -242,7 +240,6 @@ void NativeWorld::step(double time, double dt) {
     };
     constexpr int kMinBodiesPerRange = 256;
     parallelFor(tasks_, static_cast<int>(bodies_.size()), kMinBodiesPerRange, startBodies);
-    anyActive_ = std::find(activeSeen_.begin(), activeSeen_.end(), 1) != activeSeen_.end();
     for (Stage* stage : active_) stage->run(*this, {time, dt});
     lastStepDt_ = dt;
     fallNotedLastStep_ = bounces;
@@ -336,10 +333,9 @@ void NativeWorld::updateProxies(std::uint32_t index, const Vec3& displacement) {
 
 void NativeWorld::updateAllProxies(double dt) {
     const int workers = tasks_ ? tasks_->workerCount() : 1;
-    if (static_cast<int>(proxyMoves_.size()) < workers) proxyMoves_.resize(static_cast<std::size_t>(workers));
-    for (auto& moves : proxyMoves_) moves.clear();
+    proxyMoves_.reset(workers);
     const auto findMoves = [&](int begin, int end, int worker) {
-        auto& moves = proxyMoves_[static_cast<std::size_t>(worker)];
+        auto& moves = proxyMoves_.of(worker);
         for (int i = begin; i < end; ++i) {
             NativeBody& body = bodies_[static_cast<std::size_t>(i)];  // this worker's bodies only
             if (!body.isActive()) continue;
@@ -358,11 +354,7 @@ void NativeWorld::updateAllProxies(double dt) {
     constexpr int kMinBodiesPerRange = 256;
     parallelFor(tasks_, static_cast<int>(bodies_.size()), kMinBodiesPerRange, findMoves);
     // Moved in proxy order, whatever the workers: the tree comes out the same every run.
-    std::vector<ProxyMove>& all = proxyMoves_.front();
-    for (std::size_t w = 1; w < proxyMoves_.size(); ++w) all.insert(all.end(), proxyMoves_[w].begin(), proxyMoves_[w].end());
-    // Any worker may take every range next step (ranges go to whichever worker is free): each
-    // buffer holds the whole step's moves, so a steady world never allocates here.
-    for (auto& moves : proxyMoves_) moves.reserve(all.size());
+    std::vector<ProxyMove>& all = proxyMoves_.joined();
     std::sort(all.begin(), all.end());
     for (const ProxyMove& move : all) broadPhase_.setFatAabb(move.proxy, move.fat);
 }

@@ -13,6 +13,7 @@
 #include "integrators.hpp"
 #include "joints.hpp"
 #include "native_body.hpp"
+#include "per_worker_lists.hpp"
 #include "pipeline.hpp"
 #include "solver/step_solver.hpp"
 
@@ -120,7 +121,6 @@ private:
     std::vector<Stage*> active_;
     bool pipelineDirty_ = true;
     bool anyActive_ = true;
-    std::vector<std::uint8_t> activeSeen_;  // per worker: met an active body this step
     int awakeBodies_ = 0;       // dynamic and kinematic bodies awake
     int multiShapeBodies_ = 0;  // bodies with several shapes (their contacts need merging per body pair)
     BroadPhase broadPhase_;
@@ -138,7 +138,7 @@ private:
         Aabb fat;
         bool operator<(const ProxyMove& o) const { return proxy < o.proxy; }
     };
-    std::vector<std::vector<ProxyMove>> proxyMoves_;  // one list per worker
+    PerWorkerLists<ProxyMove> proxyMoves_;
     std::unordered_map<int, std::vector<std::uint32_t>> sleepingIslands_;
     int nextIslandId_ = 0;
 };

@@ -293,21 +293,18 @@ public:
         auto& bodies = world.bodies();
         TaskSystem* tasks = world.taskSystem();
         const int workers = tasks ? tasks->workerCount() : 1;
-        if (static_cast<int>(stops_.size()) < workers) stops_.resize(static_cast<std::size_t>(workers));
-        for (auto& stops : stops_) stops.clear();
+        stops_.reset(workers);
         // The sweeps only read (the moving body, the static ones, the trees): any body on any worker.
         const auto sweepRange = [&](int begin, int end, int worker) {
             for (int i = begin; i < end; ++i) {
                 const double first = firstImpact(world, static_cast<std::uint32_t>(i));
-                if (first < 1.0) stops_[static_cast<std::size_t>(worker)].push_back({static_cast<std::uint32_t>(i), first});
+                if (first < 1.0) stops_.of(worker).push_back({static_cast<std::uint32_t>(i), first});
             }
         };
         constexpr int kMinBodiesPerRange = 256;
         parallelFor(tasks, static_cast<int>(bodies.size()), kMinBodiesPerRange, sweepRange);
         // Stopped in body order, whatever the workers: the tree comes out the same every run.
-        std::vector<Stop>& all = stops_.front();
-        for (std::size_t w = 1; w < stops_.size(); ++w) all.insert(all.end(), stops_[w].begin(), stops_[w].end());
-        for (auto& stops : stops_) stops.reserve(all.size());  // any worker may find them all next step
+        std::vector<Stop>& all = stops_.joined();
         std::sort(all.begin(), all.end(), [](const Stop& x, const Stop& y) { return x.body < y.body; });
         for (const Stop& stop : all) {
             NativeBody& b = bodies[stop.body];
@@ -360,7 +357,7 @@ private:
         return first;
     }
 
-    std::vector<std::vector<Stop>> stops_;  // one list per worker
+    PerWorkerLists<Stop> stops_;
 };
 
 // Islands of touching bodies fall asleep together once all of them have rested long enough.

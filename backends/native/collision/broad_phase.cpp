@@ -445,11 +445,10 @@ void BroadPhase::updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onP
     moveBuffer_.erase(std::unique(moveBuffer_.begin(), moveBuffer_.end()), moveBuffer_.end());
 
     const int workers = tasks ? tasks->workerCount() : 1;
-    if (static_cast<int>(workerPairs_.size()) < workers) workerPairs_.resize(static_cast<std::size_t>(workers));
-    for (auto& pairs : workerPairs_) pairs.clear();
+    workerPairs_.reset(workers);
     // Each moved proxy's queries read the trees only; pairs go to the worker's own buffer.
     const auto findPairs = [&](int begin, int end, int worker) {
-        auto& out = workerPairs_[static_cast<std::size_t>(worker)];
+        auto& out = workerPairs_.of(worker);
         for (int k = begin; k < end; ++k) {
             const int id = moveBuffer_[static_cast<std::size_t>(k)];
             const Proxy& p = proxies_[id];
@@ -476,20 +475,16 @@ void BroadPhase::updatePairs(FunctionRef<void(std::uint64_t, std::uint64_t)> onP
     for (const int id : moveBuffer_) proxies_[id].moved = false;
     moveBuffer_.clear();
 
-    pairBuffer_.clear();
-    for (const auto& pairs : workerPairs_) pairBuffer_.insert(pairBuffer_.end(), pairs.begin(), pairs.end());
-    // Any worker may take every range next time (ranges go to whichever worker is free): each
-    // buffer holds all the pairs found, so a steady world never allocates here.
-    for (auto& pairs : workerPairs_) pairs.reserve(pairBuffer_.size());
+    auto& found = workerPairs_.joined();
     // Sorted: callers see a deterministic order whatever the workers did; unique: two proxies
     // with the same key pair (several proxies of one key) are reported once.
-    std::sort(pairBuffer_.begin(), pairBuffer_.end());
-    pairBuffer_.erase(std::unique(pairBuffer_.begin(), pairBuffer_.end()), pairBuffer_.end());
-    // Copy out first: the callback may create, move or destroy proxies.
-    std::vector<std::pair<std::uint64_t, std::uint64_t>> pairs = std::move(pairBuffer_);
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    // Taken out first: the callback may create, move or destroy proxies.
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> pairs = std::move(found);
     for (const auto& [a, b] : pairs) onPair(a, b);
     pairs.clear();
-    pairBuffer_ = std::move(pairs);  // keep the storage for the next call
+    found = std::move(pairs);  // keep the storage for the next call
 }
 
 bool BroadPhase::testOverlap(int proxyA, int proxyB) const { return fatAabb(proxyA).overlaps(fatAabb(proxyB)); }

@@ -9,6 +9,7 @@
 #include "anyphys/task_system.hpp"
 #include "collision/shape.hpp"
 #include "function_ref.hpp"
+#include "per_worker_lists.hpp"
 
 namespace anyphys::native {
 
@@ -142,8 +143,7 @@ private:
     int freeProxy_ = DynamicTree::kNull;
     int proxyCount_ = 0;
     std::vector<int> moveBuffer_;
-    std::vector<std::pair<std::uint64_t, std::uint64_t>> pairBuffer_;  // (min key, max key), reused
-    std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> workerPairs_;  // one per worker
+    PerWorkerLists<std::pair<std::uint64_t, std::uint64_t>> workerPairs_;  // (min key, max key)
 };
 
 }  // namespace anyphys::native

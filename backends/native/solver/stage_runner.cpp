@@ -54,9 +54,6 @@ void StageRunner::run(TaskSystem* tasks, const std::vector<Stage>& stages, Work&
     }
     if (claims_.size() < static_cast<std::size_t>(blocks)) claims_.resize(static_cast<std::size_t>(blocks));
     for (int b = 0; b < blocks; ++b) claims_[static_cast<std::size_t>(b)].taken.store(false, std::memory_order_relaxed);
-    for (std::size_t s = 0; s < stages.size(); ++s)  // mainOnly stages have nothing to claim
-        for (int b = 0; stages[s].mainOnly && b < stages[s].blocks; ++b)
-            claims_[static_cast<std::size_t>(counters_[s].firstBlock + b)].taken.store(true, std::memory_order_relaxed);
     finished_.store(false, std::memory_order_relaxed);
     openStage_.store(-1, std::memory_order_release);
 
