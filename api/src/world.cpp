@@ -894,29 +894,30 @@ void requireRayInPlane(const Vec3& origin, const Vec3& direction, const char* wh
 // starts next to (1e-8 met it, 1e-9 did not).
 double rayStartBehind(const Vec3& origin) { return 1e-6 * std::max(1.0, origin.cwiseAbs().maxCoeff()); }
 
-/// The peer's hits of a validated ray, started rayStartBehind its origin, with their distances
-/// measured from the origin again.
-std::vector<PeerRayHit> castFromOrigin(WorldPeer& peer, const Vec3& origin, const Ray& ray, bool closestOnly, std::uint32_t mask) {
+}  // namespace
+
+std::vector<PeerRayHit> detail::castFromOrigin(WorldPeer& peer, const Vec3& origin, const Vec3& direction, double maxDistance,
+                                               bool closestOnly, std::uint32_t mask) {
     const double behind = rayStartBehind(origin);
-    std::vector<PeerRayHit> hits = peer.raycast(origin - behind * ray.direction, ray.direction, ray.maxDistance + behind, closestOnly, mask);
+    std::vector<PeerRayHit> hits = peer.raycast(origin - behind * direction, direction, maxDistance + behind, closestOnly, mask);
     for (PeerRayHit& h : hits) h.distance = std::max(0.0, h.distance - behind);
     return hits;
 }
-}  // namespace
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycast");
     if (settings_.planar) requireRayInPlane(origin, direction, "World.raycast");
-    const auto hits = castFromOrigin(*impl_->peer, origin, ray, true, mask);
+    const auto hits = detail::castFromOrigin(*impl_->peer, origin, ray.direction, ray.maxDistance, true, mask);
     if (hits.empty()) return std::nullopt;
-    return RayHit{Body(this, unpackId(hits.front().body)), hits.front().point, hits.front().normal, hits.front().distance};
+    const PeerRayHit& hit = hits.front();
+    return RayHit{Body(this, unpackId(hit.body)), hit.point, hit.normal, hit.distance};
 }
 
 std::vector<RayHit> World::raycastAll(const Vec3& origin, const Vec3& direction, double maxDistance, std::uint32_t mask) {
     const Ray ray = validateRay(origin, direction, maxDistance, "World.raycastAll");
     if (settings_.planar) requireRayInPlane(origin, direction, "World.raycastAll");
     std::vector<RayHit> out;
-    for (const PeerRayHit& h : castFromOrigin(*impl_->peer, origin, ray, false, mask))
+    for (const PeerRayHit& h : detail::castFromOrigin(*impl_->peer, origin, ray.direction, ray.maxDistance, false, mask))
         out.push_back({Body(this, unpackId(h.body)), h.point, h.normal, h.distance});
     return out;
 }

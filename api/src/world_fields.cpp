@@ -175,7 +175,7 @@ void World::fireExplosions(double dt) {
             const double reach = ray.norm();
             bool shielded = false;
             if (reach > settings_.linearSlop) {
-                for (const PeerRayHit& h : impl_->peer->raycast(field.center, ray / reach, reach, false, 0xFFFFFFFFu)) {
+                for (const PeerRayHit& h : detail::castFromOrigin(*impl_->peer, field.center, ray / reach, reach, false, 0xFFFFFFFFu)) {
                     if (h.distance >= reach - settings_.linearSlop) break;
                     const BodyId other = unpackId(h.body);
                     if (isValid(other) && impl_->slots[other.index].def.type == BodyType::Static) {

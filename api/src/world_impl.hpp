@@ -46,6 +46,12 @@ struct HeldForce {
     bool touched = false;  // listed in Impl::heldSlots
 };
 
+/// The peer's hits of a ray whose direction is a unit vector, started a little behind its origin
+/// (world.cpp's rayStartBehind: a surface through the origin then means the same on every
+/// backend), with the distances measured from the origin again.
+std::vector<PeerRayHit> castFromOrigin(WorldPeer& peer, const Vec3& origin, const Vec3& direction, double maxDistance,
+                                       bool closestOnly, std::uint32_t mask);
+
 }  // namespace detail
 
 struct World::Slot {
