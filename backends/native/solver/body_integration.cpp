@@ -1,11 +1,13 @@
 #include "solver/body_integration.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 #include "anyphys/peers/gyroscopic.hpp"
 #include "solver/contact_constraint.hpp"
 #include "solver/isa_kernels.hpp"
+#include "solver/prefetch.hpp"
 #include "solver/state_runs.hpp"
 #include "solver/wide.hpp"
 
@@ -135,6 +137,11 @@ Quat renormalized(const Quat& q) {
 
 void integrateVelocities(const SolverBody* bodies, SolverState* states, int begin, int end, double h) {
     for (int i = begin; i < end; ++i) {
+        constexpr int kAhead = 8;  // bodies: about as far ahead as one record of the contact passes
+        if (i + kAhead < end) {
+            prefetchBytes(&bodies[i + kAhead], offsetof(SolverBody, invMass));  // what this loop reads
+            prefetchBytes<true>(&states[i + kAhead], kCacheLine);              // v and w
+        }
         const SolverBody& b = bodies[i];
         if (!b.dynamic) continue;
         SolverState& s = states[i];

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "contacts.hpp"
+#include "solver/prefetch.hpp"
 #include "solver/restitution_math.hpp"
 
 namespace anyphys::native {
@@ -241,7 +242,11 @@ void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* 
 }
 
 void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int count) {
+    constexpr int kAhead = 2;  // records
     for (int i = 0; i < count; ++i) {
+        if (i + kAhead < count)
+            for (ContactManifold* m : cold[i + kAhead].manifold)
+                if (m) prefetchBytes<true>(m, sizeof(ContactManifold));
         const WideContact& c = contacts[i];
         const Vec3W tangent2 = secondTangent(c);
         for (int lane = 0; lane < kLanes; ++lane) {

@@ -11,6 +11,7 @@
 #include "solver/restitution_rows.hpp"
 #include "solver/rigid_bias.hpp"
 #include "solver/isa_kernels.hpp"
+#include "solver/prefetch.hpp"
 #include "solver/state_runs.hpp"
 
 
@@ -37,6 +38,9 @@ static_assert(offsetof(SolverState, v) == kAngularRun + 3 * kDouble && offsetof(
                   kTurnRun + 4 * kDouble == sizeof(SolverState),
               "SolverState's runs moved");
 
+// Records ahead whose states a pass asks for (prefetchStates).
+constexpr int kPrefetchAhead = 2;
+
 ANYPHYS_KERNEL BodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
     BodyW b{};
     FloatW unused0, unused1;
@@ -56,6 +60,15 @@ ANYPHYS_KERNEL BodyW gatherMotion(const SolverState* states, const std::int32_t*
 ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* index, const bool* write, const BodyW& b) {
     scatterRuns(states, index, write, kAngularRun, 4 * kDouble, b.w.x, b.w.y, b.w.z, b.v.x);
     scatterRuns(states, index, write, kLinearRun, 2 * kDouble, b.v.y, b.v.z, zero(), zero());  // not turn
+}
+
+// Asks for the states of a later record's bodies (`bytes` of each: the velocities' run, or the
+// whole state), so that their loads overlap this record's work (prefetch.hpp).
+ANYPHYS_KERNEL void prefetchStates(const SolverState* states, const std::int32_t* bodyA, const std::int32_t* bodyB,
+                                   std::size_t bytes) {
+    for (const std::int32_t* index : {bodyA, bodyB})
+        for (int k = 0; k < kLanes; ++k)
+            if (index[k] != kStaticBody) prefetchBytes<true>(states + index[k], bytes);
 }
 
 // Applies impulse P at anchors rA (on A, negated) and rB.
@@ -143,6 +156,7 @@ ANYPHYS_KERNEL void summarizeImpl(const WideContact* contacts, WideWarmStart* wa
 
 ANYPHYS_KERNEL void warmStartImpl(const WideWarmStart* warm, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
+        if (i + kPrefetchAhead < count) prefetchStates(states, warm[i + kPrefetchAhead].bodyA, warm[i + kPrefetchAhead].bodyB, kCacheLine);
         const WideWarmStart& c = warm[i];
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         a.v = a.v - c.linearA;
@@ -264,6 +278,10 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
     const bool predictLoad = params.friction && (!useBias || !params.soft);
     const RigidBias rigid{invH, maxPush, baumgarte, slop, useBias};
     for (int i = 0; i < count; ++i) {
+        if (i + kPrefetchAhead < count) {
+            prefetchStates(states, contacts[i + kPrefetchAhead].bodyA, contacts[i + kPrefetchAhead].bodyB, sizeof(SolverState));
+            if (params.prefetchRecords) prefetchBytes<true>(&contacts[i + kPrefetchAhead], sizeof(WideContact));
+        }
         WideContact& c = contacts[i];
         BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
         const Vec3W dp = b.dp - a.dp;

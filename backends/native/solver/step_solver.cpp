@@ -8,6 +8,7 @@
 #include "anyphys/task_system.hpp"
 #include "native_world.hpp"
 #include "solver/body_integration.hpp"
+#include "solver/prefetch.hpp"
 #include "solver/restitution_math.hpp"
 
 namespace anyphys::native {
@@ -388,6 +389,10 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     buildBodies(world, step);
     if (restitution_) bounceSupports_.assign(bodies_.size(), Vec3::Zero());  // nothing holds a body yet
     buildConstraints();
+    // A core's cache on the machines measured (2 MB here, 1 to 2 MB on most desktops): the
+    // 1 000-box drop's records (0.7 MB) fit, the 10 000-box drop's (7 MB) do not.
+    constexpr std::size_t kRecordsInCache = std::size_t(2) << 20;
+    solveParams_.prefetchRecords = wide_.size() * sizeof(WideContact) > kRecordsInCache;
     planStages(world);
     runner_.run(world.taskSystem(), stages_, *this);
 }
@@ -406,6 +411,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
+                if (w + kPrefetchAhead < end) prefetchPrepare(w + kPrefetchAhead);
                 ContactLane lanes[wide::kLanes];
                 const int n = gatherLanes(w, lanes);
                 prepareContacts(wide_[w], wideCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
@@ -449,6 +455,16 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     }
 }
 
+void StepSolver::prefetchPrepare(int w) const {
+    const WideSource& src = wideSource_[static_cast<std::size_t>(w)];
+    for (int k = 0; k < src.count; ++k) {
+        const ContactLane& lane = lanes_[graph_.lanes()[static_cast<std::size_t>(src.first + k)]];
+        prefetchBytes(lane.manifold, sizeof(ContactManifold));
+        for (const std::int32_t body : {lane.bodyA, lane.bodyB})
+            if (body != kStaticBody) prefetchBytes(&bodies_[static_cast<std::size_t>(body)], sizeof(SolverBody));
+    }
+}
+
 int StepSolver::gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const {
     const WideSource& src = wideSource_[static_cast<std::size_t>(w)];
     for (int k = 0; k < src.count; ++k) lanes[k] = lanes_[graph_.lanes()[static_cast<std::size_t>(src.first + k)]];
@@ -461,6 +477,7 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
+                if (w + kPrefetchAhead < end) prefetchPrepare(w + kPrefetchAhead);
                 ContactLane lanes[wide::kLanes];
                 const int n = gatherLanes(w, lanes);
                 preparePlanarContacts(planar_[w], planarCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);

@@ -97,6 +97,9 @@ private:
     bool runPlanarBlock(const StagePlan& p, int first, int begin, int end);
     /// The contact lanes that wide constraint `w` packs, copied into `lanes`; returns their count.
     int gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const;
+    /// Asks for what preparing WideContact w will read: its lanes' manifolds and solver bodies.
+    void prefetchPrepare(int w) const;
+    static constexpr int kPrefetchAhead = 2;  // records
     /// Writes solver poses and velocities back to the world's bodies.
     void finalizeBodies(int begin, int end);
     /// Fills each joint's springsOnBusierBody.
