@@ -184,24 +184,35 @@ void explosionGivesTheSumOfItsImpulses(WorldSettings s, double unitRoundoff) {
     EXPECT_NEAR((momentum - impulses).norm(), 0.0, 1e-9 + 20 * unitRoundoff * 500.0);
 }
 
+// Speeds of two balls (radius 0.25 m) at `first` and `second` after an explosion at the origin
+// (500 N s, radius 5 m) beside a static slab of half extents (0.1, 1, 1) at `slabCentre`, no
+// gravity, 10 steps.
+struct TwoBalls {
+    Body first, second;
+};
+TwoBalls explodeBesideASlab(World& world, const Vec3& slabCentre, const Vec3& first, const Vec3& second) {
+    world.addField(FieldDef::explosion(Vec3(0, 0, 0), 0.0, 500.0, 5.0));
+    BodyDef slab;
+    slab.type = BodyType::Static;
+    slab.shape = ShapeDef::box(Vec3(0.1, 1.0, 1.0));
+    slab.position = slabCentre;
+    world.createBody(slab);
+    BodyDef def;
+    def.shape = ShapeDef::sphere(0.25);
+    def.position = first;
+    Body a = world.createBody(def);
+    def.position = second;
+    Body b = world.createBody(def);
+    for (int i = 0; i < 10; ++i) world.step();
+    return {a, b};
+}
+
 // Static geometry between the centre and a body shields it (a ray cast); a body in the open
 // beside it is pushed.
 void wallShieldsFromExplosion(WorldSettings s) {
     s.gravity = Vec3::Zero();
     World world(s);
-    world.addField(FieldDef::explosion(Vec3(0, 0, 0), 0.0, 500.0, 5.0));
-    BodyDef wall;
-    wall.type = BodyType::Static;
-    wall.shape = ShapeDef::box(Vec3(0.1, 1.0, 1.0));
-    wall.position = Vec3(1.5, 0, 0);
-    world.createBody(wall);
-    BodyDef def;
-    def.shape = ShapeDef::sphere(0.25);
-    def.position = Vec3(3, 0, 0);
-    Body behind = world.createBody(def);
-    def.position = Vec3(-3, 0, 0);
-    Body open = world.createBody(def);
-    for (int i = 0; i < 10; ++i) world.step();
+    const auto [behind, open] = explodeBesideASlab(world, Vec3(1.5, 0, 0), Vec3(3, 0, 0), Vec3(-3, 0, 0));
     std::cout << "  " << s.backend << (s.planar ? " planar" : "") << ": behind the wall " << behind.linearVelocity().norm()
               << " m/s, in the open " << open.linearVelocity().norm() << " m/s\n";
     EXPECT_EQ(behind.linearVelocity().norm(), 0.0);
@@ -216,19 +227,8 @@ void wallShieldsFromExplosion(WorldSettings s) {
 void explosionOnAFacePushesOnlyItsSide(WorldSettings s) {
     s.gravity = Vec3::Zero();
     World world(s);
-    world.addField(FieldDef::explosion(Vec3(0, 0, 0), 0.0, 500.0, 5.0));
-    BodyDef slab;
-    slab.type = BodyType::Static;
-    slab.shape = ShapeDef::box(Vec3(0.1, 1.0, 1.0));
-    slab.position = Vec3(-0.1, 0, 0);  // its face x = 0 holds the centre
-    world.createBody(slab);
-    BodyDef def;
-    def.shape = ShapeDef::sphere(0.25);
-    def.position = Vec3(2, 0.5, 0);
-    Body front = world.createBody(def);
-    def.position = Vec3(-2, 0.5, 0);
-    Body back = world.createBody(def);
-    for (int i = 0; i < 10; ++i) world.step();
+    // The slab's face x = 0 holds the centre.
+    const auto [front, back] = explodeBesideASlab(world, Vec3(-0.1, 0, 0), Vec3(2, 0.5, 0), Vec3(-2, 0.5, 0));
     std::cout << "  " << s.backend << (s.planar ? " planar" : "") << ": in front of the face " << front.linearVelocity().norm()
               << " m/s, behind it " << back.linearVelocity().norm() << " m/s\n";
     EXPECT_GT(front.linearVelocity().x(), 1.0);
