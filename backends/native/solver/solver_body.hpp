@@ -32,7 +32,7 @@ struct alignas(64) SolverState {
 static_assert(sizeof(SolverState) == 16 * sizeof(double), "SolverState is four runs of four doubles");
 
 struct SolverBody {
-    // First, what integrateVelocities reads every substep (72 bytes: two cache lines at most,
+    // First, what integrateVelocities reads every substep (80 bytes: two cache lines at most,
     // where spread over the record it touched four of five; at 50 000 bodies the records no
     // longer fit in cache and the stage waited on them).
     std::uint32_t body = 0;                // index in NativeWorld::bodies()
