@@ -136,11 +136,11 @@ Quat renormalized(const Quat& q) {
 }
 
 void integrateVelocities(const SolverBody* bodies, SolverState* states, int begin, int end, double h) {
+    constexpr int kBodiesAhead = 8;  // about as far ahead as kRecordsAhead in the contact passes
     for (int i = begin; i < end; ++i) {
-        constexpr int kAhead = 8;  // bodies: about as far ahead as one record of the contact passes
-        if (i + kAhead < end) {
-            prefetchBytes(&bodies[i + kAhead], offsetof(SolverBody, invMass));  // what this loop reads
-            prefetchBytes<true>(&states[i + kAhead], kCacheLine);              // v and w
+        if (i + kBodiesAhead < end) {
+            prefetchBytes(&bodies[i + kBodiesAhead], offsetof(SolverBody, invMass));  // what this loop reads
+            prefetchBytes<true>(&states[i + kBodiesAhead], kCacheLine);              // v and w
         }
         const SolverBody& b = bodies[i];
         if (!b.dynamic) continue;

@@ -242,10 +242,9 @@ void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* 
 }
 
 void storeImpulses(const WideContact* contacts, const WideContactCold* cold, int count) {
-    constexpr int kAhead = 2;  // records
     for (int i = 0; i < count; ++i) {
-        if (i + kAhead < count)
-            for (ContactManifold* m : cold[i + kAhead].manifold)
+        if (i + kRecordsAhead < count)
+            for (ContactManifold* m : cold[i + kRecordsAhead].manifold)
                 if (m) prefetchBytes<true>(m, sizeof(ContactManifold));
         const WideContact& c = contacts[i];
         const Vec3W tangent2 = secondTangent(c);

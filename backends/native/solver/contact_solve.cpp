@@ -38,9 +38,6 @@ static_assert(offsetof(SolverState, v) == kAngularRun + 3 * kDouble && offsetof(
                   kTurnRun + 4 * kDouble == sizeof(SolverState),
               "SolverState's runs moved");
 
-// Records ahead whose states a pass asks for (prefetchStates).
-constexpr int kPrefetchAhead = 2;
-
 ANYPHYS_KERNEL BodyW gatherVelocities(const SolverState* states, const std::int32_t* index) {
     BodyW b{};
     FloatW unused0, unused1;
@@ -156,7 +153,7 @@ ANYPHYS_KERNEL void summarizeImpl(const WideContact* contacts, WideWarmStart* wa
 
 ANYPHYS_KERNEL void warmStartImpl(const WideWarmStart* warm, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
-        if (i + kPrefetchAhead < count) prefetchStates(states, warm[i + kPrefetchAhead].bodyA, warm[i + kPrefetchAhead].bodyB, kCacheLine);
+        if (i + kRecordsAhead < count) prefetchStates(states, warm[i + kRecordsAhead].bodyA, warm[i + kRecordsAhead].bodyB, kCacheLine);
         const WideWarmStart& c = warm[i];
         BodyW a = gatherVelocities(states, c.bodyA), b = gatherVelocities(states, c.bodyB);
         a.v = a.v - c.linearA;
@@ -278,9 +275,9 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
     const bool predictLoad = params.friction && (!useBias || !params.soft);
     const RigidBias rigid{invH, maxPush, baumgarte, slop, useBias};
     for (int i = 0; i < count; ++i) {
-        if (i + kPrefetchAhead < count) {
-            prefetchStates(states, contacts[i + kPrefetchAhead].bodyA, contacts[i + kPrefetchAhead].bodyB, sizeof(SolverState));
-            if (params.prefetchRecords) prefetchBytes<true>(&contacts[i + kPrefetchAhead], sizeof(WideContact));
+        if (i + kRecordsAhead < count) {
+            prefetchStates(states, contacts[i + kRecordsAhead].bodyA, contacts[i + kRecordsAhead].bodyB, sizeof(SolverState));
+            if (params.prefetchRecords) prefetchBytes<true>(&contacts[i + kRecordsAhead], sizeof(WideContact));
         }
         WideContact& c = contacts[i];
         BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);

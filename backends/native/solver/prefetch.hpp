@@ -10,6 +10,10 @@ namespace anyphys::native {
 
 inline constexpr std::size_t kCacheLine = 64;
 
+/// How many records ahead a pass over constraint records asks (about 2 us of work at 50 000
+/// bodies: time enough for a miss to arrive, near enough to stay in L1).
+inline constexpr int kRecordsAhead = 2;
+
 /// Hints the cache lines of [at, at + bytes); `forWrite` when the loop will write them.
 template <bool forWrite = false>
 inline void prefetchBytes(const void* at, std::size_t bytes) {

@@ -411,7 +411,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
-                if (w + kPrefetchAhead < end) prefetchPrepare(w + kPrefetchAhead);
+                if (w + kRecordsAhead < end) prefetchPrepare(w + kRecordsAhead);
                 ContactLane lanes[wide::kLanes];
                 const int n = gatherLanes(w, lanes);
                 prepareContacts(wide_[w], wideCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
@@ -477,7 +477,7 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
-                if (w + kPrefetchAhead < end) prefetchPrepare(w + kPrefetchAhead);
+                if (w + kRecordsAhead < end) prefetchPrepare(w + kRecordsAhead);
                 ContactLane lanes[wide::kLanes];
                 const int n = gatherLanes(w, lanes);
                 preparePlanarContacts(planar_[w], planarCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);

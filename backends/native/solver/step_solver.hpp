@@ -99,7 +99,6 @@ private:
     int gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const;
     /// Asks for what preparing WideContact w will read: its lanes' manifolds and solver bodies.
     void prefetchPrepare(int w) const;
-    static constexpr int kPrefetchAhead = 2;  // records
     /// Writes solver poses and velocities back to the world's bodies.
     void finalizeBodies(int begin, int end);
     /// Fills each joint's springsOnBusierBody.
