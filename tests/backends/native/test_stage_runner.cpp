@@ -99,7 +99,7 @@ TEST(StageRunner, EveryBlockRunsOnceAfterTheStageBefore) {
 
 TEST(StageRunner, HelpersThatStartAfterTheWorkIsDoneFindNothingLeft) {
     for (int workers : {2, 4}) {
-        test::LateReverseTasks tasks(workers);
+        anyphys::test::LateReverseTasks tasks(workers);  // not native::test, which a unity batch may hold
         expectEveryBlockOnceInOrder(&tasks, std::to_string(workers) + " late helpers");
     }
 }
