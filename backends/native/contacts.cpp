@@ -162,7 +162,7 @@ bool ContactManager::excludes(std::uint32_t a, std::uint32_t b) const {
     return !excluded_.empty() && excluded_.contains(bodyPairKey(a, b));
 }
 
-void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies,
+void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const NativeBodies& bodies,
                              const MaterialTable& materials) {
     if (keyB < keyA) std::swap(keyA, keyB);
     const std::uint32_t ia = proxyBody(keyA), ib = proxyBody(keyB);
@@ -211,7 +211,7 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const std::
     c.restitution = m.restitution;
 }
 
-void ContactManager::collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
+void ContactManager::collideContact(Contact& c, NativeBodies& bodies, const BroadPhase& broadPhase,
                                     double speculativeDistance, double linearSlop, double dt, bool planar,
                                     Scratch& scratch) const {
     const NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
@@ -328,7 +328,7 @@ bool ContactManager::recycle(Contact& c, const NativeBody& a, const NativeBody& 
     return true;
 }
 
-void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& broadPhase, double speculativeDistance,
+void ContactManager::update(NativeBodies& bodies, const BroadPhase& broadPhase, double speculativeDistance,
                             double linearSlop, double dt, bool planar, std::vector<std::uint32_t>& toWake,
                             TaskSystem* tasks) {
     const int workers = tasks ? tasks->workerCount() : 1;
@@ -378,7 +378,7 @@ void ContactManager::update(std::vector<NativeBody>& bodies, const BroadPhase& b
     }
 }
 
-void ContactManager::classify(const Contact& c, std::uint32_t slot, const std::vector<NativeBody>& bodies,
+void ContactManager::classify(const Contact& c, std::uint32_t slot, const NativeBodies& bodies,
                               ChunkLists& lists) {
     if (c.separated) {
         lists.separated.push_back(slot);

@@ -11,10 +11,12 @@
 #include "collision/broad_phase.hpp"
 #include "collision/collide.hpp"
 #include "collision/shape.hpp"
+#include "large_pages.hpp"
 
 namespace anyphys::native {
 
 struct NativeBody;
+using NativeBodies = LargeVector<NativeBody>;  // native_body.hpp
 
 /// A manifold point with the impulses the solver left on it.
 struct ContactPointState {
@@ -79,7 +81,7 @@ inline int proxyShape(std::uint64_t key) { return int(key & ((1u << 20) - 1)); }
 class ContactManager {
 public:
     /// A broad-phase pair: creates the contact if the bodies may touch at all.
-    void addPair(std::uint64_t keyA, std::uint64_t keyB, const std::vector<NativeBody>& bodies, const MaterialTable& materials);
+    void addPair(std::uint64_t keyA, std::uint64_t keyB, const NativeBodies& bodies, const MaterialTable& materials);
     /// Runs the narrow phase on every contact with an awake moving body (on the workers of
     /// `tasks`, if any), then, in slot order, destroys contacts whose fat bounds separated, lists
     /// the contacts that may touch (forEachTouchCandidate) and appends to `toWake` the sleeping
@@ -88,7 +90,7 @@ public:
     /// dt), so an impact in the next step always has a contact to stop it.
     /// In a planar world (`planar`) points that differ only in Z are merged: the plane holds the
     /// bodies, so they would be the same constraint twice.
-    void update(std::vector<NativeBody>& bodies, const BroadPhase& broadPhase, double speculativeDistance,
+    void update(NativeBodies& bodies, const BroadPhase& broadPhase, double speculativeDistance,
                 double linearSlop, double dt, bool planar, std::vector<std::uint32_t>& toWake, TaskSystem* tasks);
     void removeBody(std::uint32_t body);
     void clear();
@@ -147,8 +149,8 @@ private:
 
     void destroy(std::uint32_t slot);
     /// Sorts a contact the narrow phase has just updated into its chunk's lists.
-    static void classify(const Contact& c, std::uint32_t slot, const std::vector<NativeBody>& bodies, ChunkLists& lists);
-    void collideContact(Contact& c, std::vector<NativeBody>& bodies, const BroadPhase& broadPhase,
+    static void classify(const Contact& c, std::uint32_t slot, const NativeBodies& bodies, ChunkLists& lists);
+    void collideContact(Contact& c, NativeBodies& bodies, const BroadPhase& broadPhase,
                         double speculativeDistance, double linearSlop, double dt, bool planar, Scratch& scratch) const;
     // Contact recycling (as Box2D v3 and Box3D): while a pair of flat shapes rests and has moved
     // less than linearSlop since the narrow phase last ran on it, its manifolds are kept, the
@@ -158,7 +160,7 @@ private:
     // column of cubes buckle under its own weight above about 24 cubes at 60 Hz.
     bool recycle(Contact& c, const NativeBody& a, const NativeBody& b, double linearSlop, double dt) const;
 
-    std::vector<Contact> slots_;
+    LargeVector<Contact> slots_;
     std::vector<std::uint32_t> free_;
     std::vector<std::uint32_t> touchCandidates_;  // slots, ascending (forEachTouchCandidate)
     std::vector<ChunkLists> chunks_;              // per chunk of slots (update); capacity kept

@@ -8,6 +8,7 @@
 #include "anyphys/peers/body_peer.hpp"
 #include "anyphys/peers/rebound_from_depth.hpp"
 #include "collision/shape.hpp"
+#include "large_pages.hpp"
 
 namespace anyphys::native {
 
@@ -77,6 +78,9 @@ struct NativeBody {
     bool isActive() const { return alive && moves() && awake; }
     Transform pose() const { return {state.position, state.orientation}; }
 };
+
+/// The world's bodies by index: past about 10 000 bodies, on large pages.
+using NativeBodies = LargeVector<NativeBody>;
 
 class NativeBodyPeer final : public BodyPeer {
 public:

@@ -68,8 +68,8 @@ public:
     /// Wakes the bodies of a joint (a changed motor, limit or spring).
     void wakeJoint(std::uint32_t joint);
     /// Body slots; a slot with alive == false is free.
-    std::vector<NativeBody>& bodies() { return bodies_; }
-    const std::vector<NativeBody>& bodies() const { return bodies_; }
+    NativeBodies& bodies() { return bodies_; }
+    const NativeBodies& bodies() const { return bodies_; }
     const ForceHook& forceHook() const { return forceHook_; }
     BroadPhase& broadPhase() { return broadPhase_; }
     const BroadPhase& broadPhase() const { return broadPhase_; }
@@ -113,7 +113,7 @@ private:
     double lastStepDt_ = 0.0;   // s: the last step's (NativeBody::fall)
     bool fallNotedLastStep_ = false;  // the last step noted its bodies' NativeBody::fall
     ForceHook forceHook_;
-    std::vector<NativeBody> bodies_;
+    NativeBodies bodies_;
     std::vector<std::uint32_t> freeSlots_;
     std::vector<NativeJoint> joints_;
     std::vector<std::uint32_t> freeJoints_;

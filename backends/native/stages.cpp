@@ -184,7 +184,7 @@ private:
     /// Whether damping at rate c acts as a velocity factor rather than as a force in the integrator.
     static bool dampingAsFactor(double c, double h, bool semiImplicit) { return semiImplicit || c * h > kMaxExplicitDampingStep; }
 
-    void applyDampingFactors(const std::vector<NativeBody>& bodies, double h, double share, bool semiImplicit) {
+    void applyDampingFactors(const NativeBodies& bodies, double h, double share, bool semiImplicit) {
         for (std::size_t i = 0; i < dynamic_.size(); ++i) {
             const NativeBody& b = bodies[dynamic_[i]];
             if (b.linearDamping > 0.0 && dampingAsFactor(b.linearDamping, h, semiImplicit))

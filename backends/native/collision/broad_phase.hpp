@@ -9,6 +9,7 @@
 #include "anyphys/task_system.hpp"
 #include "collision/shape.hpp"
 #include "function_ref.hpp"
+#include "large_pages.hpp"
 #include "per_worker_lists.hpp"
 
 namespace anyphys::native {
@@ -72,7 +73,7 @@ private:
     bool isProxy(int proxy) const;
     int validateSubtree(int node, int& leafCount) const;  // height, or -2 on a broken invariant
 
-    std::vector<Node> nodes_;
+    LargeVector<Node> nodes_;
     int root_ = kNull;
     int freeList_ = kNull;
     int proxyCount_ = 0;
@@ -139,7 +140,7 @@ private:
     // static geometry. Tree user data is the broad-phase proxy id.
     DynamicTree staticTree_;
     DynamicTree dynamicTree_;
-    std::vector<Proxy> proxies_;
+    LargeVector<Proxy> proxies_;
     int freeProxy_ = DynamicTree::kNull;
     int proxyCount_ = 0;
     std::vector<int> moveBuffer_;

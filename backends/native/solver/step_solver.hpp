@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "large_pages.hpp"
 #include "pipeline.hpp"
 #include "solver/constraint_graph.hpp"
 #include "solver/contact_constraint.hpp"
@@ -107,21 +108,21 @@ private:
     void applyForceCallback(int substep);
 
     // Per step, reused (no allocation once sizes are stable).
-    std::vector<ContactLane> lanes_;          // by contact order; bodies are world indices until solve
+    LargeVector<ContactLane> lanes_;          // by contact order; bodies are world indices until solve
     std::vector<std::uint32_t> jointList_;    // joint slots with an awake dynamic body, in slot order
     std::vector<JointConstraint> joints_;
     std::vector<std::uint16_t> springsPerBody_;  // per solver body: sprung joints on it (buildConstraints)
     std::vector<std::uint32_t> bodyOrder_;    // world index of each solver body
     std::vector<std::int32_t> solverIndex_;   // per world body: solver index or kStaticBody
-    std::vector<SolverBody> bodies_;
-    std::vector<SolverState> states_;
+    LargeVector<SolverBody> bodies_;
+    LargeVector<SolverState> states_;
     std::vector<Vec3> bounceSupports_;        // per solver body: the restitution stage's shock propagation
     ConstraintGraph graph_;
-    std::vector<WideContact> wide_;       // 3D worlds
-    std::vector<WideContactCold> wideCold_;  // beside wide_: what only prepare, restitution and store read
-    std::vector<WideWarmStart> wideWarm_;    // beside wide_: the impulses as velocity changes, for the warm start
-    std::vector<PlanarContact> planar_;   // planar worlds: the same constraints with 3 degrees of freedom
-    std::vector<PlanarContactCold> planarCold_;  // beside planar_
+    LargeVector<WideContact> wide_;       // 3D worlds
+    LargeVector<WideContactCold> wideCold_;  // beside wide_: what only prepare, restitution and store read
+    LargeVector<WideWarmStart> wideWarm_;    // beside wide_: the impulses as velocity changes, for the warm start
+    LargeVector<PlanarContact> planar_;   // planar worlds: the same constraints with 3 degrees of freedom
+    LargeVector<PlanarContactCold> planarCold_;  // beside planar_
     int wideCount_ = 0;                   // of whichever is in use
     bool planarWorld_ = false;
     struct WideSource {
