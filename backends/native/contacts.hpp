@@ -11,12 +11,9 @@
 #include "collision/broad_phase.hpp"
 #include "collision/collide.hpp"
 #include "collision/shape.hpp"
-#include "large_pages.hpp"
+#include "native_body.hpp"
 
 namespace anyphys::native {
-
-struct NativeBody;
-using NativeBodies = LargeVector<NativeBody>;  // native_body.hpp
 
 /// A manifold point with the impulses the solver left on it.
 struct ContactPointState {

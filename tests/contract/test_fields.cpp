@@ -184,9 +184,9 @@ void explosionGivesTheSumOfItsImpulses(WorldSettings s, double unitRoundoff) {
     EXPECT_NEAR((momentum - impulses).norm(), 0.0, 1e-9 + 20 * unitRoundoff * 500.0);
 }
 
-// Speeds of two balls (radius 0.25 m) at `first` and `second` after an explosion at the origin
-// (500 N s, radius 5 m) beside a static slab of half extents (0.1, 1, 1) at `slabCentre`, no
-// gravity, 10 steps.
+// Two balls (radius 0.25 m) placed at `first` and `second`, after 10 steps of an explosion at the
+// origin (500 N s, radius 5 m) beside a static slab of half extents (0.1, 1, 1) at `slabCentre`;
+// the caller turns gravity off.
 struct TwoBalls {
     Body first, second;
 };
