@@ -49,12 +49,28 @@ struct PlanarContact {
 /// per-lane fields as a 3D record's.
 using PlanarContactCold = WideContactCold;
 
+/// A record's accumulated impulses as each lane's change of velocity, beside the PlanarContacts
+/// (as WideWarmStart in 3D): written by the prepare stage and by the pass that ends each substep,
+/// so that the warm start reads these 256 bytes a record instead of the anchors, masses and
+/// impulses of the whole PlanarContact.
+struct PlanarWarmStart {
+    std::int32_t bodyA[wide::kLanes];
+    std::int32_t bodyB[wide::kLanes];
+    bool writeA[wide::kLanes];
+    bool writeB[wide::kLanes];
+    wide::FloatW vxA, vyA, wA;  // subtracted from body A's velocity
+    wide::FloatW vxB, vyB, wB;  // added to body B's
+};
+
 /// Fills `pc` from up to four lanes (the rest are padding with no effect).
 void preparePlanarContacts(PlanarContact& pc, PlanarContactCold& cold, const ContactLane* lanes, int count,
                            const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params);
-void warmStartPlanarContacts(PlanarContact* contacts, int count, SolverState* states);
-void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
-                         bool useBias, bool endOfSubstep);
+/// Sums each record's impulses into `warm` (the prepare stage's warm start).
+void summarizePlanarImpulses(const PlanarContact* contacts, PlanarWarmStart* warm, int count);
+void warmStartPlanarContacts(const PlanarWarmStart* warm, int count, SolverState* states);
+/// As solveContacts: a pass that ends a substep sums its impulses into `warm` for the next one.
+void solvePlanarContacts(PlanarContact* contacts, PlanarWarmStart* warm, int count, SolverState* states,
+                         const ContactSolveParams& params, bool useBias, bool endOfSubstep);
 /// As applyRestitution: true when some row bounced or held.
 bool applyPlanarRestitution(PlanarContact* contacts, PlanarContactCold* cold, int count, SolverState* states,
                             Vec3* supports, const ContactSolveParams& params);

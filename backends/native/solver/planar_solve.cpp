@@ -95,29 +95,49 @@ ANYPHYS_KERNEL void clampFrictionToLoad(PlanarContact& c, PlanarBodyW& a, Planar
     applyImpulse(a, b, c, c.centerAx, c.centerAy, c.centerBx, c.centerBy, -P * c.normalY, P * c.normalX);
 }
 
-ANYPHYS_KERNEL void warmStartImpl(PlanarContact* contacts, int count, SolverState* states) {
+// The accumulated impulses summed into one impulse and one moment per body, as the changes of
+// velocity the warm start applies.
+ANYPHYS_KERNEL void summarize(const PlanarContact& c, PlanarWarmStart& out) {
+    const FloatW nx = c.normalX, ny = c.normalY;
+    const FloatW f = c.frictionImpulse;
+    FloatW normalTotal = zero();
+    // Moments r x P of the friction impulse f (-ny, nx) and of each point's impulse l (nx, ny).
+    FloatW momentA = f * (c.centerAx * nx + c.centerAy * ny), momentB = f * (c.centerBx * nx + c.centerBy * ny);
+    for (int j = 0; j < c.pointCount; ++j) {
+        const PlanarContactPoint& cp = c.points[j];
+        normalTotal += cp.normalImpulse;
+        momentA += cp.normalImpulse * (cp.anchorAx * ny - cp.anchorAy * nx);
+        momentB += cp.normalImpulse * (cp.anchorBx * ny - cp.anchorBy * nx);
+    }
+    const FloatW px = normalTotal * nx - f * ny, py = normalTotal * ny + f * nx;
+    for (int lane = 0; lane < kLanes; ++lane) {
+        out.bodyA[lane] = c.bodyA[lane];
+        out.bodyB[lane] = c.bodyB[lane];
+        out.writeA[lane] = c.writeA[lane];
+        out.writeB[lane] = c.writeB[lane];
+    }
+    out.vxA = c.invMassA * px;
+    out.vyA = c.invMassA * py;
+    out.wA = c.invIA * momentA;
+    out.vxB = c.invMassB * px;
+    out.vyB = c.invMassB * py;
+    out.wB = c.invIB * momentB;
+}
+
+ANYPHYS_KERNEL void summarizeImpl(const PlanarContact* contacts, PlanarWarmStart* warm, int count) {
+    for (int i = 0; i < count; ++i) summarize(contacts[i], warm[i]);
+}
+
+ANYPHYS_KERNEL void warmStartImpl(const PlanarWarmStart* warm, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
-        PlanarContact& c = contacts[i];
+        const PlanarWarmStart& c = warm[i];
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
-        // The accumulated impulses summed into one impulse and one moment per body, applied once.
-        const FloatW nx = c.normalX, ny = c.normalY;
-        const FloatW f = c.frictionImpulse;
-        FloatW normalTotal = zero();
-        // Moments r x P of the friction impulse f (-ny, nx) and of each point's impulse l (nx, ny).
-        FloatW momentA = f * (c.centerAx * nx + c.centerAy * ny), momentB = f * (c.centerBx * nx + c.centerBy * ny);
-        for (int j = 0; j < c.pointCount; ++j) {
-            const PlanarContactPoint& cp = c.points[j];
-            normalTotal += cp.normalImpulse;
-            momentA += cp.normalImpulse * (cp.anchorAx * ny - cp.anchorAy * nx);
-            momentB += cp.normalImpulse * (cp.anchorBx * ny - cp.anchorBy * nx);
-        }
-        const FloatW px = normalTotal * nx - f * ny, py = normalTotal * ny + f * nx;
-        a.vx -= c.invMassA * px;
-        a.vy -= c.invMassA * py;
-        a.w -= c.invIA * momentA;
-        b.vx += c.invMassB * px;
-        b.vy += c.invMassB * py;
-        b.w += c.invIB * momentB;
+        a.vx -= c.vxA;
+        a.vy -= c.vyA;
+        a.w -= c.wA;
+        b.vx += c.vxB;
+        b.vy += c.vyB;
+        b.w += c.wB;
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
     }
@@ -193,7 +213,7 @@ ANYPHYS_KERNEL void sweepAgain(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b,
     }
 }
 
-ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
+ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, int count, SolverState* states, const ContactSolveParams& params,
                               bool useBias, bool endOfSubstep) {
     const FloatW invH = splat(params.invH);
     const FloatW maxPush = splat(-params.pushMaxVelocity);
@@ -238,6 +258,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, int count, SolverState* s
         if (predictLoad && (!useBias || endOfSubstep)) clampFrictionToLoad(c, a, b);
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
+        if (endOfSubstep) summarize(c, warm[i]);
     }
 }
 
@@ -310,9 +331,11 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
 }
 
 #if ANYPHYS_HAS_AVX2_KERNELS
-ANYPHYS_AVX2 void warmStartAvx2(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
-ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
-    solveImpl(c, n, s, p, bias, end);
+ANYPHYS_AVX2 void summarizeAvx2(const PlanarContact* c, PlanarWarmStart* w, int n) { summarizeImpl(c, w, n); }
+ANYPHYS_AVX2 void warmStartAvx2(const PlanarWarmStart* w, int n, SolverState* s) { warmStartImpl(w, n, s); }
+ANYPHYS_AVX2 void solveAvx2(PlanarContact* c, PlanarWarmStart* w, int n, SolverState* s, const ContactSolveParams& p,
+                            bool bias, bool end) {
+    solveImpl(c, w, n, s, p, bias, end);
 }
 ANYPHYS_AVX2 bool restitutionAvx2(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s, Vec3* supports,
                                    const ContactSolveParams& p) {
@@ -320,9 +343,10 @@ ANYPHYS_AVX2 bool restitutionAvx2(PlanarContact* c, PlanarContactCold* cold, int
 }
 #endif
 
-void warmStartBase(PlanarContact* c, int n, SolverState* s) { warmStartImpl(c, n, s); }
-void solveBase(PlanarContact* c, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
-    solveImpl(c, n, s, p, bias, end);
+void summarizeBase(const PlanarContact* c, PlanarWarmStart* w, int n) { summarizeImpl(c, w, n); }
+void warmStartBase(const PlanarWarmStart* w, int n, SolverState* s) { warmStartImpl(w, n, s); }
+void solveBase(PlanarContact* c, PlanarWarmStart* w, int n, SolverState* s, const ContactSolveParams& p, bool bias, bool end) {
+    solveImpl(c, w, n, s, p, bias, end);
 }
 bool restitutionBase(PlanarContact* c, PlanarContactCold* cold, int n, SolverState* s, Vec3* supports,
                      const ContactSolveParams& p) {
@@ -331,19 +355,26 @@ bool restitutionBase(PlanarContact* c, PlanarContactCold* cold, int n, SolverSta
 
 }  // namespace
 
-void warmStartPlanarContacts(PlanarContact* contacts, int count, SolverState* states) {
+void summarizePlanarImpulses(const PlanarContact* contacts, PlanarWarmStart* warm, int count) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (contactKernelsUseAvx2()) return warmStartAvx2(contacts, count, states);
+    if (contactKernelsUseAvx2()) return summarizeAvx2(contacts, warm, count);
 #endif
-    warmStartBase(contacts, count, states);
+    summarizeBase(contacts, warm, count);
 }
 
-void solvePlanarContacts(PlanarContact* contacts, int count, SolverState* states, const ContactSolveParams& params,
-                         bool useBias, bool endOfSubstep) {
+void warmStartPlanarContacts(const PlanarWarmStart* warm, int count, SolverState* states) {
 #if ANYPHYS_HAS_AVX2_KERNELS
-    if (contactKernelsUseAvx2()) return solveAvx2(contacts, count, states, params, useBias, endOfSubstep);
+    if (contactKernelsUseAvx2()) return warmStartAvx2(warm, count, states);
 #endif
-    solveBase(contacts, count, states, params, useBias, endOfSubstep);
+    warmStartBase(warm, count, states);
+}
+
+void solvePlanarContacts(PlanarContact* contacts, PlanarWarmStart* warm, int count, SolverState* states,
+                         const ContactSolveParams& params, bool useBias, bool endOfSubstep) {
+#if ANYPHYS_HAS_AVX2_KERNELS
+    if (contactKernelsUseAvx2()) return solveAvx2(contacts, warm, count, states, params, useBias, endOfSubstep);
+#endif
+    solveBase(contacts, warm, count, states, params, useBias, endOfSubstep);
 }
 
 bool applyPlanarRestitution(PlanarContact* contacts, PlanarContactCold* cold, int count, SolverState* states,

@@ -256,6 +256,7 @@ void StepSolver::buildConstraints() {
     if (planarWorld_) {
         planar_.resize(static_cast<std::size_t>(total));
         planarCold_.resize(static_cast<std::size_t>(total));
+        planarWarm_.resize(static_cast<std::size_t>(total));
     } else {
         wide_.resize(static_cast<std::size_t>(total));
         wideCold_.resize(static_cast<std::size_t>(total));
@@ -474,6 +475,7 @@ int StepSolver::gatherLanes(int w, ContactLane (&lanes)[wide::kLanes]) const {
 bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int end) {
     const int count = end - begin;
     const auto colour = [&] { return planar_.data() + first; };  // as in runBlock
+    const auto warm = [&] { return planarWarm_.data() + first; };
     switch (p.kind) {
         case StageKind::PrepareContacts:
             for (int w = begin; w < end; ++w) {
@@ -482,10 +484,15 @@ bool StepSolver::runPlanarBlock(const StagePlan& p, int first, int begin, int en
                 const int n = gatherLanes(w, lanes);
                 preparePlanarContacts(planar_[w], planarCold_[w], lanes, n, bodies_.data(), states_.data(), prepareParams_);
             }
+            summarizePlanarImpulses(planar_.data() + begin, planarWarm_.data() + begin, count);
             return true;
-        case StageKind::WarmStart: warmStartPlanarContacts(colour(), count, states_.data()); return true;
-        case StageKind::Solve: solvePlanarContacts(colour(), count, states_.data(), solveParams_, true, p.endOfSubstep); return true;
-        case StageKind::Relax: solvePlanarContacts(colour(), count, states_.data(), solveParams_, false, p.endOfSubstep); return true;
+        case StageKind::WarmStart: warmStartPlanarContacts(warm(), count, states_.data()); return true;
+        case StageKind::Solve:
+            solvePlanarContacts(colour(), warm(), count, states_.data(), solveParams_, true, p.endOfSubstep);
+            return true;
+        case StageKind::Relax:
+            solvePlanarContacts(colour(), warm(), count, states_.data(), solveParams_, false, p.endOfSubstep);
+            return true;
         case StageKind::Restitution:
             if (!skipRestitutionRound(p) && applyPlanarRestitution(colour(), planarCold_.data() + first, count, states_.data(),
                                                                      bounceSupports_.data(), solveParams_))

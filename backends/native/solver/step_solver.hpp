@@ -123,6 +123,7 @@ private:
     LargeVector<WideWarmStart> wideWarm_;    // beside wide_: the impulses as velocity changes, for the warm start
     LargeVector<PlanarContact> planar_;   // planar worlds: the same constraints with 3 degrees of freedom
     LargeVector<PlanarContactCold> planarCold_;  // beside planar_
+    LargeVector<PlanarWarmStart> planarWarm_;    // beside planar_: as wideWarm_
     int wideCount_ = 0;                   // of whichever is in use
     bool planarWorld_ = false;
     struct WideSource {
