@@ -59,15 +59,6 @@ ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* i
     scatterRuns(states, index, write, kLinearRun, 2 * kDouble, b.v.y, b.v.z, zero(), zero());  // not turn
 }
 
-// Asks for the states of a later record's bodies (`bytes` of each: the velocities' run, or the
-// whole state), so that their loads overlap this record's work (prefetch.hpp).
-ANYPHYS_KERNEL void prefetchStates(const SolverState* states, const std::int32_t* bodyA, const std::int32_t* bodyB,
-                                   std::size_t bytes) {
-    for (const std::int32_t* index : {bodyA, bodyB})
-        for (int k = 0; k < kLanes; ++k)
-            if (index[k] != kStaticBody) prefetchBytes<true>(states + index[k], bytes);
-}
-
 // Applies impulse P at anchors rA (on A, negated) and rB.
 ANYPHYS_KERNEL void applyImpulse(BodyW& a, BodyW& b, const WideContact& c, const Vec3W& rA, const Vec3W& rB, const Vec3W& P) {
     a.v = a.v - c.invMassA * P;

@@ -130,6 +130,7 @@ ANYPHYS_KERNEL void summarizeImpl(const PlanarContact* contacts, PlanarWarmStart
 
 ANYPHYS_KERNEL void warmStartImpl(const PlanarWarmStart* warm, int count, SolverState* states) {
     for (int i = 0; i < count; ++i) {
+        if (i + kRecordsAhead < count) prefetchStates(states, warm[i + kRecordsAhead].bodyA, warm[i + kRecordsAhead].bodyB, kCacheLine);
         const PlanarWarmStart& c = warm[i];
         PlanarBodyW a = gatherPlanarVelocities(states, c.bodyA), b = gatherPlanarVelocities(states, c.bodyB);
         a.vx -= c.vxA;
@@ -213,8 +214,8 @@ ANYPHYS_KERNEL void sweepAgain(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b,
     }
 }
 
-ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, int count, SolverState* states, const ContactSolveParams& params,
-                              bool useBias, bool endOfSubstep) {
+ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, int count, SolverState* states,
+                              const ContactSolveParams& params, bool useBias, bool endOfSubstep) {
     const FloatW invH = splat(params.invH);
     const FloatW maxPush = splat(-params.pushMaxVelocity);
     const FloatW one = splat(1.0);
@@ -225,6 +226,10 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, in
     const bool predictLoad = params.friction && (!useBias || !params.soft);
     const RigidBias rigid{invH, maxPush, baumgarte, slop, useBias};
     for (int i = 0; i < count; ++i) {
+        if (i + kRecordsAhead < count) {  // as the 3D passes do (prefetch.hpp)
+            prefetchStates(states, contacts[i + kRecordsAhead].bodyA, contacts[i + kRecordsAhead].bodyB, sizeof(SolverState));
+            if (params.prefetchRecords) prefetchBytes<true>(&contacts[i + kRecordsAhead], sizeof(PlanarContact));
+        }
         PlanarContact& c = contacts[i];
         PlanarBodyW a = gatherPlanarMotion(states, c.bodyA), b = gatherPlanarMotion(states, c.bodyB);
         const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;

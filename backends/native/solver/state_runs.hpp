@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "solver/prefetch.hpp"
 #include "solver/solver_body.hpp"
 #include "solver/wide.hpp"
 
@@ -15,6 +16,15 @@ inline const SolverState kStateAtRest{};
 
 [[gnu::always_inline]] inline const SolverState& stateOf(const SolverState* states, std::int32_t index) {
     return index == kStaticBody ? kStateAtRest : states[index];
+}
+
+/// Asks for the states of a later record's bodies (`bytes` of each: the velocities' run, or the
+/// whole state), so that their loads overlap this record's work (prefetch.hpp).
+[[gnu::always_inline]] inline void prefetchStates(const SolverState* states, const std::int32_t* bodyA,
+                                                  const std::int32_t* bodyB, std::size_t bytes) {
+    for (const std::int32_t* index : {bodyA, bodyB})
+        for (int k = 0; k < kLanes; ++k)
+            if (index[k] != kStaticBody) prefetchBytes<true>(states + index[k], bytes);
 }
 
 /// The four doubles of `state` from byte `offset`.

@@ -393,7 +393,8 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     // A core's cache on the machines measured (2 MB here, 1 to 2 MB on most desktops): the
     // 1 000-box drop's records (0.7 MB) fit, the 10 000-box drop's (7 MB) do not.
     constexpr std::size_t kRecordsInCache = std::size_t(2) << 20;
-    solveParams_.prefetchRecords = wide_.size() * sizeof(WideContact) > kRecordsInCache;
+    const std::size_t recordBytes = planarWorld_ ? sizeof(PlanarContact) : sizeof(WideContact);
+    solveParams_.prefetchRecords = static_cast<std::size_t>(wideCount_) * recordBytes > kRecordsInCache;
     planStages(world);
     runner_.run(world.taskSystem(), stages_, *this);
 }
