@@ -95,6 +95,18 @@ struct WideWarmStart {
     wide::Vec3W linearB, angularB;  // added to body B's
 };
 
+/// A record's lanes' bodies and write flags, copied into its warm-start summary (WideWarmStart,
+/// PlanarWarmStart), which the warm start reads instead of the record.
+template <class Record, class Summary>
+ANYPHYS_WIDE void copyLaneBodies(const Record& c, Summary& out) {
+    for (int lane = 0; lane < wide::kLanes; ++lane) {
+        out.bodyA[lane] = c.bodyA[lane];
+        out.bodyB[lane] = c.bodyB[lane];
+        out.writeA[lane] = c.writeA[lane];
+        out.writeB[lane] = c.writeB[lane];
+    }
+}
+
 /// The second friction direction, normal x tangent1, as the prepare stage chose it.
 ANYPHYS_WIDE wide::Vec3W secondTangent(const WideContact& c) { return wide::cross(c.normal, c.tangent1); }
 

@@ -126,12 +126,7 @@ ANYPHYS_KERNEL void summarize(const WideContact& c, WideWarmStart& out) {
     angularA = angularA + twist;
     angularB = angularB + twist;
     const Vec3W linear = friction + normalTotal * c.normal;
-    for (int lane = 0; lane < kLanes; ++lane) {
-        out.bodyA[lane] = c.bodyA[lane];
-        out.bodyB[lane] = c.bodyB[lane];
-        out.writeA[lane] = c.writeA[lane];
-        out.writeB[lane] = c.writeB[lane];
-    }
+    copyLaneBodies(c, out);
     out.linearA = c.invMassA * linear;
     out.angularA = c.invIA * angularA;
     out.linearB = c.invMassB * linear;

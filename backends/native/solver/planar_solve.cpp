@@ -110,12 +110,7 @@ ANYPHYS_KERNEL void summarize(const PlanarContact& c, PlanarWarmStart& out) {
         momentB += cp.normalImpulse * (cp.anchorBx * ny - cp.anchorBy * nx);
     }
     const FloatW px = normalTotal * nx - f * ny, py = normalTotal * ny + f * nx;
-    for (int lane = 0; lane < kLanes; ++lane) {
-        out.bodyA[lane] = c.bodyA[lane];
-        out.bodyB[lane] = c.bodyB[lane];
-        out.writeA[lane] = c.writeA[lane];
-        out.writeB[lane] = c.writeB[lane];
-    }
+    copyLaneBodies(c, out);
     out.vxA = c.invMassA * px;
     out.vyA = c.invMassA * py;
     out.wA = c.invIA * momentA;
