@@ -141,6 +141,7 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
     wc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
     wc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
     wc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
+    wc.multiPoint[lane] = m.pointCount > 1;
     cold.manifold[lane] = &m;
     wc.pointCount = std::max(wc.pointCount, m.pointCount);
 

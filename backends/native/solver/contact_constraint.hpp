@@ -46,6 +46,7 @@ struct WideContact {
     int pointCount;                    // most points in any lane
     bool reverse = false;              // the next solve visits the points last to first
     bool unjointed[wide::kLanes];      // no joint holds either body: friction joins the later sweeps (manifold_sweeps.hpp)
+    bool multiPoint[wide::kLanes];     // the lane's manifold has more than one point: its normal rows join the later sweeps
     wide::FloatW invMassA, invMassB;   // the same along every axis (a planar world has PlanarContact)
     wide::SymMat3W invIA, invIB;
     wide::Vec3W normal, tangent1;      // second tangent: normal x tangent1 (secondTangent)

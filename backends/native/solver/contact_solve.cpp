@@ -236,16 +236,18 @@ ANYPHYS_KERNEL MaskW sweepNormalRows(WideContact& c, BodyW& a, BodyW& b, const V
 // than one point), then friction, where no joint holds a body, and the normal rows in turn.
 ANYPHYS_KERNEL void sweepAgain(WideContact& c, BodyW& a, BodyW& b, const Vec3W& dp, const PassRows& rows, bool reverse, MaskW again,
                                bool friction, bool endOfSubstep) {
-    const bool normalAgain = c.pointCount > 1;
-    if (normalAgain)
-        for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, dp, rows, reverse, again, endOfSubstep);
+    const MaskW normalAgain = again & laneMask(c.multiPoint);
+    const bool anyNormalAgain = !noLane(normalAgain);
+    if (anyNormalAgain)
+        for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep)
+            sweepNormalRows<false>(c, a, b, dp, rows, reverse, normalAgain, endOfSubstep);
     const MaskW frictionAgain = friction ? again & laneMask(c.unjointed) : MaskW{};
     if (noLane(frictionAgain)) return;
     for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
         FloatW load[4];
         for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
         solveFriction(c, a, b, load, frictionAgain);
-        if (normalAgain) sweepNormalRows<false>(c, a, b, dp, rows, reverse, again, endOfSubstep);
+        if (anyNormalAgain) sweepNormalRows<false>(c, a, b, dp, rows, reverse, normalAgain, endOfSubstep);
     }
 }
 
@@ -358,14 +360,15 @@ ANYPHYS_KERNEL bool restitutionImpl(WideContact* contacts, WideContactCold* cold
         // landing at 3 m/s each way with e = 1 and mu = 0.1 left at 2.7 m/s where they give 2.4).
         // In every pass: the normal rows even out the face's tilt, and friction then stops the
         // slide the tilt had left at the face, which after a single friction row came back as spin.
-        // A record that only holds gets one pass a round (its rows settle over the rounds): the
+        // A lane that only holds gets one pass a round (its rows settle over the rounds): the
         // holding reaches down a pile, and 16 passes on each of its records were wasted work.
         const int passes = noLane(rows.bounced) ? 1 : kRestitutionPasses;
+        const RestitutionRows later = rowsOfLanes(rows, rows.bounced);
         for (int pass = 0; pass < passes; ++pass) {
             for (int j = 0; j < c.pointCount; ++j) {
                 WideContactPoint& cp = c.points[j];
                 const FloatW vn = dot(relativeVelocity(a, b, cp.anchorA, cp.anchorB), c.normal);
-                const FloatW applied = restitutionRowImpulse(rows, j, cp, cold, vn);
+                const FloatW applied = restitutionRowImpulse(pass == 0 ? rows : later, j, cp, cold, vn);
                 load[j] = cp.normalImpulse;
                 applyImpulse(a, b, c, cp.anchorA, cp.anchorB, applied * c.normal);
             }

@@ -47,6 +47,7 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
     pc.writeA[lane] = in.bodyA != kStaticBody && bodies[in.bodyA].dynamic;
     pc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
     pc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
+    pc.multiPoint[lane] = m.pointCount > 1;
     cold.manifold[lane] = &m;
     pc.pointCount = std::max(pc.pointCount, m.pointCount);
     pc.invMassA[lane] = a.invMass;

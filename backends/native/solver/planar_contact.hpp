@@ -37,6 +37,7 @@ struct PlanarContact {
     int pointCount;
     bool reverse = false;  // PGS: the next solve visits the points last to first
     bool unjointed[wide::kLanes];  // no joint holds either body: the lane may be swept again (manifold_sweeps.hpp)
+    bool multiPoint[wide::kLanes]; // more than one point: the lane's normal rows join the later sweeps
     wide::FloatW invMassA, invMassB, invIA, invIB;  // in-plane mass, inverse inertia about Z
     wide::FloatW normalX, normalY;                  // tangent = (-normalY, normalX)
     wide::FloatW centerAx, centerAy, centerBx, centerBy;  // friction centre relative to each centre of mass

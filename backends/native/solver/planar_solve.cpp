@@ -197,15 +197,17 @@ ANYPHYS_KERNEL void sweepAgain(PlanarContact& c, PlanarBodyW& a, PlanarBodyW& b,
                                bool reverse, MaskW moved, bool friction, bool endOfSubstep) {
     const MaskW again = moved & laneMask(c.unjointed);
     if (noLane(again)) return;
-    const bool normalAgain = c.pointCount > 1;
-    if (normalAgain)
-        for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep) sweepNormalRows<false>(c, a, b, dpx, dpy, rows, reverse, again, endOfSubstep);
+    const MaskW normalAgain = again & laneMask(c.multiPoint);
+    const bool anyNormalAgain = !noLane(normalAgain);
+    if (anyNormalAgain)
+        for (int sweep = 1; sweep < kMaxNormalSweeps; ++sweep)
+            sweepNormalRows<false>(c, a, b, dpx, dpy, rows, reverse, normalAgain, endOfSubstep);
     if (!friction) return;
     for (int sweep = 1; sweep < kMaxFrictionSweeps; ++sweep) {
         FloatW load[4];
         for (int k = 0; k < c.pointCount; ++k) load[k] = c.points[k].normalImpulse;
         solveFriction(c, a, b, load, again);
-        if (normalAgain) sweepNormalRows<false>(c, a, b, dpx, dpy, rows, reverse, again, endOfSubstep);
+        if (anyNormalAgain) sweepNormalRows<false>(c, a, b, dpx, dpy, rows, reverse, normalAgain, endOfSubstep);
     }
 }
 
@@ -309,11 +311,12 @@ ANYPHYS_KERNEL bool restitutionImpl(PlanarContact* contacts, PlanarContactCold* 
         FloatW load[4];
         // Friction through the whole impact, the bounce included, in every pass (as in 3D).
         const int passes = noLane(rows.bounced) ? 1 : kRestitutionPasses;  // as in 3D
+        const RestitutionRows later = rowsOfLanes(rows, rows.bounced);
         for (int pass = 0; pass < passes; ++pass) {
             for (int j = 0; j < c.pointCount; ++j) {
                 PlanarContactPoint& cp = c.points[j];
                 const FloatW vn = normalVelocity(a, b, c.normalX, c.normalY, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy);
-                const FloatW applied = restitutionRowImpulse(rows, j, cp, cold, vn);
+                const FloatW applied = restitutionRowImpulse(pass == 0 ? rows : later, j, cp, cold, vn);
                 load[j] = cp.normalImpulse;
                 applyImpulse(a, b, c, cp.anchorAx, cp.anchorAy, cp.anchorBx, cp.anchorBy, applied * c.normalX,
                              applied * c.normalY);

@@ -168,6 +168,19 @@ template <class Contact, class Saved>
     for (int j = 0; j < c.pointCount; ++j) c.points[j].normalMass = saved.normalMass[j];
 }
 
+/// `rows` in `lanes` only: the restitution passes after the first, which only lanes that bounced
+/// take, so that what a lane gets does not hang on the other lanes of its record.
+[[gnu::always_inline]] inline RestitutionRows rowsOfLanes(const RestitutionRows& rows, MaskW lanes) {
+    RestitutionRows out = rows;
+    for (int j = 0; j < 4; ++j) {
+        out.bounces[j] = rows.bounces[j] & lanes;
+        out.held[j] = rows.held[j] & lanes;
+    }
+    out.bounced = rows.bounced & lanes;
+    out.anyHeld = rows.anyHeld & lanes;
+    return out;
+}
+
 /// After a record's passes: across each lane of `pushed` (holding rows that pushed), a body pressed
 /// against a partner that cannot give way (static, kinematic or held itself along the push) is
 /// held from then on, along the normal pushing it. The first support found stays for the step.
