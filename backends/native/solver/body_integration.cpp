@@ -1,5 +1,6 @@
 #include "solver/body_integration.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -15,14 +16,14 @@ namespace anyphys::native {
 
 namespace {
 
-// The turn of a substep, written once for one body (Q = QuatD) and for four (Q = wide::QuatW)
+// The turn of a substep, written once for one body (Q = QuatD) and for a lane each (Q = wide::QuatW)
 // with the same operations in the same order, so both give the same bits. (Templates take the
 // quaternion type: the wide scalar's alignment attribute would be dropped from a template argument.)
 struct QuatD {
     double w, x, y, z;
 };
 template <class Q>
-using Part = decltype(Q::w);  // double, or four lanes of them
+using Part = decltype(Q::w);  // double, or a lane of each body
 
 /// Largest |r|^2 of a turn the series serves: a half angle under 1e-2.
 constexpr double kSeriesReach = 4e-4;
@@ -74,30 +75,38 @@ template <class Q>
     sine = 2.0 * dq.w * dq.z;
 }
 
-/// The runs at `offset` of the four states from `s`, as four fields of four lanes.
-[[gnu::always_inline]] inline void loadFour(const SolverState* s, std::size_t offset, wide::FloatW& a, wide::FloatW& b,
-                                            wide::FloatW& c, wide::FloatW& d) {
-    a = wide::loadRun(s[0], offset), b = wide::loadRun(s[1], offset), c = wide::loadRun(s[2], offset),
-    d = wide::loadRun(s[3], offset);
-    wide::transpose(a, b, c, d);
+/// Lane k holds the state s + k.
+constexpr auto kConsecutive = [] {
+    std::array<std::int32_t, wide::kLanes> index{};
+    for (int k = 0; k < wide::kLanes; ++k) index[static_cast<std::size_t>(k)] = k;
+    return index;
+}();
+constexpr auto kEveryLane = [] {
+    std::array<bool, wide::kLanes> all{};
+    all.fill(true);
+    return all;
+}();
+
+/// The runs at `offset` of the kLanes states from `s`, as four fields of every lane.
+[[gnu::always_inline]] inline void loadLanes(const SolverState* s, std::size_t offset, wide::FloatW& a, wide::FloatW& b,
+                                             wide::FloatW& c, wide::FloatW& d) {
+    wide::gatherRuns(s, kConsecutive.data(), offset, a, b, c, d);
 }
 
-[[gnu::always_inline]] inline void storeFour(SolverState* s, std::size_t offset, wide::FloatW a, wide::FloatW b,
-                                             wide::FloatW c, wide::FloatW d) {
-    wide::transpose(a, b, c, d);
-    const wide::FloatW runs[wide::kLanes] = {a, b, c, d};
-    for (int k = 0; k < wide::kLanes; ++k) std::memcpy(reinterpret_cast<char*>(&s[k]) + offset, &runs[k], sizeof runs[k]);
+[[gnu::always_inline]] inline void storeLanes(SolverState* s, std::size_t offset, wide::FloatW a, wide::FloatW b,
+                                              wide::FloatW c, wide::FloatW d) {
+    wide::scatterRuns(s, kConsecutive.data(), kEveryLane.data(), offset, 4 * sizeof(double), a, b, c, d);
 }
 
-/// integratePositions for the four states from `s`; false, with nothing written, when a lane
+/// integratePositions for the kLanes states from `s`; false, with nothing written, when a lane
 /// turns too far for the series or needs a full normalisation (the caller does those one by one).
-[[gnu::always_inline]] inline bool integrateFourPositions(SolverState* s, double h) {
+[[gnu::always_inline]] inline bool integrateLanePositions(SolverState* s, double h) {
     using namespace wide;
     FloatW wx, wy, wz, vx, vy, vz, cosine, sine, px, py, pz, qw, qx, qy, qz, inBounce;
-    loadFour(s, 0, wx, wy, wz, vx);
-    loadFour(s, 4 * kDouble, vy, vz, cosine, sine);
-    loadFour(s, 8 * kDouble, px, py, pz, qw);
-    loadFour(s, 12 * kDouble, qx, qy, qz, inBounce);
+    loadLanes(s, 0, wx, wy, wz, vx);
+    loadLanes(s, 4 * kDouble, vy, vz, cosine, sine);
+    loadLanes(s, 8 * kDouble, px, py, pz, qw);
+    loadLanes(s, 12 * kDouble, qx, qy, qz, inBounce);
     const FloatW rx = h * wx, ry = h * wy, rz = h * wz;
     const FloatW angleSquared = rx * rx + ry * ry + rz * rz;
     if (!noLane(angleSquared >= kSeriesReach)) return false;
@@ -108,9 +117,9 @@ template <class Q>
     const QuatW unit = scaled(dq, 1.5 - 0.5 * n2);
     setTurn(cosine, sine, unit);
     px = px + h * vx, py = py + h * vy, pz = pz + h * vz;
-    storeFour(s, 4 * kDouble, vy, vz, cosine, sine);
-    storeFour(s, 8 * kDouble, px, py, pz, unit.w);
-    storeFour(s, 12 * kDouble, unit.x, unit.y, unit.z, inBounce);
+    storeLanes(s, 4 * kDouble, vy, vz, cosine, sine);
+    storeLanes(s, 8 * kDouble, px, py, pz, unit.w);
+    storeLanes(s, 12 * kDouble, unit.x, unit.y, unit.z, inBounce);
     return true;
 }
 
@@ -186,14 +195,14 @@ void integrateOnePosition(SolverState& s, double h) {
     displaceBody(s, h * Vec3(s.v[0], s.v[1], s.v[2]), h * Vec3(s.w[0], s.w[1], s.w[2]));
 }
 
-/// Four bodies at a time where the series and the Newton step serve them all (every resting or
+/// kLanes bodies at a time where the series and the Newton step serve them all (every resting or
 /// slowly turning body): the same operations, so the same bits, as one at a time. Inlined into
-/// each instruction set's entry point: built for SSE2, the four lanes' vectors went through the
+/// each instruction set's entry point: built for SSE2, the lanes' vectors went through the
 /// stack and the pass took longer than one body at a time.
 ANYPHYS_KERNEL void integratePositionsImpl(SolverState* states, int begin, int end, double h) {
     int i = begin;
     for (; i + wide::kLanes <= end; i += wide::kLanes)
-        if (!integrateFourPositions(states + i, h))
+        if (!integrateLanePositions(states + i, h))
             for (int k = i; k < i + wide::kLanes; ++k) integrateOnePosition(states[k], h);
     for (; i < end; ++i) integrateOnePosition(states[i], h);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Graph colouring of one step's constraints: no colour holds two constraints on the same dynamic
-// body, so the constraints of a colour can be solved at once, four to a SIMD register and on
+// body, so the constraints of a colour can be solved at once, eight to a record of SIMD lanes and on
 // several workers, with the same result in any order. Static and kinematic bodies take no
 // impulses and so never conflict.
 //

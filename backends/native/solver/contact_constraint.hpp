@@ -1,6 +1,6 @@
 #pragma once
 // Contact constraints in the wide layout: each lane of a WideContact is one manifold (up to four
-// points sharing a normal), and the four lanes of one WideContact never share a dynamic body
+// points sharing a normal), and the eight lanes of one WideContact never share a dynamic body
 // (they come from one graph colour). Per manifold: a normal impulse per point (non-penetration,
 // soft or Baumgarte), and friction at the manifold's centre (two tangents clamped to the
 // friction circle, plus twist about the normal), as Box3D does; that is 3 friction rows per
@@ -35,7 +35,7 @@ struct WideContactPoint {
     wide::FloatW leverArm;             // distance to the friction centre (twist friction limit)
 };
 
-/// What every pass reads and writes of four manifolds. The passes stream these records and wait
+/// What every pass reads and writes of eight manifolds. The passes stream these records and wait
 /// on memory more than they compute, so whatever a pass can work out (the second tangent) or does
 /// not read (WideContactCold) stays out.
 struct WideContact {
@@ -59,7 +59,7 @@ struct WideContact {
     WideContactPoint points[4];
 };
 
-/// What only the prepare, restitution and store stages read of the same four manifolds, in an
+/// What only the prepare, restitution and store stages read of the same eight manifolds, in an
 /// array beside the WideContacts (the same index), kept out of the records the passes stream (it
 /// made them 13 % larger).
 struct WideContactCold {
@@ -85,7 +85,7 @@ inline double storedNormalImpulse(const WideContactCold& cold, int point, int la
 
 /// A record's accumulated impulses as each lane's change of velocity, written by the prepare stage
 /// and by the pass that ends each substep, for the next substep's warm start: the warm start reads
-/// these 448 bytes a record instead of the whole WideContact, whose impulses do not change between
+/// these 864 bytes a record (108 a lane) instead of the whole WideContact, whose impulses do not change between
 /// the two.
 struct WideWarmStart {
     std::int32_t bodyA[wide::kLanes];
@@ -165,7 +165,7 @@ Softness contactSoftness(const ContactPrepareParams& params, bool againstStatic,
 /// and the planar prepares.
 double restitutionTarget(const ContactPrepareParams& params, double e, double s, double vn, double an, double slide);
 
-/// Fills `wc` and `cold` from up to four lanes (`count` of them; the rest are padding with no effect).
+/// Fills `wc` and `cold` from up to kLanes lanes (`count` of them; the rest are padding with no effect).
 void prepareContacts(WideContact& wc, WideContactCold& cold, const ContactLane* lanes, int count,
                      const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params);
 

@@ -1,6 +1,6 @@
 // The contact kernels that run every pass: warm start, solve (and relax), restitution. Each is
 // built twice, for the x86-64 baseline (SSE2) and for AVX2, from one always-inlined body, and the
-// CPU picks at run time; both do the same four-lane arithmetic without fused multiply-add, so
+// CPU picks at run time; both do the same lane-by-lane arithmetic without fused multiply-add, so
 // they give the same bits (tested), and a binary built on one machine runs on any x86-64.
 #include <cmath>
 #include <cstddef>

@@ -56,7 +56,9 @@ struct PassRows {
 
 /// The lanes whose flag is set.
 [[gnu::always_inline]] inline MaskW laneMask(const bool (&flags)[kLanes]) {
-    return MaskW{flags[0] ? -1 : 0, flags[1] ? -1 : 0, flags[2] ? -1 : 0, flags[3] ? -1 : 0};
+    MaskW m;
+    for (int k = 0; k < kLanes; ++k) m[k] = flags[k] ? -1 : 0;
+    return m;
 }
 
 }  // namespace anyphys::native::wide

@@ -17,7 +17,7 @@
 
 namespace anyphys::native {
 
-/// What every pass reads and writes for one point (four lanes).
+/// What every pass reads and writes for one point (every lane).
 struct PlanarContactPoint {
     wide::FloatW anchorAx, anchorAy, anchorBx, anchorBy;  // point - centre of mass, step start
     wide::FloatW baseSeparation;                           // s = base + n . (dpB - dpA + qB rB - qA rA)
@@ -27,7 +27,7 @@ struct PlanarContactPoint {
     wide::FloatW stepImpulse;                              // sum over the step's substeps (what events report)
 };
 
-/// What every pass reads and writes of four manifolds (as WideContact, whatever the passes do not
+/// What every pass reads and writes of eight manifolds (as WideContact, whatever the passes do not
 /// read is in PlanarContactCold).
 struct PlanarContact {
     std::int32_t bodyA[wide::kLanes];  // solver body index or kStaticBody
@@ -52,7 +52,7 @@ using PlanarContactCold = WideContactCold;
 
 /// A record's accumulated impulses as each lane's change of velocity, beside the PlanarContacts
 /// (as WideWarmStart in 3D): written by the prepare stage and by the pass that ends each substep,
-/// so that the warm start reads these 256 bytes a record instead of the anchors, masses and
+/// so that the warm start reads these 480 bytes a record (60 a lane) instead of the anchors, masses and
 /// impulses of the whole PlanarContact.
 struct PlanarWarmStart {
     std::int32_t bodyA[wide::kLanes];
@@ -63,7 +63,7 @@ struct PlanarWarmStart {
     wide::FloatW vxB, vyB, wB;  // added to body B's
 };
 
-/// Fills `pc` from up to four lanes (the rest are padding with no effect).
+/// Fills `pc` from up to kLanes lanes (the rest are padding with no effect).
 void preparePlanarContacts(PlanarContact& pc, PlanarContactCold& cold, const ContactLane* lanes, int count,
                            const SolverBody* bodies, const SolverState* states, const ContactPrepareParams& params);
 /// Sums each record's impulses into `warm` (the prepare stage's warm start).

@@ -1,6 +1,7 @@
 #pragma once
 // Loading and storing SolverState as runs of four doubles for the wide contact passes: a lane's
-// run is one load, and a transpose turns four lanes' runs into four fields of four lanes. Per
+// run is one load, and a transpose turns four lanes' runs into four fields of four lanes (twice,
+// once per half of a wide value). Per
 // lane and per field, the gather cost the 5 050-box pyramid's passes more than their arithmetic.
 #include <cstddef>
 #include <cstring>
@@ -28,28 +29,35 @@ inline const SolverState kStateAtRest{};
 }
 
 /// The four doubles of `state` from byte `offset`.
-[[gnu::always_inline]] inline FloatW loadRun(const SolverState& state, std::size_t offset) {
-    FloatW run;
+[[gnu::always_inline]] inline Run4 loadRun(const SolverState& state, std::size_t offset) {
+    Run4 run;
     std::memcpy(&run, reinterpret_cast<const char*>(&state) + offset, sizeof run);
     return run;
 }
 
-/// The four lanes' runs at `offset`, as four fields of four lanes each.
+static_assert(kLanes == 8, "gatherRuns and scatterRuns transpose two halves of four lanes");
+
+/// The lanes' runs at `offset` (`index`: each lane's state), as four fields of every lane.
 [[gnu::always_inline]] inline void gatherRuns(const SolverState* states, const std::int32_t* index, std::size_t offset,
                                               FloatW& first, FloatW& second, FloatW& third, FloatW& fourth) {
-    first = loadRun(stateOf(states, index[0]), offset);
-    second = loadRun(stateOf(states, index[1]), offset);
-    third = loadRun(stateOf(states, index[2]), offset);
-    fourth = loadRun(stateOf(states, index[3]), offset);
-    transpose(first, second, third, fourth);
+    Run4 runs[kLanes];
+    for (int k = 0; k < kLanes; ++k) runs[k] = loadRun(stateOf(states, index[k]), offset);
+    transpose(runs[0], runs[1], runs[2], runs[3]);
+    transpose(runs[4], runs[5], runs[6], runs[7]);
+    first = join(runs[0], runs[4]);
+    second = join(runs[1], runs[5]);
+    third = join(runs[2], runs[6]);
+    fourth = join(runs[3], runs[7]);
 }
 
 /// The inverse of gatherRuns for the lanes `write` marks, storing the first `bytes` of each run.
 [[gnu::always_inline]] inline void scatterRuns(SolverState* states, const std::int32_t* index, const bool* write,
                                                std::size_t offset, std::size_t bytes, FloatW first, FloatW second,
                                                FloatW third, FloatW fourth) {
-    transpose(first, second, third, fourth);
-    const FloatW runs[kLanes] = {first, second, third, fourth};
+    Run4 runs[kLanes] = {lowHalf(first), lowHalf(second), lowHalf(third), lowHalf(fourth),
+                         highHalf(first), highHalf(second), highHalf(third), highHalf(fourth)};
+    transpose(runs[0], runs[1], runs[2], runs[3]);
+    transpose(runs[4], runs[5], runs[6], runs[7]);
     for (int lane = 0; lane < kLanes; ++lane)
         if (write[lane]) std::memcpy(reinterpret_cast<char*>(&states[index[lane]]) + offset, &runs[lane], bytes);
 }

@@ -21,7 +21,7 @@
 //   restitution (per colour)              kRestitutionRounds rounds, when some material bounces
 //   store_impulses                        once
 //   finalize_bodies                       once: poses and velocities back to the bodies
-// Constraints are coloured (ConstraintGraph) and grouped four to a WideContact (a PlanarContact in
+// Constraints are coloured (ConstraintGraph) and grouped eight to a WideContact (a PlanarContact in
 // a planar world: 3 degrees of freedom per body), so the colour stages run in SIMD lanes and on
 // several workers with identical results.
 #include <atomic>

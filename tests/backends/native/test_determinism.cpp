@@ -170,7 +170,7 @@ TEST(NativeDeterminism, ABodyDoesNotFeelTheOtherLanesOfItsRecords) {
 }
 
 // The per-pass kernels exist in a baseline (SSE2) and an AVX2 build, chosen by the CPU: both do
-// the same four-lane arithmetic in the same order without fused multiply-add.
+// the same lane-by-lane arithmetic in the same order without fused multiply-add.
 TEST(NativeDeterminism, InstructionSetDoesNotChangeTheResult) {
     const bool initial = native::contactKernelsUseAvx2();
     native::setContactKernelsAvx2(false);
