@@ -46,20 +46,20 @@ struct MaskW {
 };
 
 #define ANYPHYS_WIDE_ARITHMETIC(op)                                                                          \
-    ANYPHYS_WIDE FloatW operator op(const FloatW& a, const FloatW& b) { return {a.lo op b.lo, a.hi op b.hi}; } \
-    ANYPHYS_WIDE FloatW operator op(const FloatW& a, double b) { return {a.lo op b, a.hi op b}; }            \
-    ANYPHYS_WIDE FloatW operator op(double a, const FloatW& b) { return {a op b.lo, a op b.hi}; }            \
-    ANYPHYS_WIDE FloatW& operator op##=(FloatW& a, const FloatW& b) { return a = a op b; }
+    ANYPHYS_WIDE FloatW operator op(FloatW a, FloatW b) { return {a.lo op b.lo, a.hi op b.hi}; } \
+    ANYPHYS_WIDE FloatW operator op(FloatW a, double b) { return {a.lo op b, a.hi op b}; }       \
+    ANYPHYS_WIDE FloatW operator op(double a, FloatW b) { return {a op b.lo, a op b.hi}; }       \
+    ANYPHYS_WIDE FloatW& operator op##=(FloatW& a, FloatW b) { return a = a op b; }
 ANYPHYS_WIDE_ARITHMETIC(+)
 ANYPHYS_WIDE_ARITHMETIC(-)
 ANYPHYS_WIDE_ARITHMETIC(*)
 ANYPHYS_WIDE_ARITHMETIC(/)
 #undef ANYPHYS_WIDE_ARITHMETIC
-ANYPHYS_WIDE FloatW operator-(const FloatW& a) { return {-a.lo, -a.hi}; }
+ANYPHYS_WIDE FloatW operator-(FloatW a) { return {-a.lo, -a.hi}; }
 
 #define ANYPHYS_WIDE_COMPARISON(op)                                                                        \
-    ANYPHYS_WIDE MaskW operator op(const FloatW& a, const FloatW& b) { return {a.lo op b.lo, a.hi op b.hi}; } \
-    ANYPHYS_WIDE MaskW operator op(const FloatW& a, double b) { return {a.lo op b, a.hi op b}; }
+    ANYPHYS_WIDE MaskW operator op(FloatW a, FloatW b) { return {a.lo op b.lo, a.hi op b.hi}; } \
+    ANYPHYS_WIDE MaskW operator op(FloatW a, double b) { return {a.lo op b, a.hi op b}; }
 ANYPHYS_WIDE_COMPARISON(<)
 ANYPHYS_WIDE_COMPARISON(>)
 ANYPHYS_WIDE_COMPARISON(<=)
@@ -68,11 +68,11 @@ ANYPHYS_WIDE_COMPARISON(==)
 ANYPHYS_WIDE_COMPARISON(!=)
 #undef ANYPHYS_WIDE_COMPARISON
 
-ANYPHYS_WIDE MaskW operator&(const MaskW& a, const MaskW& b) { return {a.lo & b.lo, a.hi & b.hi}; }
-ANYPHYS_WIDE MaskW operator|(const MaskW& a, const MaskW& b) { return {a.lo | b.lo, a.hi | b.hi}; }
-ANYPHYS_WIDE MaskW operator~(const MaskW& a) { return {~a.lo, ~a.hi}; }
-ANYPHYS_WIDE MaskW& operator&=(MaskW& a, const MaskW& b) { return a = a & b; }
-ANYPHYS_WIDE MaskW& operator|=(MaskW& a, const MaskW& b) { return a = a | b; }
+ANYPHYS_WIDE MaskW operator&(MaskW a, MaskW b) { return {a.lo & b.lo, a.hi & b.hi}; }
+ANYPHYS_WIDE MaskW operator|(MaskW a, MaskW b) { return {a.lo | b.lo, a.hi | b.hi}; }
+ANYPHYS_WIDE MaskW operator~(MaskW a) { return {~a.lo, ~a.hi}; }
+ANYPHYS_WIDE MaskW& operator&=(MaskW& a, MaskW b) { return a = a & b; }
+ANYPHYS_WIDE MaskW& operator|=(MaskW& a, MaskW b) { return a = a | b; }
 
 inline constexpr MaskW kAllLanes = {{-1, -1, -1, -1}, {-1, -1, -1, -1}};
 
@@ -82,18 +82,18 @@ ANYPHYS_WIDE FloatW zero() { return FloatW{}; }
 ANYPHYS_WIDE Run4 select(MaskRun mask, Run4 ifTrue, Run4 ifFalse) {
     return reinterpret_cast<Run4>((reinterpret_cast<MaskRun>(ifTrue) & mask) | (reinterpret_cast<MaskRun>(ifFalse) & ~mask));
 }
-ANYPHYS_WIDE FloatW select(const MaskW& mask, const FloatW& ifTrue, const FloatW& ifFalse) {
+ANYPHYS_WIDE FloatW select(MaskW mask, FloatW ifTrue, FloatW ifFalse) {
     return {select(mask.lo, ifTrue.lo, ifFalse.lo), select(mask.hi, ifTrue.hi, ifFalse.hi)};
 }
 ANYPHYS_WIDE FloatW max(FloatW a, FloatW b) { return select(a > b, a, b); }
 ANYPHYS_WIDE FloatW min(FloatW a, FloatW b) { return select(a < b, a, b); }
 ANYPHYS_WIDE FloatW clamp(FloatW x, FloatW lo, FloatW hi) { return max(lo, min(x, hi)); }
 /// Correctly rounded in every lane (IEEE), so every instruction set agrees.
-ANYPHYS_WIDE FloatW sqrt(const FloatW& x) {
+ANYPHYS_WIDE FloatW sqrt(FloatW x) {
     return {Run4{__builtin_sqrt(x.lo[0]), __builtin_sqrt(x.lo[1]), __builtin_sqrt(x.lo[2]), __builtin_sqrt(x.lo[3])},
             Run4{__builtin_sqrt(x.hi[0]), __builtin_sqrt(x.hi[1]), __builtin_sqrt(x.hi[2]), __builtin_sqrt(x.hi[3])}};
 }
-ANYPHYS_WIDE bool noLane(const MaskW& m) {
+ANYPHYS_WIDE bool noLane(MaskW m) {
     const MaskRun any = m.lo | m.hi;
     return (any[0] | any[1] | any[2] | any[3]) == 0;
 }
@@ -162,7 +162,7 @@ ANYPHYS_WIDE void transpose(Run4& r0, Run4& r1, Run4& r2, Run4& r3) {
 
 /// Two runs' lanes side by side, and the two halves of a wide value.
 ANYPHYS_WIDE FloatW join(Run4 low, Run4 high) { return {low, high}; }
-ANYPHYS_WIDE Run4 lowHalf(const FloatW& x) { return x.lo; }
-ANYPHYS_WIDE Run4 highHalf(const FloatW& x) { return x.hi; }
+ANYPHYS_WIDE Run4 lowHalf(FloatW x) { return x.lo; }
+ANYPHYS_WIDE Run4 highHalf(FloatW x) { return x.hi; }
 
 }  // namespace anyphys::native::wide
