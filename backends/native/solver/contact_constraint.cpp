@@ -192,6 +192,7 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
         cp.maxImpulse[lane] = 0.0;
         const double vn = n.dot(b.v + b.w.cross(rB) - a.v - a.w.cross(rA));
         cold.relativeVelocity[i][lane] = vn;
+        cold.touching[i][lane] = s <= params.linearSlop ? -1 : 0;
         cold.restitutionTarget[i][lane] = bounces ? restitutionTarget(params, in.restitution, s, vn, normalAcceleration, slide) : 0.0;
         // Points well beyond the speculative distance only matter for fast approach; they
         // must not pull the friction centre around as they come and go.

@@ -69,6 +69,7 @@ struct WideContactCold {
     wide::FloatW restitutionTarget[4];        // per point: normal velocity a bounce aims for
     wide::FloatW restitutionImpulse[4];       // per point: what the restitution stage added (not warm-started)
     wide::MaskW impactRow[4];                 // per point: the restitution stage bounced or held the row
+    wide::MaskW touching[4];                  // per point: within linearSlop at the step start (restitution_rows.hpp)
 };
 
 /// The impulse a manifold point stores for the next step's warm start and load: what its last
@@ -145,6 +146,7 @@ struct ContactPrepareParams {
     Softness staticSoftness;           // contacts with a static body: stiffer, so piles do not sink
     LoadStiffening load;
     double speculativeDistance = 0.0;  // m: points farther than this weigh little in the friction centre
+    double linearSlop = 0.0;           // m: a point this close at the step start touches
     double velocityTimeOffset = 0.0;   // s: where the integrator's velocity sits in time (restitution)
     double stepTime = 0.0;             // s: the whole step (an impact falls within it)
     double substep = 0.0;              // s: the solver's substep

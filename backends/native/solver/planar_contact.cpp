@@ -96,6 +96,7 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
         cp.stepImpulse[lane] = 0.0;
         const double vn = nx * ((b.vx - b.w * rBy) - (a.vx - a.w * rAy)) + ny * ((b.vy + b.w * rBx) - (a.vy + a.w * rAx));
         cold.relativeVelocity[i][lane] = vn;
+        cold.touching[i][lane] = s <= params.linearSlop ? -1 : 0;
         cold.restitutionTarget[i][lane] = bounces ? restitutionTarget(params, in.restitution, s, vn, normalAcceleration, slide) : 0.0;
         // Points well beyond the speculative distance must not pull the friction centre around.
         const double weight = std::clamp(2.0 - s * invTau, 1e-3, 1.0);

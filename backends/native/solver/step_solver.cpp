@@ -364,6 +364,7 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     prepareParams_.load = {hertz, maxHertz, settings.contactDampingRatio, h_,
                            effects.has(Effect::Gravity) ? settings.gravity.norm() : 0.0};
     prepareParams_.speculativeDistance = settings.speculativeDistance;
+    prepareParams_.linearSlop = settings.linearSlop;
     prepareParams_.velocityTimeOffset = velocityTimeOffset(settings.integrator, step.dt);
     prepareParams_.stepTime = step.dt;
     prepareParams_.substep = h_;
