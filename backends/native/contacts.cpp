@@ -328,6 +328,17 @@ bool ContactManager::recycle(Contact& c, const NativeBody& a, const NativeBody& 
     return true;
 }
 
+// Inlined: an out-of-line function whose only effect is a prefetch hint counts as pure to GCC,
+// and its calls were dropped.
+[[gnu::always_inline]] inline void ContactManager::prefetchAhead(std::size_t slot, const NativeBodies& bodies) const {
+    if (slot + kSlotsAhead < slots_.size()) prefetchBytes(&slots_[slot + kSlotsAhead], kCacheLine);
+    if (slot + kBodiesAhead >= slots_.size()) return;
+    if (const Contact& next = slots_[slot + kBodiesAhead]; next.alive) {
+        prefetchBytes(&bodies[next.bodyA], kBodyBytesRead);
+        prefetchBytes(&bodies[next.bodyB], kBodyBytesRead);
+    }
+}
+
 void ContactManager::update(NativeBodies& bodies, const BroadPhase& broadPhase, double speculativeDistance,
                             double linearSlop, double dt, bool planar, std::vector<std::uint32_t>& toWake,
                             TaskSystem* tasks) {
@@ -349,6 +360,7 @@ void ContactManager::update(NativeBodies& bodies, const BroadPhase& broadPhase, 
             const std::size_t first = static_cast<std::size_t>(chunk) * kSlotsPerChunk;
             const std::size_t last = std::min(slots_.size(), first + kSlotsPerChunk);
             for (std::size_t slot = first; slot < last; ++slot) {
+                prefetchAhead(slot, bodies);
                 Contact& c = slots_[slot];
                 if (!c.alive) continue;
                 collideContact(c, bodies, broadPhase, speculativeDistance, linearSlop, dt, planar, scratch);

@@ -12,6 +12,7 @@
 #include "collision/collide.hpp"
 #include "collision/shape.hpp"
 #include "native_body.hpp"
+#include "solver/prefetch.hpp"
 
 namespace anyphys::native {
 
@@ -113,17 +114,23 @@ public:
     /// narrow phase left manifolds (speculative points included), and triggers. These are all
     /// the solver, the contact report and the islands read; in a pile most contacts are pairs of
     /// neighbours whose fat bounds overlap with no point, and skipping them skips most of the
-    /// memory. Listed by update(); a contact destroyed since is skipped.
+    /// memory. Listed by update(); a contact destroyed since is skipped. `bodies`: the world's,
+    /// which every such walk reads (asked for ahead: prefetchCandidate).
     template <class Fn>
-    void forEachTouchCandidate(Fn&& fn) {
-        for (std::uint32_t slot : touchCandidates_)
-            if (slots_[slot].alive) fn(slots_[slot]);
+    void forEachTouchCandidate(const NativeBodies& bodies, Fn&& fn) {
+        const std::size_t end = touchCandidates_.size();
+        for (std::size_t i = 0; i < end; ++i) {
+            prefetchCandidate(i, end, bodies);
+            if (Contact& c = slots_[touchCandidates_[i]]; c.alive) fn(c);
+        }
     }
     /// Those among the candidates [begin, end) of the list (to split them among workers).
     template <class Fn>
-    void forEachTouchCandidateIn(std::size_t begin, std::size_t end, Fn&& fn) const {
-        for (std::size_t i = begin; i < end; ++i)
+    void forEachTouchCandidateIn(std::size_t begin, std::size_t end, const NativeBodies& bodies, Fn&& fn) const {
+        for (std::size_t i = begin; i < end; ++i) {
+            prefetchCandidate(i, end, bodies);
             if (const Contact& c = slots_[touchCandidates_[i]]; c.alive) fn(c);
+        }
     }
     std::size_t touchCandidateCount() const { return touchCandidates_.size(); }
     std::size_t size() const { return index_.size(); }
@@ -144,6 +151,26 @@ private:
         std::vector<std::uint32_t> wake;        // sleeping bodies an awake one is about to touch
     };
 
+    // A walk over the touch candidates reads each one's slot, bodies and manifolds, all scattered
+    // in memory: it asks for a candidate's slot kCandidatesAhead ahead, and for its bodies' first
+    // lines and first manifold kCandidateDataAhead ahead, once the slot's line has arrived.
+    static constexpr std::size_t kCandidatesAhead = 8, kCandidateDataAhead = 4;
+    [[gnu::always_inline]] void prefetchCandidate(std::size_t i, std::size_t end, const NativeBodies& bodies) const {
+        if (i + kCandidatesAhead < end) prefetchBytes(&slots_[touchCandidates_[i + kCandidatesAhead]], kCacheLine);
+        if (i + kCandidateDataAhead >= end) return;
+        const Contact& c = slots_[touchCandidates_[i + kCandidateDataAhead]];
+        if (!c.alive) return;
+        prefetchBytes(&bodies[c.bodyA], kCacheLine);
+        prefetchBytes(&bodies[c.bodyB], kCacheLine);
+        if (!c.manifolds.empty()) prefetchBytes(c.manifolds.data(), kCacheLine);
+    }
+    // The narrow phase walks every slot in order and leaves most at once (neighbours whose fat
+    // bounds overlap, with no point) after reading the slot's first line and its bodies' first
+    // lines: past a core's cache each was a wait. It asks for a slot's line kSlotsAhead slots
+    // ahead, and for its bodies' lines kBodiesAhead ahead, once the slot's line has arrived.
+    static constexpr std::size_t kSlotsAhead = 12, kBodiesAhead = 6;
+    static constexpr std::size_t kBodyBytesRead = 192;  // NativeBody's fields every pass over contacts reads
+    void prefetchAhead(std::size_t slot, const NativeBodies& bodies) const;
     void destroy(std::uint32_t slot);
     /// Sorts a contact the narrow phase has just updated into its chunk's lists.
     static void classify(const Contact& c, std::uint32_t slot, const NativeBodies& bodies, ChunkLists& lists);

@@ -387,7 +387,7 @@ void NativeWorld::reportContacts(ContactReport& out) {
     const std::size_t chunks = (candidates + kContactsPerChunk - 1) / kContactsPerChunk;
     // The reported pairs among touch candidates [begin, end).
     const auto visit = [&](std::size_t begin, std::size_t end, auto&& onPair) {
-        contacts_.forEachTouchCandidateIn(begin, end, [&](const Contact& c) {
+        contacts_.forEachTouchCandidateIn(begin, end, bodies_, [&](const Contact& c) {
             const NativeBody &a = bodies_[c.bodyA], &b = bodies_[c.bodyB];
             if (!a.isActive() && !b.isActive()) return;  // both at rest: the layer keeps the pair
             if (c.trigger ? c.touching : !c.manifolds.empty()) onPair(c, a, b);

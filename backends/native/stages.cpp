@@ -378,7 +378,7 @@ public:
                                  b.state.angularVelocity.norm() < s.sleepAngularVelocity;
             b.sleepTime = resting ? b.sleepTime + step.dt : 0.0;
         }
-        world.contactManager().forEachTouchCandidate([&](const Contact& c) {
+        world.contactManager().forEachTouchCandidate(bodies, [&](const Contact& c) {
             if (c.trigger || !c.touching) return;
             NativeBody &a = bodies[c.bodyA], &b = bodies[c.bodyB];
             const bool da = a.isActive() && a.isDynamic(), db = b.isActive() && b.isDynamic();

@@ -89,7 +89,7 @@ void StepSolver::collect(NativeWorld& world) {
         enlist(joint.bodyB);
     }
     if (world.effects().has(Effect::Contacts)) {
-        world.contactManager().forEachTouchCandidate([&](Contact& contact) {
+        world.contactManager().forEachTouchCandidate(bodies, [&](Contact& contact) {
             if (contact.trigger || contact.manifolds.empty()) return;
             const NativeBody &a = bodies[contact.bodyA], &b = bodies[contact.bodyB];
             if (!((a.isDynamic() && a.awake) || (b.isDynamic() && b.awake))) return;
