@@ -138,6 +138,7 @@ std::vector<const char*> StepSolver::lastStageNames() const {
             case StageKind::CorrectJoints: names.push_back("correct_joints"); break;
             case StageKind::Relax: names.push_back("relax"); break;
             case StageKind::Restitution: names.push_back("restitution"); break;
+            case StageKind::RestitutionJoints: names.push_back("restitution_joints"); break;
             case StageKind::StoreImpulses: names.push_back("store_impulses"); break;
             case StageKind::FinalizeBodies: names.push_back("finalize_bodies"); break;
         }
@@ -277,7 +278,7 @@ void StepSolver::addStage(StageKind kind, int items, int color, int substep, boo
     // Joints are few and solved one after another: one block, on whichever worker takes it.
     const bool jointStage = kind == StageKind::WarmStartJoints || kind == StageKind::SolveJoints ||
                             kind == StageKind::CorrectJoints || kind == StageKind::RelaxJoints ||
-                            kind == StageKind::ReportJoints;
+                            kind == StageKind::RestitutionJoints || kind == StageKind::ReportJoints;
     if (jointStage) {
         plan_.push_back({kind, color, substep, endOfSubstep, items, std::max(items, 1)});
         stages_.push_back({items > 0 ? 1 : 0, false});
@@ -329,9 +330,13 @@ void StepSolver::planStages(const NativeWorld& world) {
             for (int it = 0; it < iterations; ++it) addStage(StageKind::CorrectJoints, joints);
         for (int it = 0; it < relaxIterations; ++it) pass(StageKind::Relax, sub, it + 1 == relaxIterations);
     }
+    // Each round of the restitution stage ends with the joints of the bodies in a bounce
+    // (solveJointsInBounce), so a bounce reaches through a joint as it does through a resting contact.
     if (restitution_)
-        for (int round = 0; round < kRestitutionRounds; ++round)
+        for (int round = 0; round < kRestitutionRounds; ++round) {
             for (int c = 0; c < colors; ++c) addStage(StageKind::Restitution, colorWideCount_[c], c, round);
+            if (joints > 0) addStage(StageKind::RestitutionJoints, joints, 0, round);
+        }
     addStage(StageKind::StoreImpulses, wide);
     if (joints > 0) addStage(StageKind::ReportJoints, joints);
     addStage(StageKind::FinalizeBodies, bodies);
@@ -451,11 +456,42 @@ void StepSolver::runBlock(int stage, int block, int worker) {
             for (const JointConstraint& c : joints_)
                 solveJoint(c, bodies_.data(), states_.data(), jointParams_, false, p.endOfSubstep);
             break;
+        case StageKind::RestitutionJoints: solveJointsInBounce(p); break;
         case StageKind::ReportJoints:
+            restoreJointImpulses();
             for (const JointConstraint& c : joints_) reportJoint(c, bodies_.data(), states_.data(), step_.dt);
             break;
         case StageKind::ForceCallback: break;  // main thread only
     }
+}
+
+// A bounce found after the substeps changes a jointed body's velocity without its joints: a
+// pendulum's bob bouncing off a wall with e = 1 had its speed reversed but kept its turn (the
+// contact pushes through its centre), and the next step's joint passes then took 1.2 % of its
+// energy at each bounce. Each round of the restitution stage therefore ends with a relax pass
+// (rigid, no bias) over the joints holding a body in the bounce; the rounds alternate the two until
+// both hold. What these passes add is the bounce's, not a load: it is not warm-started next step
+// (a pendulum would be kicked by it again) nor reported, as the contacts keep the stage's impulses
+// apart.
+void StepSolver::solveJointsInBounce(const StagePlan& p) {
+    if (skipRestitutionRound(p)) return;
+    const auto inBounce = [&](std::int32_t body) { return body != kStaticBody && states_[static_cast<std::size_t>(body)].inBounce != 0.0; };
+    for (std::size_t k = 0; k < joints_.size(); ++k) {
+        const JointConstraint& c = joints_[k];
+        if (!inBounce(c.a) && !inBounce(c.b)) continue;
+        if (!jointsInBounce_) {  // the first joint pass of the step keeps the impulses to restore
+            jointImpulsesBeforeBounce_.resize(joints_.size());
+            for (std::size_t j = 0; j < joints_.size(); ++j) jointImpulsesBeforeBounce_[j] = joints_[j].joint->impulse;
+            jointsInBounce_ = true;
+        }
+        solveJoint(c, bodies_.data(), states_.data(), jointParams_, false, false);
+    }
+}
+
+void StepSolver::restoreJointImpulses() {
+    if (!jointsInBounce_) return;
+    for (std::size_t j = 0; j < joints_.size(); ++j) joints_[j].joint->impulse = jointImpulsesBeforeBounce_[j];
+    jointsInBounce_ = false;
 }
 
 void StepSolver::prefetchPrepare(int w) const {

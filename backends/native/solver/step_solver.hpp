@@ -24,6 +24,7 @@
 // Constraints are coloured (ConstraintGraph) and grouped eight to a WideContact (a PlanarContact in
 // a planar world: 3 degrees of freedom per body), so the colour stages run in SIMD lanes and on
 // several workers with identical results.
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -71,6 +72,7 @@ private:
         RelaxJoints,
         Relax,
         Restitution,
+        RestitutionJoints,
         StoreImpulses,
         ReportJoints,
         FinalizeBodies,
@@ -145,6 +147,12 @@ private:
     ContactSolveParams solveParams_;
     JointSolveParams jointParams_;
     bool restitution_ = false;
+    // The joints' accumulated impulses as the relax passes left them, kept while the restitution
+    // stage's joint passes add the bounce's share, and put back after it (restoreJointImpulses).
+    std::vector<std::array<double, kRowCount>> jointImpulsesBeforeBounce_;
+    bool jointsInBounce_ = false;  // a restitution joint pass ran this step
+    void solveJointsInBounce(const StagePlan& p);
+    void restoreJointImpulses();
     /// Some row of the restitution stage's first round bounced or held. When none did, no body was
     /// marked in a bounce and the later rounds would find nothing either: they are skipped, so a
     /// world whose materials bounce pays one round while nothing does. Written by any worker in
