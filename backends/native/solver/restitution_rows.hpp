@@ -20,7 +20,7 @@ struct RestitutionRows {
 /// into its support (a 1 kg ball bouncing on a 10 kg box rose 59 to 83 % of its share). Touching
 /// points hold too, pushed or not: a row of balls without load, struck exactly at a step's end
 /// (so the substeps pushed nothing), let the first ball leave alone at the striker's speed, and
-/// a later, slower impact lost 12.5 % of the energy with e = 1 (NativeStruckRow).
+/// a later, slower impact lost 12.5 % of the energy with e = 1 (NativeRestitutionStage).
 /// `threshold` is minus the restitution threshold.
 template <class Contact, class Cold>
 [[gnu::always_inline]] inline RestitutionRows restitutionRows(const Contact& c, const Cold& cold, const SolverState* states,
