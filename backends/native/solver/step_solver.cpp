@@ -10,6 +10,7 @@
 #include "solver/body_integration.hpp"
 #include "solver/prefetch.hpp"
 #include "solver/restitution_math.hpp"
+#include "solver/state_runs.hpp"
 
 namespace anyphys::native {
 namespace {
@@ -475,7 +476,7 @@ void StepSolver::runBlock(int stage, int block, int worker) {
 // apart.
 void StepSolver::solveJointsInBounce(const StagePlan& p) {
     if (skipRestitutionRound(p)) return;
-    const auto inBounce = [&](std::int32_t body) { return body != kStaticBody && states_[static_cast<std::size_t>(body)].inBounce != 0.0; };
+    const auto inBounce = [&](std::int32_t body) { return wide::stateOf(states_.data(), body).inBounce != 0.0; };
     for (std::size_t k = 0; k < joints_.size(); ++k) {
         const JointConstraint& c = joints_[k];
         if (!inBounce(c.a) && !inBounce(c.b)) continue;

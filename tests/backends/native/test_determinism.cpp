@@ -7,6 +7,7 @@
 
 #include "anyphys/anyphys.hpp"
 #include "anyphys/thread_pool.hpp"
+#include "contact_helpers.hpp"
 #include "late_reverse_tasks.hpp"
 #include "solver/contact_constraint.hpp"
 
@@ -129,10 +130,8 @@ BodyState cornerBesideBoxes(int companions, bool planar, int steps) {
     WorldSettings settings;
     settings.planar = planar;
     World world(settings);
-    BodyDef ground;
+    BodyDef ground = test::boxDef("ground", {100, 1, 2}, {40, -1, 0});
     ground.type = BodyType::Static;
-    ground.shape = ShapeDef::box({100, 1, 2});
-    ground.position = {40, -1, 0};
     world.createBody(ground);
     BodyDef corner;
     corner.allowSleep = false;
