@@ -38,6 +38,7 @@ struct SolverBody {
     std::uint32_t body = 0;                // index in NativeWorld::bodies()
     bool dynamic = false;                  // kinematic bodies keep their velocity
     bool jointed = false;                  // an enabled joint holds it this step (contact_solve.cpp's sweeps)
+    bool contacted = false;                // a contact row acts on it this step (joint_solver.cpp's load)
     GyroscopicMode gyroscopic = GyroscopicMode::None;  // None unless the effect applies to this body
     Vec3 linearAcceleration = Vec3::Zero();  // gravity and user force, constant over the step
     Vec3 angularAcceleration = Vec3::Zero(); // user torque, world frame

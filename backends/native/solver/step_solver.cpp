@@ -220,9 +220,13 @@ void StepSolver::countSpringsPerBody() {
 }
 
 void StepSolver::buildConstraints() {
+    const bool joints = !jointList_.empty();  // only the joint passes read SolverBody::contacted
     for (ContactLane& lane : lanes_) {
         lane.bodyA = solverIndex_[static_cast<std::uint32_t>(lane.bodyA)];
         lane.bodyB = solverIndex_[static_cast<std::uint32_t>(lane.bodyB)];
+        if (joints)
+            for (std::int32_t body : {lane.bodyA, lane.bodyB})
+                if (body != kStaticBody) bodies_[static_cast<std::size_t>(body)].contacted = true;
     }
     graph_.build(lanes_, bodies_);
     joints_.clear();
