@@ -201,6 +201,8 @@ void ContactManager::addPair(std::uint64_t keyA, std::uint64_t keyB, const Nativ
     // Planes and meshes have no useful box.
     const auto boxable = [](const Shape& s) { return s.type != ShapeType::Plane && s.type != ShapeType::Mesh; };
     c.boxed = boxable(a.shapes[static_cast<std::size_t>(c.shapeA)]) && boxable(b.shapes[static_cast<std::size_t>(c.shapeB)]);
+    const auto round = [](const Shape& s) { return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule; };
+    c.flatPair = !round(a.shapes[static_cast<std::size_t>(c.shapeA)]) && !round(b.shapes[static_cast<std::size_t>(c.shapeB)]);
     c.trigger = sa.trigger || sb.trigger;
     c.touching = false;
     c.separated = false;

@@ -57,6 +57,7 @@ struct Contact {
     bool touching = false;          // some point within linearSlop (or overlapping, for triggers)
     bool separated = false;         // set by the narrow phase: fat bounds apart, destroy the contact
     bool boxed = false;             // neither shape is a plane or mesh: tight bounds may rule the pair out
+    bool flatPair = false;          // neither shape is round (sphere, capsule): see ContactLane::flatPair
     std::vector<ContactManifold> manifolds;  // capacity kept from step to step (and slot reuse)
     double friction = 0.0;
     double restitution = 0.0;

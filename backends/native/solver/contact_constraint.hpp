@@ -47,6 +47,9 @@ struct WideContact {
     bool reverse = false;              // the next solve visits the points last to first
     bool unjointed[wide::kLanes];      // no joint holds either body: friction joins the later sweeps (manifold_sweeps.hpp)
     bool multiPoint[wide::kLanes];     // the lane's manifold has more than one point: its normal rows join the later sweeps
+    bool turnArmA[wide::kLanes];       // body A is kinematic and the pair flat: its friction arm turns with it (contact_solve.cpp)
+    bool turnArmB[wide::kLanes];
+    bool turnsArms;                    // some lane turns an arm
     wide::FloatW invMassA, invMassB;   // the same along every axis (a planar world has PlanarContact)
     wide::SymMat3W invIA, invIB;
     wide::Vec3W normal, tangent1;      // second tangent: normal x tangent1 (secondTangent)
@@ -119,6 +122,10 @@ struct ContactLane {
     std::int32_t bodyA = kStaticBody, bodyB = kStaticBody;
     double friction = 0.0, restitution = 0.0;
     std::uint32_t orderKey = 0;  // a hash of the pair and manifold: where the solver visits it (ConstraintGraph)
+    // Neither shape is round: where they touch is a point of each body (on a round shape it is
+    // not: a rolling ball's stays below it), so a kinematic body's friction arm may turn with it
+    // within the step (FrictionArms in contact_solve.cpp).
+    bool flatPair = false;
 };
 
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h

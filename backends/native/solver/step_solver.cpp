@@ -97,7 +97,7 @@ void StepSolver::collect(NativeWorld& world) {
             for (ContactManifold& m : contact.manifolds)
                 if (m.pointCount > 0)
                     lanes_.push_back({&m, static_cast<std::int32_t>(contact.bodyA), static_cast<std::int32_t>(contact.bodyB),
-                                      contact.friction, contact.restitution, orderKey(contact, m)});
+                                      contact.friction, contact.restitution, orderKey(contact, m), contact.flatPair});
             enlist(contact.bodyA);
             enlist(contact.bodyB);
         });
