@@ -128,6 +128,12 @@ struct ContactLane {
     bool flatPair = false;
 };
 
+/// Whether `body`'s friction arm in lane `in` turns with it within the step: the body is kinematic
+/// and the pair flat (ContactLane::flatPair; the passes' reasons are in contact_solve.cpp).
+inline bool turnsFrictionArm(const ContactLane& in, std::int32_t body, const SolverBody* bodies) {
+    return in.flatPair && body != kStaticBody && !bodies[body].dynamic;
+}
+
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h
 /// (implicit Euler on a mass-spring-damper; Catto, "Solver2D", 2024). Zero hertz: rigid.
 struct Softness {

@@ -48,6 +48,9 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
     pc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
     pc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
     pc.multiPoint[lane] = m.pointCount > 1;
+    pc.turnArmA[lane] = turnsFrictionArm(in, in.bodyA, bodies);
+    pc.turnArmB[lane] = turnsFrictionArm(in, in.bodyB, bodies);
+    pc.turnsArms = pc.turnsArms || pc.turnArmA[lane] || pc.turnArmB[lane];
     cold.manifold[lane] = &m;
     pc.pointCount = std::max(pc.pointCount, m.pointCount);
     pc.invMassA[lane] = a.invMass;

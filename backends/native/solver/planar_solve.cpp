@@ -50,6 +50,19 @@ ANYPHYS_KERNEL void scatterVelocities(SolverState* states, const std::int32_t* i
     scatterRuns(states, index, write, kPlanarVelocityRun, 4 * kDouble, b.w, b.vx, b.vy, b.vz);
 }
 
+// A record's friction arms, kept while a pass works on turned ones.
+struct FrictionArms {
+    FloatW ax, ay, bx, by;
+};
+
+// The friction arm (x, y) in the lanes `turn` marks, turned as `body` has since the step began.
+ANYPHYS_KERNEL void turnArm(const bool (&turn)[kLanes], const PlanarBodyW& body, FloatW& x, FloatW& y) {
+    const MaskW lanes = laneMask(turn);
+    const FloatW tx = body.c * x - body.s * y, ty = body.s * x + body.c * y;
+    x = select(lanes, tx, x);
+    y = select(lanes, ty, y);
+}
+
 // Applies the impulse (px, py) at anchors r on A (negated) and on B.
 ANYPHYS_KERNEL void applyImpulse(PlanarBodyW& a, PlanarBodyW& b, const PlanarContact& c, FloatW rAx, FloatW rAy,
                                  FloatW rBx, FloatW rBy, FloatW px, FloatW py) {
@@ -230,6 +243,15 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, in
         PlanarContact& c = contacts[i];
         PlanarBodyW a = gatherPlanarMotion(states, c.bodyA), b = gatherPlanarMotion(states, c.bodyB);
         const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
+        // A kinematic body's friction arm turns with it, as in 3D (contact_solve.cpp): the pass
+        // works on the turned arms and the record keeps the step's first ones.
+        FrictionArms first;
+        const bool turning = params.friction && c.turnsArms;
+        if (turning) {
+            first = {c.centerAx, c.centerAy, c.centerBx, c.centerBy};
+            turnArm(c.turnArmA, a, c.centerAx, c.centerAy);
+            turnArm(c.turnArmB, b, c.centerBx, c.centerBy);
+        }
         // Friction first; non-penetration has the last word in each pass. Bounded as in 3D: by the
         // last normal impulses through soft rows, by the impulses rigid rows will leave (so an
         // impact gets its friction), then capped by what they left.
@@ -261,6 +283,12 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, in
         scatterVelocities(states, c.bodyA, c.writeA, a);
         scatterVelocities(states, c.bodyB, c.writeB, b);
         if (endOfSubstep) summarize(c, warm[i]);
+        if (turning) {
+            c.centerAx = first.ax;
+            c.centerAy = first.ay;
+            c.centerBx = first.bx;
+            c.centerBy = first.by;
+        }
     }
 }
 
