@@ -75,6 +75,16 @@ protected:
         return world.createBody(d);
     }
 
+    // A box of half extents `half`, never sleeping, at `at`.
+    Body box(World& world, const Vec3& at, double mass, const Vec3& half) {
+        BodyDef d;
+        d.shape = ShapeDef::box(half);
+        d.mass = mass;
+        d.position = at;
+        d.allowSleep = false;
+        return world.createBody(d);
+    }
+
     /// A hinge about Z through the origin, holding `body` to the world.
     static Joint hingeToWorldAboutZ(World& world, const Body& body) {
         JointDef d;
@@ -1247,18 +1257,16 @@ TEST_P(JointTest, ConicalPendulumKeepsItsCone) {
 // force and gravity pass through it), so Euler's equations keep the spin about it exactly, and
 // nothing adds energy. Native's joint passes turned the disc through the step's first inertia
 // while its anchor turned with it: as the axis tipped, the spin grew from 100 to 100.64 rad/s
-// and the energy by 9 J in 10 s.
+// and the energy by 9 J in 10 s. Not checked here: the axis should stay level as it precesses,
+// and on every backend it sinks, an error of first order in the step that splits the joint from
+// the gyroscopic term (native 16 cm in 10 s at 60 Hz, 1.4 cm at 960 Hz; ODE and Bullet hang
+// straight down within 10 s).
 TEST_P(JointTest, GyroscopeOnAPivotKeepsItsSpin) {
     ANYPHYS_REQUIRE(hasJoint("ball"), "joint type ball");
     ANYPHYS_REQUIRE(caps().gyroscopicModes.count(GyroscopicMode::Implicit), "gyroscopic mode implicit");
     World world(jointSettings());
-    BodyDef def;
-    def.shape = ShapeDef::box(Vec3(0.05, 0.5, 0.5));  // moments 1/6 about X, 0.0842 across it
-    def.mass = 1.0;
-    def.position = Vec3(0.5, 1.0, 0.0);
-    def.angularVelocity = Vec3(100.0, 0.0, 0.0);
-    def.allowSleep = false;
-    Body disc = world.createBody(def);
+    Body disc = box(world, Vec3(0.5, 1.0, 0.0), 1.0, Vec3(0.05, 0.5, 0.5));  // moments 1/6 about X, 0.0842 across it
+    disc.setAngularVelocity(Vec3(100.0, 0.0, 0.0));
     JointDef d;
     d.type = JointType::Ball;
     d.bodyB = disc;
