@@ -124,7 +124,7 @@ struct ContactLane {
     std::uint32_t orderKey = 0;  // a hash of the pair and manifold: where the solver visits it (ConstraintGraph)
     // Neither shape is round: where they touch is a point of each body (on a round shape it is
     // not: a rolling ball's stays below it), so a kinematic body's friction arm may turn with it
-    // within the step (FrictionArms in contact_solve.cpp).
+    // within the step (the passes in contact_solve.cpp and planar_solve.cpp).
     bool flatPair = false;
 };
 
