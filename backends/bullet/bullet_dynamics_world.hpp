@@ -121,6 +121,8 @@ private:
     std::vector<ChildOverlap> childOverlaps_;
     /// Bodies held by joints whose motion clamp integrateTransforms suspends, with its threshold.
     std::vector<std::pair<btRigidBody*, btScalar>> unclamped_;
+    /// Moving kinematic bodies that integrateTransforms hides from the motion clamp, with their group.
+    std::vector<std::pair<btBroadphaseProxy*, int>> hiddenKinematic_;
 };
 
 }  // namespace anyphys::bullet

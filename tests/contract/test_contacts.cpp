@@ -647,6 +647,14 @@ TEST_P(ContactsTest, KinematicPaddlePushesABoxAtItsOwnSpeed) {
     expectCriterion(r.id, r.met, r.measured, r.value);
 }
 
+// A box rides a kinematic platform going down (contact_helpers.hpp, with the bounds).
+TEST_P(ContactsTest, BoxRidesADescendingPlatform) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = boxRidesADescendingPlatform(settings(), "contacts.descending_platform");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 // A box sliding into a wall with no restitution stops there (contact_helpers.hpp, with the bounds).
 TEST_P(ContactsTest, BoxSlidingIntoAWallStopsThere) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);

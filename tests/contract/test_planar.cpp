@@ -206,6 +206,14 @@ TEST_P(PlanarTest, KinematicPaddlePushesABoxAtItsOwnSpeed) {
     expectCriterion(r.id, r.met, r.measured, r.value);
 }
 
+// Planar twin of ContactsTest.BoxRidesADescendingPlatform, same bounds.
+TEST_P(PlanarTest, BoxRidesADescendingPlatform) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = boxRidesADescendingPlatform(settings(), "planar.contacts.descending_platform");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 // Planar twin of ContactsTest.BoxSlidingIntoAWallStopsThere, same bounds.
 TEST_P(PlanarTest, BoxSlidingIntoAWallStopsThere) {
     const std::string missing = lacking(caps(), {ShapeType::Box, ShapeType::Plane}, Effect::Contacts);
