@@ -180,9 +180,10 @@ void AnyphysDynamicsWorld::integrateTransforms(btScalar timeStep) {
     hiddenKinematic_.clear();
     for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
         btRigidBody* body = m_nonStaticRigidBodies[i];
+        if (!body->isKinematicObject()) continue;
         btBroadphaseProxy* proxy = body->getBroadphaseHandle();
         const bool moving = !body->getLinearVelocity().fuzzyZero() || !body->getAngularVelocity().fuzzyZero();
-        if (!body->isKinematicObject() || !moving || !proxy) continue;
+        if (!moving || !proxy) continue;
         hiddenKinematic_.emplace_back(proxy, proxy->m_collisionFilterGroup);
         proxy->m_collisionFilterGroup = 0;
     }

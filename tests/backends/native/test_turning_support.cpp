@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <numbers>
 #include <string>
 
 #include "anyphys/anyphys.hpp"
@@ -46,7 +47,7 @@ Ride ride(Solver solver, const Vec3& axis, const Vec3& offset, double spin, doub
     const auto angle = [](const Vec3& v) { return std::atan2(-v.z(), v.x()); };
     Ride r;
     r.radius = flat.norm();
-    r.lag = std::abs(std::remainder(angle(offset) + spin * world.time() - angle(flat), 2.0 * 3.141592653589793));
+    r.lag = std::abs(std::remainder(angle(offset) + spin * world.time() - angle(flat), 2.0 * std::numbers::pi));
     return r;
 }
 
