@@ -106,6 +106,32 @@ void movePointsOntoTheSphere(dGeomID o1, dGeomID o2, dContact* contacts, int cou
     }
 }
 
+// A point of two overlapping shapes lies in both, so within both bounding boxes. ODE's box-box
+// test puts its points on the reference face, which for a small box swallowed by a large one is
+// the large box's face: a 0.1 m box inside a kinematic box of half extent 1e7 m got its four
+// points 1e7 m away. Each friction row then turned the box about an arm of 1e7 m, and the direct
+// solver's factorisation met a zero pivot, where ODE asserts and aborts the process (the api_calls
+// fuzzer's input tests/fuzz/corpus/api_calls/crash-ode-direct-swallowed-box). An overlapping point is
+// therefore clamped into the two boxes' intersection, grown by `margin` so that points a rounding
+// outside (a resting box's, on the ground's top face) keep their bits. Only where a point is
+// deeper than the margin are the bounds fetched: a resting pair's overlap is the surface layer
+// (a fifth of linearSlop), and the layer's cost per pair stays as it was. Speculative points (no
+// overlap) are the pair's gap apart and are left alone.
+void keepPointsInTheOverlap(dGeomID o1, dGeomID o2, dContact* contacts, int count, double margin) {
+    if (deepest(contacts, count) <= margin) return;
+    dReal boundsA[6], boundsB[6];  // ODE's layout: min x, max x, min y, max y, min z, max z
+    dGeomGetAABB(o1, boundsA);
+    dGeomGetAABB(o2, boundsB);
+    for (int i = 0; i < count; ++i) {
+        if (!(contacts[i].geom.depth > 0)) continue;
+        for (int k = 0; k < 3; ++k) {
+            const double low = std::max(boundsA[2 * k], boundsB[2 * k]) - margin;
+            const double high = std::min(boundsA[2 * k + 1], boundsB[2 * k + 1]) + margin;
+            if (low <= high) contacts[i].geom.pos[k] = std::clamp(contacts[i].geom.pos[k], low, high);
+        }
+    }
+}
+
 }  // namespace
 
 void OdeWorld::nearCallback(void* self, dGeomID o1, dGeomID o2) { static_cast<OdeWorld*>(self)->collidePair(o1, o2); }
@@ -163,6 +189,7 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
                                 kMaxContactsPerPair);
     if (n <= 0) return;
     if (n == 1 && !trigger && !speculative) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
+    if (!trigger && !speculative) keepPointsInTheOverlap(o1, o2, found, n, settings_.linearSlop);
     if (effects_.has(Effect::Events)) {  // ODE's points, before the joints' sphere points
         const auto first = static_cast<std::uint32_t>(points_.size());
         if (!trigger)  // a sensor's overlap has no points

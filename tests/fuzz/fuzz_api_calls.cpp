@@ -188,6 +188,12 @@ void createBody(Decoder& d, Session& s) {
                      b.shape.halfExtents.x(), b.shape.halfExtents.y(), b.shape.halfExtents.z(), b.shape.normal.x(),
                      b.shape.normal.y(), b.shape.normal.z(), b.shape.offset, b.position.x(), b.position.y(),
                      b.position.z(), b.mass.value_or(-1), b.density.value_or(-1), inertia.x(), inertia.y(), inertia.z());
+        // The motion too: a box's velocity decided where the swallowed-box abort struck.
+        std::fprintf(stderr, "    orientation %g %g %g %g velocity %g %g %g spin %g %g %g trigger %d layer %u mask %u"
+                     " gravityScale %g damping %g %g gyroscopic %d\n", b.orientation.w(), b.orientation.x(), b.orientation.y(),
+                     b.orientation.z(), b.linearVelocity.x(), b.linearVelocity.y(), b.linearVelocity.z(), b.angularVelocity.x(),
+                     b.angularVelocity.y(), b.angularVelocity.z(), int(b.isTrigger), unsigned(b.layer), unsigned(b.mask),
+                     b.gravityScale, b.linearDamping, b.angularDamping, int(b.gyroscopic));
     }
     fuzz::refusedOrDone([&] { s.bodies.push_back(s.world->createBody(b)); });
 }
@@ -381,6 +387,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             case 10:
                 if (s.steps < kMaxSteps) {
                     const double elapsed = d.number(0, 0.1);
+                    if (std::getenv("ANYPHYS_FUZZ_TRACE")) std::fprintf(stderr, "  elapsed %g s\n", elapsed);
                     s.steps += 2;
                     fuzz::refusedOrDone([&] { (void)s.world->update(elapsed); });
                 }
