@@ -603,6 +603,31 @@ TEST(Collide, SphereInsideAHullLeavesThroughTheNearestFace) {
     EXPECT_NEAR(m.points[0].separation, -0.7, kTol);
 }
 
+// A point of two overlapping shapes lies in both (collide.cpp, keepDeepPointsInBothBounds). A
+// 0.1 m box swallowed by a large one, turned or not, in either order: midway between the surfaces
+// lay half the large box away (4.7 m at half extent 10, 5e6 m at 1e7), a friction arm of that
+// length. Each point must lie within the small box's bounds grown by the 1 cm clamp margin; the
+// depth keeps the true overlap, the distance to the nearest outer face.
+TEST(Collide, PointsOfASwallowedBoxLieWithinIt) {
+    const Quat turned(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()));
+    for (const double half : {10.0, 1e3, 1e7})
+        for (const Quat& q : {Quat::Identity(), turned})
+            for (const bool smallFirst : {true, false}) {
+                SCOPED_TRACE("outer half extent " + std::to_string(half) + (smallFirst ? ", small box first" : ", large box first"));
+                const Shape small = box(Vec3::Constant(0.05)), large = box(Vec3::Constant(half));
+                const Transform smallPose = at(Vec3(0.3, 0.2, 0), q), largePose = at(Vec3::Zero());
+                const Manifold m = smallFirst ? one(small, smallPose, large, largePose) : one(large, largePose, small, smallPose);
+                ASSERT_GT(m.pointCount, 0);
+                // The small box's bounds: its centre +- the extent of its turned corners, plus 1 cm.
+                const Vec3 reach = q.toRotationMatrix().cwiseAbs() * Vec3::Constant(0.05) + Vec3::Constant(0.01);
+                for (int i = 0; i < m.pointCount; ++i) {
+                    const Vec3 off = (m.points[i].point - smallPose.position).cwiseAbs();
+                    EXPECT_TRUE((off.array() <= reach.array() + 1e-9).all()) << "point " << m.points[i].point.transpose();
+                    EXPECT_LT(m.points[i].separation, -(half - 0.4));  // through the nearest face, +x
+                }
+            }
+}
+
 TEST(Collide, NormalsPointFromAToBWhateverTheOrder) {
     const Shape shapes[] = {sphere(0.4), capsule(0.3, 0.5), box(Vec3(0.4, 0.3, 0.5)), convex({Vec3(-0.4, -0.4, -0.4), Vec3(0.5, -0.4, -0.3),
                                                                                            Vec3(0, 0.5, 0), Vec3(0, -0.3, 0.5), Vec3(0.1, 0.1, -0.5)})};
