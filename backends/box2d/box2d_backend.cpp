@@ -190,6 +190,8 @@ Backend makeBox2dBackend() {
          "body's turn per b2World::Step at b2_maxRotation (pi/2, a compile-time constant), and the impact gives the "
          "spin within a step the layer did not split, as the body did not spin at its start (Box2dWorld::substepsFor). "
          "A 25 cm ball at 20 m/s (57 rad/s) is exact"},
+        {"planar.contacts.swallowed_box",
+         "a 0.1 m box swallowed by a kinematic box of half extent 10 m to 1e6 m is pushed out along the right axis but turns up to half a revolution on the way (3.14 rad at 10 m, 2.27 at 1 000 m with 4 substeps; bound 0.1): Box2D 2.4.1's manifold points lie on the large box's face, and its position pass, up to b2_maxLinearCorrection (0.2 m) a point per iteration, uncapped in total speed (75 m in 0.5 s), turns the box about those far points"},
         {"planar.hard.ragdoll_pile.joint_gap",
          "joints of a planar pile of 10 ragdolls open by up to 11.3 cm at the defaults (as planar.assemblies.ragdoll_gap; 87 cm while fast limbs were made bullets)"},
     });
@@ -197,6 +199,7 @@ Backend makeBox2dBackend() {
         {"planar.joints.motor_lever", 400},  // in multiples of its bounds, measured 202
         {"planar.contacts.overhang_stands", 3.0},  // m, measured 1.81 (fallen)
         {"planar.contacts.tip_about_edge", 0.035},  // s, measured 0.0221
+        {"planar.contacts.swallowed_box", 35},  // in multiples of its bounds, measured 31.4 (the turn's; half a revolution)
         {"planar.friction.impact_fast", 38},  // in multiples of its bounds, measured 25.4
         // The joint and assembly criteria's measures (contract run 2026-11-24) twice over; chains
         // that tear five times over, as their figure depends on the step the tear starts at.

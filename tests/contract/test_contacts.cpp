@@ -663,6 +663,16 @@ TEST_P(ContactsTest, BoxSlidingIntoAWallStopsThere) {
     expectCriterion(r.id, r.met, r.measured, r.value);
 }
 
+// A box swallowed by a far larger kinematic box is pushed out of its nearest face
+// (contact_helpers.hpp, with the bounds).
+TEST_P(ContactsTest, SwallowedBoxIsPushedOutThroughTheNearestFace) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = swallowedBoxIsPushedOut(everySolverAndSubstepCount(settings()),
+                                                       caps().parameters.contains("settings.contactPushMaxVelocity"), "contacts.swallowed_box");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 ANYPHYS_CONTRACT_SUITE(ContactsTest);
 
 }  // namespace

@@ -222,6 +222,15 @@ TEST_P(PlanarTest, BoxSlidingIntoAWallStopsThere) {
     expectCriterion(r.id, r.met, r.measured, r.value);
 }
 
+// Planar twin of ContactsTest.SwallowedBoxIsPushedOutThroughTheNearestFace, same bounds.
+TEST_P(PlanarTest, SwallowedBoxIsPushedOutThroughTheNearestFace) {
+    const std::string missing = lacking(caps(), {ShapeType::Box}, Effect::Contacts);
+    ANYPHYS_REQUIRE(missing.empty(), missing);
+    const CriterionResult r = swallowedBoxIsPushedOut(everySolverAndSubstepCount(settings()),
+                                                       caps().parameters.contains("settings.contactPushMaxVelocity"), "planar.contacts.swallowed_box");
+    expectCriterion(r.id, r.met, r.measured, r.value);
+}
+
 // Motion stays in the plane: a box thrown spinning onto the ground, pushed out of the plane by a
 // force and an impulse (which the plane absorbs), keeps z = 0 and turns about Z only.
 TEST_P(PlanarTest, MotionStaysInThePlane) {
