@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -95,16 +96,38 @@ double heavyEndedChainGap(const WorldSettings& settings, const MassRegularizatio
     return gaps.finite() ? gaps.worst() : std::numeric_limits<double>::infinity();
 }
 
+// One draw of the ragdoll pile below: its worst joint gap, its fastest body at the end, its
+// lowest body and its worst hinge-limit violation.
+struct RagdollPileDraw {
+    double worstGap = 0.0;    // m
+    double fastest = 0.0;     // m/s, after 10 s
+    double lowest = 1e9;      // m
+    double worstLimit = 0.0;  // rad beyond a hinge's limits
+    bool finite = true;
+};
+
+// The middle value of a draw's measure over every draw (an odd count: the middle one).
+template <class Measure>
+double medianOf(const std::vector<RagdollPileDraw>& draws, Measure measure) {
+    std::vector<double> values;
+    for (const RagdollPileDraw& d : draws) values.push_back(measure(d));
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+}
+
 class AssemblyTest : public ContractTest {
 protected:
     // Four ragdolls dropped onto each other (each turned, from 1 to 4.5 m up) on a ground plane,
     // for 10 s with sleeping off: no non-finite state, the largest gap between a joint's anchors
     // on its two bodies, and the fastest body at the end.
-    void ragdollPile(const std::string& assembly) {
-        const Scene& ragdoll = builtinAssembly(assembly);
-        for (const SceneJoint& j : ragdoll.joints)
-            ANYPHYS_REQUIRE(caps().jointTypes.contains(std::string(toString(j.def.type))),
-                            "joint type " + std::string(toString(j.def.type)));
+    //
+    // The pile is chaotic. Moving ragdoll i by k x i mm along x (k = 0..8) gave native worst gaps
+    // of 18 to 43 mm and fastest bodies of 0.02 to 0.46 m/s after 10 s, Bullet gaps of 30 to
+    // 59 mm: one run is one draw, and a change of rounding anywhere could flip a verdict either
+    // way (the single run, k = 0, had native pass the rest bound, which 5 of the 9 draws miss, and
+    // Bullet the gap bound, which 4 miss). So the pile is run nine times so moved, and each
+    // measure is judged by its median over the draws.
+    RagdollPileDraw ragdollPileDraw(const Scene& ragdoll, const std::string& assembly, int k) {
         Scene scene;
         scene.settings = settings();
         BodyDef ground;
@@ -118,51 +141,71 @@ protected:
                                           : Quat(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitX())) *
                                                 Quat(Eigen::AngleAxisd(0.9 * i, Vec3::UnitY()));
             const Vec3 at = planarTest() ? Vec3(0.9 * (i % 2 ? 1 : -1), 1.0 + 1.2 * i, 0.0) : Vec3(0.2 * i, 0.5 + 1.2 * i, -0.9);
-            appendInstance(scene, ragdoll, Transform{at, lie}, "r" + std::to_string(i) + "/");
+            appendInstance(scene, ragdoll, Transform{at + Vec3(1e-3 * k * i, 0, 0), lie}, "r" + std::to_string(i) + "/");
         }
         for (BodyDef& b : scene.bodies) b.allowSleep = false;
         World world(scene.settings, scene.materials);
         const SceneObjects objects = createSceneObjects(world, scene);
         JointGapMeter gaps(scene, objects);
-        double worstLimit = 0.0;  // rad beyond a hinge's limits
+        RagdollPileDraw draw;
         const auto observeLimits = [&] {
             for (std::size_t i = 0; i < scene.joints.size(); ++i) {
                 const JointDef& d = scene.joints[i].def;
                 if (d.type != JointType::Hinge || !d.limits) continue;
                 const double angle = objects.joints[i].position();
-                worstLimit = std::max({worstLimit, d.limits->lower - angle, angle - d.limits->upper});
+                draw.worstLimit = std::max({draw.worstLimit, d.limits->lower - angle, angle - d.limits->upper});
             }
         };
         while (world.time() < 10.0 && gaps.observe()) {
             observeLimits();
             world.step();
         }
-        const double worstGap = gaps.worst();
-        const bool finite = gaps.finite();
-        double fastest = 0.0, lowest = 1e9;
+        draw.worstGap = gaps.worst();
+        draw.finite = gaps.finite();
         for (const Body& body : objects.bodies) {
-            fastest = std::max(fastest, body.linearVelocity().norm());
-            lowest = std::min(lowest, body.position().y());
+            draw.fastest = std::max(draw.fastest, body.linearVelocity().norm());
+            draw.lowest = std::min(draw.lowest, body.position().y());
         }
         std::cout << "[ MEASURED ] " << backend() << " " << toString(*world.settings().solver) << " pile of 4 " << assembly
-                  << ": worst joint gap " << worstGap * 1e3 << " mm, fastest body after 10 s " << fastest
-                  << " m/s, lowest body " << lowest << " m\n";
-        EXPECT_TRUE(finite) << "a state went non-finite";
-        // 5 cm: soft joints stretch for a moment when a 70 kg body lands on another from 4 m
-        // (native planar: 2.4 cm; 3D 5.0 cm, its declared deviation); a torn limb is metres.
-        expectCriterion(planarTest() ? "planar.assemblies.ragdoll_gap" : "assemblies.ragdoll_gap", worstGap < 0.05,
-                        "worst joint gap " + std::to_string(worstGap) + " m", worstGap);
+                  << ", ragdolls moved " << k << " mm apart: worst joint gap " << draw.worstGap * 1e3
+                  << " mm, fastest body after 10 s " << draw.fastest << " m/s, lowest body " << draw.lowest
+                  << " m, worst hinge limit violation " << draw.worstLimit * 180.0 / std::numbers::pi << " deg\n";
+        return draw;
+    }
+
+    void ragdollPile(const std::string& assembly) {
+        const Scene& ragdoll = builtinAssembly(assembly);
+        for (const SceneJoint& j : ragdoll.joints)
+            ANYPHYS_REQUIRE(caps().jointTypes.contains(std::string(toString(j.def.type))),
+                            "joint type " + std::string(toString(j.def.type)));
+        int count = 9;  // the median is then the fifth draw's
+#ifdef ANYPHYS_SANITIZED
+        count = 1;  // the sanitizers' run checks memory, not the spread of a chaotic pile
+        std::cout << "[ NOT RUN  ] " << backend() << " pile of 4 " << assembly << ": draws 2 to 9 left to the release run\n";
+#endif
+        std::vector<RagdollPileDraw> draws;
+        for (int k = 0; k < count; ++k) {
+            draws.push_back(ragdollPileDraw(ragdoll, assembly, k));
+            EXPECT_TRUE(draws.back().finite) << "draw " << k << ": a state went non-finite";
+            EXPECT_GT(draws.back().lowest, -0.2) << "draw " << k << ": something fell through the ground";
+        }
+        const double gap = medianOf(draws, [](const RagdollPileDraw& d) { return d.worstGap; });
+        const double fastest = medianOf(draws, [](const RagdollPileDraw& d) { return d.fastest; });
+        const double limitDegrees = medianOf(draws, [](const RagdollPileDraw& d) { return d.worstLimit; }) * 180.0 / std::numbers::pi;
+        std::cout << "[ MEASURED ] " << backend() << " pile of 4 " << assembly << ", medians of " << count
+                  << " draws: worst joint gap " << gap * 1e3 << " mm, fastest body after 10 s " << fastest
+                  << " m/s, worst hinge limit violation " << limitDegrees << " deg\n";
+        // 5 cm: soft joints stretch for a moment when a 70 kg body lands on another from 4 m; a
+        // torn limb is metres.
+        expectCriterion(planarTest() ? "planar.assemblies.ragdoll_gap" : "assemblies.ragdoll_gap", gap < 0.05,
+                        "median worst joint gap " + std::to_string(gap) + " m", gap);
         // At rest after 10 s: 0.1 m/s, well below a limb still falling (1 m/s after 0.1 s).
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_rest" : "assemblies.ragdoll_rest", fastest < 0.1,
-                        "fastest body " + std::to_string(fastest) + " m/s after 10 s", fastest);
-        EXPECT_GT(lowest, -0.2);  // nothing fell through the ground
+                        "median fastest body " + std::to_string(fastest) + " m/s after 10 s", fastest);
         // Hinge limits (elbows, knees; every planar joint) held within 3 degrees: a soft limit
         // gives a little under a 70 kg landing; a broken one lets a knee bend the wrong way.
-        const double limitDegrees = worstLimit * 180.0 / std::numbers::pi;
-        std::cout << "[ MEASURED ] " << backend() << " pile of 4 " << assembly << ": worst hinge limit violation "
-                  << limitDegrees << " deg\n";
         expectCriterion(planarTest() ? "planar.assemblies.ragdoll_limits" : "assemblies.ragdoll_limits", limitDegrees <= 3.0,
-                        "a hinge went " + std::to_string(limitDegrees) + " deg beyond its limits", limitDegrees);
+                        "median: a hinge went " + std::to_string(limitDegrees) + " deg beyond its limits", limitDegrees);
     }
 
     void regularisedChain(const WorldSettings& settings, const std::string& criterion) {
