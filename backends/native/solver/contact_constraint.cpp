@@ -142,8 +142,8 @@ void prepareLane(WideContact& wc, WideContactCold& cold, int lane, const Contact
     wc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
     wc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
     wc.multiPoint[lane] = m.pointCount > 1;
-    wc.turnArmA[lane] = turnsFrictionArm(in, in.bodyA, bodies);
-    wc.turnArmB[lane] = turnsFrictionArm(in, in.bodyB, bodies);
+    wc.turnArmA[lane] = turnsFrictionArm(in, in.bodyA, bodies, a.w.norm() * params.stepTime);
+    wc.turnArmB[lane] = turnsFrictionArm(in, in.bodyB, bodies, b.w.norm() * params.stepTime);
     wc.turnsArms = wc.turnsArms || wc.turnArmA[lane] || wc.turnArmB[lane];
     cold.manifold[lane] = &m;
     wc.pointCount = std::max(wc.pointCount, m.pointCount);

@@ -47,7 +47,7 @@ struct WideContact {
     bool reverse = false;              // the next solve visits the points last to first
     bool unjointed[wide::kLanes];      // no joint holds either body: friction joins the later sweeps (manifold_sweeps.hpp)
     bool multiPoint[wide::kLanes];     // the lane's manifold has more than one point: its normal rows join the later sweeps
-    bool turnArmA[wide::kLanes];       // body A is kinematic and the pair flat: its friction arm turns with it (contact_solve.cpp)
+    bool turnArmA[wide::kLanes];       // the pair is flat and body A kinematic or turning: its friction arm turns with it (turnsFrictionArm)
     bool turnArmB[wide::kLanes];
     bool turnsArms;                    // some lane turns an arm
     wide::FloatW invMassA, invMassB;   // the same along every axis (a planar world has PlanarContact)
@@ -128,10 +128,18 @@ struct ContactLane {
     bool flatPair = false;
 };
 
-/// Whether `body`'s friction arm in lane `in` turns with it within the step: the body is kinematic
-/// and the pair flat (ContactLane::flatPair; the passes' reasons are in contact_solve.cpp).
-inline bool turnsFrictionArm(const ContactLane& in, std::int32_t body, const SolverBody* bodies) {
-    return in.flatPair && body != kStaticBody && !bodies[body].dynamic;
+/// A dynamic body turning less than this in a step keeps its step's first friction arm: turned,
+/// the arm would move by little more than a rounding, and the passes would turn it for nothing
+/// (a resting pile turns about 1e-6 rad a step).
+inline constexpr double kLeastArmTurn = 1e-3;  // rad per step
+
+/// Whether `body`'s friction arm in lane `in` turns with it within the step: the pair is flat
+/// (ContactLane::flatPair) and the body kinematic, or dynamic and turning `turnPerStep` (rad, its
+/// angular speed at the step's start times the step) more than kLeastArmTurn. The passes' reasons
+/// are in contact_solve.cpp.
+inline bool turnsFrictionArm(const ContactLane& in, std::int32_t body, const SolverBody* bodies, double turnPerStep) {
+    if (!in.flatPair || body == kStaticBody) return false;
+    return !bodies[body].dynamic || turnPerStep > kLeastArmTurn;
 }
 
 /// Soft-constraint coefficients of a spring of `hertz` with damping ratio `zeta` over step h

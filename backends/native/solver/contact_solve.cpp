@@ -277,15 +277,15 @@ ANYPHYS_KERNEL void solveImpl(WideContact* contacts, WideWarmStart* warm, int co
         WideContact& c = contacts[i];
         BodyW a = gatherMotion(states, c.bodyA), b = gatherMotion(states, c.bodyB);
         const Vec3W dp = b.dp - a.dp;
-        // A kinematic body's friction arm turns with it within the step where the pair is flat
-        // (WideContact::turnArmA, turnArmB), so that a body riding it is held to the support's
-        // velocity where the two touch now. Held at the step's first arm, a box riding a turntable
-        // (2 rad/s, 1 m out, mu 0.5) was held to the table's velocity where the box had been and
-        // slid outward 18 cm in 3 s at 8 substeps (ODE and Bullet, at one step, 10.5 cm); turned,
-        // 0.3 cm. A moving body's arms stay, as its inverse inertia does (turned through the step's
-        // first inertia, the chests of a 4-ragdoll pile opened its joints from 18 to 93 mm in one
-        // run), and so does a round shape's, whose touching point is not a point of the body. The
-        // pass works on the turned arms; the record keeps the step's first ones.
+        // A body's friction arm turns with it within the step where the pair is flat and the body
+        // kinematic, or dynamic and turning more than kLeastArmTurn a step (WideContact::turnArmA,
+        // turnArmB), so that a body riding it is held to the support's velocity where the two
+        // touch now. Held at the step's first arm, a box riding a turntable (2 rad/s, 1 m out,
+        // mu 0.5) was held to the table's velocity where the box had been and slid outward 18 cm
+        // in 3 s at 8 substeps (ODE and Bullet, at one step, 10.5 cm); turned, 0.3 cm, whether the
+        // table is kinematic or a motor turns it. The inverse inertia stays the step's first. A
+        // round shape's arm stays, as its touching point is not a point of the body. The pass
+        // works on the turned arms; the record keeps the step's first ones.
         Vec3W firstArmA, firstArmB;
         const bool turning = params.friction && c.turnsArms;
         if (turning) {

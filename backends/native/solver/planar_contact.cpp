@@ -48,8 +48,8 @@ void prepareLane(PlanarContact& pc, PlanarContactCold& cold, int lane, const Con
     pc.writeB[lane] = in.bodyB != kStaticBody && bodies[in.bodyB].dynamic;
     pc.unjointed[lane] = !heldByJoint(bodies, in.bodyA) && !heldByJoint(bodies, in.bodyB);
     pc.multiPoint[lane] = m.pointCount > 1;
-    pc.turnArmA[lane] = turnsFrictionArm(in, in.bodyA, bodies);
-    pc.turnArmB[lane] = turnsFrictionArm(in, in.bodyB, bodies);
+    pc.turnArmA[lane] = turnsFrictionArm(in, in.bodyA, bodies, std::abs(a.w) * params.stepTime);
+    pc.turnArmB[lane] = turnsFrictionArm(in, in.bodyB, bodies, std::abs(b.w) * params.stepTime);
     pc.turnsArms = pc.turnsArms || pc.turnArmA[lane] || pc.turnArmB[lane];
     cold.manifold[lane] = &m;
     pc.pointCount = std::max(pc.pointCount, m.pointCount);

@@ -38,7 +38,7 @@ struct PlanarContact {
     bool reverse = false;  // PGS: the next solve visits the points last to first
     bool unjointed[wide::kLanes];  // no joint holds either body: the lane may be swept again (manifold_sweeps.hpp)
     bool multiPoint[wide::kLanes]; // more than one point: the lane's normal rows join the later sweeps
-    bool turnArmA[wide::kLanes];   // as WideContact's: a kinematic body's friction arm turns with it
+    bool turnArmA[wide::kLanes];   // as WideContact's: a kinematic or turning body's friction arm turns with it
     bool turnArmB[wide::kLanes];
     bool turnsArms;                // some lane turns an arm
     wide::FloatW invMassA, invMassB, invIA, invIB;  // in-plane mass, inverse inertia about Z

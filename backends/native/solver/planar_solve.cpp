@@ -243,7 +243,7 @@ ANYPHYS_KERNEL void solveImpl(PlanarContact* contacts, PlanarWarmStart* warm, in
         PlanarContact& c = contacts[i];
         PlanarBodyW a = gatherPlanarMotion(states, c.bodyA), b = gatherPlanarMotion(states, c.bodyB);
         const FloatW dpx = b.dpx - a.dpx, dpy = b.dpy - a.dpy;
-        // A kinematic body's friction arm turns with it, as in 3D (contact_solve.cpp): the pass
+        // A kinematic or turning body's friction arm turns with it, as in 3D (contact_solve.cpp): the pass
         // works on the turned arms and the record keeps the step's first ones.
         FrictionArms first;
         const bool turning = params.friction && c.turnsArms;
