@@ -782,8 +782,9 @@ inline CriterionResult boxRidesADescendingPlatform(const WorldSettings& s, const
 /// crash-ode-direct-swallowed-box, at 1e7 m). After 0.5 s the box must have moved at least 0.5 m
 /// along +x (3 m/s of push gives 1.5 m; Bullet's uncapped split impulse puts it on the face), at
 /// most 1 mm across (a push along the face normal alone), and turned at most 0.1 rad (nothing
-/// should turn it; native's soft step at 4 substeps turns it 0.063 rad, spinning at about
-/// 0.02 rad/s from the first step, cause not found; its PGS 2e-6 rad), all finite. Where the backend honours
+/// should turn it; native's soft step turns it 0.063 rad at 4 substeps and 0.026 at 1, spinning
+/// from the first step, cause not found (not the far points, nor the points' fixed order); its
+/// PGS 4e-5 rad), all finite. Where the backend honours
 /// contactPushMaxVelocity (`pushCapped`), no farther out than that speed carries it in 0.5 s.
 inline CriterionResult swallowedBoxIsPushedOut(const std::vector<WorldSettings>& variants, bool pushCapped,
                                                const std::string& criterion) {
