@@ -284,8 +284,11 @@ TEST_P(AssemblyTest, PinchedPileFromTheSoakRunStaysWhole) {
     // Nine draws: the median is then the fifth, and a minority of wide draws cannot move it.
     int draws = 9;
 #ifdef ANYPHYS_SANITIZED
-    draws = 1;  // about 30 s per draw on native under the sanitizers
-    std::cout << "[ NOT RUN  ] " << backend() << " pinched pile: draws 2 to 9 left to the release run\n";
+    // About 30 s per draw on native under the sanitizers: one draw runs the pile's code paths
+    // there, and the gap is judged by the release run's median (one draw of a chaotic pile is no
+    // verdict: native's first draw opens 51.6 mm where the median of nine is 47.1).
+    draws = 1;
+    std::cout << "[ NOT RUN  ] " << backend() << " pinched pile: draws 2 to 9, and the gap's verdict, left to the release run\n";
 #endif
     std::vector<double> worstGaps;
     std::string listed;
@@ -304,6 +307,7 @@ TEST_P(AssemblyTest, PinchedPileFromTheSoakRunStaysWhole) {
     const double median = worstGaps[worstGaps.size() / 2];
     // Whole, by the pile's criterion (5 cm), under a key of its own: this pile and the four-ragdoll
     // pile above are different runs, and a backend may meet the bound in one and not the other.
+    if (draws < 9) return;  // the sanitizers' single draw (above)
     expectCriterion("assemblies.pinched_pile_gap", median < 0.05,
                     "median worst joint gap " + std::to_string(median) + " m of draws " + listed, median);
 }
