@@ -59,13 +59,14 @@ BulletWorld::BulletWorld(const WorldSettings& settings)
       dispatcher_(std::make_unique<TouchingDispatcher>(configuration_.get(), static_cast<btScalar>(2 * settings.linearSlop))),
       broadphase_(std::make_unique<btDbvtBroadphase>()) {
     const Solver solver = resolvedSolver(settings);
+    const auto maxPush = static_cast<btScalar>(settings.contactPushMaxVelocity);
     if (solver == Solver::Direct) {
         // Bullet's MLCP: contacts and friction as one mixed LCP solved by Dantzig's pivoting method
         // (btMLCPSolver falls back to sequential impulses when the pivoting fails).
         mlcpInterface_ = std::make_unique<btDantzigSolver>();
-        solver_ = std::make_unique<btMLCPSolver>(mlcpInterface_.get());
+        solver_ = std::make_unique<AnyphysMlcpSolver>(mlcpInterface_.get(), maxPush);
     } else {
-        solver_ = std::make_unique<AnyphysSequentialImpulseSolver>();
+        solver_ = std::make_unique<AnyphysSequentialImpulseSolver>(maxPush);
     }
     world_ = std::make_unique<AnyphysDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                     configuration_.get());

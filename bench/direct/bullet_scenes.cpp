@@ -60,7 +60,8 @@ public:
           dispatcher_(std::make_unique<bullet::TouchingDispatcher>(configuration_.get(),
                                                                    static_cast<btScalar>(2 * WorldSettings{}.linearSlop))),
           broadphase_(std::make_unique<btDbvtBroadphase>()),
-          solver_(std::make_unique<bullet::AnyphysSequentialImpulseSolver>()),
+          solver_(std::make_unique<bullet::AnyphysSequentialImpulseSolver>(
+              static_cast<btScalar>(WorldSettings{}.contactPushMaxVelocity))),
           world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                            configuration_.get())) {
         dispatcher_->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &boxBox_);

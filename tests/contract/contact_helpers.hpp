@@ -780,7 +780,7 @@ inline CriterionResult boxRidesADescendingPlatform(const WorldSettings& s, const
 /// the small box about an arm as long as the large box, and the direct solver's factorisation met
 /// a zero pivot, on which ODE aborts the process (api_calls fuzz input
 /// crash-ode-direct-swallowed-box, at 1e7 m). After 0.5 s the box must have moved at least 0.5 m
-/// along +x (3 m/s of push gives 1.5 m; Bullet's uncapped split impulse puts it on the face), at
+/// along +x (3 m/s of push gives 1.5 m; Bullet's split impulse, uncapped before 2026-12-07, put it on the face), at
 /// most 1 mm across (a push along the face normal alone), and turned at most 0.1 rad (nothing
 /// should turn it; native's soft step turns it 0.063 rad at 4 substeps and 0.026 at 1, spinning
 /// from the first step, cause not found (not the far points, nor the points' fixed order); its

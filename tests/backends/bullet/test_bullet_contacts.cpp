@@ -2,6 +2,7 @@
 // or glue, and a world whose bodies all sleep reports nothing until they wake. Meshes: bodies'
 // bounding boxes reach out by their contact breaking threshold while the world holds a mesh.
 // Small bodies: their pairs last through the layer's exit band (BulletWorld::reportNearPair).
+// Push-out: no faster than contactPushMaxVelocity, by split impulse or Baumgarte, either solver.
 #include <gtest/gtest.h>
 
 #include <btBulletDynamicsCommon.h>
@@ -471,6 +472,58 @@ TEST(BulletContacts, ABodySlidingOnAMeshKeepsItsWholeFaceAsOnABox) {
             EXPECT_EQ(slide.fewestPoints, slider.points);
             EXPECT_EQ(slide.mostPoints, slider.points);
         }
+}
+
+// Bullet pushes a point d deep apart at erp d / h (split impulse beyond 4 cm, Baumgarte through
+// the velocity above), unbounded: a 0.1 m box 1 000 m inside a kinematic box left it 998 m away in
+// 0.5 s, and 1e7 m inside it was thrown past the coordinate range. The backend caps each row's
+// push at contactPushMaxVelocity (bullet_solver.hpp), as native and ODE do: 3 m/s carries the box
+// 1.5 m in 0.5 s whichever solver, path and depth. Bound 1 mm: the push is exactly the cap's each
+// step (measured 1.500000 m).
+TEST(BulletContacts, ASwallowedBoxIsPushedOutNoFasterThanThePushCap) {
+    for (const Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct})
+        for (const double split : {1.0, 0.0})
+            for (const double half : {10.0, 1e4, 1e7}) {
+                SCOPED_TRACE(std::string(toString(solver)) + ", splitImpulse " + std::to_string(split) + ", outer half extent " +
+                             std::to_string(half) + " m");
+                WorldSettings s = backendSettings("bullet");
+                s.solver = solver;
+                s.gravity = Vec3::Zero();
+                s.backendOptions["splitImpulse"] = split;
+                World world(s);
+                BodyDef outer = boxDef("outer", Vec3::Constant(half), Vec3::Zero());
+                outer.type = BodyType::Kinematic;
+                world.createBody(outer);
+                BodyDef inner = boxDef("inner", Vec3::Constant(0.05), Vec3(0.3, 0.0, 0.0));
+                inner.allowSleep = false;
+                const Body box = world.createBody(inner);
+                for (int i = 0; i < 30; ++i) world.step();
+                ASSERT_TRUE(box.position().allFinite() && box.linearVelocity().allFinite());
+                EXPECT_NEAR(box.position().x(), 0.3 + s.contactPushMaxVelocity * world.time(), 1e-3);
+            }
+}
+
+// The cap holds where Baumgarte pushes too (points shallower than the split-impulse depth): a
+// resting box 3 cm into the ground with the cap at 0.1 m/s leaves at 0.1 m/s, where erp d / h
+// gives 0.36 (measured before the cap: 0.36). At least 0.09: the push still acts.
+TEST(BulletContacts, ABaumgartePushIsCappedToo) {
+    for (const Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
+        SCOPED_TRACE(toString(solver));
+        WorldSettings s = backendSettings("bullet");
+        s.solver = solver;
+        s.gravity = Vec3::Zero();
+        s.contactPushMaxVelocity = 0.1;
+        World world(s);
+        BodyDef ground = boxDef("ground", Vec3(5.0, 0.5, 5.0), Vec3(0.0, -0.5, 0.0));
+        ground.type = BodyType::Static;
+        world.createBody(ground);
+        BodyDef def = boxDef("box", Vec3::Constant(0.5), Vec3(0.0, 0.5 - 0.03, 0.0));
+        def.allowSleep = false;
+        const Body box = world.createBody(def);
+        world.step();
+        EXPECT_LE(box.linearVelocity().y(), s.contactPushMaxVelocity * (1 + 1e-9));
+        EXPECT_GE(box.linearVelocity().y(), 0.09);
+    }
 }
 
 }  // namespace
