@@ -780,11 +780,15 @@ inline CriterionResult boxRidesADescendingPlatform(const WorldSettings& s, const
 /// the small box about an arm as long as the large box, and the direct solver's factorisation met
 /// a zero pivot, on which ODE aborts the process (api_calls fuzz input
 /// crash-ode-direct-swallowed-box, at 1e7 m). After 0.5 s the box must have moved at least 0.5 m
-/// along +x (3 m/s of push gives 1.5 m; Bullet's split impulse, uncapped before 2026-12-07, put it on the face), at
-/// most 1 mm across (a push along the face normal alone), and turned at most 0.1 rad (nothing
-/// should turn it; native's soft step turns it 0.063 rad at 4 substeps and 0.026 at 1, spinning
-/// from the first step, cause not found (not the far points, nor the points' fixed order); its
-/// PGS 4e-5 rad), all finite. Where the backend honours
+/// along +x (3 m/s of push gives 1.5 m; Bullet's split impulse, uncapped before 2026-12-07, put
+/// it on the face), at most 1 mm across (a push along the face normal alone), and turned at most
+/// 0.1 rad (nothing should turn it; native's soft step turns it 0.063 rad at 4 substeps and 0.026 at 1, spinning
+/// from the first step: each substep's relax pass takes the push back out, so each solve pass
+/// builds it again from little in a few sequential sweeps of the four points, the first point
+/// first, and the residual turns the box (8 iterations 0.048 rad, 20 iterations 0.025; no relax
+/// pass 0.078; starting every other pass at the diagonal point left 0.077 at the default, 0.004
+/// with no relax pass: the relax passes turn it too). Its PGS, which alternates the order, 4e-5
+/// rad), all finite. Where the backend honours
 /// contactPushMaxVelocity (`pushCapped`), no farther out than that speed carries it in 0.5 s.
 inline CriterionResult swallowedBoxIsPushedOut(const std::vector<WorldSettings>& variants, bool pushCapped,
                                                const std::string& criterion) {
