@@ -116,9 +116,9 @@ void movePointsOntoTheSphere(dGeomID o1, dGeomID o2, dContact* contacts, int cou
 // outside (a resting box's, on the ground's top face) keep their bits. Only where a point is
 // deeper than the margin are the bounds fetched: a resting pair's overlap is the surface layer
 // (a fifth of linearSlop), and the layer's cost per pair stays as it was. Speculative points (no
-// overlap) are the pair's gap apart and are left alone.
-void keepPointsInTheOverlap(dGeomID o1, dGeomID o2, dContact* contacts, int count, double margin) {
-    if (deepest(contacts, count) <= margin) return;
+// overlap) are the pair's gap apart and are left alone. `depth`: the deepest of the points'.
+void keepPointsInTheOverlap(dGeomID o1, dGeomID o2, dContact* contacts, int count, double depth, double margin) {
+    if (depth <= margin) return;
     dReal boundsA[6], boundsB[6];  // ODE's layout: min x, max x, min y, max y, min z, max z
     dGeomGetAABB(o1, boundsA);
     dGeomGetAABB(o2, boundsB);
@@ -179,7 +179,8 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
     // Apart, or barely touching (where ODE's colliders give a partial manifold: a box's face just
     // meeting a wall, one edge, on which it tipped and went 5 mm in), but closing within the step:
     // contacts that let the pair close its gap and no more (ode_speculative.hpp).
-    const double approach = (n == 0 || deepest(found, n) < 0.5 * meetingOverlap()) && !trigger
+    double depth = n > 0 ? deepest(found, n) : 0.0;
+    const double approach = (n == 0 || depth < 0.5 * meetingOverlap()) && !trigger
                                 ? speculativeApproach(*shapeA, *shapeB, *sa, *sb)
                                 : 0.0;
     const bool speculative = approach > 0.0;
@@ -188,8 +189,11 @@ void OdeWorld::collidePair(dGeomID o1, dGeomID o2) {
                                 {n > 0, stepFall(*a) - stepFall(*b), approach, settings_.linearSlop, odeStep()}, found,
                                 kMaxContactsPerPair);
     if (n <= 0) return;
-    if (n == 1 && !trigger && !speculative) n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
-    if (!trigger && !speculative) keepPointsInTheOverlap(o1, o2, found, n, settings_.linearSlop);
+    if (n == 1 && !trigger && !speculative) {
+        n = completeOnePointContact(*shapeA, *shapeB, found, kMaxContactsPerPair);
+        depth = deepest(found, n);  // the completion's points have depths of their own
+    }
+    if (!trigger && !speculative) keepPointsInTheOverlap(o1, o2, found, n, depth, settings_.linearSlop);
     if (effects_.has(Effect::Events)) {  // ODE's points, before the joints' sphere points
         const auto first = static_cast<std::uint32_t>(points_.size());
         if (!trigger)  // a sensor's overlap has no points
