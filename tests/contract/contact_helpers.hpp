@@ -773,6 +773,17 @@ inline CriterionResult boxRidesADescendingPlatform(const WorldSettings& s, const
             worstSpeed};
 }
 
+/// A 0.1 m box at (0.3, 0, 0), awake for good, inside a kinematic box of half extent `half` at
+/// the origin: the nearest way out is through the +x face. Returns the small box.
+inline Body swallowedBox(World& world, double half) {
+    BodyDef outer = boxDef("outer", Vec3::Constant(half), Vec3::Zero());
+    outer.type = BodyType::Kinematic;
+    world.createBody(outer);
+    BodyDef inner = boxDef("inner", Vec3::Constant(0.05), Vec3(0.3, 0.0, 0.0));
+    inner.allowSleep = false;
+    return world.createBody(inner);
+}
+
 /// A 0.1 m box swallowed by a kinematic box (no gravity), 0.3 m off its centre along x: it is
 /// pushed out through the nearest face, +x, and nowhere else. For every solver and substep count
 /// in `variants` (ContractTest::everySolverAndSubstepCount), and outer half extents of 10 m to
@@ -782,14 +793,14 @@ inline CriterionResult boxRidesADescendingPlatform(const WorldSettings& s, const
 /// crash-ode-direct-swallowed-box, at 1e7 m). After 0.5 s the box must have moved at least 0.5 m
 /// along +x (3 m/s of push gives 1.5 m; Bullet's split impulse, uncapped before 2026-12-07, put
 /// it on the face), at most 1 mm across (a push along the face normal alone), and turned at most
-/// 0.1 rad (nothing should turn it; native's soft step turns it 0.063 rad at 4 substeps and 0.026 at 1, spinning
-/// from the first step: each substep's relax pass takes the push back out, so each solve pass
-/// builds it again from little in a few sequential sweeps of the four points, the first point
-/// first, and the residual turns the box (8 iterations 0.048 rad, 20 iterations 0.025; no relax
-/// pass 0.078; starting every other pass at the diagonal point left 0.077 at the default, 0.004
-/// with no relax pass: the relax passes turn it too). Its PGS, which alternates the order, 4e-5
-/// rad), all finite. Where the backend honours
-/// contactPushMaxVelocity (`pushCapped`), no farther out than that speed carries it in 0.5 s.
+/// 0.1 rad (nothing should turn it; native's soft step turns it 0.063 rad at 4 substeps and
+/// 0.026 at 1, spinning from the first step: each substep's relax pass takes the push back out,
+/// so each solve pass builds it again from little in a few sequential sweeps of the four points,
+/// the first point first, and the residual turns the box (8 iterations 0.048 rad, 20 iterations
+/// 0.025; no relax pass 0.078; starting every other pass at the diagonal point left 0.077 at the
+/// default, 0.004 with no relax pass: the relax passes turn it too). Its PGS, which alternates
+/// the order, 4e-5 rad), all finite. Where the backend honours contactPushMaxVelocity
+/// (`pushCapped`), no farther out than that speed carries it in 0.5 s.
 inline CriterionResult swallowedBoxIsPushedOut(const std::vector<WorldSettings>& variants, bool pushCapped,
                                                const std::string& criterion) {
     WorstCheck worst;  // each check as a multiple of its bound
@@ -798,12 +809,7 @@ inline CriterionResult swallowedBoxIsPushedOut(const std::vector<WorldSettings>&
             WorldSettings s = variant;
             s.gravity = Vec3::Zero();
             World world(s);
-            BodyDef outer = boxDef("outer", Vec3::Constant(half), Vec3::Zero());
-            outer.type = BodyType::Kinematic;
-            world.createBody(outer);
-            BodyDef innerDef = boxDef("inner", Vec3::Constant(0.05), Vec3(0.3, 0.0, 0.0));
-            innerDef.allowSleep = false;
-            const Body inner = world.createBody(innerDef);
+            const Body inner = swallowedBox(world, half);
             for (int i = 0; i < 30; ++i) world.step();
             const std::string where = " (" + std::string(toString(s.solver.value())) + " at " + std::to_string(s.substeps.value()) +
                                       " substeps, outer half extent " + std::to_string(half) + " m)";

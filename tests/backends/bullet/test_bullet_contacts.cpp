@@ -491,12 +491,7 @@ TEST(BulletContacts, ASwallowedBoxIsPushedOutNoFasterThanThePushCap) {
                 s.gravity = Vec3::Zero();
                 s.backendOptions["splitImpulse"] = split;
                 World world(s);
-                BodyDef outer = boxDef("outer", Vec3::Constant(half), Vec3::Zero());
-                outer.type = BodyType::Kinematic;
-                world.createBody(outer);
-                BodyDef inner = boxDef("inner", Vec3::Constant(0.05), Vec3(0.3, 0.0, 0.0));
-                inner.allowSleep = false;
-                const Body box = world.createBody(inner);
+                const Body box = swallowedBox(world, half);
                 for (int i = 0; i < 30; ++i) world.step();
                 ASSERT_TRUE(box.position().allFinite() && box.linearVelocity().allFinite());
                 EXPECT_NEAR(box.position().x(), 0.3 + s.contactPushMaxVelocity * world.time(), 1e-3);
