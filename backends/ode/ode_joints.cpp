@@ -445,10 +445,25 @@ void OdeJoint::applyRowCfm(double cfm) {
     }
 }
 
+void OdeJoint::capAnchorPull(const Transform& fa, const Transform& fb, double h) {
+    const bool ball = def_.type == JointType::Ball || def_.type == JointType::Cone || def_.type == JointType::Hinge;
+    if (!ball && def_.type != JointType::Fixed) return;
+    const double gap = (fa.position - fb.position).norm();
+    const double erp = gap * kJointErp > kJointPushMaxVelocity * h ? kJointPushMaxVelocity * h / gap : kJointErp;
+    if (erp == anchorErp_) return;
+    anchorErp_ = erp;
+    if (ball) {
+        dJointSetBallParam(main_, dParamERP, erp);
+    } else {
+        dJointSetFixedParam(main_, dParamERP, erp);
+    }
+}
+
 void OdeJoint::beforeOdeStep(double h) {
     for (std::size_t i = 0; i < partCount_; ++i) parts_[i].feedback = dJointFeedback{};
     applyRowCfm(rowCfm());
     const Transform fa = frameInA(), fb = frameInB();
+    capAnchorPull(fa, fb, h);
     const Vec3 x = fa.orientation * Vec3::UnitX();
     double erp = 0.0, cfm = 0.0;
     const bool spring = def_.spring && springRow(*def_.spring, h, erp, cfm);

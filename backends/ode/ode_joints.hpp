@@ -35,6 +35,7 @@
 #include "anyphys/peers/joint_peer.hpp"
 #include "ode_body.hpp"
 #include "ode_joint_spring.hpp"
+#include "ode_tuning.hpp"
 
 namespace anyphys::ode {
 
@@ -110,6 +111,9 @@ private:
     /// Gives every row whose CFM ODE lets a joint set (all but a slider's and a wheel's main
     /// rows, and the springs', which come from their stiffness) the CFM `cfm`.
     void applyRowCfm(double cfm);
+    /// Lowers the main joint's ERP where its anchor gap would be pulled shut faster than
+    /// kJointPushMaxVelocity this ODE step of h seconds (ball, hinge, cone, fixed).
+    void capAnchorPull(const Transform& fa, const Transform& fb, double h);
 
     OdeWorld& world_;
     JointPeerDef def_;
@@ -132,6 +136,7 @@ private:
     bool rod_ = true;            // distance: the double ball is on (no range, or a spring)
     double steering_ = 0.0;
     double lastAngle_ = 0.0;     // hinge: unwrapped angle at the last measurement
+    double anchorErp_ = kJointErp;  // ball, hinge, cone, fixed: the main joint's ERP (capAnchorPull)
 
     double position_ = 0.0, speed_ = 0.0;
     Vec3 reactionForce_ = Vec3::Zero(), reactionTorque_ = Vec3::Zero();

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <string>
 
+#include "anyphys/anyphys.hpp"
 #include "anyphys/backends.hpp"
 #include "ode_tuning.hpp"
 #include "ode_world.hpp"
@@ -943,6 +944,62 @@ TEST(OdeJoints, JointsEffectTurnsJointsOff) {
     b->setLinearVelocity(Vec3::Zero());
     run(*world, 1.0);
     EXPECT_NEAR(b->state().position.y(), -1.0, 1e-3);
+}
+
+// ODE takes back ERP (0.8) x a joint's anchor gap per step as a velocity, without bound. A
+// 40-link ball chain (0.1 kg balls 10 cm apart, a 1 kg end, released horizontal) tears at one
+// step of 1/60 s (the declared joints.chain_gap); its links were then pulled back harder each
+// step: in 5 s they flew at up to 282 m/s (pgs) and 186 m/s (direct), the chain gaining 1.1e4 and
+// 6.5e3 J (the catalogue's chain_40: 1.7 km/s). With the pull capped at kJointPushMaxVelocity the
+// torn chain stays a chain of falling balls: fastest 31.0 and 32.2 m/s, gaining nothing (pgs) and
+// at most 27 J (direct). Bounds: 40 m/s (Bullet's torn catalogue chain whips at 42 and 29 m/s,
+// native's whole one at 14.4) and 60 J (the 27 measured, twice over).
+TEST(OdeJoints, ATornChainIsNotFlungApartByItsJoints) {
+    for (const Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
+        SCOPED_TRACE(toString(solver));
+        WorldSettings s;
+        s.backend = "ode";
+        s.solver = solver;
+        anyphys::World world(s);
+        std::vector<anyphys::Body> links;
+        anyphys::Body previous;
+        for (int i = 0; i < 40; ++i) {
+            BodyDef d;
+            d.shape = ShapeDef::sphere(0.03);
+            d.mass = i == 39 ? 1.0 : 0.1;
+            d.position = Vec3(0.1 * (i + 1), 0.0, 0.0);
+            d.allowSleep = false;
+            const anyphys::Body link = world.createBody(d);
+            JointDef j;
+            j.type = JointType::Ball;
+            j.bodyA = previous;
+            j.bodyB = link;
+            j.anchor = Vec3(0.1 * i, 0.0, 0.0);
+            world.createJoint(j);
+            links.push_back(link);
+            previous = link;
+        }
+        const auto energy = [&] {
+            double e = 0.0;
+            for (std::size_t i = 0; i < links.size(); ++i) {
+                const anyphys::Body& b = links[i];
+                const double mass = i + 1 == links.size() ? 1.0 : 0.1;
+                e += mass * (0.5 * b.linearVelocity().squaredNorm() + kG * b.position().y());
+            }
+            return e;
+        };
+        const double start = energy();
+        double fastest = 0.0, mostGained = 0.0;
+        for (int step = 0; step < 300; ++step) {
+            world.step();
+            for (const anyphys::Body& b : links) fastest = std::max(fastest, b.linearVelocity().norm());
+            mostGained = std::max(mostGained, energy() - start);
+        }
+        std::cout << "[ MEASURED ] ode torn chain (" << toString(solver) << "): fastest link " << fastest
+                  << " m/s, most energy gained " << mostGained << " J\n";
+        EXPECT_LT(fastest, 40.0);
+        EXPECT_LT(mostGained, 60.0);
+    }
 }
 
 }  // namespace
