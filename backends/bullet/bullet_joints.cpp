@@ -27,6 +27,35 @@ btRigidBody& rigidOf(BulletWorld& world, BodyPeer* body) {
 // 6-DOF spring 2 axis indices: translations 0..2, rotations 3..5.
 constexpr int kLinX = 0, kAngX = 3, kAngY = 4;
 
+// The fastest a joint's rigid linear rows pull its anchors together, m/s (native's and ODE's
+// kJointPushMaxVelocity). Bullet's rows ask for ERP x gap / h, without bound: a bob set 3 m off
+// its hinge was flung back at 25 m/s.
+constexpr btScalar kJointPushMaxVelocity = 5.0;
+
+// Scales the error targets of the first `rows` rows that are rigid (no bounds) and linear (a
+// linear Jacobian: a ball's, a lock's, a rod's) so that together they ask for at most
+// kJointPushMaxVelocity. Their axes are orthogonal unit vectors (a point's three, a slider's two,
+// a rod's one), so the targets' norm is the speed at which the gap closes.
+void capLinearPull(btTypedConstraint::btConstraintInfo2* info, int rows) {
+    const auto rigidLinear = [info](int s) {
+        if (info->m_lowerLimit[s] > -SIMD_INFINITY || info->m_upperLimit[s] < SIMD_INFINITY) return false;
+        const btScalar* l = &info->m_J1linearAxis[s];
+        const btScalar* l2 = info->m_J2linearAxis != nullptr ? &info->m_J2linearAxis[s] : nullptr;
+        return l[0] != 0 || l[1] != 0 || l[2] != 0 || (l2 != nullptr && (l2[0] != 0 || l2[1] != 0 || l2[2] != 0));
+    };
+    btScalar squared = 0;
+    for (int r = 0; r < rows; ++r) {
+        const int s = r * info->rowskip;
+        if (rigidLinear(s)) squared += info->m_constraintError[s] * info->m_constraintError[s];
+    }
+    if (squared <= kJointPushMaxVelocity * kJointPushMaxVelocity) return;
+    const btScalar scale = kJointPushMaxVelocity / btSqrt(squared);
+    for (int r = 0; r < rows; ++r) {
+        const int s = r * info->rowskip;
+        if (rigidLinear(s)) info->m_constraintError[s] *= scale;
+    }
+}
+
 // Free axis: lower > upper (Bullet's convention for an unlimited degree of freedom).
 void freeAxis(btGeneric6DofSpring2Constraint& c, int axis) { c.setLimit(axis, 1, -1); }
 
@@ -271,6 +300,7 @@ void DecoupledConstraint::innerRows(btConstraintInfo2* info) {
     const int n = rows_;
     if (!decouple || n < 2) {
         inner_.getInfo2(info);
+        capLinearPull(info, n);
         return;
     }
     // The inner constraint writes its rows into the scratch, initialised as the solver does
@@ -297,6 +327,7 @@ void DecoupledConstraint::innerRows(btConstraintInfo2* info) {
     scratch.m_lowerLimit = &lower_[0];
     scratch.m_upperLimit = &upper_[0];
     inner_.getInfo2(&scratch);
+    capLinearPull(&scratch, n);
     info->m_damping = scratch.m_damping;
 
     // The rigid rows (no bounds, one CFM), at most 6.

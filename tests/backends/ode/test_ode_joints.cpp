@@ -952,8 +952,8 @@ TEST(OdeJoints, JointsEffectTurnsJointsOff) {
 // step: in 5 s they flew at up to 282 m/s (pgs) and 186 m/s (direct), the chain gaining 1.1e4 and
 // 6.5e3 J (the catalogue's chain_40: 1.7 km/s). With the pull capped at kJointPushMaxVelocity the
 // torn chain stays a chain of falling balls: fastest 31.0 and 32.2 m/s, gaining nothing (pgs) and
-// at most 27 J (direct). Bounds: 40 m/s (Bullet's torn catalogue chain whips at 42 and 29 m/s,
-// native's whole one at 14.4) and 60 J (the 27 measured, twice over).
+// at most 27 J (direct). Bounds: 40 m/s (Bullet's torn catalogue chain whips at 22 and 31 m/s,
+// 42 and 29 before its joints' pull was capped too; native's whole one at 14.4) and 60 J (the 27 measured, twice over).
 TEST(OdeJoints, ATornChainIsNotFlungApartByItsJoints) {
     for (const Solver solver : {Solver::ProjectedGaussSeidel, Solver::Direct}) {
         SCOPED_TRACE(toString(solver));
