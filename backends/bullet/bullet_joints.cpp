@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "anyphys/peers/joint_push.hpp"
 #include "bullet_body.hpp"
 #include "bullet_convert.hpp"
 #include "bullet_joint_spring.hpp"
@@ -27,16 +28,13 @@ btRigidBody& rigidOf(BulletWorld& world, BodyPeer* body) {
 // 6-DOF spring 2 axis indices: translations 0..2, rotations 3..5.
 constexpr int kLinX = 0, kAngX = 3, kAngY = 4;
 
-// The fastest a joint's rigid linear rows pull its anchors together, m/s (native's and ODE's
-// kJointPushMaxVelocity). Bullet's rows ask for ERP x gap / h, without bound: a bob set 3 m off
-// its hinge was flung back at 25 m/s.
-constexpr btScalar kJointPushMaxVelocity = 5.0;
-
 // Scales the error targets of the first `rows` rows that are rigid (no bounds) and linear (a
 // linear Jacobian: a ball's, a lock's, a rod's) so that together they ask for at most
-// kJointPushMaxVelocity. Their axes are orthogonal unit vectors (a point's three, a slider's two,
-// a rod's one), so the targets' norm is the speed at which the gap closes.
+// kJointPushMaxVelocity (joint_push.hpp; Bullet's rows ask for ERP x gap / h, without bound).
+// Their axes are orthogonal unit vectors (a point's three, a slider's two, a rod's one), so the
+// targets' norm is the speed at which the gap closes.
 void capLinearPull(btTypedConstraint::btConstraintInfo2* info, int rows) {
+    constexpr auto most = static_cast<btScalar>(kJointPushMaxVelocity);
     const auto rigidLinear = [info](int s) {
         if (info->m_lowerLimit[s] > -SIMD_INFINITY || info->m_upperLimit[s] < SIMD_INFINITY) return false;
         const btScalar* l = &info->m_J1linearAxis[s];
@@ -48,8 +46,8 @@ void capLinearPull(btTypedConstraint::btConstraintInfo2* info, int rows) {
         const int s = r * info->rowskip;
         if (rigidLinear(s)) squared += info->m_constraintError[s] * info->m_constraintError[s];
     }
-    if (squared <= kJointPushMaxVelocity * kJointPushMaxVelocity) return;
-    const btScalar scale = kJointPushMaxVelocity / btSqrt(squared);
+    if (squared <= most * most) return;
+    const btScalar scale = most / btSqrt(squared);
     for (int r = 0; r < rows; ++r) {
         const int s = r * info->rowskip;
         if (rigidLinear(s)) info->m_constraintError[s] *= scale;

@@ -445,6 +445,10 @@ void OdeJoint::applyRowCfm(double cfm) {
     }
 }
 
+// ODE takes back ERP x the gap per step as a velocity: a bob set 3 m off its hinge was flung back
+// at 55 m/s, and the 40-link chain, whipping open by centimetres, was pulled back harder each
+// step until its links flew at 1.7 km/s. Binds only where the gap exceeds kJointPushMaxVelocity x
+// h / kJointErp (10 cm at 60 Hz): at rest and in a swing joints keep kJointErp.
 void OdeJoint::capAnchorPull(const Transform& fa, const Transform& fb, double h) {
     const bool ball = def_.type == JointType::Ball || def_.type == JointType::Cone || def_.type == JointType::Hinge;
     if (!ball && def_.type != JointType::Fixed) return;

@@ -33,6 +33,7 @@
 #include <cstddef>
 
 #include "anyphys/peers/joint_peer.hpp"
+#include "anyphys/peers/joint_push.hpp"
 #include "ode_body.hpp"
 #include "ode_joint_spring.hpp"
 #include "ode_tuning.hpp"

@@ -77,14 +77,6 @@ constexpr double kQuickStepW = 1.3;
 /// at 0.2, 2.5 % at 0.5, 1.0 % at 0.8, 0.7 % at 1 (measured). 0.8 keeps a margin below 1.
 constexpr double kJointErp = 0.8;
 
-/// The fastest a ball, hinge, cone or fixed joint's ERP closes its anchor gap, m/s (native's
-/// kJointPushMaxVelocity). ODE takes back ERP x the gap per step as a velocity, unbounded: a bob
-/// set 3 m off its hinge was flung back at 55 m/s, and the 40-link chain, whipping open by
-/// centimetres, was pulled back harder each step until its links flew at 1.6 km/s. Binds only
-/// where the gap exceeds 5 m/s x h / kJointErp (10 cm at 60 Hz): at rest and in a swing joints
-/// keep kJointErp.
-constexpr double kJointPushMaxVelocity = 5.0;
-
 /// Hash-space cell levels: cells from 2^-3 to 2^10 m (ODE's defaults), covering centimetre to
 /// kilometre shapes.
 constexpr int kHashMinLevel = -3;

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "anyphys/peers/gyroscopic.hpp"
+#include "anyphys/peers/joint_push.hpp"
 #include "anyphys/task_system.hpp"
 #include "native_world.hpp"
 #include "solver/body_integration.hpp"
@@ -52,13 +53,6 @@ constexpr int kMinBodyBlock = 64;   // bodies
 // enough for small boxes (90 Hz) made joints ring: a ragdoll pile's joints opened to 12 cm.
 constexpr double kJointHertz = 60.0;
 constexpr double kJointDampingRatio = 2.0;
-// The fastest the soft step closes a joint anchor's position error (Box2D v3 caps contacts' push
-// the same way, not its joints). At 5 m/s it binds in none of the chains' and ragdoll piles'
-// runs at the default settings (3 m/s let a swinging chain with a 100x end stretch 57 mm instead
-// of 34); a hinge wrenched 120 degrees opens 13 mm on its way back instead of 10. A pendulum's
-// bob set 3 m off its circle comes back swinging at 4.5 m/s, where the uncapped pull left it
-// circling at 226 m/s.
-constexpr double kJointPushMaxVelocity = 5.0;
 
 }  // namespace
 
@@ -395,6 +389,8 @@ void StepSolver::solve(NativeWorld& world, const StepInfo& step) {
     jointParams_.soft = solveParams_.soft;
     jointParams_.softness = makeSoftness(2.0 * std::min(kJointHertz, maxHertz), kJointDampingRatio, h_);
     jointParams_.baumgarte = settings.baumgarte;
+    // The soft step closes a joint anchor's position error no faster than this (joint_push.hpp);
+    // a hinge wrenched 120 degrees opens 13 mm on its way back instead of 10.
     jointParams_.anchorPushMaxVelocity = kJointPushMaxVelocity;
 
     planarWorld_ = settings.planar;
