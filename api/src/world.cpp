@@ -751,7 +751,8 @@ void World::dispatchEvents() {
     i.nearListed.clear();
     for (std::uint32_t n = 0; n < i.contacts.pairs.size(); ++n) {
         const ContactReport::Pair& c = i.contacts.pairs[n];
-        bool touches = c.trigger, near = false;
+        // A pair whose points the peer deferred carried an impulse: it touches (and is not read).
+        bool touches = c.trigger || c.pointsDeferred, near = false;
         for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount && !touches; ++k) {
             const ContactPoint& p = i.contacts.points[k];
             touches = p.depth > -slop || (impulses && p.normalImpulse > 0.0);
@@ -767,7 +768,8 @@ void World::dispatchEvents() {
     }
     // Events without impulses (settings.contactImpulses false) carry none, whatever the engine
     // measured; the impulses above still decided what touches, so the events are the same.
-    if (!settings_.contactImpulses)
+    i.impulsesCleared = !settings_.contactImpulses;
+    if (i.impulsesCleared)  // deferred points too, once written (Impl::writeDeferredPoints)
         for (ContactPoint& p : i.contacts.points) p.normalImpulse = 0.0;
     std::sort(i.nearListed.begin(), i.nearListed.end());  // for stillTouching's search; first listing first
     i.tracker.diff(i.touching, i.asleep, i.stillTouching);

@@ -155,6 +155,7 @@ struct World::Impl {
     ContactTracker::AsleepQuery asleep;      // a body is asleep (for pairs the peer did not flag)
     ContactTracker::NearQuery stillTouching; // a pair no longer touching by the rule is within the exit band
     bool eventImpulses = false;              // the step's events carry impulses (dispatchEvents)
+    bool impulsesCleared = false;            // settings.contactImpulses false: the points carry none
     // The step's listed collision pairs that do not touch but lie within the exit band, by body
     // pair (packed ids, lower first), for stillTouching.
     struct NearListed {
@@ -172,8 +173,20 @@ struct World::Impl {
     /// listener or World::lastEvents reads them, from the report and pairs the step kept. Once
     /// World::lastEvents has been called, every step writes them (the reference it returned
     /// follows every step).
+    /// The points the peer deferred (ContactReport::pointsDeferred), written before any is read.
+    void writeDeferredPoints() {
+        if (!contacts.pointsDeferred) return;
+        contacts.pointsDeferred = false;
+        peer->writeDeferredPoints(contacts);
+        if (!impulsesCleared) return;
+        for (const ContactReport::Pair& c : contacts.pairs)
+            if (c.pointsDeferred)
+                for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount; ++k) contacts.points[k].normalImpulse = 0.0;
+    }
+
     std::vector<ContactEvent>& writtenEvents() {
         if (eventsUnwritten) {
+            writeDeferredPoints();
             tracker.writeEvents(touching, contacts.points, lastEvents);
             eventsUnwritten = false;
         }

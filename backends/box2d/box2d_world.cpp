@@ -392,6 +392,8 @@ bool touchesTwice(const b2Contact& c) {
 void Box2dWorld::reportContacts(ContactReport& out) {
     const auto asleep = [](const b2Body* b) { return b->GetType() != b2_staticBody && !b->IsAwake(); };
     bool repeats = false;
+    deferred_.clear();
+    std::uint32_t deferredPoints = 0;
     for (b2Contact* c = world_->GetContactList(); c; c = c->GetNext()) {
         if (!c->IsTouching() || !c->IsEnabled()) continue;  // disabled: a basement's, its edge holding the piece
         const b2Fixture *fa = c->GetFixtureA(), *fb = c->GetFixtureB();
@@ -404,16 +406,40 @@ void Box2dWorld::reportContacts(ContactReport& out) {
             out.addPair(a, b, true, Vec3::Zero(), sleeping);
             continue;
         }
-        const WorldManifold wm = worldManifold(*c);
-        out.addPair(a, b, false, fromB2(wm.normal), sleeping);  // Box2D's normal points from fixture A to B
-        const b2Manifold* m = c->GetManifold();
+        const b2Manifold& m = *c->GetManifold();
+        const b2Transform &xfA = ba->GetTransform(), &xfB = bb->GetTransform();
+        const float radiusA = fa->GetShape()->m_radius, radiusB = fb->GetShape()->m_radius;
         // None: the manifold holds the step's impulses, or the contact was not solved (asleep).
         const SummedImpulses* summed = summedImpulses(c);
-        for (int32 p = 0; p < m->pointCount; ++p) {
-            const float impulse = summed ? summed->sum[static_cast<std::size_t>(p)] : m->points[p].normalImpulse;
-            // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.
-            out.addPoint({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulse});
+        std::array<float, b2_maxManifoldPoints> impulses{};
+        bool pushed = false;
+        for (int32 p = 0; p < m.pointCount; ++p) {
+            const auto k = static_cast<std::size_t>(p);
+            impulses[k] = summed ? summed->sum[k] : m.points[p].normalImpulse;
+            pushed = pushed || impulses[k] > 0.0f;
         }
+        // Box2D's normal points from fixture A to B.
+        if (pushed && !eventsRead_ && m.type != b2Manifold::e_circles) {  // touches: its points wait (the normal is cheap)
+            out.addPair(a, b, false, fromB2(faceNormal(m, xfA, xfB)), sleeping);
+            ContactReport::Pair& pair = out.pairs.back();
+            pair.pointsDeferred = true;
+            pair.firstPoint = deferredPoints;  // within the deferred block, placed below
+            pair.pointCount = static_cast<std::uint32_t>(m.pointCount);
+            deferredPoints += pair.pointCount;
+            deferred_.push_back({m, xfA, xfB, radiusA, radiusB, impulses, static_cast<std::uint32_t>(out.pairs.size() - 1)});
+            continue;
+        }
+        const WorldManifold wm = worldManifold(m, xfA, radiusA, xfB, radiusB);
+        out.addPair(a, b, false, fromB2(wm.normal), sleeping);
+        for (int32 p = 0; p < m.pointCount; ++p)
+            out.addPoint({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulses[static_cast<std::size_t>(p)]});
+    }
+    // The deferred pairs' points follow the others', as room the layer's later additions pass.
+    if (!deferred_.empty()) {
+        const auto base = static_cast<std::uint32_t>(out.points.size());
+        for (const DeferredManifold& d : deferred_) out.pairs[d.pair].firstPoint += base;
+        out.points.resize(base + deferredPoints);
+        out.pointsDeferred = true;
     }
     triggerPlanes_.report(bodies_, effects_, out);
     // Box2D makes contacts only where a body is dynamic (box2d_triggers.hpp).
@@ -424,9 +450,23 @@ void Box2dWorld::reportContacts(ContactReport& out) {
     // leading. Only when some body pair touches twice: a plane ground under every pile would
     // otherwise sort the whole report every step.
     if (repeats) {
+        if (out.pointsDeferred) {  // the merge moves points
+            writeDeferredPoints(out);
+            out.pointsDeferred = false;
+        }
         out.mergeRepeatedPairs();
     } else if (multiFixtureBodies_ > 0) {
         out.keepRoomToMerge();  // a later step's first merge then allocates nothing
+    }
+}
+
+void Box2dWorld::writeDeferredPoints(ContactReport& out) {
+    for (const DeferredManifold& d : deferred_) {
+        const WorldManifold wm = worldManifold(d.manifold, d.xfA, d.radiusA, d.xfB, d.radiusB);
+        ContactPoint* points = out.points.data() + out.pairs[d.pair].firstPoint;
+        // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.
+        for (int32 p = 0; p < d.manifold.pointCount; ++p)
+            points[p] = {fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), d.impulses[static_cast<std::size_t>(p)]};
     }
 }
 

@@ -60,6 +60,11 @@ struct ContactReport {
         Vec3 normal = Vec3::Zero();     ///< from A to B
         std::uint32_t firstPoint = 0;   ///< the pair's points: [firstPoint, firstPoint + pointCount)
         std::uint32_t pointCount = 0;
+        /// The peer left this pair's points unwritten (their range is set) until the layer asks
+        /// for them (WorldPeer::writeDeferredPoints). Only a collision pair some point of which
+        /// carried an impulse: it touches whatever its depths (World::dispatchEvents), and the
+        /// points are needed only when the events are read, which most steps they are not.
+        bool pointsDeferred = false;
     };
     std::vector<Pair> pairs;
     /// World frame. Only the pairs' ranges are read: a peer may copy all its points at once and
@@ -68,11 +73,14 @@ struct ContactReport {
     /// The peer flagged each pair `asleep` when one of its bodies is a dynamic or kinematic body
     /// that is not awake (BodyPeer::isAwake); otherwise the layer asks the bodies.
     bool sleepKnown = false;
+    /// Some pair's points are deferred (Pair::pointsDeferred) and not yet written.
+    bool pointsDeferred = false;
 
     void clear() {
         pairs.clear();
         points.clear();
         sleepKnown = false;
+        pointsDeferred = false;
     }
     /// Starts a pair; the points added next are its points.
     void addPair(std::uint64_t bodyA, std::uint64_t bodyB, bool trigger, const Vec3& normal, bool asleep = false) {
@@ -85,7 +93,8 @@ struct ContactReport {
 
     /// For peers whose bodies may meet in several shape pairs: merges the entries of one body
     /// pair (either order, same trigger flag) into the first, its points followed by the
-    /// others' in report order. Pairs come out ordered by body pair.
+    /// others' in report order. Pairs come out ordered by body pair. Every point must be
+    /// written: a peer that defers writes its deferred points first.
     void mergeRepeatedPairs() {
         // Room for the largest outcome at once: a world's first merge may come late (Bullet merges
         // only while continuous collision adds predictive manifolds), and doubling its three
@@ -219,10 +228,17 @@ public:
     /// Every pair in contact or overlap after the last step, appended to `out` (the layer
     /// clears it first), without a vector per pair.
     virtual void reportContacts(ContactReport& out) = 0;
+    /// Writes the points of the pairs the last reportContacts deferred (Pair::pointsDeferred)
+    /// into their ranges of `out.points`, as that report would have written them, from what the
+    /// peer kept when it reported: the world may have changed since (bodies moved or destroyed).
+    /// Called at most once per report, before the layer reads any deferred point. Only a peer
+    /// that defers implements it.
+    virtual void writeDeferredPoints(ContactReport& out) { (void)out; }
     /// Whether anyone reads the events' impulses: false until a listener is added or the events
     /// are read (World::lastEvents), told before each step. A backend that measures impulses
     /// only for the events (ODE's joint feedback) may skip them until then, and says so through
-    /// measuredImpulses().
+    /// measuredImpulses(). One that defers points (writeDeferredPoints) defers them only while
+    /// this is false: once events are read every step, deferring is work on top.
     virtual void setImpulsesRead(bool read) { (void)read; }
     /// False when the last step's report carries no impulses because setImpulsesRead(false)
     /// let the backend skip them (its points then say 0); the layer's events then say
