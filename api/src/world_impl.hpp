@@ -168,11 +168,6 @@ struct World::Impl {
     int dispatching = 0;                     // listener callbacks running (a callback may step)
     std::vector<std::vector<ContactEvent>> retiredEvents;  // events a callback's step replaced mid-dispatch
 
-    /// The last step's events. Until someone reads events, a step only diffs the touching pairs;
-    /// the events (a copy of every staying pair's points) are written here, the first time a
-    /// listener or World::lastEvents reads them, from the report and pairs the step kept. Once
-    /// World::lastEvents has been called, every step writes them (the reference it returned
-    /// follows every step).
     /// The points the peer deferred (ContactReport::pointsDeferred), written before any is read.
     void writeDeferredPoints() {
         if (!contacts.pointsDeferred) return;
@@ -184,6 +179,11 @@ struct World::Impl {
                 for (std::uint32_t k = c.firstPoint; k < c.firstPoint + c.pointCount; ++k) contacts.points[k].normalImpulse = 0.0;
     }
 
+    /// The last step's events. Until someone reads events, a step only diffs the touching pairs;
+    /// the events (a copy of every staying pair's points) are written here, the first time a
+    /// listener or World::lastEvents reads them, from the report and pairs the step kept. Once
+    /// World::lastEvents has been called, every step writes them (the reference it returned
+    /// follows every step).
     std::vector<ContactEvent>& writtenEvents() {
         if (eventsUnwritten) {
             writeDeferredPoints();

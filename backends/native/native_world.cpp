@@ -408,7 +408,7 @@ void NativeWorld::reportContacts(ContactReport& out) {
     // the index after its last point.
     const auto writePair = [&](const Contact& c, const NativeBody& a, const NativeBody& b, std::size_t pair, std::size_t point) {
         ContactReport::Pair& p = out.pairs[pair];
-        p = {a.userData, b.userData, c.trigger, asleep(a) || asleep(b), Vec3::Zero(), static_cast<std::uint32_t>(point), 0};
+        p = {a.userData, b.userData, c.trigger, asleep(a) || asleep(b), false, Vec3::Zero(), static_cast<std::uint32_t>(point), 0};
         if (c.trigger) return point;
         p.normal = c.manifolds.front().normal;
         // The impulse over the whole step (all substeps), so impulse / dt is the mean force.

@@ -419,7 +419,7 @@ void OdeWorld::reportContacts(ContactReport& out) {
         }
         // ODE's normal points into body a; the layer's from A to B. The pair's points are the
         // step's, at the same place in `out` (below), its impulses filled in there.
-        out.pairs.push_back({p.a->userData(), p.b->userData(), false, sleeping, -normals_[p.first], base + p.first, p.count});
+        out.pairs.push_back({p.a->userData(), p.b->userData(), false, sleeping, false, -normals_[p.first], base + p.first, p.count});
         if (!haveImpulses) continue;
         for (std::uint32_t i = p.first; i < p.first + p.count; ++i) {
             const dReal* f = feedback_[i].f1;  // dCalcVectorDot3, inline: the report visits every point every step

@@ -57,14 +57,14 @@ struct ContactReport {
         std::uint64_t bodyB = 0;
         bool trigger = false;
         bool asleep = false;            ///< a body of the pair is asleep (see sleepKnown)
-        Vec3 normal = Vec3::Zero();     ///< from A to B
-        std::uint32_t firstPoint = 0;   ///< the pair's points: [firstPoint, firstPoint + pointCount)
-        std::uint32_t pointCount = 0;
         /// The peer left this pair's points unwritten (their range is set) until the layer asks
         /// for them (WorldPeer::writeDeferredPoints). Only a collision pair some point of which
         /// carried an impulse: it touches whatever its depths (World::dispatchEvents), and the
         /// points are needed only when the events are read, which most steps they are not.
         bool pointsDeferred = false;
+        Vec3 normal = Vec3::Zero();     ///< from A to B
+        std::uint32_t firstPoint = 0;   ///< the pair's points: [firstPoint, firstPoint + pointCount)
+        std::uint32_t pointCount = 0;
     };
     std::vector<Pair> pairs;
     /// World frame. Only the pairs' ranges are read: a peer may copy all its points at once and
@@ -84,7 +84,7 @@ struct ContactReport {
     }
     /// Starts a pair; the points added next are its points.
     void addPair(std::uint64_t bodyA, std::uint64_t bodyB, bool trigger, const Vec3& normal, bool asleep = false) {
-        pairs.push_back({bodyA, bodyB, trigger, asleep, normal, static_cast<std::uint32_t>(points.size()), 0});
+        pairs.push_back({bodyA, bodyB, trigger, asleep, false, normal, static_cast<std::uint32_t>(points.size()), 0});
     }
     void addPoint(const ContactPoint& point) {
         points.push_back(point);
