@@ -395,6 +395,12 @@ void Box2dWorld::findUnsound(const MotionLimits& limits, std::vector<std::uint64
 
 namespace {
 
+// Point p of a world manifold as the layer reports it. Box2D's separations are of the skinned
+// fixtures: the true surfaces are kPairSkin further apart.
+[[gnu::always_inline]] inline ContactPoint reportedPoint(const WorldManifold& wm, int32 p, float impulse) {
+    return {fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulse};
+}
+
 bool severalFixtures(const b2Body& body) { return body.GetFixtureList() && body.GetFixtureList()->GetNext(); }
 
 // Whether the bodies of touching contact `c` also touch through another of their fixture pairs.
@@ -457,7 +463,7 @@ void Box2dWorld::reportContacts(ContactReport& out) {
         const WorldManifold wm = worldManifold(m, xfA, radiusA, xfB, radiusB);
         out.addPair(a, b, false, fromB2(wm.normal), sleeping);
         for (int32 p = 0; p < m.pointCount; ++p)
-            out.addPoint({fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), impulses[static_cast<std::size_t>(p)]});
+            out.addPoint(reportedPoint(wm, p, impulses[static_cast<std::size_t>(p)]));
     }
     // The deferred pairs' points follow the others', as room the layer's later additions pass.
     if (!deferred_.empty()) {
@@ -489,9 +495,7 @@ void Box2dWorld::writeDeferredPoints(ContactReport& out) {
     for (const DeferredManifold& d : deferred_) {
         const WorldManifold wm = worldManifold(d.manifold, d.xfA, d.radiusA, d.xfB, d.radiusB);
         ContactPoint* points = out.points.data() + out.pairs[d.pair].firstPoint;
-        // Separations are of the skinned fixtures: the true surfaces are kPairSkin further apart.
-        for (int32 p = 0; p < d.manifold.pointCount; ++p)
-            points[p] = {fromB2(wm.points[p]), -(wm.separations[p] + kPairSkin), d.impulses[static_cast<std::size_t>(p)]};
+        for (int32 p = 0; p < d.manifold.pointCount; ++p) points[p] = reportedPoint(wm, p, d.impulses[static_cast<std::size_t>(p)]);
     }
 }
 
